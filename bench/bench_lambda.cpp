@@ -1,0 +1,72 @@
+// Lambda per method and backend (closed, spline, 1D Boost, 1D GSL, 2D) for GGX and GTR at a few gamma.
+// Each iteration evaluates one Lambda; mu cycles through 0.01 .. 100 so that no single easy point is timed.
+// Run: build/bench/bench_lambda --benchmark_min_time=0.2   (one core; the README has the current numbers)
+#include <benchmark/benchmark.h>
+
+#include <array>
+#include <smithlab/smithlab.hpp>
+#include <string>
+
+namespace {
+
+constexpr std::array<double, 5> mus = {0.01, 0.1, 1.0, 10.0, 100.0};
+
+template <class N>
+void run(benchmark::State& state, const N& ndf, smithlab::LambdaOptions opts) {
+    std::size_t i = 0;
+    for (auto _ : state) {
+        benchmark::DoNotOptimize(smithlab::Lambda(ndf, mus[i++ % mus.size()], opts));
+    }
+    state.SetItemsProcessed(state.iterations());
+}
+
+using smithlab::Backend;
+using smithlab::Method;
+
+void register_all() {
+    struct Ndf {
+        std::string name;
+        smithlab::AnyNdf ndf;
+    };
+    const auto reg = smithlab::builtin_registry();
+    const std::array<Ndf, 5> ndfs = {Ndf{"ggx(0.3)", reg.make("ggx(alpha=0.3)")},
+                                     Ndf{"gtr(0.3,0.5)", reg.make("gtr(alpha=0.3, gamma=0.5)")},
+                                     Ndf{"gtr(0.3,1)", reg.make("gtr(alpha=0.3, gamma=1)")},
+                                     Ndf{"gtr(0.3,1.5)", reg.make("gtr(alpha=0.3, gamma=1.5)")},
+                                     Ndf{"gtr(0.3,3)", reg.make("gtr(alpha=0.3, gamma=3)")}};
+    // Closed forms on the concrete types (no virtual call): what a renderer would pay.
+    benchmark::RegisterBenchmark("closed/ggx(0.3)", [](benchmark::State& s) { run(s, smithlab::ggx(0.3), {}); });
+    for (int g = 0; g <= 4; ++g)
+        benchmark::RegisterBenchmark(("closed/gtr(0.3," + std::to_string(g) + ")").c_str(),
+                                     [g](benchmark::State& s) { run(s, smithlab::gtr(0.3, g), {}); });
+    benchmark::RegisterBenchmark("closed/beckmann(0.3)", [](benchmark::State& s) { run(s, smithlab::beckmann(0.3), {}); });
+    benchmark::RegisterBenchmark("spline/gtr(0.3,1.5)", [](benchmark::State& s) {
+        run(s, smithlab::gtr(0.3, 1.5), {.method = Method::spline});
+    });
+    for (const Ndf& n : ndfs)
+        for (Backend b : {Backend::boost, Backend::gsl}) {
+            const std::string be(smithlab::to_string(b));
+            for (double tol : {1e-8, 1e-12})
+                benchmark::RegisterBenchmark(("quadrature1d/" + be + "/tol" + (tol == 1e-8 ? "1e-8/" : "1e-12/") + n.name).c_str(),
+                                             [n, b, tol](benchmark::State& s) {
+                                                 run(s, n.ndf, {.method = Method::quadrature, .backend = b, .tolerance = tol});
+                                             });
+            if (n.name == "ggx(0.3)" || n.name == "gtr(0.3,1.5)")
+                benchmark::RegisterBenchmark(("quadrature2d/" + be + "/tol1e-10/" + n.name).c_str(),
+                                             [n, b](benchmark::State& s) {
+                                                 run(s, n.ndf, {.method = Method::quadrature2d, .backend = b, .tolerance = 1e-10});
+                                             })
+                    ->Unit(benchmark::kMicrosecond);
+        }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    register_all();
+    benchmark::Initialize(&argc, argv);
+    if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+    benchmark::RunSpecifiedBenchmarks();
+    benchmark::Shutdown();
+    return 0;
+}

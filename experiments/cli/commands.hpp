@@ -1,0 +1,36 @@
+// The `smithlab` subcommands. Each returns the process exit code: 0 fine, 1 a check failed, 2 bad input.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "smithlab/registry.hpp"
+#include "smithlab/smith.hpp"
+
+namespace smithlab::cli {
+
+constexpr int exit_ok = 0, exit_failed = 1, exit_bad_input = 2;
+
+struct EvalArgs {
+    std::string ndf, input, output, method = "auto", backend = "boost", downward = "smith";
+    std::string mu;  // text, so that "inf" and "nan" reach our own validation
+    double tolerance = 1e-12;
+};
+void add_eval(CLI::App& app, EvalArgs& args);
+int run_eval(const EvalArgs& args, const NdfRegistry& registry);
+
+struct CheckArgs {
+    std::vector<std::string> ndfs;
+    bool all = false;
+    bool no_2d = false;
+    std::string backend = "boost";
+};
+void add_check(CLI::App& app, CheckArgs& args);
+int run_check(const CheckArgs& args, const NdfRegistry& registry);
+
+// Parses a double, accepting "inf"; NaN and trailing junk are input errors naming `what`.
+double parse_number(const std::string& text, const std::string& what);
+
+}  // namespace smithlab::cli

@@ -1,0 +1,58 @@
+// smithlab -- command-line front end. `smithlab --help` and `smithlab SUBCOMMAND --help` explain everything.
+#include <exception>
+#include <iostream>
+
+#include "commands.hpp"
+#include "smithlab/errors.hpp"
+#include "smithlab/gtr/registry.hpp"
+
+int main(int argc, char** argv) {
+    using namespace smithlab;
+    const NdfRegistry registry = builtin_registry();
+
+    CLI::App app{
+        "smithlab: Smith masking-shadowing for any isotropic microfacet NDF (GGX, Beckmann, Blinn-Phong, GTR).\n"
+        "NDFs are named by spec strings such as 'ggx(alpha=0.2)' or 'gtr(alpha=0.3, gamma=1.5)';\n"
+        "`smithlab list` shows them all. mu = cot(theta) of the direction; mu < 0 points below the surface.",
+        "smithlab"};
+    app.require_subcommand(1);
+
+    cli::EvalArgs eval_args;
+    cli::add_eval(app, eval_args);
+    cli::CheckArgs check_args;
+    cli::add_check(app, check_args);
+    CLI::App* list = app.add_subcommand("list", "List the registered NDFs, their parameters and example specs");
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        app.exit(e);
+        return cli::exit_bad_input;
+    }
+
+    try {
+        if (app.got_subcommand("eval")) return cli::run_eval(eval_args, registry);
+        if (app.got_subcommand("check")) return cli::run_check(check_args, registry);
+        if (list->parsed()) {
+            for (const NdfInfo* info : registry.list()) {
+                std::cout << info->name << "(";
+                for (std::size_t i = 0; i < info->parameters.size(); ++i) std::cout << (i ? ", " : "") << info->parameters[i];
+                std::cout << ")\n    " << info->description << "\n    e.g.";
+                for (const auto& ex : info->examples) std::cout << "  " << ex;
+                std::cout << "\n";
+            }
+            return cli::exit_ok;
+        }
+    } catch (const input_error& e) {
+        std::cerr << "smithlab: error: " << e.what() << "\n";
+        return cli::exit_bad_input;
+    } catch (const std::exception& e) {
+        std::cerr << "smithlab: internal error: " << e.what() << "\n";
+        return cli::exit_failed;
+    }
+    return cli::exit_ok;
+}

@@ -1,0 +1,35 @@
+// smithlab/gtr/gtr.hpp -- the Generalized Trowbridge-Reitz distribution (Burley 2012, eq. in appendix B;
+// Dimov 2015 eq. 1**) for alpha in (0, 1] and every real gamma >= 0:
+//     D(theta) = c / (1 + (alpha^2 - 1) cos^2 theta)^gamma,  c = (gamma - 1)(alpha^2 - 1) / (pi (1 - alpha^{2(1-gamma)})).
+// gamma = 2 is GGX, gamma = 1 the log limit c = (alpha^2 - 1) / (pi ln alpha^2), gamma = 0 and alpha = 1 give 1/pi.
+#pragma once
+
+namespace smithlab {
+
+struct Gtr {
+    double alpha;
+    double gamma;
+    double K;  // P22 prefactor, see gtr_K
+
+    // D = K t^gamma with t = alpha^2 / (sin^2 + alpha^2 cos^2) in [alpha^2, 1] (sin^2 = (1-c)(1+c): exact at the pole).
+    double D(double cos_theta_m) const;
+    // DESIGN.md, overflow-safe: with w = alpha^2/(r^2 + alpha^2), t = w (1 + r^2) in [alpha^2, 1],
+    //     P22 = K t^(gamma - 2) w^2.
+    // Written as (1 + r^2)^(gamma-2) (r^2 + alpha^2)^-gamma it overflows to inf*0 in the far tail at gamma = 7.
+    double slope_density(double r2) const;
+
+    // Closed forms exist for gamma = 0, 1, 2, 3, 4 (Dimov 2015, section 3); see closed_forms.hpp.
+    bool has_closed_Lambda() const;
+    double Lambda(double mu) const;
+    // Dimov 2015 section 5: natural cubic spline in gamma through G1 at gamma = 0..4, gamma clamped to 4 above.
+    double Lambda_spline(double mu) const;
+};
+
+// K = (1 - alpha^2)/(pi alpha^2) * (gamma - 1) / (1 - alpha^{2(gamma - 1)}), evaluated with expm1/log1p so that
+// the 0/0 at gamma -> 1 (-> 1/(-2 ln alpha)) and at alpha -> 1 (-> 1/pi overall) keep every digit.
+double gtr_K(double alpha, double gamma);
+
+// alpha in [1e-50, 1] (below, alpha^6 underflows in the closed forms), gamma >= 0, both finite.
+Gtr gtr(double alpha, double gamma);
+
+}  // namespace smithlab

@@ -1,0 +1,66 @@
+// smithlab/any_ndf.hpp -- a type-erased NDF, so that the CLI, scene files and the registry can hold any of them.
+//
+// AnyNdf is itself an Ndf: the Smith engine works on it unchanged, and it forwards the optional members
+// (slope form, closed-form Lambda, spline Lambda) of whatever it holds, answering at run time whether they exist.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <utility>
+
+#include "smithlab/ndf.hpp"
+
+namespace smithlab {
+
+class AnyNdf {
+public:
+    template <Ndf N>
+    AnyNdf(N ndf, std::string spec) : self_(std::make_shared<const Model<N>>(std::move(ndf))), spec_(std::move(spec)) {}
+
+    double D(double cos_theta_m) const { return self_->D(cos_theta_m); }
+    double slope_density(double r2) const { return self_->slope_density(r2); }
+
+    bool has_closed_Lambda() const { return self_->has_closed(); }
+    // Throws input_error when the held NDF has no closed form.
+    double Lambda(double mu) const;
+
+    bool has_spline_Lambda() const { return self_->has_spline(); }
+    // Throws input_error when the held NDF has no spline.
+    double Lambda_spline(double mu) const;
+
+    // The canonical spec string, e.g. "gtr(alpha=0.3, gamma=1.5)".
+    const std::string& spec() const { return spec_; }
+
+private:
+    struct Base {
+        virtual ~Base() = default;
+        virtual double D(double c) const = 0;
+        virtual double slope_density(double r2) const = 0;
+        virtual bool has_closed() const = 0;
+        virtual double closed(double mu) const = 0;
+        virtual bool has_spline() const = 0;
+        virtual double spline(double mu) const = 0;
+    };
+    template <Ndf N>
+    struct Model final : Base {
+        explicit Model(N n) : ndf(std::move(n)) {}
+        double D(double c) const override { return ndf.D(c); }
+        double slope_density(double r2) const override { return smithlab::slope_density(ndf, r2); }
+        bool has_closed() const override { return smithlab::has_closed_Lambda(ndf); }
+        double closed(double mu) const override {
+            if constexpr (HasClosedLambda<N>) return ndf.Lambda(mu);
+            else return 0.0;  // unreachable: AnyNdf::Lambda checks has_closed() first
+        }
+        bool has_spline() const override { return smithlab::has_spline_Lambda(ndf); }
+        double spline(double mu) const override {
+            if constexpr (HasSplineLambda<N>) return ndf.Lambda_spline(mu);
+            else return 0.0;  // unreachable: AnyNdf::Lambda_spline checks has_spline() first
+        }
+        N ndf;
+    };
+
+    std::shared_ptr<const Base> self_;
+    std::string spec_;
+};
+
+}  // namespace smithlab

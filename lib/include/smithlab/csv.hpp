@@ -1,0 +1,25 @@
+// smithlab/csv.hpp -- RFC 4180 CSV: quoted fields (with commas, doubled quotes and line breaks), CRLF or LF.
+#pragma once
+
+#include <iosfwd>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace smithlab {
+
+struct CsvRecord {
+    std::size_t line = 0;  // physical line where the record starts, 1-based
+    std::vector<std::string> fields;
+    std::string error;  // non-empty when the record is malformed (bad quoting); fields are then unusable
+};
+
+// Every record of the stream, blank lines skipped. Malformed records are returned with `error` set, so that a
+// caller can report each bad row by its line and keep going.
+std::vector<CsvRecord> read_csv(std::istream& in);
+
+// One field, quoted only when it must be (comma, quote, CR or LF inside).
+std::string csv_field(std::string_view s);
+void write_csv_record(std::ostream& out, const std::vector<std::string>& fields);
+
+}  // namespace smithlab

@@ -1,0 +1,64 @@
+// smithlab/ndf.hpp -- what an isotropic normal distribution function (NDF) is.
+//
+// An NDF is any type with `double D(double cos_theta_m) const`, normalized so that
+//     integral over the hemisphere of D(m) cos(theta_m) dm = 1                 (Walter et al. 2007, eq. 4).
+// Everything else is optional and detected at compile time:
+//   double slope_density(double r2) const  P22 as a function of r^2 = p^2 + q^2 = tan^2(theta_m)
+//                                          (Walter 2007 eq. 42: P22 = D cos^4). Built-ins supply it because
+//                                          cos(theta_m) near the pole cannot carry the digits of a tiny slope.
+//   double Lambda(double mu) const         a closed-form Smith Lambda for mu > 0.
+//   double Lambda_spline(double mu) const  an interpolated Lambda (e.g. Dimov's spline across GTR gamma).
+#pragma once
+
+#include <cmath>
+#include <concepts>
+
+namespace smithlab {
+
+template <class N>
+concept Ndf = requires(const N& n, double c) {
+    { n.D(c) } -> std::convertible_to<double>;
+};
+
+template <class N>
+concept HasSlopeDensity = requires(const N& n, double r2) {
+    { n.slope_density(r2) } -> std::convertible_to<double>;
+};
+
+template <class N>
+concept HasClosedLambda = requires(const N& n, double mu) {
+    { n.Lambda(mu) } -> std::convertible_to<double>;
+};
+
+template <class N>
+concept HasSplineLambda = requires(const N& n, double mu) {
+    { n.Lambda_spline(mu) } -> std::convertible_to<double>;
+};
+
+// P22 as a function of r^2 = tan^2(theta_m): D(m) cos^4(theta_m) (Walter 2007 eq. 42; Hammon 2017 appendix,
+// "Completing (theta_m, phi_m) to (p, q)"). Uses the NDF's own slope form when it has one.
+template <Ndf N>
+double slope_density(const N& ndf, double r2) {
+    if constexpr (HasSlopeDensity<N>) {
+        return ndf.slope_density(r2);
+    } else {
+        if (!(r2 < INFINITY)) return 0.0;
+        const double c2 = 1.0 / (1.0 + r2);
+        return ndf.D(std::sqrt(c2)) * c2 * c2;
+    }
+}
+
+// Whether `ndf` offers a closed-form / spline Lambda. Type-erased NDFs answer at run time.
+template <Ndf N>
+bool has_closed_Lambda(const N& ndf) {
+    if constexpr (requires { ndf.has_closed_Lambda(); }) return ndf.has_closed_Lambda();
+    else return HasClosedLambda<N>;
+}
+
+template <Ndf N>
+bool has_spline_Lambda(const N& ndf) {
+    if constexpr (requires { ndf.has_spline_Lambda(); }) return ndf.has_spline_Lambda();
+    else return HasSplineLambda<N>;
+}
+
+}  // namespace smithlab

@@ -1,0 +1,49 @@
+// smithlab/ndfs.hpp -- the classic isotropic NDFs: GGX (Trowbridge-Reitz), Beckmann, Blinn-Phong.
+//
+// Each gives D(cos theta_m), its slope form P22(r^2) (Walter 2007 eq. 42), and Lambda in closed form where one
+// exists. Factories validate their parameters and throw input_error naming the bad one.
+#pragma once
+
+#include <numbers>
+
+namespace smithlab {
+
+// GGX / Trowbridge-Reitz, Walter 2007 eq. 33: D = alpha^2 / (pi cos^4 (alpha^2 + tan^2)^2).
+struct Ggx {
+    double alpha;
+    // sin^2 + alpha^2 cos^2 with sin^2 = (1 - c)(1 + c): exact near the pole, where 1 + (alpha^2 - 1) c^2 is not.
+    double D(double c) const {
+        if (c <= 0.0) return 0.0;
+        const double s = (1.0 - c) * (1.0 + c) + alpha * alpha * c * c;
+        return alpha * alpha / (std::numbers::pi * s * s);
+    }
+    double slope_density(double r2) const {
+        const double s = r2 + alpha * alpha;
+        return alpha * alpha / (std::numbers::pi * s * s);
+    }
+    // Walter 2007 eq. 72, rewritten: (sqrt(1 + alpha^2/mu^2) - 1)/2 = alpha^2 / (2 mu (mu + hypot(mu, alpha))).
+    double Lambda(double mu) const;
+};
+
+// Beckmann, Walter 2007 eq. 25: D = exp(-tan^2 / alpha^2) / (pi alpha^2 cos^4).
+struct Beckmann {
+    double alpha;
+    double D(double c) const;
+    double slope_density(double r2) const;
+    // Walter 2007 eq. 26: Lambda = (erf-based) = ierfc(a) / (2 a), a = mu / alpha, ierfc(a) = e^{-a^2}/sqrt(pi) - a erfc(a),
+    // the first repeated integral of erfc (Abramowitz & Stegun 7.2.5), evaluated without cancellation.
+    double Lambda(double mu) const;
+};
+
+// Blinn-Phong normalized for D cos: D = (n + 2) / (2 pi) cos^n (Walter 2007 eq. 30). No closed-form Lambda.
+struct BlinnPhong {
+    double n;
+    double D(double c) const;
+    double slope_density(double r2) const;  // (n+2)/(2 pi) (1 + r^2)^{-(n+4)/2}
+};
+
+Ggx ggx(double alpha);            // alpha > 0
+Beckmann beckmann(double alpha);  // alpha > 0
+BlinnPhong blinn(double n);       // n >= 0
+
+}  // namespace smithlab

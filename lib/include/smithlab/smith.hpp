@@ -1,0 +1,155 @@
+// smithlab/smith.hpp -- the generic Smith engine: P22, P2, Lambda, G1, G2 for any isotropic NDF.
+//
+// Notation follows Walter et al. 2007, appendix A, and Hammon 2017, appendix:
+//   P22(p, q) = D(m) cos^4(theta_m), tan^2(theta_m) = p^2 + q^2            (Walter eq. 42)
+//   P2(q)     = integral over p of P22(p, q)                                (Walter eq. 43)
+//   Lambda(mu) = (1/mu) integral_mu^inf (q - mu) P2(q) dq, mu = cot(theta_v) (Walter eq. 48)
+//   G1 = 1 / (1 + Lambda),  G2 = 1 / (1 + Lambda_i + Lambda_o)             (Walter eq. 51; Hammon, appendix)
+#pragma once
+
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <string_view>
+
+#include "smithlab/errors.hpp"
+#include "smithlab/ndf.hpp"
+#include "smithlab/quadrature.hpp"
+
+namespace smithlab {
+
+// How Lambda is computed. `automatic` takes the closed form when the NDF has one, else 1D quadrature.
+enum class Method { automatic, closed, spline, quadrature, quadrature2d };
+Method parse_method(std::string_view name);  // throws input_error naming the unknown method
+std::string_view to_string(Method m);
+
+// Downward directions (mu < 0). Smith's ray-tracing derivation gives Lambda(-mu) = -1 - Lambda(mu);
+// Hammon 2017 (appendix, "Path tracing with Smith masking") redefines it as -Lambda(mu) to make the BRDF symmetric.
+enum class Downward { smith, hammon_symmetric };
+
+struct LambdaOptions {
+    Method method = Method::automatic;
+    Backend backend = Backend::boost;
+    double tolerance = 1e-12;  // relative, for the quadrature methods
+    Downward downward = Downward::smith;
+};
+
+enum class G2Form { height_correlated, uncorrelated };
+
+namespace detail {
+// tan(t) - t without cancellation: Taylor series (tan t = sum 2^{2k}(2^{2k}-1)|B_2k| t^{2k-1}/(2k)!) below 0.5.
+double tan_minus_x(double t);
+// Lambda_1d / Lambda_2d take a finite mu > 0; Lambda() handles the limits and the sign.
+void require_mu(double mu);
+}  // namespace detail
+
+// P22(p, q), Walter 2007 eq. 42.
+template <Ndf N>
+double P22(const N& ndf, double p, double q) {
+    return slope_density(ndf, p * p + q * q);
+}
+
+// P2(q) = 2 integral_0^inf P22(p, q) dp, Walter 2007 eq. 43 (P22 is even in p).
+template <Ndf N>
+double P2(const N& ndf, double q, const QuadratureOptions& opts = {}) {
+    const double q2 = q * q;
+    return 2.0 * integrate([&](double p) { return slope_density(ndf, p * p + q2); }, 0.0, INFINITY, opts);
+}
+
+// Lambda by the book: the nested route P22 -> P2 -> Lambda, Walter 2007 eq. 48. Cost: milliseconds.
+template <Ndf N>
+double Lambda_2d(const N& ndf, double mu, const QuadratureOptions& opts = {}) {
+    detail::require_mu(mu);
+    QuadratureOptions inner = opts;
+    inner.tolerance = opts.tolerance * 0.1;
+    const double I = integrate([&](double q) { return (q - mu) * P2(ndf, q, inner); }, mu, INFINITY, opts);
+    return I / mu;
+}
+
+// Lambda by the reduced route. Doing the azimuthal integral of Walter eq. 48 in closed form (DESIGN.md):
+//   Lambda(mu) = (2/mu) integral_mu^inf f(r^2) r (sqrt(r^2 - mu^2) - mu acos(mu/r)) dr,   f(r^2) = P22,
+// and with r = mu sec t,
+//   Lambda(mu) = 2 mu^2 integral_0^{pi/2} f(mu^2 sec^2 t) sec^2 t tan t (tan t - t) dt,
+// a bounded integrand on a finite interval. It is split at pi/4; the upper half is written in s = pi/2 - t, so
+// that r = mu / sin(s) keeps every digit in the far tail and at grazing angles (where the peak of f sits at s ~ mu/alpha).
+template <Ndf N>
+double Lambda_1d(const N& ndf, double mu, const QuadratureOptions& opts = {}) {
+    detail::require_mu(mu);
+    const double mu2 = mu * mu;
+    // Both halves carry the factor mu^2 inside as f(r^2) r^2 sec^-2 t, so that neither a huge nor a tiny mu
+    // overflows the prefactor.
+    auto lower = [&](double t) {  // t in [0, pi/4]
+        const double c = std::cos(t);
+        const double r2 = mu2 / (c * c);
+        const double f = slope_density(ndf, r2);
+        return f == 0.0 ? 0.0 : f * r2 * std::tan(t) * detail::tan_minus_x(t);
+    };
+    auto upper = [&](double s) {  // s = pi/2 - t in (0, pi/4]
+        const double sn = std::sin(s);
+        const double r2 = mu2 / (sn * sn);
+        if (!(r2 < INFINITY)) return 0.0;
+        const double f = slope_density(ndf, r2);
+        if (f == 0.0) return 0.0;
+        const double tn = std::cos(s) / sn;                        // tan t
+        return f * r2 * tn * (tn - (std::numbers::pi / 2 - s));
+    };
+    constexpr double quarter = std::numbers::pi / 4;
+    return 2.0 * (integrate(lower, 0.0, quarter, opts) + integrate(upper, 0.0, quarter, opts));
+}
+
+// Lambda(mu) for mu = cot(theta_v): mu = +inf gives 0, mu = 0 gives +inf, mu < 0 follows opts.downward.
+template <Ndf N>
+double Lambda(const N& ndf, double mu, const LambdaOptions& opts = {}) {
+    if (std::isnan(mu)) throw input_error("mu is NaN");
+    if (mu < 0.0) {
+        const double up = Lambda(ndf, -mu, opts);
+        return opts.downward == Downward::smith ? -1.0 - up : -up;
+    }
+    if (mu == 0.0) return INFINITY;
+    if (std::isinf(mu)) return 0.0;
+    const QuadratureOptions q{opts.backend, opts.tolerance};
+    switch (opts.method) {
+        case Method::automatic:
+            if (has_closed_Lambda(ndf)) break;
+            return Lambda_1d(ndf, mu, q);
+        case Method::closed:
+            if (!has_closed_Lambda(ndf)) throw input_error("method 'closed': this ndf has no closed-form Lambda");
+            break;
+        case Method::spline:
+            if constexpr (HasSplineLambda<N>) {
+                if (has_spline_Lambda(ndf)) return ndf.Lambda_spline(mu);
+            }
+            throw input_error("method 'spline': this ndf has no spline Lambda");
+        case Method::quadrature:
+            return Lambda_1d(ndf, mu, q);
+        case Method::quadrature2d:
+            return Lambda_2d(ndf, mu, q);
+    }
+    if constexpr (HasClosedLambda<N>) return ndf.Lambda(mu);
+    throw input_error("this ndf has no closed-form Lambda");
+}
+
+// G1 = 1 / (1 + Lambda(mu)), Walter 2007 eq. 51 with mu = |cot theta_v| (eq. 44): a direction below the
+// macrosurface is masked as if seen from its own side, as in transmission.
+template <Ndf N>
+double G1(const N& ndf, double mu, const LambdaOptions& opts = {}) {
+    if (std::isnan(mu)) throw input_error("mu is NaN");
+    return 1.0 / (1.0 + Lambda(ndf, std::abs(mu), opts));
+}
+
+// Bidirectional shadowing-masking. Same side (reflection): height-correlated 1/(1 + Lambda_i + Lambda_o)
+// (Hammon 2017 appendix, "Solving for G2") or uncorrelated G1 G1 (Walter 2007 eq. 23).
+// Opposite sides (transmission), height-correlated: with u = f(height) uniform, the point is seen from above with
+// probability u^Lambda_i and from below with (1 - u)^Lambda_o, so G2 = Beta(1 + Lambda_i, 1 + Lambda_o)
+// (Heitz 2014, "Understanding the masking-shadowing function", section on transmission).
+double G2_from_Lambdas(double Lambda_i, double Lambda_o, bool same_side, G2Form form);
+
+template <Ndf N>
+double G2(const N& ndf, double mu_i, double mu_o, G2Form form = G2Form::height_correlated,
+          const LambdaOptions& opts = {}) {
+    if (std::isnan(mu_i) || std::isnan(mu_o)) throw input_error("mu is NaN");
+    const bool same_side = (mu_i >= 0.0) == (mu_o >= 0.0);
+    return G2_from_Lambdas(Lambda(ndf, std::abs(mu_i), opts), Lambda(ndf, std::abs(mu_o), opts), same_side, form);
+}
+
+}  // namespace smithlab

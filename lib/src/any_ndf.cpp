@@ -1,0 +1,17 @@
+#include "smithlab/any_ndf.hpp"
+
+#include "smithlab/errors.hpp"
+
+namespace smithlab {
+
+double AnyNdf::Lambda(double mu) const {
+    if (!has_closed_Lambda()) throw input_error("ndf '" + spec_ + "' has no closed-form Lambda");
+    return self_->closed(mu);
+}
+
+double AnyNdf::Lambda_spline(double mu) const {
+    if (!has_spline_Lambda()) throw input_error("ndf '" + spec_ + "' has no spline Lambda");
+    return self_->spline(mu);
+}
+
+}  // namespace smithlab

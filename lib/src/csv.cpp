@@ -1,0 +1,91 @@
+#include "smithlab/csv.hpp"
+
+#include <istream>
+#include <iterator>
+#include <ostream>
+
+namespace smithlab {
+
+std::vector<CsvRecord> read_csv(std::istream& in) {
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::vector<CsvRecord> records;
+    std::size_t i = 0, line = 1;
+    const std::size_t n = text.size();
+    auto at_eol = [&](std::size_t k) { return k >= n || text[k] == '\n' || (text[k] == '\r' && (k + 1 >= n || text[k + 1] == '\n')); };
+    auto skip_eol = [&] {
+        if (i < n && text[i] == '\r') ++i;
+        if (i < n && text[i] == '\n') ++i;
+        ++line;
+    };
+    while (i < n) {
+        if (at_eol(i)) {  // blank line
+            skip_eol();
+            continue;
+        }
+        CsvRecord rec;
+        rec.line = line;
+        std::string field;
+        bool done = false;
+        while (!done) {
+            field.clear();
+            if (i < n && text[i] == '"') {  // quoted field
+                ++i;
+                bool closed = false;
+                while (i < n) {
+                    if (text[i] == '"') {
+                        if (i + 1 < n && text[i + 1] == '"') {
+                            field += '"';
+                            i += 2;
+                            continue;
+                        }
+                        ++i;
+                        closed = true;
+                        break;
+                    }
+                    if (text[i] == '\n') ++line;
+                    field += text[i++];
+                }
+                if (!closed) {
+                    rec.error = "unterminated quoted field";
+                    records.push_back(std::move(rec));
+                    return records;
+                }
+                if (!(at_eol(i) || text[i] == ',')) rec.error = "characters after a closing quote";
+            } else {
+                while (!(at_eol(i) || text[i] == ',')) {
+                    if (text[i] == '"') rec.error = "a quote inside an unquoted field";
+                    field += text[i++];
+                }
+            }
+            if (!rec.error.empty()) {  // resynchronize at the end of the physical line
+                while (!at_eol(i)) ++i;
+                done = true;
+            } else if (at_eol(i)) {
+                done = true;
+            } else {
+                ++i;  // the comma
+            }
+            rec.fields.push_back(field);
+        }
+        skip_eol();
+        records.push_back(std::move(rec));
+    }
+    return records;
+}
+
+std::string csv_field(std::string_view s) {
+    if (s.find_first_of(",\"\r\n") == std::string_view::npos) return std::string(s);
+    std::string out = "\"";
+    for (char c : s) {
+        if (c == '"') out += '"';
+        out += c;
+    }
+    return out + '"';
+}
+
+void write_csv_record(std::ostream& out, const std::vector<std::string>& fields) {
+    for (std::size_t k = 0; k < fields.size(); ++k) out << (k ? "," : "") << csv_field(fields[k]);
+    out << '\n';
+}
+
+}  // namespace smithlab

@@ -1,0 +1,59 @@
+#include "smithlab/smith.hpp"
+
+#include <array>
+#include <boost/math/special_functions/beta.hpp>
+#include <string>
+
+namespace smithlab {
+
+Method parse_method(std::string_view name) {
+    if (name == "auto") return Method::automatic;
+    if (name == "closed") return Method::closed;
+    if (name == "spline") return Method::spline;
+    if (name == "quadrature") return Method::quadrature;
+    if (name == "quadrature2d") return Method::quadrature2d;
+    throw input_error("unknown method '" + std::string(name) +
+                      "' (expected auto, closed, spline, quadrature or quadrature2d)");
+}
+
+std::string_view to_string(Method m) {
+    switch (m) {
+        case Method::automatic: return "auto";
+        case Method::closed: return "closed";
+        case Method::spline: return "spline";
+        case Method::quadrature: return "quadrature";
+        case Method::quadrature2d: return "quadrature2d";
+    }
+    return "?";
+}
+
+namespace detail {
+
+double tan_minus_x(double t) {
+    if (t >= 0.5) return std::tan(t) - t;  // cancellation at most a factor 11 here
+    // Coefficients of t^3, t^5, ..., t^33 in tan(t) - t; at t = 0.5 the next term is below 1e-16 of the sum.
+    static constexpr std::array<double, 16> c = {
+        0.333333333333333333333,    0.133333333333333333333,    0.0539682539682539682540,
+        0.0218694885361552028219,   0.00886323552990219656886,  0.00359212803657248101693,
+        0.00145583438705131826825,  0.000590027440945585981378, 0.000239129114243552481486,
+        0.0000969153795692945032560, 0.0000392783238833168340534, 0.0000159189050693289647407,
+        0.00000645168921565543076319, 0.00000261477115129075455426, 0.00000105972683201046543509,
+        4.29491107827380585482e-7};
+    const double t2 = t * t;
+    double p = c.back();
+    for (auto it = c.rbegin() + 1; it != c.rend(); ++it) p = p * t2 + *it;
+    return p * t2 * t;
+}
+
+void require_mu(double mu) { require(mu > 0.0 && std::isfinite(mu), "mu", "finite and > 0", mu); }
+
+}  // namespace detail
+
+double G2_from_Lambdas(double Lambda_i, double Lambda_o, bool same_side, G2Form form) {
+    if (form == G2Form::uncorrelated) return 1.0 / ((1.0 + Lambda_i) * (1.0 + Lambda_o));
+    if (same_side) return 1.0 / (1.0 + Lambda_i + Lambda_o);
+    if (std::isinf(Lambda_i) || std::isinf(Lambda_o)) return 0.0;  // grazing: nothing is seen
+    return boost::math::beta(1.0 + Lambda_i, 1.0 + Lambda_o);
+}
+
+}  // namespace smithlab

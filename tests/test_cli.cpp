@@ -1,0 +1,131 @@
+// The smithlab executable, driven as a user would: good runs, bad input (exit 2, the offending item named,
+// no output file), the CSV contract.
+#include <catch2/catch.hpp>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Run {
+    int rc;
+    std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+    std::ifstream in(p);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+fs::path scratch() {
+    const fs::path d = fs::temp_directory_path() / ("smithlab_cli_test_" + std::to_string(::getpid()));
+    fs::create_directories(d);
+    return d;
+}
+
+// args is passed to the shell as is: quote specs with single quotes.
+Run run(const std::string& args) {
+    const fs::path d = scratch();
+    const std::string cmd = std::string("'") + SMITHLAB_EXE + "' " + args + " > '" + (d / "out").string() + "' 2> '" +
+                            (d / "err").string() + "'";
+    const int status = std::system(cmd.c_str());
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(d / "out"), slurp(d / "err")};
+}
+
+void write(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
+
+}  // namespace
+
+TEST_CASE("eval prints lambda and g1", "[cli]") {
+    const Run r = run("eval --ndf 'ggx(alpha=0.5)' --mu 1");
+    REQUIRE(r.rc == 0);
+    // GGX: Lambda = (sqrt(1 + alpha^2/mu^2) - 1)/2 = 0.0590169943749474...
+    CHECK_THAT(r.out, Catch::Contains("lambda  0.05901699437494") && Catch::Contains("g1"));
+    CHECK(run("eval --ndf 'blinn(n=20)' --mu 0.5 --method quadrature2d --backend gsl").rc == 0);
+    CHECK(run("eval --ndf 'gtr(alpha=0.3, gamma=1.5)' --mu 0.5 --method spline").rc == 0);
+    CHECK(run("eval --ndf 'gtr(alpha=0.3, gamma=1)' --mu inf").out.find("g1      1\n") != std::string::npos);
+}
+
+TEST_CASE("bad input exits 2 and names the offending item", "[cli]") {
+    struct Case {
+        const char* args;
+        const char* named;
+    };
+    for (const Case& c : {Case{"eval --ndf 'ggx(alpha=-1)' --mu 1", "alpha"},
+                          Case{"eval --ndf 'ggx(alpha=nan)' --mu 1", "alpha"},
+                          Case{"eval --ndf 'gtr(alpha=0.3, gamma=-1)' --mu 1", "gamma"},
+                          Case{"eval --ndf 'phong(n=2)' --mu 1", "phong"},
+                          Case{"eval --ndf 'ggx(alpha=0.3)' --mu nan", "mu"},
+                          Case{"eval --ndf 'ggx(alpha=0.3)' --mu abc", "mu"},
+                          Case{"eval --ndf 'blinn(n=4)' --mu 1 --method closed", "closed"},
+                          Case{"eval --ndf 'ggx(alpha=0.3)' --mu 1 --method magic", "magic"},
+                          Case{"eval --input /nonexistent/points.csv", "/nonexistent/points.csv"},
+                          Case{"check --ndf 'gtr(alpha=0, gamma=2)'", "alpha"}}) {
+        const Run r = run(c.args);
+        INFO(c.args << "\nstderr: " << r.err);
+        CHECK(r.rc == 2);
+        CHECK_THAT(r.err, Catch::Contains(c.named));
+        CHECK_THAT(r.out, !Catch::Contains("nan"));
+    }
+}
+
+TEST_CASE("CSV: columns pass through, lambda and g1 appended with 17 digits", "[cli][csv]") {
+    const fs::path d = scratch();
+    write(d / "in.csv", "id,ndf,mu\nA,\"ggx(alpha=0.5)\",1\nB,\"gtr(alpha=0.3, gamma=1.5)\",0.25\n");
+    const Run r = run("eval --input '" + (d / "in.csv").string() + "' --output '" + (d / "res.csv").string() + "'");
+    REQUIRE(r.rc == 0);
+    const std::string res = slurp(d / "res.csv");
+    CHECK_THAT(res, Catch::StartsWith("id,ndf,mu,lambda,g1\nA,ggx(alpha=0.5),1,0.059016994374947"));
+    CHECK_THAT(res, Catch::Contains("B,\"gtr(alpha=0.3, gamma=1.5)\",0.25,"));
+    // 17 significant digits: the lambda of row A is "0.0" and 17 digits.
+    const auto a = res.find("A,ggx(alpha=0.5),1,") + std::string("A,ggx(alpha=0.5),1,").size();
+    CHECK(res.substr(a, res.find(',', a) - a).size() == 20);
+}
+
+TEST_CASE("CSV: every bad row is reported by line, and no output file is written", "[cli][csv]") {
+    const fs::path d = scratch();
+    fs::remove(d / "never.csv");
+    write(d / "bad.csv",
+          "ndf,mu\n"
+          "\"ggx(alpha=0.5)\",1\n"
+          "\"ggx(alpha=0.5)\",1,extra\n"
+          "\"nope(alpha=1)\",1\n"
+          "\"gtr(alpha=0.3, gamma=2)\",nan\n"
+          "\"ggx(alpha=-2)\",1\n"
+          "ggx(alpha=0.1,2\n");
+    const Run r = run("eval --input '" + (d / "bad.csv").string() + "' --output '" + (d / "never.csv").string() + "'");
+    INFO(r.err);
+    CHECK(r.rc == 2);
+    for (const char* where : {"bad.csv:3:", "bad.csv:4:", "bad.csv:5:", "bad.csv:6:", "bad.csv:7:"})
+        CHECK_THAT(r.err, Catch::Contains(where));
+    CHECK_THAT(r.err, !Catch::Contains("bad.csv:2:"));
+    CHECK_FALSE(fs::exists(d / "never.csv"));
+    CHECK_FALSE(fs::exists(d / "never.csv.partial"));
+
+    write(d / "closed.csv", "ndf,mu\n\"blinn(n=10)\",1\n");
+    const Run c = run("eval --method closed --input '" + (d / "closed.csv").string() + "'");
+    CHECK(c.rc == 2);
+    CHECK_THAT(c.err, Catch::Contains("closed.csv:2:") && Catch::Contains("blinn"));
+    CHECK(c.out.empty());
+
+    write(d / "nohead.csv", "spec,mu\nggx,1\n");
+    CHECK(run("eval --input '" + (d / "nohead.csv").string() + "'").rc == 2);
+}
+
+TEST_CASE("check prints a table and passes for a healthy NDF; --help explains", "[cli]") {
+    const Run r = run("check --ndf 'gtr(alpha=0.2, gamma=2.5)' --no-2d");
+    INFO(r.out << r.err);
+    CHECK(r.rc == 0);
+    CHECK_THAT(r.out, Catch::Contains("integral D cos dm = 1") && Catch::Contains("0 failed"));
+    const Run h = run("--help");
+    CHECK(h.rc == 0);
+    CHECK_THAT(h.out, Catch::Contains("eval") && Catch::Contains("check"));
+    CHECK_THAT(run("eval --help").out, Catch::Contains("--method"));
+}

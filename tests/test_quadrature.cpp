@@ -1,0 +1,108 @@
+// Quadrature Lambda (reduced 1D and nested 2D routes, Boost and GSL backends) against the 50-digit r-form reference.
+// Domain of the core issue: alpha in [1e-4, 1], mu in [1e-4, 1e4], gamma in [0, 10], Blinn n in [0.5, 1000].
+// Required: 1D <= 1e-10 everywhere; 2D <= 1e-8 for alpha >= 0.01, mu in [0.01, 100], gamma <= 4.
+#include <catch2/catch.hpp>
+#include <random>
+#include <smithlab/smithlab.hpp>
+
+#include "reference.hpp"
+
+using smithlab::Backend;
+
+namespace {
+
+struct Worst {
+    double err = 0.0;
+    std::string where;
+    void add(double e, const std::string& w) {
+        if (e > err) err = e, where = w;
+    }
+};
+
+template <class N>
+void check_1d(const N& ndf, const ref::SlopeDensity& f, double mu, const std::string& what, Worst& worst) {
+    const ref::real want = ref::Lambda(f, mu);
+    for (Backend b : {Backend::boost, Backend::gsl}) {
+        const double got = smithlab::Lambda_1d(ndf, mu, {b, 1e-12});
+        const double e = ref::rel_err(got, want);
+        INFO(what << " mu=" << mu << " backend=" << smithlab::to_string(b) << " got=" << got);
+        CHECK(e <= 1e-10);
+        worst.add(e, what + " mu=" + std::to_string(mu) + " " + std::string(smithlab::to_string(b)));
+    }
+}
+
+}  // namespace
+
+TEST_CASE("1D quadrature Lambda of GTR over the domain, stiff corners included", "[quadrature]") {
+    Worst worst;
+    const std::vector<double> gammas = {0.0, 0.5, 1.0 - 1e-9, 1.0, 1.0 + 1e-7, 1.5, 2.5, 4.0, 7.0, 10.0};
+    const std::vector<double> alphas = {1e-4, 0.01, 0.3, 0.999999, 1.0};
+    const std::vector<double> mus = {1e-4, 1e-2, 1.0, 1e2, 1e4};
+    for (double g : gammas)
+        for (double a : alphas)
+            for (double mu : mus)
+                check_1d(smithlab::gtr(a, g), ref::gtr(a, g), mu,
+                         "gtr(alpha=" + std::to_string(a) + ", gamma=" + std::to_string(g) + ")", worst);
+    WARN("worst 1D GTR relative error " << worst.err << " at " << worst.where);
+}
+
+TEST_CASE("1D quadrature Lambda at random points of the GTR domain", "[quadrature]") {
+    std::mt19937_64 rng(20261122);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    Worst worst;
+    for (int i = 0; i < 40; ++i) {
+        const double a = std::pow(10.0, -4.0 * u(rng)), g = 10.0 * u(rng), mu = std::pow(10.0, -4.0 + 8.0 * u(rng));
+        check_1d(smithlab::gtr(a, g), ref::gtr(a, g), mu,
+                 "gtr(alpha=" + std::to_string(a) + ", gamma=" + std::to_string(g) + ")", worst);
+    }
+    WARN("worst 1D random-GTR relative error " << worst.err << " at " << worst.where);
+}
+
+TEST_CASE("1D quadrature Lambda of Blinn-Phong, Beckmann and GGX", "[quadrature]") {
+    Worst worst;
+    for (double n : {0.5, 20.0, 1000.0})
+        for (double mu : {1e-4, 1e-2, 0.3, 1.0, 1e2, 1e4})
+            check_1d(smithlab::blinn(n), ref::blinn(n), mu, "blinn(n=" + std::to_string(n) + ")", worst);
+    for (double a : {1e-4, 0.05, 1.0})
+        for (double mu : {1e-4, 1e-2, 1.0, 1e2}) {
+            // Beckmann at mu/alpha >= 27 underflows: Lambda ~ exp(-(mu/alpha)^2). Below, its reference is
+            // the closed form at 50 digits.
+            if (mu / a > 25) continue;
+            const ref::real want = ref::Lambda_beckmann(a, mu);
+            for (Backend b : {Backend::boost, Backend::gsl}) {
+                INFO("beckmann alpha=" << a << " mu=" << mu << " " << smithlab::to_string(b));
+                CHECK(ref::rel_err(smithlab::Lambda_1d(smithlab::beckmann(a), mu, {b, 1e-12}), want) <= 1e-10);
+            }
+        }
+    for (double a : {1e-4, 0.3})
+        for (double mu : {1e-4, 1.0, 1e4})
+            check_1d(smithlab::ggx(a), ref::ggx(a), mu, "ggx(alpha=" + std::to_string(a) + ")", worst);
+    WARN("worst 1D Blinn/GGX relative error " << worst.err << " at " << worst.where);
+}
+
+TEST_CASE("Nested 2D route P22 -> P2 -> Lambda", "[quadrature][2d]") {
+    double worst = 0.0;
+    for (double g : {0.0, 1.0, 2.5, 4.0})
+        for (double a : {0.01, 0.3, 1.0})
+            for (double mu : {0.01, 1.0, 100.0}) {
+                const ref::real want = ref::Lambda(ref::gtr(a, g), mu);
+                for (Backend b : {Backend::boost, Backend::gsl}) {
+                    const double got = smithlab::Lambda_2d(smithlab::gtr(a, g), mu, {b, 1e-10});
+                    INFO("gamma=" << g << " alpha=" << a << " mu=" << mu << " " << smithlab::to_string(b));
+                    CHECK(ref::rel_err(got, want) <= 1e-8);
+                    worst = std::max(worst, ref::rel_err(got, want));
+                }
+            }
+    WARN("worst 2D relative error " << worst);
+}
+
+TEST_CASE("P2 of GGX against its closed form (Walter 2007 / Hammon appendix)", "[quadrature]") {
+    for (double a : {0.01, 0.3, 1.0})
+        for (double q : {0.0, 0.01, 1.0, 100.0}) {
+            const double want = a * a / (2.0 * std::pow(q * q + a * a, 1.5));
+            for (Backend b : {Backend::boost, Backend::gsl}) {
+                INFO("alpha=" << a << " q=" << q);
+                CHECK(std::abs(smithlab::P2(smithlab::ggx(a), q, {b, 1e-12}) - want) <= 1e-11 * want);
+            }
+        }
+}
