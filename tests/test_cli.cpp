@@ -119,7 +119,7 @@ TEST_CASE("CSV: every bad row is reported by line, and no output file is written
     CHECK(run("eval --input '" + (d / "nohead.csv").string() + "'").rc == 2);
 }
 
-TEST_CASE("check prints a table and passes for a healthy NDF; --help explains", "[cli]") {
+TEST_CASE("check prints a table and passes for a healthy NDF, and --help explains", "[cli]") {
     const Run r = run("check --ndf 'gtr(alpha=0.2, gamma=2.5)' --no-2d");
     INFO(r.out << r.err);
     CHECK(r.rc == 0);

@@ -84,3 +84,15 @@ TEST_CASE("no NaN or Inf for finite mu in the domain, and none at the domain's e
             }
         }
 }
+
+TEST_CASE("a user D that returns NaN is reported, not integrated", "[smith]") {
+    struct Bad {
+        double D(double c) const { return c < 0.5 ? NAN : 1.0 / 3.141592653589793; }
+    };
+    try {
+        Lambda(Bad{}, 0.3);
+        FAIL("no error");
+    } catch (const input_error& e) {
+        CHECK_THAT(e.what(), Catch::Contains("D(cos_theta_m = ") && Catch::Contains("nan"));
+    }
+}

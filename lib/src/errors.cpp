@@ -1,4 +1,5 @@
 #include "smithlab/errors.hpp"
+#include "smithlab/ndf.hpp"
 
 #include <sstream>
 
@@ -11,5 +12,14 @@ void require(bool ok, const std::string& what, const std::string& rule, double v
     msg << what << " must be " << rule << ", got " << value;
     throw input_error(msg.str());
 }
+
+namespace detail {
+void throw_nonfinite_D(double cos_theta_m, double d) {
+    std::ostringstream msg;
+    msg.precision(17);
+    msg << "the NDF's D(cos_theta_m = " << cos_theta_m << ") returned " << d << "; D must be finite on [0, 1]";
+    throw input_error(msg.str());
+}
+}  // namespace detail
 
 }  // namespace smithlab

@@ -32,12 +32,16 @@ namespace {
 // The integrators hold only their node tables, built once per thread.
 double integrate_boost(FunctionRef f, double a, double b, double tol) {
     auto g = [&](double x) { return f(x); };
-    if (std::isinf(b)) {
-        thread_local boost::math::quadrature::exp_sinh<double> exp_sinh;  // Boost 1.74: integrate() is not const
-        return exp_sinh.integrate(g, a, b, tol);
+    try {
+        if (std::isinf(b)) {
+            thread_local boost::math::quadrature::exp_sinh<double> exp_sinh;  // Boost 1.74: integrate() is not const
+            return exp_sinh.integrate(g, a, b, tol);
+        }
+        thread_local boost::math::quadrature::tanh_sinh<double> tanh_sinh;
+        return tanh_sinh.integrate(g, a, b, tol);
+    } catch (const boost::math::evaluation_error& e) {
+        throw std::runtime_error(std::string("quadrature (boost): the integrand is not finite: ") + e.what());
     }
-    thread_local boost::math::quadrature::tanh_sinh<double> tanh_sinh;
-    return tanh_sinh.integrate(g, a, b, tol);
 }
 
 // GSL QAG / QAGIU. GSL's default error handler aborts the process; it is switched off only for the duration

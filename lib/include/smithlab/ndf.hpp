@@ -35,16 +35,25 @@ concept HasSplineLambda = requires(const N& n, double mu) {
     { n.Lambda_spline(mu) } -> std::convertible_to<double>;
 };
 
+namespace detail {
+[[noreturn]] void throw_nonfinite_D(double cos_theta_m, double d);
+}
+
 // P22 as a function of r^2 = tan^2(theta_m): D(m) cos^4(theta_m) (Walter 2007 eq. 42; Hammon 2017 appendix,
 // "Completing (theta_m, phi_m) to (p, q)"). Uses the NDF's own slope form when it has one.
+// From D alone, slopes beyond tan(theta_m) = 1e60 are not evaluated: a slope density falling like r^-4 or faster
+// (every NDF here) puts less than 1e-48 of Lambda there for mu <= 1e12, while a D written with cos^4 in a
+// denominator overflows there. A D that returns inf or NaN anywhere else is an error, not a silent NaN.
 template <Ndf N>
 double slope_density(const N& ndf, double r2) {
     if constexpr (HasSlopeDensity<N>) {
         return ndf.slope_density(r2);
     } else {
-        if (!(r2 < INFINITY)) return 0.0;
-        const double c2 = 1.0 / (1.0 + r2);
-        return ndf.D(std::sqrt(c2)) * c2 * c2;
+        if (!(r2 <= 1e120)) return 0.0;
+        const double c2 = 1.0 / (1.0 + r2), c = std::sqrt(c2);
+        const double d = ndf.D(c);
+        if (!std::isfinite(d)) detail::throw_nonfinite_D(c, d);
+        return d * c2 * c2;
     }
 }
 

@@ -39,7 +39,7 @@ enum class G2Form { height_correlated, uncorrelated };
 namespace detail {
 // tan(t) - t without cancellation: Taylor series (tan t = sum 2^{2k}(2^{2k}-1)|B_2k| t^{2k-1}/(2k)!) below 0.5.
 double tan_minus_x(double t);
-// Lambda_1d / Lambda_2d take a finite mu > 0; Lambda() handles the limits and the sign.
+// Lambda_1d / Lambda_2d take mu in [1e-12, 1e12]; Lambda() handles 0, inf and the sign.
 void require_mu(double mu);
 }  // namespace detail
 
