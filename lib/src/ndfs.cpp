@@ -11,18 +11,17 @@ namespace smithlab {
 namespace {
 constexpr double pi = std::numbers::pi;
 
-void require_positive_finite(const char* what, double x) {
-    require(x > 0.0 && std::isfinite(x), what, "finite and > 0", x);
-}
+// alpha^2 and alpha^4 must neither underflow nor overflow in D and the closed forms.
+void require_alpha(const char* what, double x) { require(x >= 1e-50 && x <= 1e50, what, "in [1e-50, 1e50]", x); }
 }  // namespace
 
 Ggx ggx(double alpha) {
-    require_positive_finite("ggx: alpha", alpha);
+    require_alpha("ggx: alpha", alpha);
     return {alpha};
 }
 
 Beckmann beckmann(double alpha) {
-    require_positive_finite("beckmann: alpha", alpha);
+    require_alpha("beckmann: alpha", alpha);
     return {alpha};
 }
 

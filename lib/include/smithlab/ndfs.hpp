@@ -42,8 +42,8 @@ struct BlinnPhong {
     double slope_density(double r2) const;  // (n+2)/(2 pi) (1 + r^2)^{-(n+4)/2}
 };
 
-Ggx ggx(double alpha);            // alpha > 0
-Beckmann beckmann(double alpha);  // alpha > 0
+Ggx ggx(double alpha);            // alpha in [1e-50, 1e50]
+Beckmann beckmann(double alpha);  // alpha in [1e-50, 1e50]
 BlinnPhong blinn(double n);       // n >= 0
 
 }  // namespace smithlab
