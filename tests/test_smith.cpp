@@ -54,6 +54,7 @@ TEST_CASE("method selection: closed where it exists, errors where it does not", 
     CHECK_THROWS_AS(Lambda(bl, 1.0, {.method = Method::closed}), input_error);
     CHECK_THROWS_AS(Lambda(gg, 1.0, {.method = Method::spline}), input_error);
     CHECK_THROWS_AS(Lambda(gtr(0.3, 1.5), 1.0, {.method = Method::closed}), input_error);
+    CHECK_THROWS_AS(gtr(0.3, 1.5).Lambda(1.0), input_error);  // the member, called directly, refuses too
     CHECK_THROWS_AS(Lambda(gg, NAN), input_error);
     CHECK(has_closed_Lambda(gtr(0.3, 3.0)));
     CHECK_FALSE(has_closed_Lambda(gtr(0.3, 3.5)));

@@ -41,7 +41,10 @@ double Gtr::slope_density(double r2) const {
 
 bool Gtr::has_closed_Lambda() const { return gtr_has_closed_form(gamma); }
 
-double Gtr::Lambda(double mu) const { return Lambda_gtr_closed(alpha, static_cast<int>(gamma), mu); }
+double Gtr::Lambda(double mu) const {
+    require(has_closed_Lambda(), "gtr: gamma for a closed-form Lambda", "one of 0, 1, 2, 3, 4", gamma);
+    return Lambda_gtr_closed(alpha, static_cast<int>(gamma), mu);
+}
 
 double Gtr::Lambda_spline(double mu) const {
     const double g1 = G1_gtr_dimov_spline(alpha, gamma, mu);

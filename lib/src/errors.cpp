@@ -5,7 +5,7 @@
 
 namespace smithlab {
 
-void require(bool ok, const std::string& what, const std::string& rule, double value) {
+void require(bool ok, std::string_view what, std::string_view rule, double value) {
     if (ok) return;
     std::ostringstream msg;
     msg.precision(17);

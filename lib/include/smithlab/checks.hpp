@@ -2,7 +2,6 @@
 // Heitz 2014 eq. 2 for the projected-area identity). Each is computed by a route independent of the one it checks.
 #pragma once
 
-#include <array>
 #include <cmath>
 #include <numbers>
 #include <string>

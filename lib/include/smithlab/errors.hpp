@@ -6,6 +6,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace smithlab {
 
@@ -13,7 +14,7 @@ struct input_error : std::invalid_argument {
     using std::invalid_argument::invalid_argument;
 };
 
-// Throws input_error("<what> must be <rule>, got <value>") unless ok.
-void require(bool ok, const std::string& what, const std::string& rule, double value);
+// Throws input_error("<what> must be <rule>, got <value>") unless ok. Allocates nothing when ok.
+void require(bool ok, std::string_view what, std::string_view rule, double value);
 
 }  // namespace smithlab
