@@ -127,3 +127,32 @@ TEST_CASE("quadrature holds to the ends of its range, mu in [1e-12, 1e12], and r
     CHECK_THROWS_AS(smithlab::Lambda_1d(smithlab::ggx(0.3), 1e-13), smithlab::input_error);
     CHECK_THROWS_AS(smithlab::Lambda_1d(smithlab::ggx(0.3), 1e13), smithlab::input_error);
 }
+
+TEST_CASE("Nested 2D route holds outside its required domain too: the corners where a fixed-scale map fails", "[quadrature][2d]") {
+    // A semi-infinite map with a fixed unit scale (GSL QAGIU as is) misses a peak of width 1e-4 and the 1e4-long
+    // tail: it returned 0 for Beckmann(1e-4) at mu = 1e-4 and 7.7% low at mu = 1e4. The tan/sec maps have no scale.
+    struct Case {
+        const char* what;
+        ref::SlopeDensity f;
+        smithlab::AnyNdf ndf;
+        double mu;
+    };
+    const auto reg = smithlab::builtin_registry();
+    const std::vector<Case> cases = {
+        {"gtr(1e-4, 0)", ref::gtr(1e-4, 0.0), reg.make("gtr(alpha=1e-4, gamma=0)"), 1e4},
+        {"gtr(1e-4, 10)", ref::gtr(1e-4, 10.0), reg.make("gtr(alpha=1e-4, gamma=10)"), 1e4},
+        {"gtr(1e-4, 10)", ref::gtr(1e-4, 10.0), reg.make("gtr(alpha=1e-4, gamma=10)"), 1e-4},
+        {"gtr(1, 10)", ref::gtr(1.0, 10.0), reg.make("gtr(alpha=1, gamma=10)"), 1e-4},
+        {"beckmann(1e-4)", ref::beckmann(1e-4), reg.make("beckmann(alpha=1e-4)"), 1e-4},
+        {"blinn(0.5)", ref::blinn(0.5), reg.make("blinn(n=0.5)"), 1e4},
+        {"blinn(1000)", ref::blinn(1000.0), reg.make("blinn(n=1000)"), 1e-4},
+    };
+    for (const Case& c : cases) {
+        const ref::real want = ref::Lambda(c.f, c.mu);
+        for (Backend b : {Backend::boost, Backend::gsl}) {
+            const double got = smithlab::Lambda_2d(c.ndf, c.mu, {b, 1e-10});
+            INFO(c.what << " mu=" << c.mu << " " << smithlab::to_string(b) << " got=" << got);
+            CHECK(ref::close(got, want, 1e-8));
+        }
+    }
+}

@@ -29,8 +29,8 @@ std::string_view to_string(Method m) {
 
 namespace detail {
 
-double tan_minus_x(double t) {
-    if (t >= 0.5) return std::tan(t) - t;  // cancellation at most a factor 11 here
+double tan_minus_x(double t, double tan_t) {
+    if (t >= 0.5) return tan_t - t;  // cancellation at most a factor 11 here
     // Coefficients of t^3, t^5, ..., t^33 in tan(t) - t; at t = 0.5 the next term is below 1e-16 of the sum.
     static constexpr std::array<double, 16> c = {
         0.333333333333333333333,    0.133333333333333333333,    0.0539682539682539682540,

@@ -34,27 +34,27 @@ double clamped_cosine_azimuth(double a, double b);
 std::string format_where(const char* name, double value);
 }  // namespace detail
 
-// 1. integral over the hemisphere of D(m) cos(theta_m) dm = 1, in (theta_m, phi_m) with D as the user wrote it.
+// The integrals over the hemisphere below are written in r = tan(theta_m), where cos(theta) sin(theta) dtheta =
+// cos^4(theta) r dr, and integrated on a log axis, so that the peak of D at r ~ alpha is found at any alpha.
+// D is read as the user wrote it (detail::D_cos4), not through a slope form.
+
+// 1. integral over the hemisphere of D(m) cos(theta_m) dm = 2 pi integral_0^inf D cos^4 r dr = 1.
 template <Ndf N>
 double projected_area(const N& ndf, Backend backend = Backend::boost) {
-    const QuadratureOptions q{backend, 1e-12};
-    auto f = [&](double th) { return ndf.D(std::cos(th)) * std::cos(th) * std::sin(th); };
-    return 2.0 * std::numbers::pi * integrate(f, 0.0, std::numbers::pi / 2, q);
+    auto f = [&](double r) { return detail::D_cos4(ndf, r * r) * r; };
+    return 2.0 * std::numbers::pi * integrate_log_axis(f, {backend, 1e-12});
 }
 
 // 3. integral of <v.m> D(m) dm over the hemisphere for v at theta_v: the azimuth of the clamped cosine is done in
-// closed form, the polar angle by quadrature, split at the kink theta_m = pi/2 - theta_v. Smith's G1 is defined
+// closed form, the polar angle by quadrature in r, split at the kink r = cot(theta_v). Smith's G1 is defined
 // so that G1(v) times this equals cos(theta_v) (Heitz 2014 eq. 2).
 template <Ndf N>
 double visible_projected_area(const N& ndf, double theta_v, Backend backend = Backend::boost) {
-    const QuadratureOptions q{backend, 1e-12};
     const double sv = std::sin(theta_v), cv = std::cos(theta_v);
-    auto f = [&](double th) {
-        const double s = std::sin(th), c = std::cos(th);
-        return ndf.D(c) * s * detail::clamped_cosine_azimuth(sv * s, cv * c);
-    };
-    const double kink = std::numbers::pi / 2 - theta_v;
-    return integrate(f, 0.0, kink, q) + integrate(f, kink, std::numbers::pi / 2, q);
+    // D sin(theta) Phi(sin theta_v sin theta, cos theta_v cos theta) dtheta = D cos^4 r Phi(r sin theta_v, cos theta_v) dr,
+    // Phi being homogeneous of degree 1.
+    auto f = [&](double r) { return detail::D_cos4(ndf, r * r) * r * detail::clamped_cosine_azimuth(sv * r, cv); };
+    return integrate_log_axis(f, {backend, 1e-12}, cv / sv);
 }
 
 // Tolerances. The checks on D itself (1 and 3) read D through cos(theta_m), whose rounding near the pole is a
@@ -66,7 +66,7 @@ std::vector<CheckResult> run_checks(const N& ndf, const CheckOptions& opts = {})
     const QuadratureOptions q{opts.backend, 1e-12};
     out.push_back({"integral D cos dm = 1", "", projected_area(ndf, opts.backend), 1.0, 1e-8});
     if (opts.with_2d) {
-        const double p2 = 2.0 * integrate([&](double x) { return P2(ndf, x, q); }, 0.0, INFINITY, {opts.backend, 1e-11});
+        const double p2 = 2.0 * integrate_log_axis([&](double x) { return P2(ndf, x, q); }, {opts.backend, 1e-11});
         out.push_back({"integral P2 dq = 1", "", p2, 1.0, 1e-9});
     }
     LambdaOptions lo;

@@ -37,7 +37,17 @@ concept HasSplineLambda = requires(const N& n, double mu) {
 
 namespace detail {
 [[noreturn]] void throw_nonfinite_D(double cos_theta_m, double d);
+
+// D(m) cos^4(theta_m) at tan^2(theta_m) = r2, from D itself.
+template <Ndf N>
+double D_cos4(const N& ndf, double r2) {
+    if (!(r2 <= 1e120)) return 0.0;
+    const double c2 = 1.0 / (1.0 + r2), c = std::sqrt(c2);
+    const double d = ndf.D(c);
+    if (!std::isfinite(d)) throw_nonfinite_D(c, d);
+    return d * c2 * c2;
 }
+}  // namespace detail
 
 // P22 as a function of r^2 = tan^2(theta_m): D(m) cos^4(theta_m) (Walter 2007 eq. 42; Hammon 2017 appendix,
 // "Completing (theta_m, phi_m) to (p, q)"). Uses the NDF's own slope form when it has one.
@@ -46,15 +56,8 @@ namespace detail {
 // denominator overflows there. A D that returns inf or NaN anywhere else is an error, not a silent NaN.
 template <Ndf N>
 double slope_density(const N& ndf, double r2) {
-    if constexpr (HasSlopeDensity<N>) {
-        return ndf.slope_density(r2);
-    } else {
-        if (!(r2 <= 1e120)) return 0.0;
-        const double c2 = 1.0 / (1.0 + r2), c = std::sqrt(c2);
-        const double d = ndf.D(c);
-        if (!std::isfinite(d)) detail::throw_nonfinite_D(c, d);
-        return d * c2 * c2;
-    }
+    if constexpr (HasSlopeDensity<N>) return ndf.slope_density(r2);
+    else return detail::D_cos4(ndf, r2);
 }
 
 // Whether `ndf` offers a closed-form / spline Lambda. Type-erased NDFs answer at run time.

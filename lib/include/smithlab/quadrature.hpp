@@ -6,6 +6,7 @@
 // 1e-78 (DESIGN.md, "Numerical facts").
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -38,5 +39,38 @@ private:
 
 // integral_a^b f(x) dx, a < b finite, or b = +inf.
 double integrate(FunctionRef f, double a, double b, const QuadratureOptions& opts = {});
+
+// integral_0^{pi/2} g(t, tan t, sec^2 t) dt, for the substitutions x = a tan t and x = a sec t that map [0, inf) or
+// [a, inf) onto it: a feature of the integrand at x ~ scale then sits at pi/2 - t ~ a/scale, as wide as its
+// distance from the end point, and no scale needs to be known. Split at pi/4; the upper half is integrated in
+// s = pi/2 - t, with tan t = cos s / sin s and sec^2 t = 1/sin^2 s, so that both keep every digit as t -> pi/2.
+template <class G>
+double integrate_quarter_turn(const G& g, const QuadratureOptions& opts = {}) {
+    constexpr double pi = 3.141592653589793238462643383279502884;
+    auto lower = [&](double t) {
+        const double c = std::cos(t);
+        return g(t, std::tan(t), 1.0 / (c * c));
+    };
+    auto upper = [&](double s) {
+        const double sn = std::sin(s);
+        return g(pi / 2 - s, std::cos(s) / sn, 1.0 / (sn * sn));
+    };
+    return integrate(lower, 0.0, pi / 4, opts) + integrate(upper, 0.0, pi / 4, opts);
+}
+
+// integral_0^inf h(x) dx in x = x0 e^y and x = x0 e^-y, y in [0, inf): a feature at any scale is O(1) wide in y,
+// and a kink of h at x0 falls on the split.
+template <class H>
+double integrate_log_axis(const H& h, const QuadratureOptions& opts = {}, double x0 = 1.0) {
+    auto up = [&](double y) {
+        const double x = x0 * std::exp(y);
+        return x < INFINITY ? h(x) * x : 0.0;
+    };
+    auto down = [&](double y) {
+        const double x = x0 * std::exp(-y);
+        return x > 0.0 ? h(x) * x : 0.0;
+    };
+    return integrate(up, 0.0, INFINITY, opts) + integrate(down, 0.0, INFINITY, opts);
+}
 
 }  // namespace smithlab

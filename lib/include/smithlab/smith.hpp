@@ -37,8 +37,9 @@ struct LambdaOptions {
 enum class G2Form { height_correlated, uncorrelated };
 
 namespace detail {
-// tan(t) - t without cancellation: Taylor series (tan t = sum 2^{2k}(2^{2k}-1)|B_2k| t^{2k-1}/(2k)!) below 0.5.
-double tan_minus_x(double t);
+// tan(t) - t without cancellation, given tan_t = tan(t): Taylor series
+// (tan t = sum 2^{2k}(2^{2k}-1)|B_2k| t^{2k-1}/(2k)!) below 0.5, where the difference would cancel.
+double tan_minus_x(double t, double tan_t);
 // Lambda_1d / Lambda_2d take mu in [1e-12, 1e12]; Lambda() handles 0, inf and the sign.
 void require_mu(double mu);
 }  // namespace detail
@@ -49,52 +50,54 @@ double P22(const N& ndf, double p, double q) {
     return slope_density(ndf, p * p + q * q);
 }
 
-// P2(q) = 2 integral_0^inf P22(p, q) dp, Walter 2007 eq. 43 (P22 is even in p).
+// P2(q) = 2 integral_0^inf P22(p, q) dp, Walter 2007 eq. 43 (P22 is even in p), in p = |q| tan u:
+//   P2(q) = 2 |q| integral_0^{pi/2} f(q^2 sec^2 u) sec^2 u du.
+// Below |q| = 1e-150, where q^2 would underflow, P2(q) = P2(0) to O(q^2) and is integrated as such, in log p.
 template <Ndf N>
 double P2(const N& ndf, double q, const QuadratureOptions& opts = {}) {
+    if (std::abs(q) < 1e-150)
+        return 2.0 * integrate_log_axis([&](double p) { return slope_density(ndf, p * p); }, opts);
     const double q2 = q * q;
-    return 2.0 * integrate([&](double p) { return slope_density(ndf, p * p + q2); }, 0.0, INFINITY, opts);
+    return 2.0 * std::abs(q) * integrate_quarter_turn([&](double, double, double sec2) {
+        const double r2 = q2 * sec2;
+        if (!(r2 < INFINITY)) return 0.0;
+        const double f = slope_density(ndf, r2);
+        return f == 0.0 ? 0.0 : f * sec2;
+    }, opts);
 }
 
 // Lambda by the book: the nested route P22 -> P2 -> Lambda, Walter 2007 eq. 48. Cost: milliseconds.
+// In q = mu sec v: Lambda = mu integral_0^{pi/2} (sec v - 1) sec v tan v P2(mu sec v) dv,
+// with sec v - 1 = tan^2 v / (sec v + 1) to keep the digits near v = 0.
 template <Ndf N>
 double Lambda_2d(const N& ndf, double mu, const QuadratureOptions& opts = {}) {
     detail::require_mu(mu);
     QuadratureOptions inner = opts;
     inner.tolerance = opts.tolerance * 0.1;
-    const double I = integrate([&](double q) { return (q - mu) * P2(ndf, q, inner); }, mu, INFINITY, opts);
-    return I / mu;
+    return mu * integrate_quarter_turn([&](double, double tn, double sec2) {
+        const double sec = std::sqrt(sec2), q = mu * sec;
+        if (!(q < INFINITY)) return 0.0;
+        const double p2 = P2(ndf, q, inner);
+        return p2 == 0.0 ? 0.0 : sec / (sec + 1.0) * (tn * (tn * (tn * p2)));
+    }, opts);
 }
 
 // Lambda by the reduced route. Doing the azimuthal integral of Walter eq. 48 in closed form (DESIGN.md):
 //   Lambda(mu) = (2/mu) integral_mu^inf f(r^2) r (sqrt(r^2 - mu^2) - mu acos(mu/r)) dr,   f(r^2) = P22,
 // and with r = mu sec t,
 //   Lambda(mu) = 2 mu^2 integral_0^{pi/2} f(mu^2 sec^2 t) sec^2 t tan t (tan t - t) dt,
-// a bounded integrand on a finite interval. It is split at pi/4; the upper half is written in s = pi/2 - t, so
-// that r = mu / sin(s) keeps every digit in the far tail and at grazing angles (where the peak of f sits at s ~ mu/alpha).
+// a bounded integrand on a finite interval; the factor mu^2 sec^2 t = r^2 is carried inside, so that neither a
+// huge nor a tiny mu overflows. At grazing angles the peak of f sits at pi/2 - t ~ mu/alpha (integrate_quarter_turn).
 template <Ndf N>
 double Lambda_1d(const N& ndf, double mu, const QuadratureOptions& opts = {}) {
     detail::require_mu(mu);
     const double mu2 = mu * mu;
-    // Both halves carry the factor mu^2 inside as f(r^2) r^2 sec^-2 t, so that neither a huge nor a tiny mu
-    // overflows the prefactor.
-    auto lower = [&](double t) {  // t in [0, pi/4]
-        const double c = std::cos(t);
-        const double r2 = mu2 / (c * c);
-        const double f = slope_density(ndf, r2);
-        return f == 0.0 ? 0.0 : f * r2 * std::tan(t) * detail::tan_minus_x(t);
-    };
-    auto upper = [&](double s) {  // s = pi/2 - t in (0, pi/4]
-        const double sn = std::sin(s);
-        const double r2 = mu2 / (sn * sn);
+    return 2.0 * integrate_quarter_turn([&](double t, double tn, double sec2) {
+        const double r2 = mu2 * sec2;
         if (!(r2 < INFINITY)) return 0.0;
         const double f = slope_density(ndf, r2);
-        if (f == 0.0) return 0.0;
-        const double tn = std::cos(s) / sn;                        // tan t
-        return f * r2 * tn * (tn - (std::numbers::pi / 2 - s));
-    };
-    constexpr double quarter = std::numbers::pi / 4;
-    return 2.0 * (integrate(lower, 0.0, quarter, opts) + integrate(upper, 0.0, quarter, opts));
+        return f == 0.0 ? 0.0 : f * r2 * tn * detail::tan_minus_x(t, tn);
+    }, opts);
 }
 
 // Lambda(mu) for mu = cot(theta_v): mu = +inf gives 0, mu = 0 gives +inf, mu < 0 follows opts.downward.
