@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cmath>
+#include <numbers>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -46,7 +47,7 @@ double integrate(FunctionRef f, double a, double b, const QuadratureOptions& opt
 // s = pi/2 - t, with tan t = cos s / sin s and sec^2 t = 1/sin^2 s, so that both keep every digit as t -> pi/2.
 template <class G>
 double integrate_quarter_turn(const G& g, const QuadratureOptions& opts = {}) {
-    constexpr double pi = 3.141592653589793238462643383279502884;
+    constexpr double pi = std::numbers::pi;
     auto lower = [&](double t) {
         const double c = std::cos(t);
         return g(t, std::tan(t), 1.0 / (c * c));

@@ -8,8 +8,6 @@
 #pragma once
 
 #include <cmath>
-#include <numbers>
-#include <string>
 #include <string_view>
 
 #include "smithlab/errors.hpp"
