@@ -51,6 +51,12 @@ TEST_CASE("eval prints lambda and g1", "[cli]") {
     CHECK(run("eval --ndf 'blinn(n=20)' --mu 0.5 --method quadrature2d --backend gsl").rc == 0);
     CHECK(run("eval --ndf 'gtr(alpha=0.3, gamma=1.5)' --mu 0.5 --method spline").rc == 0);
     CHECK(run("eval --ndf 'gtr(alpha=0.3, gamma=1)' --mu inf").out.find("g1      1\n") != std::string::npos);
+    // Below the surface: Smith's Lambda(-mu) = -1 - Lambda(mu), G1 of |mu|; GGX Lambda(0.5) at alpha = 0.5 is
+    // (sqrt(2) - 1)/2 = 0.20710678118654752.
+    const Run down = run("eval --ndf 'ggx(alpha=0.5)' --mu -0.5");
+    CHECK_THAT(down.out, Catch::Contains("lambda  -1.207106781186547") && Catch::Contains("g1      0.828427124746190"));
+    CHECK_THAT(run("eval --ndf 'ggx(alpha=0.5)' --mu -0.5 --downward hammon").out,
+               Catch::Contains("lambda  -0.207106781186547"));
 }
 
 TEST_CASE("bad input exits 2 and names the offending item", "[cli]") {

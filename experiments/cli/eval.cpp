@@ -42,9 +42,11 @@ LambdaOptions lambda_options(const EvalArgs& a) {
     return o;
 }
 
+// One Lambda evaluation serves both: G1 takes |mu| (Walter 2007 eq. 44), Lambda(mu < 0) follows the convention.
 std::pair<double, double> lambda_g1(const AnyNdf& ndf, double mu, const LambdaOptions& o) {
     try {
-        return {Lambda(ndf, mu, o), G1(ndf, mu, o)};
+        const double up = Lambda(ndf, std::abs(mu), o);
+        return {mu < 0.0 ? downward_Lambda(up, o.downward) : up, 1.0 / (1.0 + up)};
     } catch (const input_error& e) {
         throw input_error("ndf '" + ndf.spec() + "': " + e.what());
     }

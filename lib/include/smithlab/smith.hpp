@@ -24,6 +24,10 @@ std::string_view to_string(Method m);
 // Downward directions (mu < 0). Smith's ray-tracing derivation gives Lambda(-mu) = -1 - Lambda(mu);
 // Hammon 2017 (appendix, "Path tracing with Smith masking") redefines it as -Lambda(mu) to make the BRDF symmetric.
 enum class Downward { smith, hammon_symmetric };
+// Lambda(-mu) from Lambda(mu) under the convention.
+inline double downward_Lambda(double Lambda_up, Downward convention) {
+    return convention == Downward::smith ? -1.0 - Lambda_up : -Lambda_up;
+}
 
 struct LambdaOptions {
     Method method = Method::automatic;
@@ -102,10 +106,7 @@ double Lambda_1d(const N& ndf, double mu, const QuadratureOptions& opts = {}) {
 template <Ndf N>
 double Lambda(const N& ndf, double mu, const LambdaOptions& opts = {}) {
     if (std::isnan(mu)) throw input_error("mu is NaN");
-    if (mu < 0.0) {
-        const double up = Lambda(ndf, -mu, opts);
-        return opts.downward == Downward::smith ? -1.0 - up : -up;
-    }
+    if (mu < 0.0) return downward_Lambda(Lambda(ndf, -mu, opts), opts.downward);
     if (mu == 0.0) return INFINITY;
     if (std::isinf(mu)) return 0.0;
     const QuadratureOptions q{opts.backend, opts.tolerance};
