@@ -65,3 +65,30 @@ TEST_CASE("Beckmann closed form against the textbook form at 50 digits, through 
     }
     WARN("worst relative error of the Beckmann closed form: " << worst);
 }
+
+TEST_CASE("generated closed forms for integer gamma: equal to Dimov's printed forms at gamma = 2, 3, 4", "[closed][generated]") {
+    for (int gamma = 2; gamma <= 4; ++gamma)
+        for (double alpha : grid::alphas)
+            for (double mu : grid::mus) {
+                INFO("gamma=" << gamma << " alpha=" << alpha << " mu=" << mu);
+                check_value(smithlab::Lambda_gtr_integer_sum(alpha, gamma, mu),
+                            ref::Lambda_dimov(alpha == 1.0 ? 0 : gamma, alpha, mu), 1e-13);
+            }
+}
+
+TEST_CASE("generated closed forms for integer gamma up to 31 against the 50-digit quadrature", "[closed][generated]") {
+    double worst = 0.0;
+    for (int gamma : {5, 7, 10, 20, 31})
+        for (double alpha : {1e-4, 0.01, 0.3, 0.999999, 1.0})
+            for (double mu : {1e-4, 1e-2, 1.0, 1e2, 1e4}) {
+                const ref::real want = ref::Lambda(ref::gtr(alpha, gamma), mu);
+                const double got = smithlab::gtr(alpha, gamma).Lambda(mu);
+                INFO("gamma=" << gamma << " alpha=" << alpha << " mu=" << mu);
+                check_value(got, want, 1e-13);
+                if (want >= DBL_MIN) worst = std::max(worst, ref::rel_err(got, want));
+            }
+    WARN("worst relative error of the generated closed forms: " << worst);
+    CHECK(smithlab::gtr_has_closed_form(31.0));
+    CHECK_FALSE(smithlab::gtr_has_closed_form(32.0));
+    CHECK_THROWS_AS(smithlab::Lambda_gtr_integer_sum(0.3, 32, 1.0), smithlab::input_error);
+}

@@ -1,14 +1,20 @@
 #include "smithlab/gtr/closed_forms.hpp"
 
+#include <array>
+#include <boost/math/quadrature/gauss.hpp>
 #include <boost/math/special_functions/log1p.hpp>
 #include <cmath>
+#include <numbers>
 #include <string>
 
 #include "smithlab/errors.hpp"
+#include "smithlab/gtr/gtr.hpp"
 
 namespace smithlab {
 
-bool gtr_has_closed_form(double gamma) { return gamma >= 0.0 && gamma <= 4.0 && gamma == std::floor(gamma); }
+bool gtr_has_closed_form(double gamma) {
+    return gamma >= 0.0 && gamma <= gtr_max_closed_gamma && gamma == std::floor(gamma);
+}
 
 namespace {
 
@@ -42,7 +48,70 @@ double lambda4(double alpha, double mu) {
     return v * v * v / (16.0 * c) * bracket;
 }
 
+// Sum over the 30-node Gauss-Legendre rule on [0, 1] (Boost's tabulated nodes, exact to degree 59):
+// visit(z, weight) for each node.
+template <class Visit>
+void for_each_gauss30_node(Visit visit) {
+    using rule = boost::math::quadrature::gauss<double, 30>;
+    const auto& x = rule::abscissa();  // the non-negative half of the nodes on [-1, 1]
+    const auto& wt = rule::weights();
+    for (std::size_t i = 0; i < x.size(); ++i) {
+        visit(0.5 * (1.0 + x[i]), 0.5 * wt[i]);
+        if (x[i] != 0.0) visit(0.5 * (1.0 - x[i]), 0.5 * wt[i]);
+    }
+}
+
+// The brackets b_k = A^(2k+1) I_k, k = 0..n <= 29, of Lambda_gtr_integer_sum, by whichever of two exact forms
+// has no cancellation where it is used:
+//  mu <  alpha:  b_k = 1/(2k+1) - p (1-p)^k Ghat_k(w),  Ghat_k(w) = integral_0^1 z^k (2 - w z)^k dz, a polynomial
+//                (exact by Gauss-Legendre); p <= 0.41 here and the cancellation stays below ~0.4 k.
+//  mu >= alpha:  with s = alpha/A = sin(beta), sigma = sin(psi)/sin(beta) in the angular form of I_k,
+//                b_k = 1/((2k+1)(2k+2)) + integral_0^1 sigma^(2k+1) x/(1 + sqrt(1 - x)) dsigma,
+//                x = s^2 (1 - sigma^2)/(1 - s^2 sigma^2): every term positive; the integrand is analytic out to
+//                sigma = 1/s >= sqrt(2), so Gauss-Legendre converges far below rounding.
+std::array<double, 30> brackets(int n, double alpha, double mu, double A) {
+    std::array<double, 30> b{};
+    if (mu < alpha) {
+        const double p = mu / (A + mu), one_minus_p = A / (A + mu);
+        const double w = alpha * alpha / (A * (A + mu));  // 1 - mu/A
+        std::array<double, 30> G{};
+        for_each_gauss30_node([&](double z, double weight) {
+            const double u = z * (2.0 - w * z);
+            double uk = weight;
+            for (int k = 0; k <= n; ++k, uk *= u) G[k] += uk;
+        });
+        for (int k = 0; k <= n; ++k) b[k] = 1.0 / (2 * k + 1) - p * std::pow(one_minus_p, k) * G[k];
+    } else {
+        const double s2 = (alpha / A) * (alpha / A);
+        for_each_gauss30_node([&](double sigma, double weight) {
+            const double x = s2 * (1.0 - sigma) * (1.0 + sigma) / (1.0 - s2 * sigma * sigma);
+            double term = weight * sigma * x / (1.0 + std::sqrt(1.0 - x));
+            for (int k = 0; k <= n; ++k, term *= sigma * sigma) b[k] += term;
+        });
+        for (int k = 0; k <= n; ++k) b[k] += 1.0 / ((2.0 * k + 1) * (2.0 * k + 2));
+    }
+    return b;
+}
+
 }  // namespace
+
+double Lambda_gtr_integer_sum(double alpha, int gamma, double mu) {
+    if (gamma < 2 || gamma > gtr_max_closed_gamma)
+        throw input_error("gtr: the generated closed form needs an integer gamma in [2, " +
+                          std::to_string(gtr_max_closed_gamma) + "], got " + std::to_string(gamma));
+    const int n = gamma - 2;
+    const double one_minus_a2 = (1.0 - alpha) * (1.0 + alpha);
+    const double A = std::hypot(mu, alpha);
+    const double ratio = alpha / A;
+    const std::array<double, 30> b = brackets(n, alpha, mu, A);
+    double sum = 0.0;
+    double cb = std::numbers::pi / 2;  // C(n, k) B(1/2, k + 3/2), starting from B(1/2, 3/2) = pi/2
+    for (int k = 0; k <= n; ++k) {
+        sum += cb * std::pow(one_minus_a2, k) * std::pow(alpha, 2 * (n - k) + 3) * std::pow(ratio, 2 * k + 1) * b[k];
+        cb *= (n - k) / (k + 1.0) * (k + 1.5) / (k + 2.0);  // C(n,k+1)/C(n,k) and B(1/2,k+5/2)/B(1/2,k+3/2)
+    }
+    return gtr_K(alpha, gamma) * sum / mu;
+}
 
 double Lambda_gtr_closed(double alpha, int gamma, double mu) {
     switch (gamma) {
@@ -51,7 +120,7 @@ double Lambda_gtr_closed(double alpha, int gamma, double mu) {
         case 2: return lambda2(alpha, mu);
         case 3: return lambda3(alpha, mu);
         case 4: return lambda4(alpha, mu);
-        default: throw input_error("gtr: no closed-form Lambda for gamma = " + std::to_string(gamma) + " (only 0..4)");
+        default: return Lambda_gtr_integer_sum(alpha, gamma, mu);
     }
 }
 

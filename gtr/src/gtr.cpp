@@ -42,7 +42,7 @@ double Gtr::slope_density(double r2) const {
 bool Gtr::has_closed_Lambda() const { return gtr_has_closed_form(gamma); }
 
 double Gtr::Lambda(double mu) const {
-    require(has_closed_Lambda(), "gtr: gamma for a closed-form Lambda", "one of 0, 1, 2, 3, 4", gamma);
+    require(has_closed_Lambda(), "gtr: gamma for a closed-form Lambda", "an integer in [0, 31]", gamma);
     return Lambda_gtr_closed(alpha, static_cast<int>(gamma), mu);
 }
 

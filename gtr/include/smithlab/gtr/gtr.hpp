@@ -18,7 +18,7 @@ struct Gtr {
     // Written as (1 + r^2)^(gamma-2) (r^2 + alpha^2)^-gamma it overflows to inf*0 in the far tail at gamma = 7.
     double slope_density(double r2) const;
 
-    // Closed forms exist for gamma = 0, 1, 2, 3, 4 (Dimov 2015, section 3); see closed_forms.hpp.
+    // Closed forms exist for every integer gamma (Dimov 2015 sec. 3 for 0..4, generated above); see closed_forms.hpp.
     bool has_closed_Lambda() const;
     double Lambda(double mu) const;
     // Dimov 2015 section 5: natural cubic spline in gamma through G1 at gamma = 0..4, gamma clamped to 4 above.
