@@ -14,4 +14,10 @@ double AnyNdf::Lambda_spline(double mu) const {
     return self_->spline(mu);
 }
 
+double AnyNdf::param(std::string_view key) const {
+    for (const auto& [k, v] : parts_.params)
+        if (k == key) return v;
+    throw input_error("ndf '" + spec_ + "' has no parameter '" + std::string(key) + "'");
+}
+
 }  // namespace smithlab

@@ -2,76 +2,11 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
-#include <charconv>
-#include <cstdlib>
-#include <set>
 
 #include "smithlab/errors.hpp"
 #include "smithlab/ndfs.hpp"
 
 namespace smithlab {
-
-namespace {
-
-std::string_view trim(std::string_view s) {
-    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
-    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
-    return s;
-}
-
-bool is_identifier(std::string_view s) {
-    if (s.empty() || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_')) return false;
-    return std::all_of(s.begin(), s.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
-}
-
-[[noreturn]] void bad_spec(std::string_view text, const std::string& why) {
-    throw input_error("ndf spec '" + std::string(text) + "': " + why);
-}
-
-}  // namespace
-
-NdfSpec parse_spec(std::string_view text) {
-    const std::string_view s = trim(text);
-    NdfSpec spec;
-    const auto open = s.find('(');
-    spec.name = std::string(trim(s.substr(0, open)));
-    if (!is_identifier(spec.name)) bad_spec(text, "expected a name like ggx(alpha=0.2)");
-    if (open == std::string_view::npos) return spec;
-    if (s.back() != ')') bad_spec(text, "missing closing ')'");
-    std::string_view body = trim(s.substr(open + 1, s.size() - open - 2));
-    if (body.empty()) return spec;
-    std::set<std::string, std::less<>> seen;
-    while (true) {
-        const auto comma = body.find(',');
-        const std::string_view item = trim(body.substr(0, comma));
-        const auto eq = item.find('=');
-        if (eq == std::string_view::npos) bad_spec(text, "parameter '" + std::string(item) + "' is not key=value");
-        const std::string key(trim(item.substr(0, eq)));
-        const std::string value(trim(item.substr(eq + 1)));
-        if (!is_identifier(key)) bad_spec(text, "bad parameter name '" + key + "'");
-        if (!seen.insert(key).second) bad_spec(text, "parameter '" + key + "' given twice");
-        errno = 0;
-        char* end = nullptr;
-        const double v = value.empty() ? 0.0 : std::strtod(value.c_str(), &end);
-        if (value.empty() || end != value.c_str() + value.size() || errno == ERANGE)
-            bad_spec(text, "value of '" + key + "' is not a number: '" + value + "'");
-        spec.params.emplace_back(key, v);
-        if (comma == std::string_view::npos) break;
-        body.remove_prefix(comma + 1);
-    }
-    return spec;
-}
-
-std::string format_spec(const std::string& name, const std::vector<std::pair<std::string, double>>& params) {
-    std::string out = name + "(";
-    for (std::size_t i = 0; i < params.size(); ++i) {
-        char buf[64];
-        const auto r = std::to_chars(buf, buf + sizeof buf, params[i].second);  // shortest round-trip form
-        out += (i ? ", " : "") + params[i].first + "=" + std::string(buf, r.ptr);
-    }
-    return out + ")";
-}
 
 double NdfParams::at(const std::string& key) const {
     const auto it = values_.find(key);
@@ -118,7 +53,7 @@ AnyNdf NdfRegistry::make(std::string_view text) const {
         if (v == values.end()) throw input_error("ndf '" + spec.name + "': missing parameter '" + key + "'");
         canonical.emplace_back(key, v->second);
     }
-    return it->second(NdfParams(spec.name, std::move(values)), format_spec(spec.name, canonical));
+    return it->second(NdfParams(spec.name, std::move(values)), NdfSpec{spec.name, std::move(canonical)});
 }
 
 void register_core_ndfs(NdfRegistry& r) {

@@ -10,6 +10,7 @@
 #include "smithlab/quadrature.hpp"
 #include "smithlab/registry.hpp"
 #include "smithlab/smith.hpp"
+#include "smithlab/spec.hpp"
 #include "smithlab/gtr/closed_forms.hpp"
 #include "smithlab/gtr/gtr.hpp"
 #include "smithlab/gtr/registry.hpp"

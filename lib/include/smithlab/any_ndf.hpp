@@ -6,16 +6,19 @@
 
 #include <memory>
 #include <string>
+#include <string_view>
 #include <utility>
 
 #include "smithlab/ndf.hpp"
+#include "smithlab/spec.hpp"
 
 namespace smithlab {
 
 class AnyNdf {
 public:
     template <Ndf N>
-    AnyNdf(N ndf, std::string spec) : self_(std::make_shared<const Model<N>>(std::move(ndf))), spec_(std::move(spec)) {}
+    AnyNdf(N ndf, NdfSpec spec)
+        : self_(std::make_shared<const Model<N>>(std::move(ndf))), parts_(std::move(spec)), spec_(format_spec(parts_)) {}
 
     double D(double cos_theta_m) const { return self_->D(cos_theta_m); }
     double slope_density(double r2) const { return self_->slope_density(r2); }
@@ -30,6 +33,9 @@ public:
 
     // The canonical spec string, e.g. "gtr(alpha=0.3, gamma=1.5)".
     const std::string& spec() const { return spec_; }
+    // Its family name ("gtr") and a parameter by name (input_error if it has none such).
+    const std::string& family() const { return parts_.name; }
+    double param(std::string_view key) const;
 
 private:
     struct Base {
@@ -60,6 +66,7 @@ private:
     };
 
     std::shared_ptr<const Base> self_;
+    NdfSpec parts_;
     std::string spec_;
 };
 

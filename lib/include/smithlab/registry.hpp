@@ -16,17 +16,9 @@
 #include <vector>
 
 #include "smithlab/any_ndf.hpp"
+#include "smithlab/spec.hpp"
 
 namespace smithlab {
-
-// A parsed spec: name(key=value, ...). Values are doubles.
-struct NdfSpec {
-    std::string name;
-    std::vector<std::pair<std::string, double>> params;
-};
-
-// Grammar: name [ "(" [ key "=" number { "," key "=" number } ] ")" ], blanks allowed between tokens.
-NdfSpec parse_spec(std::string_view text);  // throws input_error quoting the text and the bad part
 
 class NdfParams {
 public:
@@ -46,12 +38,12 @@ struct NdfInfo {
 
 class NdfRegistry {
 public:
-    using Factory = std::function<AnyNdf(const NdfParams&, std::string canonical_spec)>;
+    using Factory = std::function<AnyNdf(const NdfParams&, NdfSpec canonical_spec)>;
 
     // Register an NDF type: the factory builds it from validated-present parameters and checks their ranges.
     template <class Make>
     void add(NdfInfo info, Make make) {
-        add_erased(std::move(info), [make](const NdfParams& p, std::string spec) { return AnyNdf(make(p), std::move(spec)); });
+        add_erased(std::move(info), [make](const NdfParams& p, NdfSpec spec) { return AnyNdf(make(p), std::move(spec)); });
     }
 
     AnyNdf make(std::string_view spec) const;  // throws input_error: unknown NDF, unknown/missing parameter, bad value
@@ -65,8 +57,5 @@ private:
 
 // ggx, beckmann, blinn.
 void register_core_ndfs(NdfRegistry& registry);
-
-// "name(k1=v1, k2=v2)" with every value in its shortest round-trip form.
-std::string format_spec(const std::string& name, const std::vector<std::pair<std::string, double>>& params);
 
 }  // namespace smithlab
