@@ -60,10 +60,31 @@ void register_all() {
         }
 }
 
+// Every registered variant, on the first of GTR(0.3, 1.5), GGX(0.3), Beckmann(0.3) it applies to.
+void register_variants() {
+    const auto reg = smithlab::builtin_registry();
+    const std::array<smithlab::AnyNdf, 3> candidates = {reg.make("gtr(alpha=0.3, gamma=1.5)"), reg.make("ggx(alpha=0.3)"),
+                                                        reg.make("beckmann(alpha=0.3)")};
+    const smithlab::VariantRegistry variants = smithlab::builtin_variants();
+    for (const smithlab::LambdaVariant& v : variants.list())
+        for (const smithlab::AnyNdf& ndf : candidates)
+            if (v.applies(ndf)) {
+                std::string spec = ndf.spec();
+                std::erase(spec, ' ');
+                benchmark::RegisterBenchmark(("variant/" + v.name + "/" + spec).c_str(), [v, ndf](benchmark::State& s) {
+                    std::size_t i = 0;
+                    for (auto _ : s) benchmark::DoNotOptimize(smithlab::Lambda(v, ndf, mus[i++ % mus.size()]));
+                    s.SetItemsProcessed(s.iterations());
+                });
+                break;
+            }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     register_all();
+    register_variants();
     benchmark::Initialize(&argc, argv);
     if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
     benchmark::RunSpecifiedBenchmarks();

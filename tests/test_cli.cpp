@@ -50,6 +50,8 @@ TEST_CASE("eval prints lambda and g1", "[cli]") {
     CHECK_THAT(r.out, Catch::Contains("lambda  0.05901699437494") && Catch::Contains("g1"));
     CHECK(run("eval --ndf 'blinn(n=20)' --mu 0.5 --method quadrature2d --backend gsl").rc == 0);
     CHECK(run("eval --ndf 'gtr(alpha=0.3, gamma=1.5)' --mu 0.5 --method spline").rc == 0);
+    // A variant by name: Hammon's approximation for GGX is alpha times the gamma = 0 Lambda: 0.3/(2 (1 + sqrt 2)).
+    CHECK_THAT(run("eval --ndf 'ggx(alpha=0.3)' --mu 1 --method schlick-ggx").out, Catch::Contains("lambda  0.0621320343559642"));
     CHECK(run("eval --ndf 'gtr(alpha=0.3, gamma=1)' --mu inf").out.find("g1      1\n") != std::string::npos);
     // Below the surface: Smith's Lambda(-mu) = -1 - Lambda(mu), G1 of |mu|; GGX Lambda(0.5) at alpha = 0.5 is
     // (sqrt(2) - 1)/2 = 0.20710678118654752.
@@ -72,6 +74,7 @@ TEST_CASE("bad input exits 2 and names the offending item", "[cli]") {
                           Case{"eval --ndf 'ggx(alpha=0.3)' --mu abc", "mu"},
                           Case{"eval --ndf 'blinn(n=4)' --mu 1 --method closed", "closed"},
                           Case{"eval --ndf 'ggx(alpha=0.3)' --mu 1 --method magic", "magic"},
+                          Case{"eval --ndf 'ggx(alpha=0.3)' --mu 1 --method dimov-spline", "dimov-spline"},
                           Case{"eval --input /nonexistent/points.csv", "/nonexistent/points.csv"},
                           Case{"check --ndf 'gtr(alpha=0, gamma=2)'", "alpha"}}) {
         const Run r = run(c.args);
@@ -134,4 +137,7 @@ TEST_CASE("check prints a table and passes for a healthy NDF, and --help explain
     CHECK(h.rc == 0);
     CHECK_THAT(h.out, Catch::Contains("eval") && Catch::Contains("check"));
     CHECK_THAT(run("eval --help").out, Catch::Contains("--method"));
+    const Run m = run("eval --list-methods");
+    CHECK(m.rc == 0);
+    CHECK_THAT(m.out, Catch::Contains("dimov-spline") && Catch::Contains("schlick-ggx") && Catch::Contains("q1d-gsl-1e-8"));
 }

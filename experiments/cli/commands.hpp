@@ -8,6 +8,7 @@
 
 #include "smithlab/registry.hpp"
 #include "smithlab/smith.hpp"
+#include "smithlab/variants.hpp"
 
 namespace smithlab::cli {
 
@@ -17,9 +18,10 @@ struct EvalArgs {
     std::string ndf, input, output, method = "auto", backend = "boost", downward = "smith";
     std::string mu;  // text, so that "inf" and "nan" reach our own validation
     double tolerance = 1e-12;
+    bool list_methods = false;
 };
 void add_eval(CLI::App& app, EvalArgs& args);
-int run_eval(const EvalArgs& args, const NdfRegistry& registry);
+int run_eval(const EvalArgs& args, const NdfRegistry& registry, const VariantRegistry& variants);
 
 struct CheckArgs {
     std::vector<std::string> ndfs;

@@ -1,4 +1,6 @@
 // smithlab eval: Lambda and G1 for one (ndf, mu) or for every row of a CSV file.
+#include <algorithm>
+#include <array>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -33,20 +35,34 @@ std::string g17(double v) {
     return buf;
 }
 
-LambdaOptions lambda_options(const EvalArgs& a) {
-    LambdaOptions o;
-    o.method = parse_method(a.method);
-    o.backend = parse_backend(a.backend);
-    o.tolerance = a.tolerance;
-    o.downward = a.downward == "hammon" ? Downward::hammon_symmetric : Downward::smith;
-    return o;
+constexpr std::array<std::string_view, 5> core_methods = {"auto", "closed", "spline", "quadrature", "quadrature2d"};
+
+// The route --method names: one of the core methods (with --backend and --tolerance), or a registered variant.
+struct Route {
+    LambdaOptions options;
+    const LambdaVariant* variant = nullptr;
+    double Lambda_up(const AnyNdf& ndf, double mu) const {  // mu >= 0
+        return variant ? smithlab::Lambda(*variant, ndf, mu) : smithlab::Lambda(ndf, mu, options);
+    }
+};
+
+Route route(const EvalArgs& a, const VariantRegistry& variants) {
+    Route r;
+    r.options.backend = parse_backend(a.backend);
+    r.options.tolerance = a.tolerance;
+    r.options.downward = a.downward == "hammon" ? Downward::hammon_symmetric : Downward::smith;
+    if (std::find(core_methods.begin(), core_methods.end(), a.method) != core_methods.end())
+        r.options.method = parse_method(a.method);
+    else
+        r.variant = &variants.at(a.method);
+    return r;
 }
 
 // One Lambda evaluation serves both: G1 takes |mu| (Walter 2007 eq. 44), Lambda(mu < 0) follows the convention.
-std::pair<double, double> lambda_g1(const AnyNdf& ndf, double mu, const LambdaOptions& o) {
+std::pair<double, double> lambda_g1(const AnyNdf& ndf, double mu, const Route& r) {
     try {
-        const double up = Lambda(ndf, std::abs(mu), o);
-        return {mu < 0.0 ? downward_Lambda(up, o.downward) : up, 1.0 / (1.0 + up)};
+        const double up = r.Lambda_up(ndf, std::abs(mu));
+        return {mu < 0.0 ? downward_Lambda(up, r.options.downward) : up, 1.0 / (1.0 + up)};
     } catch (const input_error& e) {
         throw input_error("ndf '" + ndf.spec() + "': " + e.what());
     }
@@ -70,7 +86,7 @@ void write_atomically(const std::string& path, const std::string& text) {
     fs::rename(tmp, target);
 }
 
-int eval_csv(const EvalArgs& a, const NdfRegistry& registry, const LambdaOptions& o) {
+int eval_csv(const EvalArgs& a, const NdfRegistry& registry, const Route& o) {
     std::ifstream file;
     if (a.input != "-") {
         file.open(a.input, std::ios::binary);
@@ -151,16 +167,18 @@ void add_eval(CLI::App& app, EvalArgs& a) {
         "other columns pass through; lambda and g1 are appended with 17 significant digits. A bad row is\n"
         "reported with its line number; then nothing is written and the exit code is 2.\n"
         "Methods: auto (closed form if the NDF has one, else 1D quadrature), closed, spline (GTR: Dimov's\n"
-        "natural cubic spline in gamma), quadrature (the reduced 1D integral), quadrature2d (nested P22->P2->Lambda).");
+        "natural cubic spline in gamma), quadrature (the reduced 1D integral), quadrature2d (nested P22->P2->Lambda),\n"
+        "and every variant of `smithlab eval --list-methods` (fixed tolerances, interpolants, approximations).");
     auto* ndf = c->add_option("--ndf", a.ndf, "NDF spec, e.g. 'ggx(alpha=0.2)'");
     auto* mu = c->add_option("--mu", a.mu, "mu = cot(theta_v); 0 (grazing), inf (normal) and mu < 0 (below) allowed");
     auto* in = c->add_option("--input", a.input, "CSV file of points ('-' for stdin)");
     c->add_option("--output", a.output, "output CSV file (default: stdout); written only if every row succeeds")->needs(in);
     ndf->excludes(in)->needs(mu);
     mu->excludes(in)->needs(ndf);
-    c->add_option("--method", a.method, "auto | closed | spline | quadrature | quadrature2d")
-        ->capture_default_str()
-        ->check(CLI::IsMember({"auto", "closed", "spline", "quadrature", "quadrature2d"}));
+    c->add_option("--method", a.method,
+                  "auto | closed | spline | quadrature | quadrature2d, or a variant from --list-methods")
+        ->capture_default_str();
+    c->add_flag("--list-methods", a.list_methods, "list every method and variant with a one-line description");
     c->add_option("--backend", a.backend, "quadrature backend: boost | gsl")
         ->capture_default_str()
         ->check(CLI::IsMember({"boost", "gsl"}));
@@ -173,8 +191,18 @@ void add_eval(CLI::App& app, EvalArgs& a) {
         ->check(CLI::IsMember({"smith", "hammon"}));
 }
 
-int run_eval(const EvalArgs& a, const NdfRegistry& registry) {
-    const LambdaOptions o = lambda_options(a);
+int run_eval(const EvalArgs& a, const NdfRegistry& registry, const VariantRegistry& variants) {
+    if (a.list_methods) {
+        const char* core[] = {"closed form where the NDF has one, else 1D quadrature (--backend, --tolerance)",
+                              "the NDF's closed form (GGX, Beckmann, GTR at integer gamma <= 31)",
+                              "the NDF's spline (GTR: Dimov's natural cubic spline of G1 in gamma)",
+                              "reduced 1D quadrature (--backend, --tolerance)",
+                              "nested 2D quadrature P22 -> P2 -> Lambda (--backend, --tolerance)"};
+        for (std::size_t i = 0; i < core_methods.size(); ++i) std::printf("%-28s %s\n", core_methods[i].data(), core[i]);
+        for (const LambdaVariant& v : variants.list()) std::printf("%-28s %s\n", v.name.c_str(), v.description.c_str());
+        return exit_ok;
+    }
+    const Route o = route(a, variants);
     if (!a.input.empty()) return eval_csv(a, registry, o);
     if (a.ndf.empty()) throw input_error("eval needs --ndf SPEC --mu M, or --input FILE (see smithlab eval --help)");
     const AnyNdf ndf = registry.make(a.ndf);
@@ -183,8 +211,8 @@ int run_eval(const EvalArgs& a, const NdfRegistry& registry) {
     std::cout << "ndf     " << ndf.spec() << "\n"
               << "mu      " << g17(mu) << "\n"
               << "method  " << a.method;
-    if (o.method == Method::quadrature || o.method == Method::quadrature2d ||
-        (o.method == Method::automatic && !ndf.has_closed_Lambda()))
+    const Method m = o.options.method;
+    if (!o.variant && (m == Method::quadrature || m == Method::quadrature2d || (m == Method::automatic && !ndf.has_closed_Lambda())))
         std::cout << " (" << a.backend << ", relative tolerance " << a.tolerance << ")";
     std::cout << "\nlambda  " << g17(lambda) << "\ng1      " << g17(g1) << "\n";
     return exit_ok;

@@ -9,6 +9,7 @@
 int main(int argc, char** argv) {
     using namespace smithlab;
     const NdfRegistry registry = builtin_registry();
+    const VariantRegistry variants = builtin_variants();
 
     CLI::App app{
         "smithlab: Smith masking-shadowing for any isotropic microfacet NDF (GGX, Beckmann, Blinn-Phong, GTR).\n"
@@ -35,7 +36,7 @@ int main(int argc, char** argv) {
     }
 
     try {
-        if (app.got_subcommand("eval")) return cli::run_eval(eval_args, registry);
+        if (app.got_subcommand("eval")) return cli::run_eval(eval_args, registry, variants);
         if (app.got_subcommand("check")) return cli::run_check(check_args, registry);
         if (list->parsed()) {
             for (const NdfInfo* info : registry.list()) {

@@ -1,5 +1,7 @@
 #include "smithlab/gtr/gtr.hpp"
+#include "smithlab/gtr/interpolants.hpp"
 #include "smithlab/gtr/registry.hpp"
+#include "smithlab/gtr/spline.hpp"
 
 namespace smithlab {
 
@@ -11,6 +13,37 @@ void register_gtr_ndfs(NdfRegistry& r) {
             "gtr(alpha=0.999999, gamma=1)", "gtr(alpha=1, gamma=3)", "gtr(alpha=0.2, gamma=0)",
             "gtr(alpha=0.5, gamma=2.5)", "gtr(alpha=0.05, gamma=4)", "gtr(alpha=0.05, gamma=10)"}},
           [](const NdfParams& p) { return gtr(p.at("alpha"), p.at("gamma")); });
+}
+
+void register_gtr_variants(VariantRegistry& r) {
+    auto is_gtr = [](const AnyNdf& n) { return n.family() == "gtr"; };
+    r.add({"dimov-spline", "Dimov 2015 / V-Ray: natural cubic spline of G1 through gamma = 0..4, clamped above 4",
+           is_gtr, [](const AnyNdf& n, double mu) {
+               return Lambda_of_interpolated_G1(G1_gtr_dimov_spline(n.param("alpha"), n.param("gamma"), mu));
+           }});
+    using K = GammaInterpolant::Kind;
+    using Q = GammaInterpolant::Quantity;
+    const GammaInterpolant choices[] = {
+        {K::akima, Q::G1, 4},           {K::steffen, Q::G1, 4},          {K::cspline, Q::Lambda, 4},
+        {K::cspline, Q::log_Lambda, 4}, {K::cspline, Q::log_Lambda, 10}, {K::steffen, Q::log_Lambda, 10},
+        {K::cspline, Q::log_Lambda, 20}, {K::akima, Q::log_Lambda, 20}};
+    for (const GammaInterpolant& how : choices) {
+        const char* kind = how.kind == K::cspline ? "natural cubic spline" : how.kind == K::akima ? "Akima spline" : "Steffen spline";
+        const char* q = how.quantity == Q::G1 ? "G1" : how.quantity == Q::Lambda ? "Lambda" : "log Lambda";
+        r.add({name_of(how),
+               std::string(kind) + " of " + q + " through the closed forms at gamma = 0.." + std::to_string(how.max_knot) +
+                   ", clamped above",
+               is_gtr, [how](const AnyNdf& n, double mu) {
+                   return Lambda_gtr_interpolated(n.param("alpha"), n.param("gamma"), mu, how);
+               }});
+    }
+}
+
+VariantRegistry builtin_variants() {
+    VariantRegistry r;
+    register_core_variants(r);
+    register_gtr_variants(r);
+    return r;
 }
 
 NdfRegistry builtin_registry() {

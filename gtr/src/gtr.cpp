@@ -47,8 +47,7 @@ double Gtr::Lambda(double mu) const {
 }
 
 double Gtr::Lambda_spline(double mu) const {
-    const double g1 = G1_gtr_dimov_spline(alpha, gamma, mu);
-    return (1.0 - g1) / g1;
+    return Lambda_of_interpolated_G1(G1_gtr_dimov_spline(alpha, gamma, mu));
 }
 
 }  // namespace smithlab

@@ -25,4 +25,6 @@ double G1_gtr_dimov_spline(double alpha, double gamma, double mu) {
     return M[i] * a * a * a / 6.0 + M[i + 1] * b * b * b / 6.0 + (y[i] - M[i] / 6.0) * a + (y[i + 1] - M[i + 1] / 6.0) * b;
 }
 
+double Lambda_of_interpolated_G1(double g1) { return g1 >= 1.0 ? 0.0 : g1 <= 0.0 ? INFINITY : (1.0 - g1) / g1; }
+
 }  // namespace smithlab

@@ -21,7 +21,8 @@ struct Gtr {
     // Closed forms exist for every integer gamma (Dimov 2015 sec. 3 for 0..4, generated above); see closed_forms.hpp.
     bool has_closed_Lambda() const;
     double Lambda(double mu) const;
-    // Dimov 2015 section 5: natural cubic spline in gamma through G1 at gamma = 0..4, gamma clamped to 4 above.
+    // Dimov 2015 section 5: natural cubic spline in gamma through G1 at gamma = 0..4, gamma clamped to 4 above;
+    // the spline's G1 clamped to [0, 1] (Lambda_of_interpolated_G1).
     double Lambda_spline(double mu) const;
 };
 

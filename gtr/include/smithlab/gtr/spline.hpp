@@ -6,7 +6,11 @@
 
 namespace smithlab {
 
-// gamma >= 0; gamma > 4 is clamped to 4 (Dimov 2015 sec. 6). mu finite > 0.
+// gamma >= 0; gamma > 4 is clamped to 4 (Dimov 2015 sec. 6). mu finite > 0. The spline itself, unclamped.
 double G1_gtr_dimov_spline(double alpha, double gamma, double mu);
+
+// Lambda = (1 - G1)/G1 of an interpolated G1, clamped to [0, 1] first as a renderer must: interpolants leave it
+// (Dimov's spline gives G1 = -0.10 at alpha = 1e-4, mu = 1e-3, gamma = 0.5). Lambda is then 0 or +inf there.
+double Lambda_of_interpolated_G1(double g1);
 
 }  // namespace smithlab

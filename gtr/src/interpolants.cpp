@@ -1,0 +1,55 @@
+#include "smithlab/gtr/interpolants.hpp"
+
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_interp.h>
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <memory>
+#include <new>
+#include <vector>
+
+#include "smithlab/errors.hpp"
+#include "smithlab/gtr/closed_forms.hpp"
+#include "smithlab/gtr/spline.hpp"
+
+namespace smithlab {
+
+std::string name_of(const GammaInterpolant& how) {
+    using K = GammaInterpolant::Kind;
+    using Q = GammaInterpolant::Quantity;
+    const char* kind = how.kind == K::cspline ? "cspline" : how.kind == K::akima ? "akima" : "steffen";
+    const char* q = how.quantity == Q::G1 ? "g1" : how.quantity == Q::Lambda ? "lambda" : "loglambda";
+    return std::string("interp-") + kind + "-" + q + "-k" + std::to_string(how.max_knot);
+}
+
+double Lambda_gtr_interpolated(double alpha, double gamma, double mu, const GammaInterpolant& how) {
+    using Q = GammaInterpolant::Quantity;
+    require(how.max_knot >= 4 && how.max_knot <= gtr_max_closed_gamma, "interpolant max_knot",
+            "in [4, " + std::to_string(gtr_max_closed_gamma) + "]", how.max_knot);
+    const std::size_t n = static_cast<std::size_t>(how.max_knot) + 1;
+    std::vector<double> x(n), y(n);
+    for (std::size_t k = 0; k < n; ++k) {
+        const double L = Lambda_gtr_closed(alpha, static_cast<int>(k), mu);
+        x[k] = static_cast<double>(k);
+        // log Lambda of an underflowed Lambda is taken at the smallest denormal: finite, and exp() gives 0 back.
+        y[k] = how.quantity == Q::G1 ? 1.0 / (1.0 + L) : how.quantity == Q::Lambda ? L : std::log(std::max(L, DBL_TRUE_MIN));
+    }
+    const gsl_interp_type* type = how.kind == GammaInterpolant::Kind::cspline ? gsl_interp_cspline
+                                  : how.kind == GammaInterpolant::Kind::akima ? gsl_interp_akima
+                                                                              : gsl_interp_steffen;
+    std::unique_ptr<gsl_interp, decltype(&gsl_interp_free)> interp(gsl_interp_alloc(type, n), &gsl_interp_free);
+    if (!interp) throw std::bad_alloc();
+    gsl_interp_init(interp.get(), x.data(), y.data(), n);
+    const double g = std::min(gamma, x.back());
+    const double v = gsl_interp_eval(interp.get(), x.data(), y.data(), g, nullptr);
+    switch (how.quantity) {
+        case Q::G1: return Lambda_of_interpolated_G1(v);
+        case Q::Lambda: return v;
+        case Q::log_Lambda: return std::exp(v);
+    }
+    return v;
+}
+
+}  // namespace smithlab

@@ -1,0 +1,48 @@
+// smithlab/variants.hpp -- named ways to compute Lambda, side by side: exact routes at several tolerances,
+// interpolants, and the approximations renderers use. `smithlab eval --method NAME`, `--list-methods` and the
+// error-against-run-time report all go through this one interface.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "smithlab/any_ndf.hpp"
+#include "smithlab/smith.hpp"
+
+namespace smithlab {
+
+struct LambdaVariant {
+    std::string name;
+    std::string description;
+    std::function<bool(const AnyNdf&)> applies;              // the NDFs it is defined for
+    std::function<double(const AnyNdf&, double mu)> Lambda;  // for finite mu > 0
+};
+
+class VariantRegistry {
+public:
+    void add(LambdaVariant v);                             // input_error on a duplicate name
+    const LambdaVariant* find(std::string_view name) const;
+    const LambdaVariant& at(std::string_view name) const;  // input_error naming the unknown variant
+    const std::vector<LambdaVariant>& list() const { return variants_; }
+
+private:
+    std::vector<LambdaVariant> variants_;
+};
+
+// A variant at any mu: 0 and inf exact, mu < 0 by the convention; input_error if it does not apply to ndf.
+double Lambda(const LambdaVariant& variant, const AnyNdf& ndf, double mu, Downward downward = Downward::smith);
+
+// q1d-{boost,gsl}-{1e-4..1e-12}, q2d-{boost,gsl}-{1e-4,1e-6,1e-8}, schlick-ggx, beckmann-rational.
+void register_core_variants(VariantRegistry& registry);
+
+// The approximations, as free functions (each cites its source).
+// Hammon 2017, "Smith: Approximate GGX G1": G1 ~ 2 NdotV / (NdotV (2 - alpha) + alpha), identical to Unreal's
+// Schlick-style G1 with k = alpha/2. Its Lambda = alpha (1 - NdotV)/(2 NdotV) = alpha / (2 mu (mu + sqrt(mu^2 + 1))).
+double Lambda_schlick_ggx(double alpha, double mu);
+// Walter 2007 eq. 27, rational approximation of Beckmann's G1 in a = mu/alpha: (3.535a + 2.181a^2) /
+// (1 + 2.276a + 2.577a^2) for a < 1.6, else 1; as Lambda, (1 - 1.259a + 0.396a^2)/(3.535a + 2.181a^2) or 0.
+double Lambda_beckmann_rational(double alpha, double mu);
+
+}  // namespace smithlab

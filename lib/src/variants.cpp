@@ -1,0 +1,75 @@
+#include "smithlab/variants.hpp"
+
+#include <array>
+#include <cmath>
+#include <utility>
+
+#include "smithlab/errors.hpp"
+
+namespace smithlab {
+
+void VariantRegistry::add(LambdaVariant v) {
+    if (find(v.name)) throw input_error("Lambda variant '" + v.name + "' is already registered");
+    variants_.push_back(std::move(v));
+}
+
+const LambdaVariant* VariantRegistry::find(std::string_view name) const {
+    for (const auto& v : variants_)
+        if (v.name == name) return &v;
+    return nullptr;
+}
+
+const LambdaVariant& VariantRegistry::at(std::string_view name) const {
+    if (const LambdaVariant* v = find(name)) return *v;
+    throw input_error("unknown method '" + std::string(name) + "' (smithlab eval --list-methods lists them)");
+}
+
+double Lambda(const LambdaVariant& variant, const AnyNdf& ndf, double mu, Downward downward) {
+    if (!variant.applies(ndf))
+        throw input_error("method '" + variant.name + "' does not apply to a '" + ndf.family() + "' ndf");
+    if (std::isnan(mu)) throw input_error("mu is NaN");
+    if (mu < 0.0) return downward_Lambda(Lambda(variant, ndf, -mu, downward), downward);
+    if (mu == 0.0) return INFINITY;
+    if (std::isinf(mu)) return 0.0;
+    return variant.Lambda(ndf, mu);
+}
+
+double Lambda_schlick_ggx(double alpha, double mu) { return alpha / (2.0 * mu * (mu + std::hypot(mu, 1.0))); }
+
+double Lambda_beckmann_rational(double alpha, double mu) {
+    const double a = mu / alpha;
+    if (a >= 1.6) return 0.0;
+    return (1.0 - 1.259 * a + 0.396 * a * a) / (3.535 * a + 2.181 * a * a);
+}
+
+namespace {
+
+bool is_ggx_like(const AnyNdf& n) { return n.family() == "ggx" || (n.family() == "gtr" && n.param("gamma") == 2.0); }
+
+}  // namespace
+
+void register_core_variants(VariantRegistry& r) {
+    const std::array<std::pair<const char*, Backend>, 2> backends = {{{"boost", Backend::boost}, {"gsl", Backend::gsl}}};
+    const std::array<std::pair<const char*, double>, 5> tolerances = {
+        {{"1e-4", 1e-4}, {"1e-6", 1e-6}, {"1e-8", 1e-8}, {"1e-10", 1e-10}, {"1e-12", 1e-12}}};
+    auto any = [](const AnyNdf&) { return true; };
+    for (const auto& [bname, backend] : backends)
+        for (const auto& [tname, tol] : tolerances) {
+            const QuadratureOptions q{backend, tol};
+            r.add({std::string("q1d-") + bname + "-" + tname,
+                   std::string("reduced 1D quadrature, ") + (backend == Backend::boost ? "Boost tanh-sinh" : "GSL QAG") +
+                       ", relative tolerance " + tname,
+                   any, [q](const AnyNdf& n, double mu) { return Lambda_1d(n, mu, q); }});
+            if (tol < 1e-8) continue;
+            r.add({std::string("q2d-") + bname + "-" + tname,
+                   std::string("nested 2D quadrature P22 -> P2 -> Lambda, ") + bname + ", relative tolerance " + tname, any,
+                   [q](const AnyNdf& n, double mu) { return Lambda_2d(n, mu, q); }});
+        }
+    r.add({"schlick-ggx", "Hammon 2017 / Unreal Schlick-style G1 for GGX, k = alpha/2", is_ggx_like,
+           [](const AnyNdf& n, double mu) { return Lambda_schlick_ggx(n.param("alpha"), mu); }});
+    r.add({"beckmann-rational", "Walter 2007 eq. 27 rational approximation of Beckmann G1",
+           [](const AnyNdf& n) { return n.family() == "beckmann"; },
+           [](const AnyNdf& n, double mu) { return Lambda_beckmann_rational(n.param("alpha"), mu); }});
+}
+
+}  // namespace smithlab
