@@ -1,6 +1,7 @@
 // The smithlab executable, driven as a user would: good runs, bad input (exit 2, the offending item named,
 // no output file), the CSV contract.
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -140,4 +141,40 @@ TEST_CASE("check prints a table and passes for a healthy NDF, and --help explain
     const Run m = run("eval --list-methods");
     CHECK(m.rc == 0);
     CHECK_THAT(m.out, Catch::Contains("dimov-spline") && Catch::Contains("schlick-ggx") && Catch::Contains("q1d-gsl-1e-8"));
+}
+
+TEST_CASE("report: a scene computes what it names, caches its references, and rejects a malformed scene", "[cli][report]") {
+    const fs::path d = scratch();
+    fs::remove_all(d / "rep");
+    write(d / "small.toml",
+          "title = \"small\"\n"
+          "[grid]\nalpha = [0.1, 0.5]\nmu = { log = [0.01, 100.0], n = 3 }\n"
+          "[[ndf]]\nfamily = \"gtr\"\ngamma = [1.5, 3.0]\n"
+          "[variants]\ninclude = [\"dimov-spline\", \"schlick-ggx\"]\n"
+          "[timing]\nmin_time = 0.01\n");
+    const std::string args = "report --scene '" + (d / "small.toml").string() + "' --out '" + (d / "rep").string() + "'";
+    const Run r = run(args);
+    INFO(r.err);
+    REQUIRE(r.rc == 0);
+    const std::string csv = slurp(d / "rep" / "variants.csv");
+    // dimov-spline on 2 alpha x 2 gamma x 3 mu; schlick-ggx applies to no NDF of this scene (GGX-like only): 0 points.
+    CHECK_THAT(csv, Catch::Contains("dimov-spline,12,") && Catch::Contains("schlick-ggx,0,"));
+    CHECK_THAT(slurp(d / "rep" / "report.md"), Catch::Contains("| dimov-spline | 12 |"));
+    CHECK(fs::exists(d / "rep" / "bench.json"));
+    // References only for what was asked: 12 (the gamma = 3 points by the closed form, gamma = 1.5 by quadrature).
+    const std::string cache = slurp(d / "rep" / "cache" / "references.csv");
+    CHECK(std::count(cache.begin(), cache.end(), '\n') == 13);
+    CHECK_THAT(r.err, Catch::Contains("0 reused from the cache, 12 computed"));
+    CHECK_THAT(run(args).err, Catch::Contains("12 reused from the cache, 0 computed"));
+
+    write(d / "bad.toml", "[grid]\nalpha = [0.1]\nmu = \"many\"\n");
+    const Run bad = run("report --scene '" + (d / "bad.toml").string() + "' --out '" + (d / "never").string() + "'");
+    CHECK(bad.rc == 2);
+    CHECK_THAT(bad.err, Catch::Contains("bad.toml") && Catch::Contains("grid.mu"));
+    CHECK_FALSE(fs::exists(d / "never"));
+    write(d / "none.toml", "[grid]\nalpha = [0.1]\nmu = [1.0]\n[[ndf]]\nfamily = \"ggx\"\n[variants]\ninclude = [\"nothing*\"]\n");
+    const Run none = run("report --scene '" + (d / "none.toml").string() + "' --out '" + (d / "never").string() + "'");
+    CHECK(none.rc == 2);
+    CHECK_THAT(none.err, Catch::Contains("selects no variant"));
+    CHECK_FALSE(fs::exists(d / "never"));
 }

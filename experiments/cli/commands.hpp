@@ -32,6 +32,13 @@ struct CheckArgs {
 void add_check(CLI::App& app, CheckArgs& args);
 int run_check(const CheckArgs& args, const NdfRegistry& registry);
 
+struct ReportArgs {
+    std::string scene, out = "report";
+    bool print_scene = false;
+};
+void add_report(CLI::App& app, ReportArgs& args);
+int run_report(const ReportArgs& args, const NdfRegistry& registry, const VariantRegistry& variants);
+
 // Parses a double, accepting "inf"; NaN and trailing junk are input errors naming `what`.
 double parse_number(const std::string& text, const std::string& what);
 

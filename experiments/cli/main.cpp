@@ -22,6 +22,8 @@ int main(int argc, char** argv) {
     cli::add_eval(app, eval_args);
     cli::CheckArgs check_args;
     cli::add_check(app, check_args);
+    cli::ReportArgs report_args;
+    cli::add_report(app, report_args);
     CLI::App* list = app.add_subcommand("list", "List the registered NDFs, their parameters and example specs");
 
     try {
@@ -38,6 +40,7 @@ int main(int argc, char** argv) {
     try {
         if (app.got_subcommand("eval")) return cli::run_eval(eval_args, registry, variants);
         if (app.got_subcommand("check")) return cli::run_check(check_args, registry);
+        if (app.got_subcommand("report")) return cli::run_report(report_args, registry, variants);
         if (list->parsed()) {
             for (const NdfInfo* info : registry.list()) {
                 std::cout << info->name << "(";

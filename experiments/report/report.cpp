@@ -1,0 +1,256 @@
+#include "report.hpp"
+
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "smithlab/csv.hpp"
+#include "smithlab/errors.hpp"
+#include "smithlab/smith.hpp"
+
+namespace smithlab::report {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The reference a variant is measured against: a closed form where the NDF has one; otherwise a quadrature route
+// other than the variant's own (the 2D nested route for the Boost 1D variants, Boost 1D at 1e-13 for the rest).
+// Both agree with the 50-digit references of the test suite to ~1e-15; GSL's QAG can stop at ~1e-11.
+enum class Route { closed, q1d_boost, q2d_boost };
+
+const char* name_of(Route r) { return r == Route::closed ? "closed" : r == Route::q1d_boost ? "q1d-boost-1e-13" : "q2d-boost-1e-12"; }
+
+Route route_for(const LambdaVariant& v, const AnyNdf& ndf) {
+    if (ndf.has_closed_Lambda()) return Route::closed;
+    return v.name.rfind("q1d-boost", 0) == 0 ? Route::q2d_boost : Route::q1d_boost;
+}
+
+double compute_reference(const AnyNdf& ndf, double mu, Route r) {
+    switch (r) {
+        case Route::closed: return ndf.Lambda(mu);
+        case Route::q1d_boost: return Lambda_1d(ndf, mu, {Backend::boost, 1e-13});
+        case Route::q2d_boost: return Lambda_2d(ndf, mu, {Backend::boost, 1e-12});
+    }
+    return NAN;
+}
+
+std::string g17(double v) {
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.17g", v);
+    return buf;
+}
+
+// References by (spec, mu, route), kept in DIR/cache/references.csv between runs of the same scene.
+class ReferenceCache {
+public:
+    explicit ReferenceCache(fs::path file) : file_(std::move(file)) {
+        std::ifstream in(file_);
+        if (!in) return;
+        const auto records = read_csv(in);
+        for (std::size_t i = 1; i < records.size(); ++i)
+            if (records[i].error.empty() && records[i].fields.size() == 4)
+                values_[records[i].fields[0] + "|" + records[i].fields[1] + "|" + records[i].fields[2]] =
+                    std::strtod(records[i].fields[3].c_str(), nullptr);
+        loaded_ = values_.size();
+    }
+    double get(const AnyNdf& ndf, double mu, Route r) {
+        const std::string key = ndf.spec() + "|" + g17(mu) + "|" + name_of(r);
+        if (auto it = values_.find(key); it != values_.end()) return it->second;
+        ++computed_;
+        return values_[key] = compute_reference(ndf, mu, r);
+    }
+    void save() const {
+        fs::create_directories(file_.parent_path());
+        std::ofstream out(file_);
+        write_csv_record(out, {"spec", "mu", "route", "lambda"});
+        for (const auto& [key, v] : values_) {
+            const auto a = key.find('|'), b = key.find('|', a + 1);
+            write_csv_record(out, {key.substr(0, a), key.substr(a + 1, b - a - 1), key.substr(b + 1), g17(v)});
+        }
+    }
+    std::size_t loaded() const { return loaded_; }
+    std::size_t computed() const { return computed_; }
+
+private:
+    fs::path file_;
+    std::map<std::string, double> values_;
+    std::size_t loaded_ = 0, computed_ = 0;
+};
+
+struct Point {
+    AnyNdf ndf;
+    double mu;
+};
+
+struct Row {
+    const LambdaVariant* variant;
+    std::size_t points = 0;
+    double max_dG1 = 0.0, sum_dG1 = 0.0, max_rel = 0.0;
+    std::string worst_at;
+    double ns = NAN;
+};
+
+double G1_of(double L) { return std::isinf(L) ? 0.0 : 1.0 / (1.0 + L); }
+
+std::string machine() {
+    std::ifstream cpu("/proc/cpuinfo");
+    std::string line, model = "unknown CPU";
+    while (std::getline(cpu, line))
+        if (line.rfind("model name", 0) == 0) {
+            model = line.substr(line.find(':') + 2);
+            break;
+        }
+    return model;
+}
+
+// Google Benchmark, one core, the variant cycling through its grid points; the JSON it writes is what we read.
+void time_variants(std::vector<Row>& rows, const std::vector<std::vector<Point>>& points, double min_time,
+                   const fs::path& json_file) {
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        if (points[i].empty()) continue;  // applies to no NDF of the scene: nothing to time
+        std::vector<Point> sample;
+        const auto& all = points[i];
+        const std::size_t step = std::max<std::size_t>(1, all.size() / 64);
+        for (std::size_t k = 0; k < all.size(); k += step) sample.push_back(all[k]);
+        const LambdaVariant* v = rows[i].variant;
+        benchmark::RegisterBenchmark(v->name.c_str(), [v, sample](benchmark::State& s) {
+            std::size_t k = 0;
+            for (auto _ : s) {
+                const Point& p = sample[k++ % sample.size()];
+                benchmark::DoNotOptimize(v->Lambda(p.ndf, p.mu));
+            }
+        });
+    }
+    std::string flag = "--benchmark_min_time=" + g17(min_time);
+    char arg0[] = "smithlab-report";
+    char* argv[] = {arg0, flag.data(), nullptr};
+    int argc = 2;
+    benchmark::Initialize(&argc, argv);
+    std::ofstream out(json_file);
+    benchmark::JSONReporter reporter;
+    reporter.SetOutputStream(&out);
+    reporter.SetErrorStream(&std::cerr);
+    benchmark::RunSpecifiedBenchmarks(&reporter);
+    benchmark::ClearRegisteredBenchmarks();
+    out.close();
+    std::ifstream in(json_file);
+    const nlohmann::json j = nlohmann::json::parse(in);
+    for (const auto& b : j.at("benchmarks")) {
+        const std::string name = b.at("name");
+        const double scale = b.at("time_unit") == "ns" ? 1.0 : b.at("time_unit") == "us" ? 1e3 : 1e6;
+        for (Row& r : rows)
+            if (r.variant->name == name) r.ns = b.at("cpu_time").get<double>() * scale;
+    }
+}
+
+}  // namespace
+
+int run_report(const Scene& scene, const std::string& out_dir, const NdfRegistry& ndfs, const VariantRegistry& variants) {
+    // Validate everything before computing or writing anything.
+    std::vector<AnyNdf> grid_ndfs;
+    for (const NdfFamily& f : scene.ndfs) {
+        const NdfInfo* info = ndfs.find(f.family);
+        if (!info) throw input_error("scene: unknown ndf family '" + f.family + "'");
+        for (double a : scene.alphas) {
+            if (f.gammas.empty()) grid_ndfs.push_back(ndfs.make(format_spec({f.family, {{"alpha", a}}})));
+            for (double g : f.gammas) grid_ndfs.push_back(ndfs.make(format_spec({f.family, {{"alpha", a}, {"gamma", g}}})));
+        }
+    }
+    std::vector<Row> rows;
+    for (const LambdaVariant& v : variants.list()) {
+        const auto matches = [&](const std::vector<std::string>& pats) {
+            return std::any_of(pats.begin(), pats.end(), [&](const std::string& p) { return glob_match(p, v.name); });
+        };
+        if (matches(scene.include) && !matches(scene.exclude)) rows.push_back(Row{.variant = &v, .worst_at = {}});
+    }
+    if (rows.empty()) throw input_error("scene selects no variant (see smithlab eval --list-methods)");
+    for (double mu : scene.mus) require(mu > 0.0 && std::isfinite(mu), "scene: grid.mu", "finite and > 0", mu);
+
+    const fs::path dir(out_dir);
+    fs::create_directories(dir);
+    ReferenceCache cache(dir / "cache" / "references.csv");
+
+    std::vector<std::vector<Point>> points(rows.size());
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        Row& row = rows[i];
+        std::fprintf(stderr, "report: [%zu/%zu] %s\n", i + 1, rows.size(), row.variant->name.c_str());
+        for (const AnyNdf& ndf : grid_ndfs) {
+            if (!row.variant->applies(ndf)) continue;
+            const Route route = route_for(*row.variant, ndf);
+            for (double mu : scene.mus) {
+                points[i].push_back({ndf, mu});
+                const double want = cache.get(ndf, mu, route);
+                const double got = Lambda(*row.variant, ndf, mu);
+                const double dG1 = std::abs(G1_of(got) - G1_of(want));
+                ++row.points;
+                row.sum_dG1 += dG1;
+                row.max_dG1 = std::max(row.max_dG1, dG1);
+                if (want >= DBL_MIN) {
+                    const double rel = std::isinf(got) ? INFINITY : std::abs(got - want) / want;
+                    if (rel > row.max_rel || std::isnan(rel)) {
+                        row.max_rel = rel;
+                        row.worst_at = ndf.spec() + " mu=" + g17(mu);
+                    }
+                }
+            }
+        }
+    }
+    cache.save();
+    std::fprintf(stderr, "report: references: %zu reused from the cache, %zu computed\n", cache.loaded(), cache.computed());
+    std::fprintf(stderr, "report: timing %zu variants with Google Benchmark\n", rows.size());
+    time_variants(rows, points, scene.min_time, dir / "bench.json");
+
+    std::sort(rows.begin(), rows.end(), [](const Row& a, const Row& b) { return a.ns < b.ns; });
+    {
+        std::ofstream csv(dir / "variants.csv");
+        write_csv_record(csv, {"variant", "points", "max_abs_dG1", "mean_abs_dG1", "max_rel_dLambda", "worst_at", "ns_per_eval",
+                               "description"});
+        for (const Row& r : rows) {
+            if (r.points == 0) {  // selected, but it applies to no NDF of this scene
+                write_csv_record(csv, {r.variant->name, "0", "", "", "", "", "", r.variant->description});
+                continue;
+            }
+            write_csv_record(csv, {r.variant->name, std::to_string(r.points), g17(r.max_dG1), g17(r.sum_dG1 / r.points),
+                                   g17(r.max_rel), r.worst_at, g17(r.ns), r.variant->description});
+        }
+    }
+    {
+        std::ofstream md(dir / "report.md");
+        const std::time_t now = std::time(nullptr);
+        char date[32];
+        std::strftime(date, sizeof date, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
+        md << "# " << scene.title << "\n\n"
+           << "Machine: " << machine() << ", one core; compiler " << __VERSION__ << ", flags `" << SMITHLAB_BUILD_FLAGS
+           << "`; " << date << ".\n\n"
+           << "Grid: " << scene.alphas.size() << " alpha x " << scene.mus.size() << " mu per NDF, " << grid_ndfs.size()
+           << " NDFs. Reference: the closed form where the NDF has one, else a different quadrature route than the "
+              "variant's (Boost 1D at 1e-13, or the nested 2D route for the Boost 1D variants). Sorted by cost.\n\n"
+           << "| variant | points | max abs dG1 | mean abs dG1 | max rel dLambda | ns/eval | worst at |\n"
+           << "|---|---:|---:|---:|---:|---:|---|\n";
+        for (const Row& r : rows) {
+            if (r.points == 0) {
+                md << "| " << r.variant->name << " | 0 | | | | | applies to no NDF of this scene |\n";
+                continue;
+            }
+            char line[512];
+            std::snprintf(line, sizeof line, "| %s | %zu | %.2e | %.2e | %.2e | %.0f | %s |\n", r.variant->name.c_str(), r.points,
+                          r.max_dG1, r.sum_dG1 / r.points, r.max_rel, r.ns, r.worst_at.c_str());
+            md << line;
+        }
+    }
+    std::fprintf(stderr, "report: wrote %s/{report.md, variants.csv, bench.json}\n", dir.string().c_str());
+    return 0;
+}
+
+}  // namespace smithlab::report

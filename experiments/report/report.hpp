@@ -1,0 +1,16 @@
+// smithlab report: every selected Lambda variant on the scene's grid, against an independent reference, with its
+// run time from Google Benchmark. Writes DIR/variants.csv, DIR/report.md, DIR/bench.json and a reference cache.
+#pragma once
+
+#include <string>
+
+#include "scene.hpp"
+#include "smithlab/registry.hpp"
+#include "smithlab/variants.hpp"
+
+namespace smithlab::report {
+
+// Returns the process exit code; throws input_error for a scene that names unknown NDFs or selects nothing.
+int run_report(const Scene& scene, const std::string& out_dir, const NdfRegistry& ndfs, const VariantRegistry& variants);
+
+}  // namespace smithlab::report
