@@ -58,6 +58,20 @@ Scene parse_scene(const std::string& text, const std::string& source) {
         s.exclude = toml::find_or<std::vector<std::string>>(variants, "exclude", {});
         if (data.contains("timing")) s.min_time = toml::find_or<double>(toml::find(data, "timing"), "min_time", 0.05);
         if (!(s.min_time > 0.0 && s.min_time <= 10.0)) throw input_error(source + ": timing.min_time must be in (0, 10] seconds");
+        if (data.contains("figures")) {
+            const auto& f = toml::find(data, "figures");
+            for (const auto& [key, value] : f.as_table()) {
+                bool* flag = key == "pareto"                ? &s.figures.pareto
+                             : key == "error_maps"          ? &s.figures.error_maps
+                             : key == "dimov_heightfields"  ? &s.figures.dimov_heightfields
+                             : key == "dimov_spline_mean"   ? &s.figures.dimov_spline_mean
+                             : key == "dimov_gamma4_vs_10"  ? &s.figures.dimov_gamma4_vs_10
+                                                            : nullptr;
+                if (!flag) throw input_error(source + ": unknown figure '" + key + "'");
+                if (!value.is_boolean()) throw input_error(source + ": figures." + key + " must be true or false");
+                *flag = value.as_boolean();
+            }
+        }
         return s;
     } catch (const input_error&) {
         throw;

@@ -1,0 +1,146 @@
+#!/usr/bin/python3
+"""Draws the figures of `smithlab report` from the CSV files it wrote: report_plots.py DIR.
+
+Needs Debian's python3-matplotlib (installed by .ci/deps). Each figure is drawn only if its data is there, i.e. only
+if the scene asked for it.
+"""
+import csv
+import math
+import os
+import sys
+from collections import defaultdict
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.colors import LogNorm  # noqa: E402
+import numpy as np  # noqa: E402
+
+
+def rows(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def num(s):
+    return float(s) if s not in ("", None) else math.nan
+
+
+def pareto(d):
+    table = [r for r in rows(os.path.join(d, "variants.csv")) if r["points"] != "0"]
+    fig, axes = plt.subplots(1, 2, figsize=(15, 6.5))
+    for ax, key, label in ((axes[0], "max_rel_dLambda", "max relative error of Lambda"),
+                           (axes[1], "max_abs_dG1", "max |dG1|")):
+        top = 1e3 if key == "max_rel_dLambda" else 2.0
+        for r in table:
+            x, y = num(r["ns_per_eval"]), num(r[key])
+            clipped = not (y <= top)
+            y = top if clipped else max(y, 1e-17)
+            fam = r["variant"].split("-")[0]
+            ax.scatter([x], [y], marker="^" if clipped else "o", s=28,
+                       color={"q1d": "tab:blue", "q2d": "tab:cyan", "interp": "tab:orange",
+                              "dimov": "tab:red"}.get(fam, "tab:green"))
+            ax.annotate(r["variant"], (x, y), fontsize=6, xytext=(3, 2), textcoords="offset points")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("ns per evaluation (Google Benchmark, one core)")
+        ax.set_ylabel(label + " (triangles: off the scale or infinite)")
+        ax.grid(True, which="both", alpha=0.3)
+    fig.suptitle("G1 variants: error against run time")
+    fig.tight_layout()
+    fig.savefig(os.path.join(d, "pareto.png"), dpi=110)
+
+
+def log_edges(centers):
+    """Cell edges between log-spaced centers (geometric midpoints), extended by half a step at both ends."""
+    c = np.log(np.array(centers))
+    if len(c) == 1:
+        return np.exp(np.array([c[0] - 0.5, c[0] + 0.5]))
+    mid = (c[1:] + c[:-1]) / 2
+    return np.exp(np.concatenate([[c[0] - (mid[0] - c[0])], mid, [c[-1] + (c[-1] - mid[-1])]]))
+
+
+def error_maps(d):
+    pdir = os.path.join(d, "points")
+    names = sorted(f[:-4] for f in os.listdir(pdir) if f.endswith(".csv"))
+    cols = 5
+    nrows = (len(names) + cols - 1) // cols
+    fig, axes = plt.subplots(nrows, cols, figsize=(3.2 * cols, 2.8 * nrows), squeeze=False)
+    norm = LogNorm(vmin=1e-16, vmax=1.0)
+    for ax, name in zip(axes.flat, names):
+        worst = defaultdict(float)
+        for r in rows(os.path.join(pdir, name + ".csv")):
+            key = (num(r["alpha"]), num(r["mu"]))
+            worst[key] = max(worst[key], num(r["abs_dG1"]))
+        alphas = sorted({k[0] for k in worst})
+        mus = sorted({k[1] for k in worst})
+        Z = np.array([[max(worst.get((a, m), 0.0), 1e-16) for a in alphas] for m in mus])
+        im = ax.pcolormesh(log_edges(alphas), log_edges(mus), Z, norm=norm, cmap="magma", shading="flat")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_title(name, fontsize=8)
+        ax.tick_params(labelsize=6)
+    for ax in list(axes.flat)[len(names):]:
+        ax.axis("off")
+    fig.supxlabel("alpha")
+    fig.supylabel("mu = cot(theta)")
+    fig.colorbar(im, ax=axes, shrink=0.6, label="|dG1|, worst over gamma")
+    fig.savefig(os.path.join(d, "error_maps.png"), dpi=100)
+
+
+def dimov_heightfields(d):
+    data = defaultdict(dict)
+    for r in rows(os.path.join(d, "dimov", "heightfields.csv")):
+        data[int(r["gamma"])][(num(r["alpha"]), num(r["mu"]))] = num(r["g1"])
+    fig = plt.figure(figsize=(8, 6.5))
+    ax = fig.add_subplot(projection="3d")
+    colors = ["tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple"]
+    for g, pts in sorted(data.items()):
+        alphas = sorted({k[0] for k in pts})
+        mus = sorted({k[1] for k in pts})
+        X, Y = np.meshgrid(alphas, mus)
+        Z = np.array([[pts[(a, m)] for a in alphas] for m in mus])
+        ax.plot_wireframe(X, Y, Z, color=colors[g], linewidth=0.4, rstride=4, cstride=4, label=f"gamma = {g}")
+    ax.set_xlabel("alpha")
+    ax.set_ylabel("mu")
+    ax.set_zlabel("G1")
+    ax.legend(fontsize=8)
+    ax.set_title("Dimov 2015 sec. 4, reproduced: G1 for gamma = 0..4")
+    fig.savefig(os.path.join(d, "dimov_heightfields.png"), dpi=110)
+
+
+def dimov_gamma4_vs_10(d):
+    pts = {(num(r["alpha"]), num(r["mu"])): num(r["abs_diff"]) for r in rows(os.path.join(d, "dimov", "gamma4_vs_10.csv"))}
+    alphas = sorted({k[0] for k in pts})
+    mus = sorted({k[1] for k in pts})
+    fig = plt.figure(figsize=(8, 6.5))
+    ax = fig.add_subplot(projection="3d")
+    X, Y = np.meshgrid(alphas, mus)
+    Z = np.array([[10 * pts[(a, m)] for a in alphas] for m in mus])
+    ax.plot_surface(X, Y, Z, cmap="viridis", linewidth=0)
+    ax.set_xlabel("alpha")
+    ax.set_ylabel("mu")
+    ax.set_zlabel("10 |G1(4) - G1(10)|")
+    ax.set_title("Dimov 2015 sec. 6, reproduced (scaled 10x as published)")
+    fig.savefig(os.path.join(d, "gamma4_vs_10.png"), dpi=110)
+
+
+def main():
+    d = sys.argv[1]
+    drawn = []
+    if os.path.isdir(os.path.join(d, "points")):
+        pareto(d)
+        error_maps(d)
+        drawn += ["pareto.png", "error_maps.png"]
+    if os.path.exists(os.path.join(d, "dimov", "heightfields.csv")):
+        dimov_heightfields(d)
+        drawn.append("dimov_heightfields.png")
+    if os.path.exists(os.path.join(d, "dimov", "gamma4_vs_10.csv")):
+        dimov_gamma4_vs_10(d)
+        drawn.append("gamma4_vs_10.png")
+    print("report_plots: drew " + ", ".join(drawn), file=sys.stderr)
+
+
+if __name__ == "__main__":
+    main()
