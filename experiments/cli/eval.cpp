@@ -29,12 +29,6 @@ double parse_number(const std::string& text, const std::string& what) {
 
 namespace {
 
-std::string g17(double v) {
-    char buf[40];
-    std::snprintf(buf, sizeof buf, "%.17g", v);
-    return buf;
-}
-
 constexpr std::array<std::string_view, 5> core_methods = {"auto", "closed", "spline", "quadrature", "quadrature2d"};
 
 // The route --method names: one of the core methods (with --backend and --tolerance), or a registered variant.
@@ -134,8 +128,8 @@ int eval_csv(const EvalArgs& a, const NdfRegistry& registry, const Route& o) {
             const double mu = parse_number(rec.fields[mu_col], "mu");
             const auto [lambda, g1] = lambda_g1(it->second, mu, o);
             std::vector<std::string> row = rec.fields;
-            row.push_back(g17(lambda));
-            row.push_back(g17(g1));
+            row.push_back(format_g17(lambda));
+            row.push_back(format_g17(g1));
             write_csv_record(out, row);
         } catch (const input_error& e) {
             std::cerr << src << ":" << rec.line << ": " << e.what() << "\n";
@@ -209,12 +203,12 @@ int run_eval(const EvalArgs& a, const NdfRegistry& registry, const VariantRegist
     const double mu = parse_number(a.mu, "mu");
     const auto [lambda, g1] = lambda_g1(ndf, mu, o);
     std::cout << "ndf     " << ndf.spec() << "\n"
-              << "mu      " << g17(mu) << "\n"
+              << "mu      " << format_g17(mu) << "\n"
               << "method  " << a.method;
     const Method m = o.options.method;
     if (!o.variant && (m == Method::quadrature || m == Method::quadrature2d || (m == Method::automatic && !ndf.has_closed_Lambda())))
         std::cout << " (" << a.backend << ", relative tolerance " << a.tolerance << ")";
-    std::cout << "\nlambda  " << g17(lambda) << "\ng1      " << g17(g1) << "\n";
+    std::cout << "\nlambda  " << format_g17(lambda) << "\ng1      " << format_g17(g1) << "\n";
     return exit_ok;
 }
 

@@ -47,12 +47,6 @@ double compute_reference(const AnyNdf& ndf, double mu, Route r) {
     return NAN;
 }
 
-std::string g17(double v) {
-    char buf[40];
-    std::snprintf(buf, sizeof buf, "%.17g", v);
-    return buf;
-}
-
 // References by (spec, mu, route), kept in DIR/cache/references.csv between runs of the same scene.
 class ReferenceCache {
 public:
@@ -67,7 +61,7 @@ public:
         loaded_ = values_.size();
     }
     double get(const AnyNdf& ndf, double mu, Route r) {
-        const std::string key = ndf.spec() + "|" + g17(mu) + "|" + name_of(r);
+        const std::string key = ndf.spec() + "|" + format_g17(mu) + "|" + name_of(r);
         if (auto it = values_.find(key); it != values_.end()) return it->second;
         ++computed_;
         return values_[key] = compute_reference(ndf, mu, r);
@@ -78,7 +72,7 @@ public:
         write_csv_record(out, {"spec", "mu", "route", "lambda"});
         for (const auto& [key, v] : values_) {
             const auto a = key.find('|'), b = key.find('|', a + 1);
-            write_csv_record(out, {key.substr(0, a), key.substr(a + 1, b - a - 1), key.substr(b + 1), g17(v)});
+            write_csv_record(out, {key.substr(0, a), key.substr(a + 1, b - a - 1), key.substr(b + 1), format_g17(v)});
         }
     }
     std::size_t loaded() const { return loaded_; }
@@ -139,7 +133,7 @@ void time_variants(std::vector<Row>& rows, double min_time, const fs::path& json
             }
         });
     }
-    std::string flag = "--benchmark_min_time=" + g17(min_time);
+    std::string flag = "--benchmark_min_time=" + format_g17(min_time);
     char arg0[] = "smithlab-report";
     char* argv[] = {arg0, flag.data(), nullptr};
     int argc = 2;
@@ -179,7 +173,7 @@ void write_figures(const Scene& scene, const fs::path& dir, const std::vector<Ro
             std::ofstream out(dir / "points" / (row.variant->name + ".csv"));
             write_csv_record(out, {"alpha", "gamma", "mu", "abs_dG1", "rel_dLambda"});
             for (const PointError& e : row.errors)
-                write_csv_record(out, {g17(e.alpha), g17(e.gamma), g17(e.mu), g17(e.dG1), g17(e.rel)});
+                write_csv_record(out, {format_g17(e.alpha), format_g17(e.gamma), format_g17(e.mu), format_g17(e.dG1), format_g17(e.rel)});
         }
     }
     if (fig.dimov_heightfields || fig.dimov_gamma4_vs_10) fs::create_directories(dir / "dimov");
@@ -189,7 +183,7 @@ void write_figures(const Scene& scene, const fs::path& dir, const std::vector<Ro
         for (int g = 0; g <= 4; ++g)
             for (double a : lin(0.1, 0.5, 41))
                 for (double mu : lin(0.0, 5.0, 51))
-                    write_csv_record(out, {std::to_string(g), g17(a), g17(mu), g17(G1(gtr(a, g), mu))});
+                    write_csv_record(out, {std::to_string(g), format_g17(a), format_g17(mu), format_g17(G1(gtr(a, g), mu))});
     }
     if (fig.dimov_spline_mean) {
         // Dimov 2015 sec. 5: "the mean difference was 0.001", against Monte Carlo, domain unstated. Here: his plot's
@@ -221,7 +215,7 @@ void write_figures(const Scene& scene, const fs::path& dir, const std::vector<Ro
             for (double mu : lin(0.04, 2.0, 50)) {
                 const double d = std::abs(G1(gtr(a, 4.0), mu) - G1(gtr(a, 10.0), mu));
                 worst = std::max(worst, d);
-                write_csv_record(out, {g17(a), g17(mu), g17(d)});
+                write_csv_record(out, {format_g17(a), format_g17(mu), format_g17(d)});
             }
         char line[400];
         std::snprintf(line, sizeof line,
@@ -300,7 +294,7 @@ int run_report(const Scene& scene, const std::string& out_dir, const NdfRegistry
                     const double rel = std::isinf(got) ? INFINITY : std::abs(got - want) / want;
                     if (rel > row.max_rel || std::isnan(rel)) {
                         row.max_rel = rel;
-                        row.worst_at = ndf.spec() + " mu=" + g17(mu);
+                        row.worst_at = ndf.spec() + " mu=" + format_g17(mu);
                     }
                 }
             }
@@ -321,8 +315,8 @@ int run_report(const Scene& scene, const std::string& out_dir, const NdfRegistry
                 write_csv_record(csv, {r.variant->name, "0", "", "", "", "", "", r.variant->description});
                 continue;
             }
-            write_csv_record(csv, {r.variant->name, std::to_string(r.points), g17(r.max_dG1), g17(r.sum_dG1 / r.points),
-                                   g17(r.max_rel), r.worst_at, g17(r.ns), r.variant->description});
+            write_csv_record(csv, {r.variant->name, std::to_string(r.points), format_g17(r.max_dG1), format_g17(r.sum_dG1 / r.points),
+                                   format_g17(r.max_rel), r.worst_at, format_g17(r.ns), r.variant->description});
         }
     }
     {

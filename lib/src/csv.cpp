@@ -1,5 +1,6 @@
 #include "smithlab/csv.hpp"
 
+#include <cstdio>
 #include <istream>
 #include <iterator>
 #include <ostream>
@@ -71,6 +72,12 @@ std::vector<CsvRecord> read_csv(std::istream& in) {
         records.push_back(std::move(rec));
     }
     return records;
+}
+
+std::string format_g17(double v) {
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.17g", v);
+    return buf;
 }
 
 std::string csv_field(std::string_view s) {

@@ -18,6 +18,9 @@ struct CsvRecord {
 // caller can report each bad row by its line and keep going.
 std::vector<CsvRecord> read_csv(std::istream& in);
 
+// A number with 17 significant digits ("%.17g"): every double round-trips.
+std::string format_g17(double v);
+
 // One field, quoted only when it must be (comma, quote, CR or LF inside).
 std::string csv_field(std::string_view s);
 void write_csv_record(std::ostream& out, const std::vector<std::string>& fields);
