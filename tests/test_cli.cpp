@@ -151,6 +151,7 @@ TEST_CASE("report: a scene computes what it names, caches its references, and re
           "[grid]\nalpha = [0.1, 0.5]\nmu = { log = [0.01, 100.0], n = 3 }\n"
           "[[ndf]]\nfamily = \"gtr\"\ngamma = [1.5, 3.0]\n"
           "[variants]\ninclude = [\"dimov-spline\", \"schlick-ggx\"]\n"
+          "[g2]\ninclude = [\"g2-hammon-lerp\"]\nmu = [0.5, 2.0]\n"
           "[timing]\nmin_time = 0.01\n");
     const std::string args = "report --scene '" + (d / "small.toml").string() + "' --out '" + (d / "rep").string() + "'";
     const Run r = run(args);
@@ -161,11 +162,14 @@ TEST_CASE("report: a scene computes what it names, caches its references, and re
     CHECK_THAT(csv, Catch::Contains("dimov-spline,12,") && Catch::Contains("schlick-ggx,0,"));
     CHECK_THAT(slurp(d / "rep" / "report.md"), Catch::Contains("| dimov-spline | 12 |"));
     CHECK(fs::exists(d / "rep" / "bench.json"));
-    // References only for what was asked: 12 (the gamma = 3 points by the closed form, gamma = 1.5 by quadrature).
+    // G2: Hammon's lerp on ggx at 2 alpha x 2 mu x 2 mu.
+    CHECK_THAT(slurp(d / "rep" / "g2_variants.csv"), Catch::Contains("g2-hammon-lerp,8,"));
+    // References only for what was asked: 12 for dimov-spline (the gamma = 3 points by the closed form, gamma = 1.5
+    // by quadrature), 4 GGX Lambdas for the G2 table (2 alpha x 2 mu).
     const std::string cache = slurp(d / "rep" / "cache" / "references.csv");
-    CHECK(std::count(cache.begin(), cache.end(), '\n') == 13);
-    CHECK_THAT(r.err, Catch::Contains("0 reused from the cache, 12 computed"));
-    CHECK_THAT(run(args).err, Catch::Contains("12 reused from the cache, 0 computed"));
+    CHECK(std::count(cache.begin(), cache.end(), '\n') == 17);
+    CHECK_THAT(r.err, Catch::Contains("0 reused from the cache, 16 computed"));
+    CHECK_THAT(run(args).err, Catch::Contains("16 reused from the cache, 0 computed"));
 
     write(d / "bad.toml", "[grid]\nalpha = [0.1]\nmu = \"many\"\n");
     const Run bad = run("report --scene '" + (d / "bad.toml").string() + "' --out '" + (d / "never").string() + "'");

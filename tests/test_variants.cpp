@@ -98,3 +98,27 @@ TEST_CASE("interpolants across gamma: exact at the knots, and beyond gamma = 4 f
             CHECK(worst_k20 < 1e-2 * worst_dimov);
         }
 }
+
+TEST_CASE("G2 variants: Hammon's lerp is his published formula, and exact where he says it is", "[variants][g2]") {
+    const auto reg = builtin_registry();
+    const auto variants = builtin_G2_variants();
+    REQUIRE(variants.size() == 3);
+    for (double alpha : {0.1, 0.5, 1.0})
+        for (double mi : {0.2, 1.0, 5.0})
+            for (double mo : {0.3, 2.0}) {
+                const double nl = mi / std::sqrt(1 + mi * mi), nv = mo / std::sqrt(1 + mo * mo);
+                const double lerp = 2 * nl * nv + alpha * ((nl + nv) - 2 * nl * nv);
+                CHECK(G2_hammon_lerp(alpha, mi, mo) == Approx(2 * nl * nv / lerp).epsilon(1e-14));
+            }
+    // Solving Hammon's G1 for Lambda and building the height-correlated G2 gives his lerp exactly ("Smith: Approximate
+    // GGX G2"): 1/(1 + L_i + L_o) with L = alpha (1 - N.X)/(2 N.X).
+    for (double alpha : {0.1, 0.8})
+        for (double mi : {0.2, 3.0}) {
+            const double mo = 0.7;
+            CHECK(G2_hammon_lerp(alpha, mi, mo) ==
+                  Approx(1.0 / (1.0 + Lambda_schlick_ggx(alpha, mi) + Lambda_schlick_ggx(alpha, mo))).epsilon(1e-13));
+        }
+    // Uncorrelated is below correlated (Hammon 2017, "Correlated vs Uncorrelated").
+    const AnyNdf g = reg.make("ggx(alpha=0.6)");
+    CHECK(variants[0].G2(g, 0.3, 0.5) < G2(g, 0.3, 0.5));
+}

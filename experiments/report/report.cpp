@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
+#include <functional>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -116,21 +117,21 @@ std::string machine() {
     return model;
 }
 
-// Google Benchmark, one core, the variant cycling through its grid points; the JSON it writes is what we read.
-void time_variants(std::vector<Row>& rows, double min_time, const fs::path& json_file) {
-    for (std::size_t i = 0; i < rows.size(); ++i) {
-        if (rows[i].grid.empty()) continue;  // applies to no NDF of the scene: nothing to time
-        std::vector<Point> sample;
-        const auto& all = rows[i].grid;
-        const std::size_t step = std::max<std::size_t>(1, all.size() / 64);
-        for (std::size_t k = 0; k < all.size(); k += step) sample.push_back(all[k]);
-        const LambdaVariant* v = rows[i].variant;
-        benchmark::RegisterBenchmark(v->name.c_str(), [v, sample](benchmark::State& s) {
+// Something to time: evaluation k of n (cycled), and where its ns/eval goes.
+struct Timed {
+    std::string name;
+    std::size_t n;
+    std::function<double(std::size_t)> eval;
+    double* ns;
+};
+
+// Google Benchmark, one core, each item cycling through its sample; the JSON it writes is what we read.
+void time_all(const std::vector<Timed>& items, double min_time, const fs::path& json_file) {
+    for (const Timed& t : items) {
+        if (t.n == 0) continue;  // applies to no NDF of the scene: nothing to time
+        benchmark::RegisterBenchmark(t.name.c_str(), [t](benchmark::State& s) {
             std::size_t k = 0;
-            for (auto _ : s) {
-                const Point& p = sample[k++ % sample.size()];
-                benchmark::DoNotOptimize(v->Lambda(p.ndf, p.mu));
-            }
+            for (auto _ : s) benchmark::DoNotOptimize(t.eval(k++ % t.n));
         });
     }
     std::string flag = "--benchmark_min_time=" + format_g17(min_time);
@@ -150,10 +151,31 @@ void time_variants(std::vector<Row>& rows, double min_time, const fs::path& json
     for (const auto& b : j.at("benchmarks")) {
         const std::string name = b.at("name");
         const double scale = b.at("time_unit") == "ns" ? 1.0 : b.at("time_unit") == "us" ? 1e3 : 1e6;
-        for (Row& r : rows)
-            if (r.variant->name == name) r.ns = b.at("cpu_time").get<double>() * scale;
+        for (const Timed& t : items)
+            if (t.name == name) *t.ns = b.at("cpu_time").get<double>() * scale;
     }
 }
+
+// At most 64 evenly spread elements of v.
+template <class T>
+std::vector<T> sample_of(const std::vector<T>& v) {
+    std::vector<T> out;
+    const std::size_t step = std::max<std::size_t>(1, v.size() / 64);
+    for (std::size_t k = 0; k < v.size(); k += step) out.push_back(v[k]);
+    return out;
+}
+
+struct G2Point {
+    AnyNdf ndf;
+    double mu_i, mu_o;
+};
+
+struct G2Row {
+    const G2Variant* variant;
+    std::vector<G2Point> grid;
+    double max_d = 0.0, sum_d = 0.0, ns = NAN;
+    std::string worst_at;
+};
 
 // Linear grid of n points on [lo, hi].
 std::vector<double> lin(double lo, double hi, int n) {
@@ -300,10 +322,49 @@ int run_report(const Scene& scene, const std::string& out_dir, const NdfRegistry
             }
         }
     }
+    // G2: every selected G2 variant against the exact height-correlated G2, with the cached references' Lambdas.
+    const std::vector<G2Variant> g2_variants = builtin_G2_variants();
+    std::vector<G2Row> g2_rows;
+    for (const G2Variant& v : g2_variants)
+        if (std::any_of(scene.g2.include.begin(), scene.g2.include.end(), [&](const auto& p) { return glob_match(p, v.name); }))
+            g2_rows.push_back(G2Row{.variant = &v, .grid = {}, .worst_at = {}});
+    for (G2Row& row : g2_rows) {
+        std::fprintf(stderr, "report: G2 %s\n", row.variant->name.c_str());
+        for (const std::string& family : scene.g2.families)
+            for (double a : scene.alphas) {
+                const AnyNdf ndf = ndfs.make(format_spec({family, {{"alpha", a}}}));
+                if (!row.variant->applies(ndf)) continue;
+                const Route route = ndf.has_closed_Lambda() ? Route::closed : Route::q1d_boost;
+                for (double mi : scene.g2.mus)
+                    for (double mo : scene.g2.mus) {
+                        const double want = 1.0 / (1.0 + cache.get(ndf, mi, route) + cache.get(ndf, mo, route));
+                        const double d = std::abs(row.variant->G2(ndf, mi, mo) - want);
+                        row.grid.push_back({ndf, mi, mo});
+                        row.sum_d += d;
+                        if (d >= row.max_d) {
+                            row.max_d = d;
+                            row.worst_at = ndf.spec() + " mu_i=" + format_g17(mi) + " mu_o=" + format_g17(mo);
+                        }
+                    }
+            }
+    }
     cache.save();
     std::fprintf(stderr, "report: references: %zu reused from the cache, %zu computed\n", cache.loaded(), cache.computed());
-    std::fprintf(stderr, "report: timing %zu variants with Google Benchmark\n", rows.size());
-    time_variants(rows, scene.min_time, dir / "bench.json");
+
+    std::vector<Timed> timed;
+    for (Row& r : rows) {
+        const std::vector<Point> sample = sample_of(r.grid);
+        const LambdaVariant* v = r.variant;
+        timed.push_back({v->name, sample.size(), [v, sample](std::size_t k) { return v->Lambda(sample[k].ndf, sample[k].mu); }, &r.ns});
+    }
+    for (G2Row& r : g2_rows) {
+        const std::vector<G2Point> sample = sample_of(r.grid);
+        const G2Variant* v = r.variant;
+        timed.push_back({v->name, sample.size(),
+                         [v, sample](std::size_t k) { return v->G2(sample[k].ndf, sample[k].mu_i, sample[k].mu_o); }, &r.ns});
+    }
+    std::fprintf(stderr, "report: timing %zu variants with Google Benchmark\n", timed.size());
+    time_all(timed, scene.min_time, dir / "bench.json");
 
     std::sort(rows.begin(), rows.end(), [](const Row& a, const Row& b) { return a.ns < b.ns; });
     {
@@ -340,6 +401,23 @@ int run_report(const Scene& scene, const std::string& out_dir, const NdfRegistry
             char line[512];
             std::snprintf(line, sizeof line, "| %s | %zu | %.2e | %.2e | %.2e | %.0f | %s |\n", r.variant->name.c_str(), r.points,
                           r.max_dG1, r.sum_dG1 / r.points, r.max_rel, r.ns, r.worst_at.c_str());
+            md << line;
+        }
+    }
+    if (!g2_rows.empty()) {
+        std::ofstream csv(dir / "g2_variants.csv");
+        write_csv_record(csv, {"variant", "points", "max_abs_dG2", "mean_abs_dG2", "worst_at", "ns_per_eval", "description"});
+        std::ofstream md(dir / "report.md", std::ios::app);
+        md << "\n## G2 variants (two directions, reflection)\n\nAgainst the exact height-correlated G2 = 1/(1 + Lambda_i + "
+              "Lambda_o), on alpha x mu_i x mu_o.\n\n| variant | points | max abs dG2 | mean abs dG2 | ns/eval | worst at |\n"
+              "|---|---:|---:|---:|---:|---|\n";
+        for (const G2Row& r : g2_rows) {
+            const std::size_t n = r.grid.size();
+            write_csv_record(csv, {r.variant->name, std::to_string(n), format_g17(r.max_d), n ? format_g17(r.sum_d / n) : "",
+                                   r.worst_at, format_g17(r.ns), r.variant->description});
+            char line[512];
+            std::snprintf(line, sizeof line, "| %s | %zu | %.2e | %.2e | %.0f | %s |\n", r.variant->name.c_str(), n, r.max_d,
+                          n ? r.sum_d / n : NAN, r.ns, r.worst_at.c_str());
             md << line;
         }
     }

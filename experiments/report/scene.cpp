@@ -58,6 +58,12 @@ Scene parse_scene(const std::string& text, const std::string& source) {
         s.exclude = toml::find_or<std::vector<std::string>>(variants, "exclude", {});
         if (data.contains("timing")) s.min_time = toml::find_or<double>(toml::find(data, "timing"), "min_time", 0.05);
         if (!(s.min_time > 0.0 && s.min_time <= 10.0)) throw input_error(source + ": timing.min_time must be in (0, 10] seconds");
+        if (data.contains("g2")) {
+            const auto& g = toml::find(data, "g2");
+            s.g2.include = toml::find<std::vector<std::string>>(g, "include");
+            if (g.contains("families")) s.g2.families = toml::find<std::vector<std::string>>(g, "families");
+            s.g2.mus = axis(toml::find(g, "mu"), source + ": g2.mu");
+        }
         if (data.contains("figures")) {
             const auto& f = toml::find(data, "figures");
             for (const auto& [key, value] : f.as_table()) {

@@ -18,6 +18,13 @@ struct Scene {
     std::vector<NdfFamily> ndfs;
     std::vector<std::string> include, exclude;  // glob patterns over variant names
     double min_time = 0.05;                     // seconds of Google Benchmark per variant
+    // The G2 table (Hammon's lerp and the uncorrelated forms against the exact height-correlated G2), over
+    // alpha x mu_i x mu_o for the named families. Empty include: no G2 table.
+    struct G2Table {
+        std::vector<std::string> include;
+        std::vector<std::string> families = {"ggx"};
+        std::vector<double> mus;
+    } g2;
     struct Figures {
         bool pareto = false;              // error against ns/eval, log-log, every variant
         bool error_maps = false;          // |dG1| over (alpha, mu), worst over gamma, one map per variant

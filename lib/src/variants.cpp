@@ -48,6 +48,27 @@ bool is_ggx_like(const AnyNdf& n) { return n.family() == "ggx" || (n.family() ==
 
 }  // namespace
 
+double G2_hammon_lerp(double alpha, double mu_i, double mu_o) {
+    const double nl = mu_i / std::hypot(mu_i, 1.0), nv = mu_o / std::hypot(mu_o, 1.0);
+    const double a = 2.0 * nl * nv, b = nl + nv;
+    return a / (a + alpha * (b - a));  // lerp(a, b, alpha) = a + alpha (b - a)
+}
+
+std::vector<G2Variant> builtin_G2_variants() {
+    return {
+        {"g2-uncorrelated", "exact G1(L) G1(V), Walter 2007 eq. 23: too small unless one Lambda is 0 (Hammon 2017)",
+         [](const AnyNdf&) { return true; },
+         [](const AnyNdf& n, double mi, double mo) { return G2(n, mi, mo, G2Form::uncorrelated); }},
+        {"g2-schlick-uncorrelated", "Hammon 2017 / Unreal Schlick-style G1(L) G1(V) for GGX, k = alpha/2", is_ggx_like,
+         [](const AnyNdf& n, double mi, double mo) {
+             const double a = n.param("alpha");
+             return 1.0 / ((1.0 + Lambda_schlick_ggx(a, mi)) * (1.0 + Lambda_schlick_ggx(a, mo)));
+         }},
+        {"g2-hammon-lerp", "Hammon 2017 height-correlated G2 approximation for GGX, 2 NL NV / lerp(2 NL NV, NL + NV, alpha)",
+         is_ggx_like, [](const AnyNdf& n, double mi, double mo) { return G2_hammon_lerp(n.param("alpha"), mi, mo); }},
+    };
+}
+
 void register_core_variants(VariantRegistry& r) {
     const std::array<std::pair<const char*, Backend>, 2> backends = {{{"boost", Backend::boost}, {"gsl", Backend::gsl}}};
     const std::array<std::pair<const char*, double>, 5> tolerances = {

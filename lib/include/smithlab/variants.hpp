@@ -45,4 +45,18 @@ double Lambda_schlick_ggx(double alpha, double mu);
 // (1 + 2.276a + 2.577a^2) for a < 1.6, else 1; as Lambda, (1 - 1.259a + 0.396a^2)/(3.535a + 2.181a^2) or 0.
 double Lambda_beckmann_rational(double alpha, double mu);
 
+// G2 for two directions on the same side (reflection), against the exact height-correlated 1/(1 + Li + Lo).
+struct G2Variant {
+    std::string name;
+    std::string description;
+    std::function<bool(const AnyNdf&)> applies;
+    std::function<double(const AnyNdf&, double mu_i, double mu_o)> G2;  // for finite mu > 0
+};
+
+// g2-uncorrelated (exact G1 G1), g2-schlick-uncorrelated (Hammon/Unreal G1 G1), g2-hammon-lerp.
+std::vector<G2Variant> builtin_G2_variants();
+
+// Hammon 2017, "Smith: Approximate GGX G2": G2 ~ 2 NL NV / lerp(2 NL NV, NL + NV, alpha), with N.X = mu/sqrt(1+mu^2).
+double G2_hammon_lerp(double alpha, double mu_i, double mu_o);
+
 }  // namespace smithlab
