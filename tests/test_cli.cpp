@@ -42,6 +42,15 @@ Run run(const std::string& args) {
 
 void write(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
 
+// The largest value of the last column of a CSV file with a header.
+double max_of_last_column(std::istream& in) {
+    std::string line;
+    std::getline(in, line);
+    double worst = -1.0;
+    while (std::getline(in, line)) worst = std::max(worst, std::stod(line.substr(line.rfind(',') + 1)));
+    return worst;
+}
+
 }  // namespace
 
 TEST_CASE("eval prints lambda and g1", "[cli]") {
@@ -181,4 +190,29 @@ TEST_CASE("report: a scene computes what it names, caches its references, and re
     CHECK(none.rc == 2);
     CHECK_THAT(none.err, Catch::Contains("selects no variant"));
     CHECK_FALSE(fs::exists(d / "never"));
+}
+
+TEST_CASE("report: Dimov 2015's figures reproduce, and are drawn", "[cli][report]") {
+    const fs::path d = scratch();
+    fs::remove_all(d / "dimov");
+    write(d / "dimov.toml",
+          "[grid]\nalpha = [0.3]\nmu = [1.0]\n[[ndf]]\nfamily = \"ggx\"\n[variants]\ninclude = [\"schlick-ggx\"]\n"
+          "[timing]\nmin_time = 0.01\n[figures]\ndimov_gamma4_vs_10 = true\ndimov_spline_mean = true\n");
+    const Run r = run("report --scene '" + (d / "dimov.toml").string() + "' --out '" + (d / "dimov").string() + "'");
+    INFO(r.err);
+    REQUIRE(r.rc == 0);
+    // Sec. 6: "up to 0.3" for |G1(gamma = 4) - G1(gamma = 10)| over alpha in (0, 1), mu in (0, 2).
+    std::ifstream in(d / "dimov" / "dimov" / "gamma4_vs_10.csv");
+    const double worst = max_of_last_column(in);
+    CHECK(worst > 0.25);
+    CHECK(worst < 0.32);
+    // Sec. 5: the spline's mean difference, published as about 0.001: same order measured.
+    const std::string md = slurp(d / "dimov" / "report.md");
+    const auto at = md.find("mean |dG1| = ");
+    REQUIRE(at != std::string::npos);
+    const double mean = std::stod(md.substr(at + 13));
+    CHECK(mean > 1e-4);
+    CHECK(mean < 3e-3);
+    CHECK(fs::exists(d / "dimov" / "gamma4_vs_10.png"));  // .ci/deps installs python3-matplotlib
+    CHECK_FALSE(fs::exists(d / "dimov" / "pareto.png"));  // not asked for, not drawn
 }
