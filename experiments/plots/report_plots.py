@@ -29,26 +29,28 @@ def num(s):
 
 def pareto(d):
     table = [r for r in rows(os.path.join(d, "variants.csv")) if r["points"] != "0"]
-    fig, axes = plt.subplots(1, 2, figsize=(15, 6.5))
+    table.sort(key=lambda r: num(r["ns_per_eval"]))
+    colors = {"q1d": "tab:blue", "q2d": "tab:cyan", "interp": "tab:orange", "dimov": "tab:red"}
+    fig, axes = plt.subplots(1, 2, figsize=(16, 6.5))
     for ax, key, label in ((axes[0], "max_rel_dLambda", "max relative error of Lambda"),
                            (axes[1], "max_abs_dG1", "max |dG1|")):
         top = 1e3 if key == "max_rel_dLambda" else 2.0
-        for r in table:
+        for i, r in enumerate(table, 1):
             x, y = num(r["ns_per_eval"]), num(r[key])
             clipped = not (y <= top)
             y = top if clipped else max(y, 1e-17)
-            fam = r["variant"].split("-")[0]
-            ax.scatter([x], [y], marker="^" if clipped else "o", s=28,
-                       color={"q1d": "tab:blue", "q2d": "tab:cyan", "interp": "tab:orange",
-                              "dimov": "tab:red"}.get(fam, "tab:green"))
-            ax.annotate(r["variant"], (x, y), fontsize=6, xytext=(3, 2), textcoords="offset points")
+            ax.scatter([x], [y], marker="^" if clipped else "o", s=30,
+                       color=colors.get(r["variant"].split("-")[0], "tab:green"))
+            ax.annotate(str(i), (x, y), fontsize=7, xytext=(3, 3 if i % 2 else -9), textcoords="offset points")
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel("ns per evaluation (Google Benchmark, one core)")
         ax.set_ylabel(label + " (triangles: off the scale or infinite)")
         ax.grid(True, which="both", alpha=0.3)
-    fig.suptitle("G1 variants: error against run time")
-    fig.tight_layout()
+    key_text = "\n".join(f"{i:2d}  {r['variant']}" for i, r in enumerate(table, 1))
+    fig.text(0.84, 0.5, key_text, fontsize=7, family="monospace", va="center", ha="left")
+    fig.suptitle("G1 variants: error against run time (numbers: cheapest first)")
+    fig.tight_layout(rect=(0, 0, 0.83, 1))
     fig.savefig(os.path.join(d, "pareto.png"), dpi=110)
 
 
