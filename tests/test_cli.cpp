@@ -185,6 +185,12 @@ TEST_CASE("report: a scene computes what it names, caches its references, and re
     CHECK(bad.rc == 2);
     CHECK_THAT(bad.err, Catch::Contains("bad.toml") && Catch::Contains("grid.mu"));
     CHECK_FALSE(fs::exists(d / "never"));
+    write(d / "g2gtr.toml", "[grid]\nalpha = [0.1]\nmu = [1.0]\n[[ndf]]\nfamily = \"ggx\"\n[variants]\ninclude = [\"*\"]\n"
+                            "[g2]\ninclude = [\"*\"]\nfamilies = [\"gtr\"]\nmu = [1.0]\n");
+    const Run g2 = run("report --scene '" + (d / "g2gtr.toml").string() + "' --out '" + (d / "never").string() + "'");
+    CHECK(g2.rc == 2);
+    CHECK_THAT(g2.err, Catch::Contains("gamma"));
+    CHECK_FALSE(fs::exists(d / "never"));
     write(d / "none.toml", "[grid]\nalpha = [0.1]\nmu = [1.0]\n[[ndf]]\nfamily = \"ggx\"\n[variants]\ninclude = [\"nothing*\"]\n");
     const Run none = run("report --scene '" + (d / "none.toml").string() + "' --out '" + (d / "never").string() + "'");
     CHECK(none.rc == 2);

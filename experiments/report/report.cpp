@@ -86,6 +86,11 @@ int run_report(const Scene& scene, const std::string& out_dir, const NdfRegistry
     }
     if (rows.empty()) throw input_error("scene selects no variant (see smithlab eval --list-methods)");
     for (double mu : scene.mus) require(mu > 0.0 && std::isfinite(mu), "scene: grid.mu", "finite and > 0", mu);
+    for (double mu : scene.g2.mus) require(mu > 0.0 && std::isfinite(mu), "scene: g2.mu", "finite and > 0", mu);
+    std::vector<AnyNdf> g2_ndfs;
+    if (!scene.g2.include.empty())
+        for (const std::string& family : scene.g2.families)
+            for (double a : scene.alphas) g2_ndfs.push_back(ndfs.make(format_spec({family, {{"alpha", a}}})));
 
     const fs::path dir(out_dir);
     fs::create_directories(dir);
@@ -126,23 +131,21 @@ int run_report(const Scene& scene, const std::string& out_dir, const NdfRegistry
             g2_rows.push_back(G2Row{.variant = &v, .grid = {}, .worst_at = {}});
     for (G2Row& row : g2_rows) {
         std::fprintf(stderr, "report: G2 %s\n", row.variant->name.c_str());
-        for (const std::string& family : scene.g2.families)
-            for (double a : scene.alphas) {
-                const AnyNdf ndf = ndfs.make(format_spec({family, {{"alpha", a}}}));
-                if (!row.variant->applies(ndf)) continue;
-                const Route route = ndf.has_closed_Lambda() ? Route::closed : Route::q1d_boost;
-                for (double mi : scene.g2.mus)
-                    for (double mo : scene.g2.mus) {
-                        const double want = 1.0 / (1.0 + cache.get(ndf, mi, route) + cache.get(ndf, mo, route));
-                        const double d = std::abs(row.variant->G2(ndf, mi, mo) - want);
-                        row.grid.push_back({ndf, mi, mo});
-                        row.sum_d += d;
-                        if (d >= row.max_d) {
-                            row.max_d = d;
-                            row.worst_at = ndf.spec() + " mu_i=" + format_g17(mi) + " mu_o=" + format_g17(mo);
-                        }
+        for (const AnyNdf& ndf : g2_ndfs) {
+            if (!row.variant->applies(ndf)) continue;
+            const Route route = ndf.has_closed_Lambda() ? Route::closed : Route::q1d_boost;
+            for (double mi : scene.g2.mus)
+                for (double mo : scene.g2.mus) {
+                    const double want = 1.0 / (1.0 + cache.get(ndf, mi, route) + cache.get(ndf, mo, route));
+                    const double d = std::abs(row.variant->G2(ndf, mi, mo) - want);
+                    row.grid.push_back({ndf, mi, mo});
+                    row.sum_d += d;
+                    if (d >= row.max_d) {
+                        row.max_d = d;
+                        row.worst_at = ndf.spec() + " mu_i=" + format_g17(mi) + " mu_o=" + format_g17(mo);
                     }
-            }
+                }
+        }
     }
     cache.save();
     std::fprintf(stderr, "report: references: %zu reused from the cache, %zu computed\n", cache.loaded(), cache.computed());
