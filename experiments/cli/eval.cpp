@@ -29,7 +29,16 @@ double parse_number(const std::string& text, const std::string& what) {
 
 namespace {
 
-constexpr std::array<std::string_view, 5> core_methods = {"auto", "closed", "spline", "quadrature", "quadrature2d"};
+struct CoreMethod {
+    std::string_view name, description;
+};
+constexpr std::array<CoreMethod, 5> core_methods = {{
+    {"auto", "closed form where the NDF has one, else 1D quadrature (--backend, --tolerance)"},
+    {"closed", "the NDF's closed form (GGX, Beckmann, GTR at integer gamma <= 31)"},
+    {"spline", "the NDF's spline (GTR: Dimov's natural cubic spline of G1 in gamma)"},
+    {"quadrature", "reduced 1D quadrature (--backend, --tolerance)"},
+    {"quadrature2d", "nested 2D quadrature P22 -> P2 -> Lambda (--backend, --tolerance)"},
+}};
 
 // The route --method names: one of the core methods (with --backend and --tolerance), or a registered variant.
 struct Route {
@@ -45,7 +54,7 @@ Route route(const EvalArgs& a, const VariantRegistry& variants) {
     r.options.backend = parse_backend(a.backend);
     r.options.tolerance = a.tolerance;
     r.options.downward = a.downward == "hammon" ? Downward::hammon_symmetric : Downward::smith;
-    if (std::find(core_methods.begin(), core_methods.end(), a.method) != core_methods.end())
+    if (std::any_of(core_methods.begin(), core_methods.end(), [&](const CoreMethod& m) { return m.name == a.method; }))
         r.options.method = parse_method(a.method);
     else
         r.variant = &variants.at(a.method);
@@ -187,12 +196,8 @@ void add_eval(CLI::App& app, EvalArgs& a) {
 
 int run_eval(const EvalArgs& a, const NdfRegistry& registry, const VariantRegistry& variants) {
     if (a.list_methods) {
-        const char* core[] = {"closed form where the NDF has one, else 1D quadrature (--backend, --tolerance)",
-                              "the NDF's closed form (GGX, Beckmann, GTR at integer gamma <= 31)",
-                              "the NDF's spline (GTR: Dimov's natural cubic spline of G1 in gamma)",
-                              "reduced 1D quadrature (--backend, --tolerance)",
-                              "nested 2D quadrature P22 -> P2 -> Lambda (--backend, --tolerance)"};
-        for (std::size_t i = 0; i < core_methods.size(); ++i) std::printf("%-28s %s\n", core_methods[i].data(), core[i]);
+        for (const CoreMethod& m : core_methods)
+            std::printf("%-28s %s\n", std::string(m.name).c_str(), std::string(m.description).c_str());
         for (const LambdaVariant& v : variants.list()) std::printf("%-28s %s\n", v.name.c_str(), v.description.c_str());
         return exit_ok;
     }

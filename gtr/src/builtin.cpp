@@ -27,16 +27,10 @@ void register_gtr_variants(VariantRegistry& r) {
         {K::akima, Q::G1, 4},           {K::steffen, Q::G1, 4},          {K::cspline, Q::Lambda, 4},
         {K::cspline, Q::log_Lambda, 4}, {K::cspline, Q::log_Lambda, 10}, {K::steffen, Q::log_Lambda, 10},
         {K::cspline, Q::log_Lambda, 20}, {K::akima, Q::log_Lambda, 20}};
-    for (const GammaInterpolant& how : choices) {
-        const char* kind = how.kind == K::cspline ? "natural cubic spline" : how.kind == K::akima ? "Akima spline" : "Steffen spline";
-        const char* q = how.quantity == Q::G1 ? "G1" : how.quantity == Q::Lambda ? "Lambda" : "log Lambda";
-        r.add({name_of(how),
-               std::string(kind) + " of " + q + " through the closed forms at gamma = 0.." + std::to_string(how.max_knot) +
-                   ", clamped above",
-               is_gtr, [how](const AnyNdf& n, double mu) {
+    for (const GammaInterpolant& how : choices)
+        r.add({name_of(how), description_of(how), is_gtr, [how](const AnyNdf& n, double mu) {
                    return Lambda_gtr_interpolated(n.param("alpha"), n.param("gamma"), mu, how);
                }});
-    }
 }
 
 VariantRegistry builtin_variants() {

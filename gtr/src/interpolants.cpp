@@ -16,18 +16,33 @@
 
 namespace smithlab {
 
-std::string name_of(const GammaInterpolant& how) {
+namespace {
+const char* kind_name(GammaInterpolant::Kind k, bool long_form) {
     using K = GammaInterpolant::Kind;
+    if (k == K::cspline) return long_form ? "natural cubic spline" : "cspline";
+    return k == K::akima ? (long_form ? "Akima spline" : "akima") : (long_form ? "Steffen spline" : "steffen");
+}
+const char* quantity_name(GammaInterpolant::Quantity q, bool long_form) {
     using Q = GammaInterpolant::Quantity;
-    const char* kind = how.kind == K::cspline ? "cspline" : how.kind == K::akima ? "akima" : "steffen";
-    const char* q = how.quantity == Q::G1 ? "g1" : how.quantity == Q::Lambda ? "lambda" : "loglambda";
-    return std::string("interp-") + kind + "-" + q + "-k" + std::to_string(how.max_knot);
+    if (q == Q::G1) return long_form ? "G1" : "g1";
+    return q == Q::Lambda ? (long_form ? "Lambda" : "lambda") : (long_form ? "log Lambda" : "loglambda");
+}
+}  // namespace
+
+std::string name_of(const GammaInterpolant& how) {
+    return std::string("interp-") + kind_name(how.kind, false) + "-" + quantity_name(how.quantity, false) + "-k" +
+           std::to_string(how.max_knot);
+}
+
+std::string description_of(const GammaInterpolant& how) {
+    return std::string(kind_name(how.kind, true)) + " of " + quantity_name(how.quantity, true) +
+           " through the closed forms at gamma = 0.." + std::to_string(how.max_knot) + ", clamped above";
 }
 
 double Lambda_gtr_interpolated(double alpha, double gamma, double mu, const GammaInterpolant& how) {
     using Q = GammaInterpolant::Quantity;
-    require(how.max_knot >= 4 && how.max_knot <= gtr_max_closed_gamma, "interpolant max_knot",
-            "in [4, " + std::to_string(gtr_max_closed_gamma) + "]", how.max_knot);
+    if (how.max_knot < 4 || how.max_knot > gtr_max_closed_gamma)  // message built only on failure: this is a hot path
+        require(false, "interpolant max_knot", "in [4, " + std::to_string(gtr_max_closed_gamma) + "]", how.max_knot);
     const std::size_t n = static_cast<std::size_t>(how.max_knot) + 1;
     std::vector<double> x(n), y(n);
     for (std::size_t k = 0; k < n; ++k) {

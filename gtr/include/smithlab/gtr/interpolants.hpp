@@ -14,8 +14,9 @@ struct GammaInterpolant {
     int max_knot = 4;  // knots at gamma = 0, 1, ..., max_knot; 4 <= max_knot <= 31
 };
 
-// "interp-akima-loglambda-k10" and the like.
+// "interp-akima-loglambda-k10" and the like, and a one-line description for --list-methods.
 std::string name_of(const GammaInterpolant& how);
+std::string description_of(const GammaInterpolant& how);
 
 // alpha in (0, 1], gamma >= 0, mu finite > 0. An interpolated G1 outside [0, 1] (Akima overshoots both ways at
 // small alpha) is clamped to it, i.e. Lambda = 0 or +inf: the report shows such failures rather than hiding them.
