@@ -1,4 +1,5 @@
-// Lambda per method and backend (closed, spline, 1D Boost, 1D GSL, 2D) for GGX and GTR at a few gamma.
+// Lambda per method and backend (closed, spline, 1D Boost, 1D GSL, 2D) for GGX and GTR at a few gamma; the table
+// (the fast evaluator) against the closed-form GGX G1; every registered variant.
 // Each iteration evaluates one Lambda; mu cycles through 0.01 .. 100 so that no single easy point is timed.
 // Run: build/bench/bench_lambda --benchmark_min_time=0.2   (one core; the README has the current numbers)
 #include <benchmark/benchmark.h>
@@ -60,6 +61,30 @@ void register_all() {
         }
 }
 
+// The fast evaluator against the yardstick, the closed-form GGX G1: G1 = 1/(1 + Lambda) by each, on the
+// concrete types; and what building a table costs (once per NDF).
+void register_table() {
+    auto g1 = [](benchmark::State& state, const auto& Lambda_of) {
+        std::size_t i = 0;
+        for (auto _ : state) benchmark::DoNotOptimize(1.0 / (1.0 + Lambda_of(mus[i++ % mus.size()])));
+        state.SetItemsProcessed(state.iterations());
+    };
+    benchmark::RegisterBenchmark("G1/closed/ggx(0.3)", [g1](benchmark::State& s) {
+        const smithlab::Ggx ggx = smithlab::ggx(0.3);
+        g1(s, [&](double mu) { return ggx.Lambda(mu); });
+    });
+    for (double gamma : {0.5, 1.5, 2.0, 7.3, 15.0}) {
+        const std::string name = "gtr(0.3," + std::to_string(gamma).substr(0, gamma < 10 ? 3 : 4) + ")";
+        benchmark::RegisterBenchmark(("G1/table/" + name).c_str(), [g1, gamma](benchmark::State& s) {
+            const smithlab::LambdaTable t = smithlab::tabulate_Lambda(smithlab::gtr(0.3, gamma));
+            g1(s, [&](double mu) { return t.Lambda(mu); });
+        });
+        benchmark::RegisterBenchmark(("table-build/" + name).c_str(), [gamma](benchmark::State& s) {
+            for (auto _ : s) benchmark::DoNotOptimize(smithlab::tabulate_Lambda(smithlab::gtr(0.3, gamma)).knots());
+        })->Unit(benchmark::kMillisecond);
+    }
+}
+
 // Every registered variant, on the first of GTR(0.3, 1.5), GGX(0.3), Beckmann(0.3) it applies to.
 void register_variants() {
     const auto reg = smithlab::builtin_registry();
@@ -72,8 +97,9 @@ void register_variants() {
                 std::string spec = ndf.spec();
                 std::erase(spec, ' ');
                 benchmark::RegisterBenchmark(("variant/" + v.name + "/" + spec).c_str(), [v, ndf](benchmark::State& s) {
+                    const smithlab::LambdaOfMu Lambda = smithlab::prepare(v, ndf);  // not timed
                     std::size_t i = 0;
-                    for (auto _ : s) benchmark::DoNotOptimize(smithlab::Lambda(v, ndf, mus[i++ % mus.size()]));
+                    for (auto _ : s) benchmark::DoNotOptimize(Lambda(mus[i++ % mus.size()]));
                     s.SetItemsProcessed(s.iterations());
                 });
                 break;
@@ -84,6 +110,7 @@ void register_variants() {
 
 int main(int argc, char** argv) {
     register_all();
+    register_table();
     register_variants();
     benchmark::Initialize(&argc, argv);
     if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;

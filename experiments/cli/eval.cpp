@@ -44,9 +44,17 @@ constexpr std::array<CoreMethod, 5> core_methods = {{
 struct Route {
     LambdaOptions options;
     const LambdaVariant* variant = nullptr;
-    double Lambda_up(const AnyNdf& ndf, double mu) const {  // mu >= 0
-        return variant ? smithlab::Lambda(*variant, ndf, mu) : smithlab::Lambda(ndf, mu, options);
+    // Lambda of ndf at mu >= 0, the variant prepared once per NDF (a table variant builds its table there).
+    LambdaOfMu prepare(const AnyNdf& ndf) const {
+        if (variant) return smithlab::prepare(*variant, ndf);
+        return [ndf, o = options](double mu) { return smithlab::Lambda(ndf, mu, o); };
     }
+};
+
+// An NDF of the input and its Lambda by the route, made on the first row that names its spec.
+struct Prepared {
+    AnyNdf ndf;
+    LambdaOfMu Lambda_up;
 };
 
 Route route(const EvalArgs& a, const VariantRegistry& variants) {
@@ -62,10 +70,20 @@ Route route(const EvalArgs& a, const VariantRegistry& variants) {
 }
 
 // One Lambda evaluation serves both: G1 takes |mu| (Walter 2007 eq. 44), Lambda(mu < 0) follows the convention.
-std::pair<double, double> lambda_g1(const AnyNdf& ndf, double mu, const Route& r) {
+std::pair<double, double> lambda_g1(const Prepared& p, double mu, Downward downward) {
     try {
-        const double up = r.Lambda_up(ndf, std::abs(mu));
-        return {mu < 0.0 ? downward_Lambda(up, r.options.downward) : up, 1.0 / (1.0 + up)};
+        const double up = p.Lambda_up(std::abs(mu));
+        return {mu < 0.0 ? downward_Lambda(up, downward) : up, 1.0 / (1.0 + up)};
+    } catch (const input_error& e) {
+        throw input_error("ndf '" + p.ndf.spec() + "': " + e.what());
+    }
+}
+
+Prepared prepare(const std::string& spec, const NdfRegistry& registry, const Route& r) {
+    AnyNdf ndf = registry.make(spec);
+    try {
+        LambdaOfMu up = r.prepare(ndf);
+        return {std::move(ndf), std::move(up)};
     } catch (const input_error& e) {
         throw input_error("ndf '" + ndf.spec() + "': " + e.what());
     }
@@ -121,7 +139,7 @@ int eval_csv(const EvalArgs& a, const NdfRegistry& registry, const Route& o) {
     header.push_back("g1");
     write_csv_record(out, header);
 
-    std::map<std::string, AnyNdf> cache;  // rows usually repeat a handful of specs
+    std::map<std::string, Prepared> cache;  // rows usually repeat a handful of specs
     int bad = 0;
     const std::size_t rows = records.size() - 1;
     for (std::size_t i = 1; i < records.size(); ++i) {
@@ -133,9 +151,9 @@ int eval_csv(const EvalArgs& a, const NdfRegistry& registry, const Route& o) {
                                   std::to_string(rec.fields.size()));
             const std::string& spec = rec.fields[ndf_col];
             auto it = cache.find(spec);
-            if (it == cache.end()) it = cache.emplace(spec, registry.make(spec)).first;
+            if (it == cache.end()) it = cache.emplace(spec, prepare(spec, registry, o)).first;
             const double mu = parse_number(rec.fields[mu_col], "mu");
-            const auto [lambda, g1] = lambda_g1(it->second, mu, o);
+            const auto [lambda, g1] = lambda_g1(it->second, mu, o.options.downward);
             std::vector<std::string> row = rec.fields;
             row.push_back(format_g17(lambda));
             row.push_back(format_g17(g1));
@@ -204,9 +222,10 @@ int run_eval(const EvalArgs& a, const NdfRegistry& registry, const VariantRegist
     const Route o = route(a, variants);
     if (!a.input.empty()) return eval_csv(a, registry, o);
     if (a.ndf.empty()) throw input_error("eval needs --ndf SPEC --mu M, or --input FILE (see smithlab eval --help)");
-    const AnyNdf ndf = registry.make(a.ndf);
     const double mu = parse_number(a.mu, "mu");
-    const auto [lambda, g1] = lambda_g1(ndf, mu, o);
+    const Prepared p = prepare(a.ndf, registry, o);
+    const AnyNdf& ndf = p.ndf;
+    const auto [lambda, g1] = lambda_g1(p, mu, o.options.downward);
     std::cout << "ndf     " << ndf.spec() << "\n"
               << "mu      " << format_g17(mu) << "\n"
               << "method  " << a.method;

@@ -16,7 +16,12 @@ const char* name_of(Route r) {
 }
 
 Route route_for(const LambdaVariant& v, const AnyNdf& ndf) {
-    if (ndf.has_closed_Lambda()) return Route::closed;
+    // Never the route a variant is computed by: the closed form is checked by Boost 1D; the table, built from the
+    // closed form where there is one and else from Boost 1D, by Boost 1D or the nested 2D route.
+    const bool closed = ndf.has_closed_Lambda();
+    if (v.name == "closed-form") return Route::q1d_boost;
+    if (v.name == "table") return closed ? Route::q1d_boost : Route::q2d_boost;
+    if (closed) return Route::closed;
     return v.name.rfind("q1d-boost", 0) == 0 ? Route::q2d_boost : Route::q1d_boost;
 }
 

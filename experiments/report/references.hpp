@@ -13,7 +13,8 @@
 namespace smithlab::report {
 
 // A closed form where the NDF has one; otherwise a quadrature route other than the variant's own (the nested 2D
-// route for the Boost 1D variants, Boost 1D at 1e-13 for the rest). Both agree with the test suite's 50-digit
+// route for the Boost 1D variants, Boost 1D at 1e-13 for the rest); never the route the variant is computed by
+// (the closed-form row is checked by Boost 1D, the table by Boost 1D or 2D). Both agree with the test suite's 50-digit
 // references to ~1e-15; GSL's QAG can stop at ~1e-11, so it is never a reference.
 enum class Route { closed, q1d_boost, q2d_boost };
 

@@ -18,8 +18,10 @@ void register_gtr_ndfs(NdfRegistry& r) {
 void register_gtr_variants(VariantRegistry& r) {
     auto is_gtr = [](const AnyNdf& n) { return n.family() == "gtr"; };
     r.add({"dimov-spline", "Dimov 2015 / V-Ray: natural cubic spline of G1 through gamma = 0..4, clamped above 4",
-           is_gtr, [](const AnyNdf& n, double mu) {
-               return Lambda_of_interpolated_G1(G1_gtr_dimov_spline(n.param("alpha"), n.param("gamma"), mu));
+           is_gtr, [](const AnyNdf& n) -> LambdaOfMu {
+               return [a = n.param("alpha"), g = n.param("gamma")](double mu) {
+                   return Lambda_of_interpolated_G1(G1_gtr_dimov_spline(a, g, mu));
+               };
            }});
     using K = GammaInterpolant::Kind;
     using Q = GammaInterpolant::Quantity;
@@ -28,8 +30,10 @@ void register_gtr_variants(VariantRegistry& r) {
         {K::cspline, Q::log_Lambda, 4}, {K::cspline, Q::log_Lambda, 10}, {K::steffen, Q::log_Lambda, 10},
         {K::cspline, Q::log_Lambda, 20}, {K::akima, Q::log_Lambda, 20}};
     for (const GammaInterpolant& how : choices)
-        r.add({name_of(how), description_of(how), is_gtr, [how](const AnyNdf& n, double mu) {
-                   return Lambda_gtr_interpolated(n.param("alpha"), n.param("gamma"), mu, how);
+        r.add({name_of(how), description_of(how), is_gtr, [how](const AnyNdf& n) -> LambdaOfMu {
+                   return [a = n.param("alpha"), g = n.param("gamma"), how](double mu) {
+                       return Lambda_gtr_interpolated(a, g, mu, how);
+                   };
                }});
 }
 

@@ -2,9 +2,11 @@
 
 #include <array>
 #include <cmath>
+#include <memory>
 #include <utility>
 
 #include "smithlab/errors.hpp"
+#include "smithlab/lambda_table.hpp"
 
 namespace smithlab {
 
@@ -24,14 +26,19 @@ const LambdaVariant& VariantRegistry::at(std::string_view name) const {
     throw input_error("unknown method '" + std::string(name) + "' (smithlab eval --list-methods lists them)");
 }
 
-double Lambda(const LambdaVariant& variant, const AnyNdf& ndf, double mu, Downward downward) {
+LambdaOfMu prepare(const LambdaVariant& variant, const AnyNdf& ndf, Downward downward) {
     if (!variant.applies(ndf))
         throw input_error("method '" + variant.name + "' does not apply to a '" + ndf.family() + "' ndf");
-    if (std::isnan(mu)) throw input_error("mu is NaN");
-    if (mu < 0.0) return downward_Lambda(Lambda(variant, ndf, -mu, downward), downward);
-    if (mu == 0.0) return INFINITY;
-    if (std::isinf(mu)) return 0.0;
-    return variant.Lambda(ndf, mu);
+    return [up = variant.prepare(ndf), downward](double mu) {
+        if (std::isnan(mu)) throw input_error("mu is NaN");
+        const double a = std::abs(mu);
+        const double L = a == 0.0 ? INFINITY : std::isinf(a) ? 0.0 : up(a);
+        return mu < 0.0 ? downward_Lambda(L, downward) : L;
+    };
+}
+
+double Lambda(const LambdaVariant& variant, const AnyNdf& ndf, double mu, Downward downward) {
+    return prepare(variant, ndf, downward)(mu);
 }
 
 double Lambda_schlick_ggx(double alpha, double mu) { return alpha / (2.0 * mu * (mu + std::hypot(mu, 1.0))); }
@@ -80,17 +87,30 @@ void register_core_variants(VariantRegistry& r) {
             r.add({std::string("q1d-") + bname + "-" + tname,
                    std::string("reduced 1D quadrature, ") + (backend == Backend::boost ? "Boost tanh-sinh" : "GSL QAG") +
                        ", relative tolerance " + tname,
-                   any, [q](const AnyNdf& n, double mu) { return Lambda_1d(n, mu, q); }});
+                   any, [q](const AnyNdf& n) -> LambdaOfMu { return [n, q](double mu) { return Lambda_1d(n, mu, q); }; }});
             if (tol < 1e-8) continue;
             r.add({std::string("q2d-") + bname + "-" + tname,
                    std::string("nested 2D quadrature P22 -> P2 -> Lambda, ") + bname + ", relative tolerance " + tname, any,
-                   [q](const AnyNdf& n, double mu) { return Lambda_2d(n, mu, q); }});
+                   [q](const AnyNdf& n) -> LambdaOfMu { return [n, q](double mu) { return Lambda_2d(n, mu, q); }; }});
         }
+    r.add({"closed-form", "the NDF's closed form (GGX, Beckmann, GTR at every integer gamma <= 31)",
+           [](const AnyNdf& n) { return n.has_closed_Lambda(); },
+           [](const AnyNdf& n) -> LambdaOfMu { return [n](double mu) { return n.Lambda(mu); }; }});
+    r.add({"table",
+           "cubic spline of ln(mu Lambda) in ln mu, built per NDF from the exact route (est. relative 1e-6; ms to build)",
+           any, [](const AnyNdf& n) -> LambdaOfMu {
+               auto t = std::make_shared<const LambdaTable>(tabulate_Lambda(n));
+               return [t](double mu) { return t->Lambda(mu); };
+           }});
     r.add({"schlick-ggx", "Hammon 2017 / Unreal Schlick-style G1 for GGX, k = alpha/2", is_ggx_like,
-           [](const AnyNdf& n, double mu) { return Lambda_schlick_ggx(n.param("alpha"), mu); }});
+           [](const AnyNdf& n) -> LambdaOfMu {
+               return [a = n.param("alpha")](double mu) { return Lambda_schlick_ggx(a, mu); };
+           }});
     r.add({"beckmann-rational", "Walter 2007 eq. 27 rational approximation of Beckmann G1",
            [](const AnyNdf& n) { return n.family() == "beckmann"; },
-           [](const AnyNdf& n, double mu) { return Lambda_beckmann_rational(n.param("alpha"), mu); }});
+           [](const AnyNdf& n) -> LambdaOfMu {
+               return [a = n.param("alpha")](double mu) { return Lambda_beckmann_rational(a, mu); };
+           }});
 }
 
 }  // namespace smithlab

@@ -6,6 +6,7 @@
 #include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
 #include "smithlab/ndf.hpp"
+#include "smithlab/lambda_table.hpp"
 #include "smithlab/ndfs.hpp"
 #include "smithlab/quadrature.hpp"
 #include "smithlab/registry.hpp"

@@ -13,11 +13,16 @@
 
 namespace smithlab {
 
+// Lambda of one NDF as a function of mu.
+using LambdaOfMu = std::function<double(double mu)>;
+
 struct LambdaVariant {
     std::string name;
     std::string description;
-    std::function<bool(const AnyNdf&)> applies;              // the NDFs it is defined for
-    std::function<double(const AnyNdf&, double mu)> Lambda;  // for finite mu > 0
+    std::function<bool(const AnyNdf&)> applies;  // the NDFs it is defined for
+    // The per-NDF work (reading its parameters, building a table) done once; what it returns evaluates Lambda at
+    // finite mu > 0, as often as the caller likes.
+    std::function<LambdaOfMu(const AnyNdf&)> prepare;
 };
 
 class VariantRegistry {
@@ -31,10 +36,14 @@ private:
     std::vector<LambdaVariant> variants_;
 };
 
-// A variant at any mu: 0 and inf exact, mu < 0 by the convention; input_error if it does not apply to ndf.
+// A variant prepared for ndf, taking any mu: 0 and inf exact, mu < 0 by the convention, input_error on NaN.
+// input_error if the variant does not apply to ndf.
+LambdaOfMu prepare(const LambdaVariant& variant, const AnyNdf& ndf, Downward downward = Downward::smith);
+// One evaluation (prepares each time: for many mu, prepare once).
 double Lambda(const LambdaVariant& variant, const AnyNdf& ndf, double mu, Downward downward = Downward::smith);
 
-// q1d-{boost,gsl}-{1e-4..1e-12}, q2d-{boost,gsl}-{1e-4,1e-6,1e-8}, schlick-ggx, beckmann-rational.
+// q1d-{boost,gsl}-{1e-4..1e-12}, q2d-{boost,gsl}-{1e-4,1e-6,1e-8}, closed-form, table (lambda_table.hpp), schlick-ggx,
+// beckmann-rational.
 void register_core_variants(VariantRegistry& registry);
 
 // The approximations, as free functions (each cites its source).
