@@ -108,6 +108,25 @@ TEST_CASE("CSV: columns pass through, lambda and g1 appended with 17 digits", "[
     CHECK(res.substr(a, res.find(',', a) - a).size() == 20);
 }
 
+TEST_CASE("CSV with --method table: one table per spec, within 1e-6 of the closed form", "[cli][csv]") {
+    const fs::path d = scratch();
+    // GGX at alpha = 0.5: Lambda = (sqrt(1 + 0.25/mu^2) - 1)/2; mu = 1.3: 0.035707241430158465, mu = 0.1:
+    // 2.0495097567963922 (mu = 1 would be a knot, where the spline is exact).
+    write(d / "t.csv", "ndf,mu\n\"ggx(alpha=0.5)\",1.3\n\"ggx(alpha=0.5)\",0.1\n\"ggx(alpha=0.5)\",-1.3\n");
+    const Run r = run("eval --method table --input '" + (d / "t.csv").string() + "'");
+    REQUIRE(r.rc == 0);
+    std::istringstream rows(r.out);
+    std::string line;
+    std::getline(rows, line);
+    for (double want : {0.035707241430158465, 2.0495097567963922, -1.0357072414301585}) {
+        REQUIRE(std::getline(rows, line));
+        const double got = std::stod(line.substr(line.find("),") + 2).substr(line.substr(line.find("),") + 2).find(',') + 1));
+        INFO(line);
+        CHECK(std::abs(got - want) <= 1e-6 * std::abs(want));
+        CHECK(got != want);  // interpolated, not the closed form
+    }
+}
+
 TEST_CASE("CSV: every bad row is reported by line, and no output file is written", "[cli][csv]") {
     const fs::path d = scratch();
     fs::remove(d / "never.csv");
