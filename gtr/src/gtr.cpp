@@ -1,5 +1,6 @@
 #include "smithlab/gtr/gtr.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -37,6 +38,23 @@ double Gtr::slope_density(double r2) const {
     const double w = alpha * alpha / (r2 + alpha * alpha);
     const double t = w * (1.0 + r2);
     return K * std::pow(t, gamma - 2.0) * w * w;
+}
+
+double Gtr::Dcos_sf(double r2) const {
+    if (alpha == 1.0) return 1.0 / (1.0 + r2);  // uniform D
+    if (!(r2 < INFINITY)) return 0.0;
+    const double a2 = alpha * alpha, one_minus_a2 = (1.0 - alpha) * (1.0 + alpha), L = -2.0 * std::log(alpha);
+    const double Lc = std::log1p(one_minus_a2 / (a2 + r2));
+    const double e = 1.0 - gamma;
+    return e == 0.0 ? Lc / L : std::exp(e * (L - Lc)) * (std::expm1(e * Lc) / std::expm1(e * L));
+}
+
+double Gtr::Dcos_r2(double v) const {
+    if (alpha == 1.0) return (1.0 - v) / v;
+    const double a2 = alpha * alpha, one_minus_a2 = (1.0 - alpha) * (1.0 + alpha), L = -2.0 * std::log(alpha);
+    const double e = 1.0 - gamma;
+    const double Lc = e == 0.0 ? v * L : -std::log1p(v * std::expm1(-e * L)) / e;
+    return std::max(0.0, one_minus_a2 / std::expm1(Lc) - a2);
 }
 
 bool Gtr::has_closed_Lambda() const { return gtr_has_closed_form(gamma); }

@@ -14,6 +14,16 @@ double AnyNdf::Lambda_spline(double mu) const {
     return self_->spline(mu);
 }
 
+double AnyNdf::Dcos_sf(double r2) const {
+    if (!has_Dcos_sampler()) throw input_error("ndf '" + spec_ + "' has no analytic D cos sampler");
+    return self_->Dcos_sf(r2);
+}
+
+double AnyNdf::Dcos_r2(double v) const {
+    if (!has_Dcos_sampler()) throw input_error("ndf '" + spec_ + "' has no analytic D cos sampler");
+    return self_->Dcos_r2(v);
+}
+
 double AnyNdf::param(std::string_view key) const {
     for (const auto& [k, v] : parts_.params)
         if (k == key) return v;

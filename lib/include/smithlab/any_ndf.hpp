@@ -31,6 +31,11 @@ public:
     // Throws input_error when the held NDF has no spline.
     double Lambda_spline(double mu) const;
 
+    bool has_Dcos_sampler() const { return self_->has_Dcos(); }
+    // Throw input_error when the held NDF has no analytic D cos sampler.
+    double Dcos_sf(double r2) const;
+    double Dcos_r2(double v) const;
+
     // The canonical spec string, e.g. "gtr(alpha=0.3, gamma=1.5)".
     const std::string& spec() const { return spec_; }
     // Its family name ("gtr") and a parameter by name (input_error if it has none such).
@@ -46,6 +51,9 @@ private:
         virtual double closed(double mu) const = 0;
         virtual bool has_spline() const = 0;
         virtual double spline(double mu) const = 0;
+        virtual bool has_Dcos() const = 0;
+        virtual double Dcos_sf(double r2) const = 0;
+        virtual double Dcos_r2(double v) const = 0;
     };
     template <Ndf N>
     struct Model final : Base {
@@ -61,6 +69,15 @@ private:
         double spline(double mu) const override {
             if constexpr (HasSplineLambda<N>) return ndf.Lambda_spline(mu);
             else return 0.0;  // unreachable: AnyNdf::Lambda_spline checks has_spline() first
+        }
+        bool has_Dcos() const override { return smithlab::has_Dcos_sampler(ndf); }
+        double Dcos_sf(double r2) const override {
+            if constexpr (HasDcosSampler<N>) return ndf.Dcos_sf(r2);
+            else return 0.0;  // unreachable: AnyNdf checks has_Dcos() first
+        }
+        double Dcos_r2(double v) const override {
+            if constexpr (HasDcosSampler<N>) return ndf.Dcos_r2(v);
+            else return 0.0;  // unreachable: AnyNdf checks has_Dcos() first
         }
         N ndf;
     };

@@ -8,6 +8,12 @@
 //                                          cos(theta_m) near the pole cannot carry the digits of a tiny slope.
 //   double Lambda(double mu) const         a closed-form Smith Lambda for mu > 0.
 //   double Lambda_spline(double mu) const  an interpolated Lambda (e.g. Dimov's spline across GTR gamma).
+//   double Dcos_sf(double r2) const        with m distributed as D(m) cos(theta_m), the survival function of
+//                                          r^2 = tan^2(theta_m): pi * integral_r2^inf P22(s) ds (the azimuth is uniform);
+//   double Dcos_r2(double v) const         and its inverse on (0, 1]: together, an analytic D cos sampler
+//                                          (sampling.hpp tabulates one for an NDF without them). The survival
+//                                          side keeps the tail's digits: Hammon's sampler draws from a tail of
+//                                          mass 1e-15.
 #pragma once
 
 #include <cmath>
@@ -33,6 +39,12 @@ concept HasClosedLambda = requires(const N& n, double mu) {
 template <class N>
 concept HasSplineLambda = requires(const N& n, double mu) {
     { n.Lambda_spline(mu) } -> std::convertible_to<double>;
+};
+
+template <class N>
+concept HasDcosSampler = requires(const N& n, double x) {
+    { n.Dcos_sf(x) } -> std::convertible_to<double>;
+    { n.Dcos_r2(x) } -> std::convertible_to<double>;
 };
 
 namespace detail {
@@ -65,6 +77,12 @@ template <Ndf N>
 bool has_closed_Lambda(const N& ndf) {
     if constexpr (requires { ndf.has_closed_Lambda(); }) return ndf.has_closed_Lambda();
     else return HasClosedLambda<N>;
+}
+
+template <Ndf N>
+bool has_Dcos_sampler(const N& ndf) {
+    if constexpr (requires { ndf.has_Dcos_sampler(); }) return ndf.has_Dcos_sampler();
+    else return HasDcosSampler<N>;
 }
 
 template <Ndf N>

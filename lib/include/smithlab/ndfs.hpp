@@ -4,6 +4,7 @@
 // exists. Factories validate their parameters and throw input_error naming the bad one.
 #pragma once
 
+#include <cmath>
 #include <numbers>
 
 namespace smithlab {
@@ -23,6 +24,10 @@ struct Ggx {
     }
     // Walter 2007 eq. 72, rewritten: (sqrt(1 + alpha^2/mu^2) - 1)/2 = alpha^2 / (2 mu (mu + hypot(mu, alpha))).
     double Lambda(double mu) const;
+    // D cos sampling, Walter 2007 eq. 35-36 (the blog's arctan form), in v = 1 - u: S = alpha^2 / (alpha^2 + r^2),
+    // tan^2 = alpha^2 (1 - v) / v.
+    double Dcos_sf(double r2) const { return alpha * alpha / (alpha * alpha + r2); }
+    double Dcos_r2(double v) const { return alpha * alpha * (1.0 - v) / v; }
 };
 
 // Beckmann, Walter 2007 eq. 25: D = exp(-tan^2 / alpha^2) / (pi alpha^2 cos^4).
@@ -33,6 +38,9 @@ struct Beckmann {
     // Walter 2007 eq. 26: Lambda = (erf-based) = ierfc(a) / (2 a), a = mu / alpha, ierfc(a) = e^{-a^2}/sqrt(pi) - a erfc(a),
     // the first repeated integral of erfc (Abramowitz & Stegun 7.2.5), evaluated without cancellation.
     double Lambda(double mu) const;
+    // D cos sampling, Walter 2007 eq. 28-29 (the blog's arctan form): S = exp(-r^2/alpha^2), tan^2 = -alpha^2 ln v.
+    double Dcos_sf(double r2) const { return std::exp(-r2 / (alpha * alpha)); }
+    double Dcos_r2(double v) const { return -alpha * alpha * std::log(v); }
 };
 
 // Blinn-Phong normalized for D cos: D = (n + 2) / (2 pi) cos^n (Walter 2007 eq. 30). No closed-form Lambda.
@@ -40,6 +48,9 @@ struct BlinnPhong {
     double n;
     double D(double c) const;
     double slope_density(double r2) const;  // (n+2)/(2 pi) (1 + r^2)^{-(n+4)/2}
+    // D cos sampling, Walter 2007 eq. 31-32 in r^2 (the blog's cos = v^{1/(n+2)}): S = cos^{n+2} = (1 + r^2)^{-(n+2)/2}.
+    double Dcos_sf(double r2) const { return std::exp(-0.5 * (n + 2.0) * std::log1p(r2)); }
+    double Dcos_r2(double v) const { return std::expm1(-2.0 / (n + 2.0) * std::log(v)); }
 };
 
 Ggx ggx(double alpha);            // alpha in [1e-50, 1e50]

@@ -24,6 +24,14 @@ struct Gtr {
     // Dimov 2015 section 5: natural cubic spline in gamma through G1 at gamma = 0..4, gamma clamped to 4 above;
     // the spline's G1 clamped to [0, 1] (Lambda_of_interpolated_G1).
     double Lambda_spline(double mu) const;
+
+    // D cos sampling, Burley 2012 appendix B (its cos^2 inversion), written for the survival S = 1 - F in r^2 with
+    // t = sin^2 + alpha^2 cos^2 = (alpha^2 + r^2)/(1 + r^2): with e = 1 - gamma, L = ln(1/alpha^2) and
+    // L_c = ln(1/t) = log1p((1 - alpha^2) / (alpha^2 + r^2)),
+    //     S = exp(e (L - L_c)) expm1(e L_c) / expm1(e L)   (-> L_c / L at gamma = 1; 1/(1 + r^2) at alpha = 1),
+    //     L_c(v) = -log1p(v expm1(-e L)) / e,  r^2 = (1 - alpha^2) / expm1(L_c) - alpha^2.
+    double Dcos_sf(double r2) const;
+    double Dcos_r2(double v) const;
 };
 
 // K = (1 - alpha^2)/(pi alpha^2) * (gamma - 1) / (1 - alpha^{2(gamma - 1)}), evaluated with expm1/log1p so that

@@ -1,0 +1,97 @@
+#include "smithlab/radial_table.hpp"
+
+#include <algorithm>
+#include <functional>
+#include <boost/math/quadrature/gauss.hpp>
+#include <cmath>
+#include <string>
+
+#include "smithlab/errors.hpp"
+
+namespace smithlab {
+
+namespace {
+
+constexpr double y_min = -230.0, y_max = 230.0, h = 1.0 / 16.0;
+
+// integral of g over [a, b], 8-point Gauss-Legendre (Boost.Math's nodes: 0 is not one of them for 8).
+template <class G>
+double gauss8(const G& g, double a, double b) {
+    using rule = boost::math::quadrature::gauss<double, 8>;
+    const double c = 0.5 * (a + b), r = 0.5 * (b - a);
+    double sum = 0.0;
+    for (std::size_t i = 0; i < rule::abscissa().size(); ++i)
+        sum += rule::weights()[i] * (g(c - r * rule::abscissa()[i]) + g(c + r * rule::abscissa()[i]));
+    return sum * r;
+}
+
+}  // namespace
+
+RadialTable::RadialTable(const std::function<double(double s)>& w) {
+    // In y = ln s the density is s w(s) dy.
+    auto g = [&](double y) {
+        const double s = std::exp(y), v = w(s);
+        if (!(v >= 0.0 && v < INFINITY))
+            throw input_error("cannot tabulate a density that is " + std::to_string(v) + " at tan^2 = " + std::to_string(s));
+        return s * v;
+    };
+    const auto n = static_cast<std::size_t>(std::lround((y_max - y_min) / h));
+    S_.assign(n + 1, 0.0);
+    dS_.assign(n + 1, 0.0);
+    std::vector<double> mid(n);  // exact S at the cell midpoints (unnormalized)
+    for (std::size_t k = n; k-- > 0;) {
+        const double a = y_min + h * static_cast<double>(k);
+        mid[k] = S_[k + 1] + gauss8(g, a + 0.5 * h, a + h);
+        S_[k] = mid[k] + gauss8(g, a, a + 0.5 * h);
+    }
+    total_ = S_[0];
+    if (!(total_ > 0.0 && total_ < INFINITY))
+        throw input_error("cannot tabulate a density whose integral is " + std::to_string(total_));
+    for (std::size_t k = 0; k <= n; ++k) {
+        S_[k] /= total_;
+        dS_[k] = -h * g(y_min + h * static_cast<double>(k)) / total_;
+    }
+    // Fritsch-Carlson: slopes at most 3x the neighbouring secants keep each cubic monotone.
+    for (std::size_t k = 0; k <= n; ++k) {
+        const double left = k > 0 ? S_[k - 1] - S_[k] : INFINITY, right = k < n ? S_[k] - S_[k + 1] : INFINITY;
+        dS_[k] = -std::min({-dS_[k], 3.0 * left, 3.0 * right});
+    }
+    for (std::size_t k = 0; k < n; ++k) error_ = std::max(error_, std::abs(hermite(k, 0.5) - mid[k] / total_));
+}
+
+double RadialTable::hermite(std::size_t k, double t) const {
+    const double t2 = t * t, t3 = t2 * t;
+    return (2 * t3 - 3 * t2 + 1) * S_[k] + (t3 - 2 * t2 + t) * dS_[k] + (-2 * t3 + 3 * t2) * S_[k + 1] +
+           (t3 - t2) * dS_[k + 1];
+}
+
+double RadialTable::sf(double s) const {
+    if (!(s > 0.0)) return 1.0;
+    const double x = (std::log(s) - y_min) / h;
+    if (x >= static_cast<double>(S_.size() - 1)) return 0.0;
+    if (x < 0.0) return 1.0;
+    const auto k = static_cast<std::size_t>(x);
+    return hermite(k, x - static_cast<double>(k));
+}
+
+double RadialTable::isf(double v) const {
+    // The cell whose range of S holds v (S decreases), then Newton on the cubic, kept inside the bracket [lo, hi].
+    const auto it = std::upper_bound(S_.begin(), S_.end(), v, std::greater<>());  // first knot with S < v
+    const std::size_t k = it == S_.begin() ? 0 : std::min<std::size_t>(static_cast<std::size_t>(it - S_.begin()) - 1, S_.size() - 2);
+    double lo = 0.0, hi = 1.0, t = S_[k] > S_[k + 1] ? (S_[k] - v) / (S_[k] - S_[k + 1]) : 0.5;
+    for (int i = 0; i < 60; ++i) {
+        const double f = hermite(k, t) - v;  // decreasing in t
+        if (f < 0.0) hi = t;
+        else lo = t;
+        const double t2 = t * t;
+        const double d = (6 * t2 - 6 * t) * (S_[k] - S_[k + 1]) + (3 * t2 - 4 * t + 1) * dS_[k] + (3 * t2 - 2 * t) * dS_[k + 1];
+        double next = d < 0.0 ? t - f / d : 0.5 * (lo + hi);
+        if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+        const bool done = std::abs(next - t) <= 1e-15 || hi - lo <= 1e-15;
+        t = next;
+        if (done) break;
+    }
+    return std::exp(y_min + h * (static_cast<double>(k) + t));
+}
+
+}  // namespace smithlab

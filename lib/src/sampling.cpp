@@ -1,0 +1,146 @@
+#include "smithlab/sampling.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "smithlab/errors.hpp"
+
+namespace smithlab {
+
+namespace {
+constexpr double pi = std::numbers::pi;
+
+void require_unit(const Vec3& w, const char* what) {
+    if (!(std::abs(w.squaredNorm() - 1.0) < 1e-9))
+        throw input_error(std::string(what) + " must be a unit vector (|w|^2 = " + std::to_string(w.squaredNorm()) + ")");
+}
+}  // namespace
+
+Vec3 normal_from_slope(double s, double phi) {
+    if (!(s < INFINITY)) return {std::cos(phi), std::sin(phi), 0.0};
+    const double c = 1.0 / std::sqrt(1.0 + s), sn = std::sqrt(s) * c;
+    return {sn * std::cos(phi), sn * std::sin(phi), c};
+}
+
+Vec3 direction_from_theta_deg(double theta_deg) {
+    const double t = theta_deg * pi / 180.0;
+    return {std::sin(t), 0.0, std::cos(t)};
+}
+
+// ---- D cos ----------------------------------------------------------------------------------------------
+
+NormalSample DcosSampler::sample(Rng& g) const {
+    for (;;) {
+        const double s = isf_(1.0 - uniform01(g));  // v in (0, 1]: s finite
+        const Vec3 m = normal_from_slope(s, 2.0 * pi * uniform01(g));
+        const double p = pdf(m);
+        if (p > 0.0 && p < INFINITY) return {m, p};  // a normal of underflowing density is drawn again
+    }
+}
+
+double DcosSampler::pdf(const Vec3& m) const {
+    if (!(m.z() > 0.0)) return 0.0;
+    const double s = tan2_theta(m);
+    return P22_(s) * (1.0 + s) * std::sqrt(1.0 + s);
+}
+
+// ---- visible normals, any NDF ---------------------------------------------------------------------------
+
+NormalSample VisibleNormalSampler::sample(const Vec3& wi, Rng& g) const {
+    require_unit(wi, "visible-normal sampler: wi");
+    if (!(wi.z() > 0.0)) throw input_error("visible-normal sampler: wi must be above the surface (wi.z > 0)");
+    const double sin_i = std::hypot(wi.x(), wi.y());
+    if (sin_i == 0.0) return dcos_.sample(g);  // normal incidence: D_wi = D cos
+    const double mu = wi.z() / sin_i, cos_phi = wi.x() / sin_i, sin_phi = wi.y() / sin_i;
+    const double p_dcos = mu / (mu + 2.0 * pi * r_law_->total());
+    for (;;) {
+        const double v = 1.0 - uniform01(g);
+        const double s = uniform01(g) < p_dcos ? dcos_.isf(v) : r_law_->isf(v);
+        const double r = std::sqrt(s), phi = 2.0 * pi * uniform01(g);
+        const double x = r * std::cos(phi), y = r * std::sin(phi);
+        if (uniform01(g) * (mu + r) >= mu - x) continue;  // accept with (mu - x)^+ / (mu + r)
+        // The normal of slope (x, y) is (-x, -y, 1)/|.|, then turned back to wi's azimuth.
+        const double n = 1.0 / std::sqrt(1.0 + s);
+        const Vec3 m{(-x * cos_phi + y * sin_phi) * n, (-x * sin_phi - y * cos_phi) * n, n};
+        const double p = pdf(wi, m);
+        if (p > 0.0 && p < INFINITY) return {m, p};
+    }
+}
+
+double VisibleNormalSampler::pdf(const Vec3& wi, const Vec3& m) const {
+    const double wm = wi.dot(m);
+    if (!(m.z() > 0.0 && wm > 0.0 && wi.z() > 0.0)) return 0.0;
+    const double s = tan2_theta(m), sin_i = std::hypot(wi.x(), wi.y());
+    const double Lambda = sin_i == 0.0 ? 0.0 : Lambda_->Lambda(wi.z() / sin_i);
+    return wm * D_from_P22(dcos_.P22(s), s) / (wi.z() * (1.0 + Lambda));
+}
+
+double VisibleNormalSampler::table_error() const {
+    return std::max({dcos_.table_error(), r_law_->error_estimate(), Lambda_->error_estimate()});
+}
+
+// ---- visible normals, GGX -------------------------------------------------------------------------------
+
+NormalSample sample_ggx_visible(double alpha, const Vec3& wi, Rng& g) {
+    require_unit(wi, "ggx visible-normal sampler: wi");
+    if (!(wi.z() > 0.0)) throw input_error("ggx visible-normal sampler: wi must be above the surface (wi.z > 0)");
+    const Vec3 wi_std = Vec3(alpha * wi.x(), alpha * wi.y(), wi.z()).normalized();
+    for (;;) {
+        const double phi = 2.0 * pi * uniform01(g);
+        const double z = (1.0 - uniform01(g)) * (1.0 + wi_std.z()) - wi_std.z();
+        const double sin_t = std::sqrt(std::max(0.0, (1.0 - z) * (1.0 + z)));
+        const Vec3 h = Vec3(sin_t * std::cos(phi), sin_t * std::sin(phi), z) + wi_std;
+        if (!(h.z() > 0.0)) continue;
+        const Vec3 m = Vec3(alpha * h.x(), alpha * h.y(), h.z()).normalized();
+        const double p = pdf_ggx_visible(alpha, wi, m);
+        if (p > 0.0 && p < INFINITY) return {m, p};
+    }
+}
+
+double pdf_ggx_visible(double alpha, const Vec3& wi, const Vec3& m) {
+    const double wm = wi.dot(m);
+    if (!(m.z() > 0.0 && wm > 0.0 && wi.z() > 0.0)) return 0.0;
+    const double s = tan2_theta(m), a2 = alpha * alpha;
+    const double P22 = a2 / (pi * (s + a2) * (s + a2));
+    const double sin_i = std::hypot(wi.x(), wi.y());
+    // Walter 2007 eq. 72 in the form of Ggx::Lambda: alpha^2 / (2 mu (mu + hypot(mu, alpha))).
+    const double mu = sin_i == 0.0 ? INFINITY : wi.z() / sin_i;
+    const double Lambda = sin_i == 0.0 ? 0.0 : a2 / (2.0 * mu * (mu + std::hypot(mu, alpha)));
+    return wm * D_from_P22(P22, s) / (wi.z() * (1.0 + Lambda));
+}
+
+// ---- Hammon ---------------------------------------------------------------------------------------------
+
+Vec3 HammonSampler::sample_normal(const Vec3& wi, Rng& g) const {
+    require_unit(wi, "hammon sampler: wi");
+    const Vec3 T = -wi;
+    const double Txy2 = T.x() * T.x() + T.y() * T.y();
+    if (Txy2 == 0.0 && T.z() > 0.0) throw input_error("hammon sampler: no microfacet faces a ray travelling straight up");
+    // Hammon's shrink: only u1 >= F(tan^2 theta_c) can face an upward ray, i.e. v = 1 - u1 <= S(tan^2 theta_c).
+    const double S_c = T.z() > 0.0 ? dcos_.sf(T.z() * T.z() / Txy2) : 1.0;
+    for (;;) {
+        const double s = dcos_.isf(S_c * (1.0 - uniform01(g)));
+        const Vec3 m = normal_from_slope(s, 2.0 * pi * uniform01(g));
+        if (T.dot(m) < 0.0) return m;
+        if (T.z() > 0.0) {
+            const Vec3 turned(-m.x(), -m.y(), m.z());
+            if (T.dot(turned) < 0.0) return turned;
+        }
+    }
+}
+
+double HammonSampler::facing_fraction(const Vec3& wi) const {
+    require_unit(wi, "hammon sampler: wi");
+    const double sin_i = std::hypot(wi.x(), wi.y());
+    if (sin_i == 0.0) return wi.z() > 0.0 ? 1.0 : 0.0;
+    // For tan(theta_m) = r, the azimuths with wi.m > 0 are cos(phi) > -mu / r, mu = cot(theta_i) (signed).
+    const double mu = wi.z() / sin_i;
+    auto h = [&](double s) {
+        const double c = std::clamp(-mu / std::sqrt(s), -1.0, 1.0);
+        return std::acos(c) * dcos_.P22(s);  // (acos / pi) * pi P22
+    };
+    return integrate_log_axis(h, {}, mu != 0.0 ? mu * mu : 1.0);
+}
+
+}  // namespace smithlab

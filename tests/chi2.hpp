@@ -1,0 +1,120 @@
+// tests/chi2.hpp -- a chi-square goodness-of-fit test for normal samplers, after Mitsuba 3's chi2 harness and
+// pbrt-v4's bsdfs_test: sample, histogram, integrate the sampler's pdf over every bin, pool the bins expecting
+// fewer than 5, and compare.
+//
+// Bins are equal-area in (phi, cos theta') on the hemisphere of normals whose slopes are divided by `scale` (the
+// NDF's typical slope): at alpha = 1e-3 equal-area bins in cos theta itself would put every sample in one bin.
+// In z' = cos theta', tan theta = scale tan theta', and d omega = scale^2 (scale^2 + z'^2 (1 - scale^2))^{-3/2} dz' dphi.
+#pragma once
+
+#include <algorithm>
+#include <boost/math/distributions/chi_squared.hpp>
+#include <boost/math/quadrature/gauss_kronrod.hpp>
+#include <cmath>
+#include <numbers>
+#include <smithlab/quadrature.hpp>
+#include <smithlab/samplers.hpp>
+#include <string>
+#include <vector>
+
+namespace chi2 {
+
+struct Result {
+    double p_value = 0.0;
+    double statistic = 0.0;
+    int dof = 0;
+    double pdf_integral = 0.0;  // of the pdf over the hemisphere (must be 1)
+    std::size_t bad_samples = 0;  // NaN, zero pdf, pdf not the pdf() of m, below the horizon
+    std::string note;             // why p = 0, if it is
+};
+
+struct Bins {
+    int n_theta = 16, n_phi = 32;
+    double scale = 1.0;
+    int index(const smithlab::Vec3& m) const {
+        const double x = m.x() / scale, y = m.y() / scale, zp = m.z() / std::sqrt(x * x + y * y + m.z() * m.z());
+        double phi = std::atan2(m.y(), m.x());
+        if (phi < 0.0) phi += 2.0 * std::numbers::pi;
+        const int i = std::min(n_theta - 1, static_cast<int>(zp * n_theta));
+        const int j = std::min(n_phi - 1, static_cast<int>(phi / (2.0 * std::numbers::pi) * n_phi));
+        return i * n_phi + j;
+    }
+    // integral of pdf over bin (i, j), in (z', phi): inner adaptive Gauss-Kronrod (15 points, bisecting where the
+    // pdf jumps or kinks, as at Hammon's facing boundary and the visible normals' wi.m = 0).
+    double integral(const std::function<double(const smithlab::Vec3&)>& pdf, int i, int j) const {
+        using rule = boost::math::quadrature::gauss_kronrod<double, 15>;
+        const double k2 = scale * scale, dphi = 2.0 * std::numbers::pi / n_phi;
+        const double z0 = static_cast<double>(i) / n_theta, z1 = static_cast<double>(i + 1) / n_theta;
+        auto over_phi = [&](double zp) {
+            if (zp <= 0.0) return 0.0;
+            const double q = k2 + zp * zp * (1.0 - k2), jac = k2 / (q * std::sqrt(q));
+            const double s = k2 * (1.0 - zp) * (1.0 + zp) / (zp * zp);
+            return jac * rule::integrate([&](double phi) { return pdf(smithlab::normal_from_slope(s, phi)); }, j * dphi,
+                                         (j + 1) * dphi, 7, 1e-6);
+        };
+        // Outer, in the first and last rows: tanh-sinh, whose nodes crowd the ends, where a peaked core (z' -> 1)
+        // or the horizon sits; elsewhere adaptive Gauss-Kronrod.
+        if (i == 0 || i == n_theta - 1) return smithlab::integrate(over_phi, z0, z1, {smithlab::Backend::boost, 1e-7});
+        return rule::integrate(over_phi, z0, z1, 7, 1e-6);
+    }
+};
+
+inline Result test(const smithlab::BoundSampler& sampler, const Bins& bins, std::size_t n, smithlab::Rng& rng) {
+    Result r;
+    const int nb = bins.n_theta * bins.n_phi;
+    std::vector<double> observed(nb, 0.0), expected(nb, 0.0);
+    for (std::size_t k = 0; k < n; ++k) {
+        const smithlab::NormalSample s = sampler.sample(rng);
+        const bool ok = std::isfinite(s.m.x()) && std::isfinite(s.m.y()) && std::isfinite(s.m.z()) && s.m.z() >= 0.0 &&
+                        s.pdf > 0.0 && std::abs(s.m.norm() - 1.0) < 1e-12 &&
+                        std::abs(s.pdf - sampler.pdf(s.m)) <= 1e-12 * s.pdf;
+        if (!ok) {
+            ++r.bad_samples;
+            continue;
+        }
+        observed[bins.index(s.m)] += 1.0;
+    }
+    for (int i = 0; i < bins.n_theta; ++i)
+        for (int j = 0; j < bins.n_phi; ++j) {
+            expected[i * bins.n_phi + j] = bins.integral(sampler.pdf, i, j);
+            r.pdf_integral += expected[i * bins.n_phi + j];
+        }
+    // Pool the bins expecting < 5 samples. (A sample where the pdf is 0 is caught above, sample by sample.)
+    double pooled_o = 0.0, pooled_e = 0.0;
+    int cells = 0;
+    for (int b = 0; b < nb; ++b) {
+        const double e = expected[b] * static_cast<double>(n);
+        if (e < 5.0) {
+            pooled_o += observed[b];
+            pooled_e += e;
+            continue;
+        }
+        r.statistic += (observed[b] - e) * (observed[b] - e) / e;
+        ++cells;
+    }
+    if (pooled_e > 0.0) {
+        r.statistic += (pooled_o - pooled_e) * (pooled_o - pooled_e) / pooled_e;
+        ++cells;
+    }
+    r.dof = cells - 1;
+    if (r.dof < 1) {
+        r.note = "fewer than two cells after pooling";
+        return r;
+    }
+    r.p_value = boost::math::cdf(boost::math::complement(boost::math::chi_squared(r.dof), r.statistic));
+    return r;
+}
+
+// The median tan(theta_m) of n samples: a slope scale for the bins that follows the sampler (Hammon's upward rays
+// see only steep facets). From its own generator, so the bins do not depend on the samples they count.
+inline double median_slope(const smithlab::BoundSampler& sampler, std::size_t n, smithlab::Rng rng) {
+    std::vector<double> t(n);
+    for (double& x : t) x = std::sqrt(smithlab::tan2_theta(sampler.sample(rng).m));
+    std::nth_element(t.begin(), t.begin() + n / 2, t.end());
+    return t[n / 2];
+}
+
+// Sidak: the per-test significance that keeps the family-wise rate at `alpha` over `tests` tests.
+inline double sidak(double alpha, std::size_t tests) { return 1.0 - std::pow(1.0 - alpha, 1.0 / static_cast<double>(tests)); }
+
+}  // namespace chi2
