@@ -113,3 +113,92 @@ TEST_CASE("chi-square: visible-normal samplers, generic and GGX, normal to grazi
 TEST_CASE("chi-square: Hammon's facing-restricted D cos, rays going down and up", "[sampling][chi2]") {
     run_chi2("hammon");
 }
+
+TEST_CASE("D cos laws: the analytic survival functions against quadrature of pi P22, and their inverses", "[sampling]") {
+    // Independent route: S(s) = pi * integral_s^inf P22 by Boost quadrature on the slope density, not the inversions.
+    auto check = [](const auto& ndf, const std::string& what) {
+        for (double s : {1e-12, 1e-7, 1e-4, 0.01, 0.3, 1.0, 3.0, 100.0, 1e6}) {
+            const double want = integrate([&](double x) { return std::numbers::pi * slope_density(ndf, x); }, s, INFINITY,
+                                          {Backend::boost, 1e-13});
+            const double got = ndf.Dcos_sf(s);
+            INFO(what << " s=" << s << " S=" << got << " quadrature " << want);
+            CHECK(std::abs(got - want) <= 1e-12 * std::max(want, 1e-3));  // relative in the tail, absolute near 1
+            // The inverse, in probability (near the pole S = 1 - tiny cannot carry s's digits, nor need it).
+            if (got > 1e-300 && got < 1.0) CHECK(std::abs(ndf.Dcos_sf(ndf.Dcos_r2(got)) - got) <= 1e-12 * got + 1e-16);
+            if (got > 1e-300 && got < 0.5) CHECK(ndf.Dcos_r2(got) == Approx(s).epsilon(1e-9));
+        }
+    };
+    for (double a : {1e-4, 0.01, 0.3, 1.0}) {
+        check(ggx(a), "ggx " + std::to_string(a));
+        check(beckmann(a), "beckmann " + std::to_string(a));
+        for (double g : {0.0, 0.5, 1.0, 1.0 + 1e-9, 1.5, 2.0, 3.3, 20.0}) check(gtr(a, g), "gtr " + std::to_string(a) + " " + std::to_string(g));
+    }
+    check(gtr(0.999999, 2.5), "gtr 0.999999");
+    for (double n : {0.0, 1.0, 20.0, 1e4}) check(blinn(n), "blinn " + std::to_string(n));
+}
+
+TEST_CASE("D cos tables: against the analytic inversions, within their stated error", "[sampling]") {
+    auto compare = [](const auto& ndf, const std::string& what) {
+        const DcosSampler exact(ndf), table(ndf, true);
+        REQUIRE(table.tabulated());
+        INFO(what << ": table error estimate " << table.table_error());
+        CHECK(table.table_error() < 1e-8);
+        for (double v : {1e-15, 1e-9, 1e-4, 0.1, 0.5, 0.9, 0.999999}) {
+            const double s = exact.isf(v);
+            INFO("v=" << v << " s=" << s);
+            CHECK(std::abs(table.sf(s) - v) <= table.table_error() + 1e-15);
+            CHECK(std::abs(exact.sf(table.isf(v)) - v) <= table.table_error() + 1e-15);
+        }
+    };
+    compare(ggx(1e-3), "ggx(1e-3)");
+    compare(beckmann(0.3), "beckmann(0.3)");
+    compare(gtr(1e-3, 1.0), "gtr(1e-3, 1)");
+    compare(gtr(0.5, 20.0), "gtr(0.5, 20)");
+    compare(blinn(20.0), "blinn(20)");
+}
+
+TEST_CASE("reflected directions: pdf_m / (4 |i.m|) integrates to 1 over the sphere of outgoing directions", "[sampling]") {
+    // o = reflect(i, m) and m = normalize(i + o): the Jacobian d omega_m / d omega_o = 1 / (4 |i.m|) (Walter 2007 eq. 14).
+    const Vec3 wi = direction_from_theta_deg(30.0);
+    const Ggx g = ggx(0.3);
+    const DcosSampler dcos(g);
+    const VisibleNormalSampler vis(g);
+    for (int which = 0; which < 2; ++which) {
+        auto pdf_m = [&](const Vec3& m) { return which == 0 ? dcos.pdf(m) : vis.pdf(wi, m); };
+        auto over_phi = [&](double z) {
+            const double st = std::sqrt((1.0 - z) * (1.0 + z));
+            return integrate([&](double phi) {
+                const Vec3 o(st * std::cos(phi), st * std::sin(phi), z);
+                const Vec3 h = (wi + o).normalized();
+                return reflected_pdf(pdf_m(h), wi, h);
+            }, 0.0, 2.0 * std::numbers::pi, {Backend::boost, 1e-9});
+        };
+        const double total = integrate(over_phi, -1.0, 1.0, {Backend::boost, 1e-9});
+        // A facet facing away from wi (possible under D cos) sends o where the half vector is -m: those are lost,
+        // so the D cos total is the mass of the facets facing wi, Hammon's Z (computed by a 1D quadrature).
+        const double want = which == 0 ? HammonSampler(g).facing_fraction(wi) : 1.0;
+        INFO((which == 0 ? "D cos" : "visible normals") << ": integral " << total << ", expected " << want);
+        CHECK(std::abs(total - want) < 2e-6);  // the quadrature of a peaked integrand: a wrong Jacobian is O(1) off
+        // And reflect() maps a sampled m to the o whose half vector is m.
+        Rng rng = make_rng(5);
+        const NormalSample s = which == 0 ? dcos.sample(rng) : vis.sample(wi, rng);
+        CHECK((wi + reflect(wi, s.m)).normalized().isApprox(s.m, 1e-12));
+    }
+}
+
+TEST_CASE("samplers: the same seed gives the same samples; bad input is an error naming the item", "[sampling]") {
+    const NdfRegistry ndfs = builtin_registry();
+    const std::vector<SamplerInfo> samplers = builtin_samplers();
+    const AnyNdf ndf = ndfs.make("gtr(alpha=0.2, gamma=1.5)");
+    for (const SamplerInfo& s : samplers) {
+        if (!s.applies(ndf)) continue;
+        const BoundSampler b = prepare(s, ndf, direction_from_theta_deg(40.0));
+        Rng g1 = make_rng(42), g2 = make_rng(42);
+        for (int i = 0; i < 10; ++i) CHECK(b.sample(g1).m == b.sample(g2).m);
+    }
+    CHECK_THROWS_WITH(find_sampler(samplers, "nope"), Catch::Contains("nope") && Catch::Contains("vndf"));
+    CHECK_THROWS_WITH(prepare(find_sampler(samplers, "vndf"), ndf, direction_from_theta_deg(120.0)), Catch::Contains("above"));
+    CHECK_THROWS_WITH(prepare(find_sampler(samplers, "hammon"), ndf, Vec3(0, 0, -1)), Catch::Contains("no microfacet"));
+    CHECK_THROWS_WITH(prepare(find_sampler(samplers, "vndf"), ndf, Vec3(0, 0, 2)), Catch::Contains("unit"));
+    CHECK_THROWS_WITH(prepare(find_sampler(samplers, "vndf-ggx"), ndf, Vec3(0, 0, 1)), Catch::Contains("does not apply"));
+}

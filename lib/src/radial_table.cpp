@@ -12,7 +12,7 @@ namespace smithlab {
 
 namespace {
 
-constexpr double y_min = -230.0, y_max = 230.0, h = 1.0 / 16.0;
+constexpr double y_min = -230.0, y_max = 230.0, h = 1.0 / 32.0;
 
 // integral of g over [a, b], 8-point Gauss-Legendre (Boost.Math's nodes: 0 is not one of them for 8).
 template <class G>
