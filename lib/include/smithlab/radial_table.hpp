@@ -1,12 +1,11 @@
 // smithlab/radial_table.hpp -- sampling a law on s = tan^2(theta_m) in (0, inf) given only its density, by a
-// tabulated inverse CDF. It is how an NDF without an analytic sampler is sampled (D cos: density pi P22(s)), and
+// tabulated inverse survival function (1 - CDF). It is how an NDF without an analytic sampler is sampled (D cos: density pi P22(s)), and
 // the second proposal of the generic visible-normal sampler (density P22(s) sqrt(s) / 2, i.e. P22 r^2 dr).
 //
 // The survival function S is tabulated in y = ln s on [-230, 230] (s from 1e-100 to 1e100) at steps of 1/32:
 // each cell integrated by 8-point Gauss-Legendre, so the knots carry the integral to ~1e-16; between knots a
-// cubic Hermite in y with the
-// exact derivative dS/dy = -s w(s) / W (Fritsch-Carlson limited, so it stays monotone); an inverse is a binary
-// search in the knots and a safeguarded Newton solve in the cell. The samples then follow the Hermite S exactly,
+// cubic Hermite in y with the exact derivative dS/dy = -s w(s) / W (Fritsch-Carlson limited, so it stays
+// monotone); an inverse is a binary search in the knots and a safeguarded Newton solve in the cell. The samples then follow the Hermite S exactly,
 // and error_estimate() bounds how far that is from the true S: the largest difference at the cell midpoints,
 // where the exact value is integrated separately (~1e-10 for the built-in NDFs). The error is absolute, in
 // probability: a tail holding less than that is not resolved.
