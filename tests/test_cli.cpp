@@ -1,6 +1,7 @@
 // The smithlab executable, driven as a user would: good runs, bad input (exit 2, the offending item named,
 // no output file), the CSV contract.
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -106,6 +107,40 @@ TEST_CASE("CSV: columns pass through, lambda and g1 appended with 17 digits", "[
     // 17 significant digits: the lambda of row A is "0.0" and 17 digits.
     const auto a = res.find("A,ggx(alpha=0.5),1,") + std::string("A,ggx(alpha=0.5),1,").size();
     CHECK(res.substr(a, res.find(',', a) - a).size() == 20);
+}
+
+TEST_CASE("sample: CSV of unit normals and their pdfs, reproducible by seed; bad input exits 2 with no file", "[cli][sample]") {
+    const fs::path d = scratch();
+    const std::string args = "sample --ndf 'gtr(alpha=0.2, gamma=1.5)' --sampler vndf --theta-i 70 --n 500 --seed 9 --output '";
+    REQUIRE(run(args + (d / "a.csv").string() + "'").rc == 0);
+    REQUIRE(run(args + (d / "b.csv").string() + "'").rc == 0);
+    const std::string a = slurp(d / "a.csv");
+    CHECK(a == slurp(d / "b.csv"));
+    std::istringstream rows(a);
+    std::string line;
+    std::getline(rows, line);
+    CHECK(line == "x,y,z,pdf");
+    int n = 0;
+    while (std::getline(rows, line)) {
+        double x, y, z, pdf;
+        char c1, c2, c3;
+        std::istringstream(line) >> x >> c1 >> y >> c2 >> z >> c3 >> pdf;
+        CHECK(std::abs(x * x + y * y + z * z - 1.0) < 1e-14);
+        CHECK(pdf > 0.0);
+        // visible normals face wi = (sin 70, 0, cos 70)
+        CHECK(x * std::sin(70 * M_PI / 180) + z * std::cos(70 * M_PI / 180) > 0.0);
+        ++n;
+    }
+    CHECK(n == 500);
+    CHECK_THAT(run("sample --list-samplers").out, Catch::Contains("vndf-ggx") && Catch::Contains("hammon"));
+    for (const char* bad : {"--sampler nope", "--sampler vndf --theta-i 95", "--sampler vndf --theta-i nan", "--sampler vndf --n 0"}) {
+        const Run r = run(std::string("sample --ndf 'ggx(alpha=0.3)' ") + bad + " --output '" + (d / "never.csv").string() + "'");
+        INFO(bad << ": " << r.err);
+        CHECK(r.rc == 2);
+        CHECK_FALSE(fs::exists(d / "never.csv"));
+    }
+    CHECK_THAT(run("sample --ndf 'ggx(alpha=0.3)' --sampler nope --n 1").err, Catch::Contains("nope"));
+    CHECK_THAT(run("sample --ndf 'ggx(alpha=0.3)' --sampler vndf --theta-i nan").err, Catch::Contains("--theta-i"));
 }
 
 TEST_CASE("CSV with --method table: one table per spec, within 1e-6 of the closed form", "[cli][csv]") {

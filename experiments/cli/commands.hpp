@@ -39,6 +39,19 @@ struct ReportArgs {
 void add_report(CLI::App& app, ReportArgs& args);
 int run_report(const ReportArgs& args, const NdfRegistry& registry, const VariantRegistry& variants);
 
+struct SampleArgs {
+    std::string ndf, sampler, output;
+    double theta_i = 0.0;
+    long long n = 1000;
+    unsigned long long seed = 1;
+    bool list_samplers = false;
+};
+void add_sample(CLI::App& app, SampleArgs& args);
+int run_sample(const SampleArgs& args, const NdfRegistry& registry);
+
+// Writes `text` to `path` through a temporary file in the same directory and a rename: never a partial file.
+void write_atomically(const std::string& path, const std::string& text);
+
 // Parses a double, accepting "inf"; NaN and trailing junk are input errors naming `what`.
 double parse_number(const std::string& text, const std::string& what);
 

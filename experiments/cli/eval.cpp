@@ -89,24 +89,6 @@ Prepared prepare(const std::string& spec, const NdfRegistry& registry, const Rou
     }
 }
 
-// Writes `text` to `path` through a temporary file in the same directory and a rename: never a partial file.
-void write_atomically(const std::string& path, const std::string& text) {
-    namespace fs = std::filesystem;
-    const fs::path target(path);
-    const fs::path tmp = target.parent_path() / (target.filename().string() + ".partial");
-    {
-        std::ofstream out(tmp, std::ios::binary);
-        if (!out) throw input_error("cannot write output file '" + path + "'");
-        out << text;
-        out.close();
-        if (!out) {
-            fs::remove(tmp);
-            throw input_error("cannot write output file '" + path + "'");
-        }
-    }
-    fs::rename(tmp, target);
-}
-
 int eval_csv(const EvalArgs& a, const NdfRegistry& registry, const Route& o) {
     std::ifstream file;
     if (a.input != "-") {

@@ -12,7 +12,8 @@ int main(int argc, char** argv) {
     const VariantRegistry variants = builtin_variants();
 
     CLI::App app{
-        "smithlab: Smith masking-shadowing for any isotropic microfacet NDF (GGX, Beckmann, Blinn-Phong, GTR).\n"
+        "smithlab: Smith masking-shadowing and normal sampling for any isotropic microfacet NDF (GGX, Beckmann,\n"
+        "Blinn-Phong, GTR).\n"
         "NDFs are named by spec strings such as 'ggx(alpha=0.2)' or 'gtr(alpha=0.3, gamma=1.5)';\n"
         "`smithlab list` shows them all. mu = cot(theta) of the direction; mu < 0 points below the surface.",
         "smithlab"};
@@ -24,6 +25,8 @@ int main(int argc, char** argv) {
     cli::add_check(app, check_args);
     cli::ReportArgs report_args;
     cli::add_report(app, report_args);
+    cli::SampleArgs sample_args;
+    cli::add_sample(app, sample_args);
     CLI::App* list = app.add_subcommand("list", "List the registered NDFs, their parameters and example specs");
 
     try {
@@ -41,6 +44,7 @@ int main(int argc, char** argv) {
         if (app.got_subcommand("eval")) return cli::run_eval(eval_args, registry, variants);
         if (app.got_subcommand("check")) return cli::run_check(check_args, registry);
         if (app.got_subcommand("report")) return cli::run_report(report_args, registry, variants);
+        if (app.got_subcommand("sample")) return cli::run_sample(sample_args, registry);
         if (list->parsed()) {
             for (const NdfInfo* info : registry.list()) {
                 std::cout << info->name << "(";
