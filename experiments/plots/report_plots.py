@@ -128,6 +128,37 @@ def dimov_gamma4_vs_10(d):
     fig.savefig(os.path.join(d, "gamma4_vs_10.png"), dpi=110)
 
 
+def sampling_efficiency(d):
+    table = rows(os.path.join(d, "sampling.csv"))
+    families = sorted({r["family"] for r in table})
+    strategies = ["cosine", "dcos", "vndf"]
+    labels = {"cosine": "cosine hemisphere", "dcos": "D cos normals", "vndf": "visible normals"}
+    colors = {"cosine": "tab:gray", "dcos": "tab:blue", "vndf": "tab:red"}
+    styles = {f: s for f, s in zip(families, ["-", "--", ":", "-."])}
+    fig, axes = plt.subplots(1, 2, figsize=(13, 5))
+    for fam in families:
+        for st in strategies:
+            pts = sorted((num(r["alpha"]), num(r["variance"]), num(r["efficiency"]))
+                         for r in table if r["family"] == fam and r["strategy"] == st)
+            if not pts:
+                continue
+            a, var, eff = zip(*pts)
+            kw = dict(color=colors[st], linestyle=styles[fam], marker="o", ms=3, label=f"{fam}: {labels[st]}")
+            axes[0].plot(a, [max(v, 1e-12) for v in var], **kw)
+            axes[1].plot(a, eff, **kw)
+    for ax, yl in ((axes[0], "variance of one sample"), (axes[1], "efficiency 1 / (variance x seconds per sample)")):
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("alpha")
+        ax.set_ylabel(yl)
+        ax.grid(True, which="both", alpha=0.3)
+        ax.invert_xaxis()
+    axes[1].legend(fontsize=8)
+    fig.suptitle("Directional albedo of a white conductor: the cost of a sampling strategy as alpha -> 0")
+    fig.tight_layout()
+    fig.savefig(os.path.join(d, "sampling_efficiency.png"), dpi=110)
+
+
 def main():
     d = sys.argv[1]
     drawn = []
@@ -141,6 +172,9 @@ def main():
     if os.path.exists(os.path.join(d, "dimov", "gamma4_vs_10.csv")):
         dimov_gamma4_vs_10(d)
         drawn.append("gamma4_vs_10.png")
+    if os.path.exists(os.path.join(d, "sampling.csv")):
+        sampling_efficiency(d)
+        drawn.append("sampling_efficiency.png")
     print("report_plots: drew " + ", ".join(drawn), file=sys.stderr)
 
 

@@ -84,7 +84,9 @@ void write_figures(const Scene& scene, const fs::path& dir) {
     if (fig.error_maps) md << "\n## Where each variant fails: |dG1| over (alpha, mu), worst over gamma\n\n![](error_maps.png)\n";
     if (fig.dimov_heightfields) md << "\n## Dimov 2015, sec. 4: G1 height fields, gamma = 0..4\n\n![](dimov_heightfields.png)\n";
     md.close();
-    if (!(fig.pareto || fig.error_maps || fig.dimov_heightfields || fig.dimov_gamma4_vs_10)) return;
+    if (!(fig.pareto || fig.error_maps || fig.dimov_heightfields || fig.dimov_gamma4_vs_10 ||
+          !scene.sampling.families.empty()))
+        return;
 
     // The plot script: next to an installed binary, or in the source tree of this build.
     const fs::path exe = fs::canonical("/proc/self/exe");

@@ -64,6 +64,19 @@ Scene parse_scene(const std::string& text, const std::string& source) {
             if (g.contains("families")) s.g2.families = toml::find<std::vector<std::string>>(g, "families");
             s.g2.mus = axis(toml::find(g, "mu"), source + ": g2.mu");
         }
+        if (data.contains("sampling")) {
+            const auto& sm = toml::find(data, "sampling");
+            s.sampling.families = toml::find<std::vector<std::string>>(sm, "families");
+            if (s.sampling.families.empty()) throw input_error(source + ": sampling.families is an empty list");
+            s.sampling.alphas = axis(toml::find(sm, "alpha"), source + ": sampling.alpha");
+            s.sampling.theta_o = toml::find_or<double>(sm, "theta_o", 45.0);
+            const auto n = toml::find_or<long long>(sm, "samples", 100000);
+            if (n < 100 || n > 100000000) throw input_error(source + ": sampling.samples must be in [100, 1e8]");
+            s.sampling.samples = static_cast<std::size_t>(n);
+            const auto seed = toml::find_or<long long>(sm, "seed", 1);
+            if (seed < 0) throw input_error(source + ": sampling.seed must be >= 0");
+            s.sampling.seed = static_cast<unsigned long long>(seed);
+        }
         if (data.contains("figures")) {
             const auto& f = toml::find(data, "figures");
             for (const auto& [key, value] : f.as_table()) {

@@ -25,6 +25,14 @@ struct Scene {
         std::vector<std::string> families = {"ggx"};
         std::vector<double> mus;
     } g2;
+    // The sampling-efficiency experiment (sampling_experiment.hpp): absent (families empty) unless named.
+    struct Sampling {
+        std::vector<std::string> families;
+        std::vector<double> alphas;
+        double theta_o = 45.0;           // degrees
+        std::size_t samples = 100000;    // per estimate
+        unsigned long long seed = 1;
+    } sampling;
     struct Figures {
         bool pareto = false;              // error against ns/eval, log-log, every variant
         bool error_maps = false;          // |dG1| over (alpha, mu), worst over gamma, one map per variant

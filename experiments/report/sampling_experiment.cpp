@@ -1,0 +1,98 @@
+#include "sampling_experiment.hpp"
+
+#include <cmath>
+#include <memory>
+#include <numbers>
+
+#include "smithlab/errors.hpp"
+#include "smithlab/samplers.hpp"
+
+namespace smithlab::report {
+
+namespace {
+
+constexpr double pi = std::numbers::pi;
+
+// The integrand's pieces for one NDF seen from wo.
+struct Conductor {
+    AnyNdf ndf;
+    Vec3 wo;
+    double Lambda_o;
+    double Lambda(const Vec3& w) const {
+        const double sin = std::hypot(w.x(), w.y());
+        return sin == 0.0 ? 0.0 : ndf.Lambda(w.z() / sin);
+    }
+    double G2(const Vec3& wi) const { return 1.0 / (1.0 + Lambda(wi) + Lambda_o); }
+    double D(const Vec3& m) const {
+        const double s = tan2_theta(m);
+        return D_from_P22(ndf.slope_density(s), s);
+    }
+};
+
+}  // namespace
+
+std::vector<SamplingRow> run_sampling_experiment(const Scene::Sampling& s, const NdfRegistry& ndfs) {
+    require(s.theta_o >= 0.0 && s.theta_o < 90.0, "scene: sampling.theta_o", "in [0, 90) degrees", s.theta_o);
+    std::vector<AnyNdf> list;
+    for (const std::string& family : s.families) {
+        const NdfInfo* info = ndfs.find(family);
+        if (!info) throw input_error("scene: sampling.families: unknown ndf family '" + family + "'");
+        if (info->parameters != std::vector<std::string>{"alpha"})
+            throw input_error("scene: sampling.families: '" + family + "' is not a family of one parameter, alpha");
+        for (double a : s.alphas) {
+            AnyNdf n = ndfs.make(format_spec({family, {{"alpha", a}}}));
+            if (!n.has_closed_Lambda())
+                throw input_error("scene: sampling.families: '" + family + "' has no closed-form Lambda for G2");
+            list.push_back(std::move(n));
+        }
+    }
+    const std::vector<SamplerInfo> samplers = builtin_samplers();
+    const Vec3 wo = direction_from_theta_deg(s.theta_o);
+    std::vector<SamplingRow> rows;
+    for (const AnyNdf& ndf : list) {
+        auto c = std::make_shared<const Conductor>(Conductor{ndf, wo, 0.0});
+        const double Lambda_o = c->Lambda(wo);
+        c = std::make_shared<const Conductor>(Conductor{ndf, wo, Lambda_o});
+        const BoundSampler dcos = prepare(find_sampler(samplers, "dcos"), ndf, wo);
+        const bool ggx = ndf.family() == "ggx";
+        const BoundSampler vndf = prepare(find_sampler(samplers, ggx ? "vndf-ggx" : "vndf"), ndf, wo);
+        const double cos_o = wo.z();
+        std::vector<std::function<double(Rng&)>> weights = {
+            [c, cos_o](Rng& g) {  // Malley: a uniform disk point lifted to the hemisphere is cosine-distributed
+                const double r = std::sqrt(uniform01(g)), phi = 2.0 * pi * uniform01(g);
+                const Vec3 wi(r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0, 1.0 - r * r)));
+                if (!(wi.z() > 0.0)) return 0.0;
+                const Vec3 h = (wi + c->wo).normalized();
+                return pi * c->G2(wi) * c->D(h) / (4.0 * cos_o * wi.z());
+            },
+            [c, cos_o, dcos](Rng& g) {
+                const NormalSample m = dcos.sample(g);
+                const double wom = c->wo.dot(m.m);
+                const Vec3 wi = reflect(c->wo, m.m);
+                if (!(wom > 0.0 && wi.z() > 0.0)) return 0.0;
+                return c->G2(wi) * wom / (cos_o * m.m.z());
+            },
+            [c, vndf](Rng& g) {
+                const Vec3 wi = reflect(c->wo, vndf.sample(g).m);
+                if (!(wi.z() > 0.0)) return 0.0;
+                return c->G2(wi) * (1.0 + c->Lambda_o);
+            },
+        };
+        for (std::size_t k = 0; k < weights.size(); ++k) {
+            Rng g = make_rng(s.seed, rows.size());
+            // Welford's running mean and variance.
+            double mean = 0.0, m2 = 0.0;
+            for (std::size_t i = 1; i <= s.samples; ++i) {
+                const double w = weights[k](g);
+                const double d = w - mean;
+                mean += d / static_cast<double>(i);
+                m2 += d * (w - mean);
+            }
+            rows.push_back({ndf.family(), std::string(sampling_strategies[k]), ndf.param("alpha"), s.samples, mean,
+                            m2 / static_cast<double>(s.samples - 1), NAN, weights[k]});
+        }
+    }
+    return rows;
+}
+
+}  // namespace smithlab::report

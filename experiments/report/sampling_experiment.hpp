@@ -1,0 +1,40 @@
+// The sampling-efficiency experiment (issue: reproduce the blog's point quantitatively). The directional albedo
+// of a white conductor (F = 1, height-correlated G2) seen from theta_o under a uniform white environment,
+//     A = integral f(wi, wo) cos(theta_i) d wi,   f = G2 D(h) / (4 cos_i cos_o)    (Walter 2007 eq. 20),
+// estimated by sampling wi three ways; each weight f cos_i / pdf(wi):
+//     cosine hemisphere  pdf = cos_i / pi                 weight = pi G2 D(h) / (4 cos_o cos_i)
+//     D cos normals      pdf = D(m) cos_m / (4 wo.m)      weight = G2 (wo.m) / (cos_o cos_m)
+//     visible normals    pdf = D_wo(m) / (4 wo.m)         weight = G2 / G1(wo)       (Heitz 2014, sec. 5)
+// with wi = reflect(wo, m) and weight 0 when wi falls below the surface. All three estimate the same A; the
+// report gives their variance, time per sample (Google Benchmark) and efficiency 1 / (variance x time).
+#pragma once
+
+#include <array>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "scene.hpp"
+#include "smithlab/registry.hpp"
+#include "smithlab/rng.hpp"
+
+namespace smithlab::report {
+
+struct SamplingRow {
+    std::string family, strategy;
+    double alpha = 0.0;
+    std::size_t samples = 0;
+    double mean = 0.0, variance = 0.0;  // of the per-sample weight
+    double ns = 0.0;                    // per sample, set by the timing
+    std::function<double(Rng&)> weight;  // one sample of the estimator (for the timing)
+};
+
+// The strategies, in the order of the table.
+inline constexpr std::array<std::string_view, 3> sampling_strategies = {"cosine", "dcos", "vndf"};
+
+// One row per (family, alpha, strategy), estimated with scene.sampling.samples samples each. Validates first
+// (families with a closed-form Lambda and an alpha; theta_o in [0, 90)); input_error naming the key otherwise.
+std::vector<SamplingRow> run_sampling_experiment(const Scene::Sampling& s, const NdfRegistry& ndfs);
+
+}  // namespace smithlab::report
