@@ -186,7 +186,7 @@ TEST_CASE("reflected directions: pdf_m / (4 |i.m|) integrates to 1 over the sphe
     }
 }
 
-TEST_CASE("samplers: the same seed gives the same samples; bad input is an error naming the item", "[sampling]") {
+TEST_CASE("samplers: the same seed gives the same samples, and bad input is an error naming the item", "[sampling]") {
     const NdfRegistry ndfs = builtin_registry();
     const std::vector<SamplerInfo> samplers = builtin_samplers();
     const AnyNdf ndf = ndfs.make("gtr(alpha=0.2, gamma=1.5)");
