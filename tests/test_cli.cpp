@@ -110,7 +110,7 @@ TEST_CASE("CSV: columns pass through, lambda and g1 appended with 17 digits", "[
     CHECK(res.substr(a, res.find(',', a) - a).size() == 20);
 }
 
-TEST_CASE("sample: CSV of unit normals and their pdfs, reproducible by seed; bad input exits 2 with no file", "[cli][sample]") {
+TEST_CASE("sample: CSV of unit normals and their pdfs, reproducible by seed, bad input exits 2 with no file", "[cli][sample]") {
     const fs::path d = scratch();
     const std::string args = "sample --ndf 'gtr(alpha=0.2, gamma=1.5)' --sampler vndf --theta-i 70 --n 500 --seed 9 --output '";
     REQUIRE(run(args + (d / "a.csv").string() + "'").rc == 0);
