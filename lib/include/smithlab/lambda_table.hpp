@@ -36,9 +36,9 @@ public:
     LambdaTable(std::function<double(double)> exact, const LambdaTableOptions& opts);
 
     double Lambda(double mu) const {
+        if (!(mu >= mu_min_ && mu <= mu_max_)) return exact_(mu);
         const double x = std::log(mu);
         const double t = (x - x0_) * inv_h_;
-        if (!(mu >= mu_min_ && mu <= mu_max_)) return exact_(mu);
         const auto i = static_cast<std::size_t>(t);
         const double u = t - static_cast<double>(i);
         const std::array<double, 4>& c = coef_[i];
