@@ -1,6 +1,7 @@
 // The per-distribution checks, run for every registered NDF at each of its example points (stiff ones included).
 // A user who registers an NDF with examples gets these for free.
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <smithlab/smithlab.hpp>
 
 TEST_CASE("every registered NDF passes the per-distribution checks at its example points", "[checks]") {
@@ -26,6 +27,26 @@ TEST_CASE("the checks catch a broken NDF", "[checks]") {
     int failed = 0;
     for (const auto& r : smithlab::run_checks(Broken{}, {.with_2d = false})) failed += !r.passed();
     CHECK(failed >= 5);
+}
+
+TEST_CASE("the checks catch an analytic D cos sampler that inverts the wrong law", "[checks][sampling]") {
+    // GGX whose sampler uses the blog's Beckmann inversion: D is right, the sampler is not.
+    struct WrongSampler {
+        double D(double c) const { return smithlab::ggx(0.3).D(c); }
+        double Dcos_sf(double r2) const { return std::exp(-r2 / 0.09); }
+        double Dcos_r2(double v) const { return -0.09 * std::log(v); }
+    };
+    int failed = 0, sampler_checks = 0;
+    for (const auto& r : smithlab::run_checks(WrongSampler{}, {.with_2d = false})) {
+        if (r.name.find("sampler") == std::string::npos) {
+            CHECK(r.passed());
+            continue;
+        }
+        ++sampler_checks;
+        failed += !r.passed();
+    }
+    CHECK(sampler_checks == 4);
+    CHECK(failed == 4);
 }
 
 TEST_CASE("the checks run on the GSL backend too", "[checks]") {

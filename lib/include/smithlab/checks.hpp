@@ -85,6 +85,17 @@ std::vector<CheckResult> run_checks(const N& ndf, const CheckOptions& opts = {})
             out.push_back({"Lambda 1D = closed form", detail::format_where("mu", mu), l1, Lambda(ndf, mu, lo), 1e-10});
         }
     }
+    // 4. An analytic D cos sampler inverts the right law: the D cos mass beyond its quantile, 2 pi integral_r^inf
+    // D cos^4 r dr from D itself, is the probability it was asked for.
+    if constexpr (HasDcosSampler<N>) {
+        if (has_Dcos_sampler(ndf))
+            for (double v : {0.9, 0.5, 0.1, 1e-3}) {
+                const double r0 = std::sqrt(ndf.Dcos_r2(v));
+                auto f = [&](double r) { return r > r0 ? detail::D_cos4(ndf, r * r) * r : 0.0; };
+                out.push_back({"D cos sampler: mass beyond its quantile", detail::format_where("v", v),
+                               2.0 * std::numbers::pi * integrate_log_axis(f, q, r0), v, 1e-8});
+            }
+    }
     return out;
 }
 
