@@ -144,9 +144,10 @@ def sampling_efficiency(d):
                 continue
             a, var, eff = zip(*pts)
             kw = dict(color=colors[st], linestyle=styles[fam], marker="o", ms=3, label=f"{fam}: {labels[st]}")
-            axes[0].plot(a, [max(v, 1e-12) for v in var], **kw)
+            axes[0].plot(a, [max(v, 1e-12) for v in var], **kw)  # a zero variance is drawn at 1e-12
             axes[1].plot(a, eff, **kw)
-    for ax, yl in ((axes[0], "variance of one sample"), (axes[1], "efficiency 1 / (variance x seconds per sample)")):
+    for ax, yl in ((axes[0], "variance of one sample (zero drawn at 1e-12)"),
+                   (axes[1], "efficiency 1 / (variance x seconds per sample)")):
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel("alpha")
