@@ -1,6 +1,8 @@
 // The `smithlab` subcommands. Each returns the process exit code: 0 fine, 1 a check failed, 2 bad input.
 #pragma once
 
+#include <functional>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -49,7 +51,9 @@ struct SampleArgs {
 void add_sample(CLI::App& app, SampleArgs& args);
 int run_sample(const SampleArgs& args, const NdfRegistry& registry);
 
-// Writes `text` to `path` through a temporary file in the same directory and a rename: never a partial file.
+// Writes to `path` through a temporary file in the same directory and a rename: never a partial file, also when
+// `write` throws (the temporary is removed and the exception goes on).
+void write_atomically(const std::string& path, const std::function<void(std::ostream&)>& write);
 void write_atomically(const std::string& path, const std::string& text);
 
 // Parses a double, accepting "inf"; NaN and trailing junk are input errors naming `what`.

@@ -2,7 +2,6 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
-#include <sstream>
 
 #include "commands.hpp"
 #include "smithlab/csv.hpp"
@@ -43,19 +42,21 @@ int run_sample(const SampleArgs& a, const NdfRegistry& registry) {
     require(a.theta_i >= 0.0 && a.theta_i < 180.0, "--theta-i", "in [0, 180) degrees", a.theta_i);  // NaN too
     const AnyNdf ndf = registry.make(a.ndf);
     const BoundSampler sampler = prepare(find_sampler(samplers, a.sampler), ndf, direction_from_theta_deg(a.theta_i));
-    Rng rng = make_rng(a.seed);
-    std::ostringstream out;
-    write_csv_record(out, {"x", "y", "z", "pdf"});
-    const auto n = static_cast<std::size_t>(a.n);
-    for (std::size_t i = 0; i < n; ++i) {
-        const NormalSample s = sampler.sample(rng);
-        write_csv_record(out, {format_g17(s.m.x()), format_g17(s.m.y()), format_g17(s.m.z()), format_g17(s.pdf)});
-        if (n >= 1000000 && (i + 1) % (n / 10) == 0) std::cerr << "sample: " << i + 1 << "/" << n << "\n";
-    }
+    // Rows stream out (a billion of them do not fit in memory); a file appears only when complete.
+    auto write = [&](std::ostream& out) {
+        Rng rng = make_rng(a.seed);
+        write_csv_record(out, {"x", "y", "z", "pdf"});
+        const auto n = static_cast<std::size_t>(a.n);
+        for (std::size_t i = 0; i < n; ++i) {
+            const NormalSample s = sampler.sample(rng);
+            write_csv_record(out, {format_g17(s.m.x()), format_g17(s.m.y()), format_g17(s.m.z()), format_g17(s.pdf)});
+            if (n >= 1000000 && (i + 1) % (n / 10) == 0) std::cerr << "sample: " << i + 1 << "/" << n << "\n";
+        }
+    };
     if (a.output.empty() || a.output == "-")
-        std::cout << out.str();
+        write(std::cout);
     else
-        write_atomically(a.output, out.str());
+        write_atomically(a.output, write);
     return exit_ok;
 }
 
