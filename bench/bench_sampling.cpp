@@ -10,16 +10,6 @@ namespace {
 
 using smithlab::Vec3;
 
-// GGX as D alone: every sampler of it is tabulated.
-struct DOnlyGgx {
-    double alpha;
-    double D(double c) const {
-        if (c <= 0.0) return 0.0;
-        const double s = (1.0 - c) * (1.0 + c) + alpha * alpha * c * c;
-        return alpha * alpha / (std::numbers::pi * s * s);
-    }
-};
-
 template <class F>
 void run(benchmark::State& state, F&& draw) {
     smithlab::Rng g = smithlab::make_rng(1);
@@ -66,7 +56,7 @@ int main(int argc, char** argv) {
     register_for("ggx(0.3)", smithlab::ggx(0.3));
     register_for("beckmann(0.3)", smithlab::beckmann(0.3));
     register_for("gtr(0.3,1.5)", smithlab::gtr(0.3, 1.5));
-    register_for("donly-ggx(0.3)", DOnlyGgx{0.3});
+    register_for("donly-ggx(0.3)", smithlab::DOnly<smithlab::Ggx>{smithlab::ggx(0.3)});
     benchmark::Initialize(&argc, argv);
     if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
     benchmark::RunSpecifiedBenchmarks();

@@ -44,6 +44,17 @@ Run run(const std::string& args) {
 
 void write(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
 
+// A malformed scene: exit 2, a message holding `expected`, and no output directory. Returns the message.
+std::string check_bad_scene(const fs::path& d, const std::string& name, const std::string& text, const std::string& expected) {
+    write(d / name, text);
+    const Run r = run("report --scene '" + (d / name).string() + "' --out '" + (d / "never").string() + "'");
+    INFO(name << ": " << r.err);
+    CHECK(r.rc == 2);
+    CHECK_THAT(r.err, Catch::Contains(expected));
+    CHECK_FALSE(fs::exists(d / "never"));
+    return r.err;
+}
+
 // The largest value of the last column of a CSV file with a header.
 double max_of_last_column(std::istream& in) {
     std::string line;
@@ -236,22 +247,14 @@ TEST_CASE("report: a scene computes what it names, caches its references, and re
     CHECK_THAT(r.err, Catch::Contains("0 reused from the cache, 16 computed"));
     CHECK_THAT(run(args).err, Catch::Contains("16 reused from the cache, 0 computed"));
 
-    write(d / "bad.toml", "[grid]\nalpha = [0.1]\nmu = \"many\"\n");
-    const Run bad = run("report --scene '" + (d / "bad.toml").string() + "' --out '" + (d / "never").string() + "'");
-    CHECK(bad.rc == 2);
-    CHECK_THAT(bad.err, Catch::Contains("bad.toml") && Catch::Contains("grid.mu"));
-    CHECK_FALSE(fs::exists(d / "never"));
-    write(d / "g2gtr.toml", "[grid]\nalpha = [0.1]\nmu = [1.0]\n[[ndf]]\nfamily = \"ggx\"\n[variants]\ninclude = [\"*\"]\n"
-                            "[g2]\ninclude = [\"*\"]\nfamilies = [\"gtr\"]\nmu = [1.0]\n");
-    const Run g2 = run("report --scene '" + (d / "g2gtr.toml").string() + "' --out '" + (d / "never").string() + "'");
-    CHECK(g2.rc == 2);
-    CHECK_THAT(g2.err, Catch::Contains("gamma"));
-    CHECK_FALSE(fs::exists(d / "never"));
-    write(d / "none.toml", "[grid]\nalpha = [0.1]\nmu = [1.0]\n[[ndf]]\nfamily = \"ggx\"\n[variants]\ninclude = [\"nothing*\"]\n");
-    const Run none = run("report --scene '" + (d / "none.toml").string() + "' --out '" + (d / "never").string() + "'");
-    CHECK(none.rc == 2);
-    CHECK_THAT(none.err, Catch::Contains("selects no variant"));
-    CHECK_FALSE(fs::exists(d / "never"));
+    CHECK_THAT(check_bad_scene(d, "bad.toml", "[grid]\nalpha = [0.1]\nmu = \"many\"\n", "grid.mu"), Catch::Contains("bad.toml"));
+    check_bad_scene(d, "g2gtr.toml",
+                    "[grid]\nalpha = [0.1]\nmu = [1.0]\n[[ndf]]\nfamily = \"ggx\"\n[variants]\ninclude = [\"*\"]\n"
+                    "[g2]\ninclude = [\"*\"]\nfamilies = [\"gtr\"]\nmu = [1.0]\n",
+                    "gamma");
+    check_bad_scene(d, "none.toml",
+                    "[grid]\nalpha = [0.1]\nmu = [1.0]\n[[ndf]]\nfamily = \"ggx\"\n[variants]\ninclude = [\"nothing*\"]\n",
+                    "selects no variant");
 }
 
 TEST_CASE("report: the sampling experiment, the blog's point measured", "[cli][report][sampling]") {
@@ -297,12 +300,10 @@ TEST_CASE("report: the sampling experiment, the blog's point measured", "[cli][r
         CHECK(var[key]["cosine"] > 100.0 * var[key]["dcos"]);
         CHECK(var[key]["dcos"] > var[key]["vndf"]);
     }
-    write(d / "bad_smp.toml", "[grid]\nalpha = [0.5]\nmu = [1.0]\n[[ndf]]\nfamily = \"ggx\"\n[variants]\ninclude = [\"*\"]\n"
-                              "[sampling]\nfamilies = [\"blinn\"]\nalpha = [0.1]\n");
-    const Run bad = run("report --scene '" + (d / "bad_smp.toml").string() + "' --out '" + (d / "never").string() + "'");
-    CHECK(bad.rc == 2);
-    CHECK_THAT(bad.err, Catch::Contains("sampling.families"));
-    CHECK_FALSE(fs::exists(d / "never"));
+    check_bad_scene(d, "bad_smp.toml",
+                    "[grid]\nalpha = [0.5]\nmu = [1.0]\n[[ndf]]\nfamily = \"ggx\"\n[variants]\ninclude = [\"*\"]\n"
+                    "[sampling]\nfamilies = [\"blinn\"]\nalpha = [0.1]\n",
+                    "sampling.families");
 }
 
 TEST_CASE("report: Dimov 2015's figures reproduce, and are drawn", "[cli][report]") {

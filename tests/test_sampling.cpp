@@ -13,16 +13,6 @@ using namespace smithlab;
 
 namespace {
 
-// GGX written as D alone: no slope form, no sampler, no Lambda. Everything is derived (tabulated) for it.
-struct DOnlyGgx {
-    double alpha;
-    double D(double c) const {
-        if (c <= 0.0) return 0.0;
-        const double s = (1.0 - c) * (1.0 + c) + alpha * alpha * c * c;
-        return alpha * alpha / (std::numbers::pi * s * s);
-    }
-};
-
 struct Case {
     std::string sampler, spec;
     double theta_i;
@@ -39,8 +29,9 @@ std::vector<std::string> ndf_specs() {
 
 NdfRegistry registry_with_donly() {
     NdfRegistry r = builtin_registry();
+    // GGX as D alone: no slope form, no sampler, no Lambda; everything is derived (tabulated) for it.
     r.add({"donly_ggx", {"alpha"}, "GGX as D alone", {"donly_ggx(alpha=0.3)"}},
-          [](const NdfParams& p) { return DOnlyGgx{p.at("alpha")}; });
+          [](const NdfParams& p) { return DOnly<Ggx>{ggx(p.at("alpha"))}; });
     return r;
 }
 

@@ -72,6 +72,14 @@ double slope_density(const N& ndf, double r2) {
     else return detail::D_cos4(ndf, r2);
 }
 
+// N seen through D alone: what smithlab derives for a plugged-in NDF (slope form from D, Lambda by quadrature,
+// tabulated samplers), to set beside what N's own members give.
+template <Ndf N>
+struct DOnly {
+    N ndf;
+    double D(double cos_theta_m) const { return ndf.D(cos_theta_m); }
+};
+
 // Whether `ndf` offers a closed-form / spline Lambda. Type-erased NDFs answer at run time.
 template <Ndf N>
 bool has_closed_Lambda(const N& ndf) {
