@@ -1,4 +1,5 @@
-// smithlab report: the error-against-run-time report of the Lambda variants, from a scene file.
+// smithlab report: the error-against-run-time report of the Lambda variants (and the sampling experiment), from a
+// scene file.
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -11,12 +12,16 @@
 namespace smithlab::cli {
 
 void add_report(CLI::App& app, ReportArgs& a) {
-    CLI::App* c = app.add_subcommand("report", "Measure every Lambda variant's error and cost on one grid");
+    CLI::App* c = app.add_subcommand(
+        "report", "Measure every Lambda variant's error and cost on one grid, and the samplers' efficiency");
     c->footer(
         "Runs the scene (TOML; default: the embedded experiments/scenes/g1_report.toml, see --print-scene):\n"
-        "every selected variant on the grid against an independent reference, timed with Google Benchmark.\n"
-        "Writes OUT/report.md, OUT/variants.csv, OUT/bench.json; references are cached in OUT/cache and reused\n"
-        "when the same scene runs again. Only what the scene names is computed.\n"
+        "every selected variant on the grid against an independent reference, timed with Google Benchmark;\n"
+        "with [g2], the G2 approximations; with [sampling], the sampling-efficiency experiment (cosine, D cos and\n"
+        "visible-normal sampling of a conductor's albedo); the figures named in [figures].\n"
+        "Writes OUT/report.md, OUT/variants.csv, OUT/bench.json (and g2_variants.csv, sampling.csv, *.png);\n"
+        "references are cached in OUT/cache and reused when the same scene runs again. Only what the scene names\n"
+        "is computed; a malformed scene is an error naming the key, exit 2, and nothing is written.\n"
         "Examples:\n"
         "  smithlab report\n"
         "  smithlab report --scene my_scene.toml --out my_report");
