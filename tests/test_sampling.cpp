@@ -125,6 +125,8 @@ TEST_CASE("D cos laws: the analytic survival functions against quadrature of pi 
         for (double g : {0.0, 0.5, 1.0, 1.0 + 1e-9, 1.5, 2.0, 3.3, 20.0}) check(gtr(a, g), "gtr " + std::to_string(a) + " " + std::to_string(g));
     }
     check(gtr(0.999999, 2.5), "gtr 0.999999");
+    check(gtr(1e-30, 2.5), "gtr 1e-30 2.5");
+    check(gtr(1e-30, 25.0), "gtr 1e-30 25");  // (gamma - 1) ln(1/alpha^2) = 3300: expm1 would overflow
     for (double n : {0.0, 1.0, 20.0, 1e4}) check(blinn(n), "blinn " + std::to_string(n));
 }
 

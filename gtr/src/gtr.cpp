@@ -53,7 +53,12 @@ double Gtr::Dcos_r2(double v) const {
     if (alpha == 1.0) return (1.0 - v) / v;
     const double a2 = alpha * alpha, one_minus_a2 = (1.0 - alpha) * (1.0 + alpha), L = -2.0 * std::log(alpha);
     const double e = 1.0 - gamma;
-    const double Lc = e == 0.0 ? v * L : -std::log1p(v * std::expm1(-e * L)) / e;
+    // L_c = log1p(v expm1(kL)) / k with k = -e; past kL = 700, where expm1 overflows (gamma = 20 at alpha = 1e-16),
+    // as L + log(v + (1 - v) e^{-kL}) / k, which cancels nothing there: v >= 2^-53 > e^{-kL}.
+    const double kL = -e * L;
+    const double Lc = e == 0.0 ? v * L
+                      : kL > 700.0 ? L + std::log(v + (1.0 - v) * std::exp(-kL)) / -e
+                                 : -std::log1p(v * std::expm1(kL)) / e;
     return std::max(0.0, one_minus_a2 / std::expm1(Lc) - a2);
 }
 
