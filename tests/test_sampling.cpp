@@ -150,6 +150,13 @@ TEST_CASE("D cos tables: against the analytic inversions, within their stated er
     compare(blinn(20.0), "blinn(20)");
 }
 
+TEST_CASE("D cos tables: a law reaching the ends of the table's range is refused, not truncated", "[sampling]") {
+    CHECK_NOTHROW(DcosSampler(ggx(1e-40), true));
+    CHECK_THROWS_WITH(DcosSampler(ggx(1e-49), true), Catch::Contains("1e-100"));
+    CHECK_THROWS_WITH(DcosSampler(ggx(1e49), true), Catch::Contains("1e100"));
+    CHECK_NOTHROW(DcosSampler(ggx(1e-49)));  // the analytic inversion has no range
+}
+
 TEST_CASE("reflected directions: pdf_m / (4 |i.m|) integrates to 1 over the sphere of outgoing directions", "[sampling]") {
     // o = reflect(i, m) and m = normalize(i + o): the Jacobian d omega_m / d omega_o = 1 / (4 |i.m|) (Walter 2007 eq. 14).
     const Vec3 wi = direction_from_theta_deg(30.0);

@@ -47,6 +47,11 @@ RadialTable::RadialTable(const std::function<double(double s)>& w) {
     total_ = S_[0];
     if (!(total_ > 0.0 && total_ < INFINITY))
         throw input_error("cannot tabulate a density whose integral is " + std::to_string(total_));
+    // The law must live well inside the range: at most 1e-12 of it within 4 (in ln tan^2) of either end.
+    const auto edge = static_cast<std::size_t>(4.0 / h);
+    if ((S_[0] - S_[edge]) / total_ > 1e-12 || S_[n - edge] / total_ > 1e-12)
+        throw input_error("cannot tabulate a law of tan^2(theta_m) with mass near 1e-100 or 1e100 (alpha beyond ~1e-45 "
+                          "or ~1e45?): the table spans tan^2 in [1e-100, 1e100]");
     for (std::size_t k = 0; k <= n; ++k) {
         S_[k] /= total_;
         dS_[k] = -h * g(y_min + h * static_cast<double>(k)) / total_;

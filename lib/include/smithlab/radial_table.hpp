@@ -18,7 +18,8 @@ namespace smithlab {
 
 class RadialTable {
 public:
-    // w: the (unnormalized) density in s, finite and >= 0. input_error when it has no mass or is not finite.
+    // w: the (unnormalized) density in s, finite and >= 0. input_error when it has no mass, is not finite, or has
+    // more than 1e-12 of its mass near the ends of the range (a peak at tan^2 ~ 1e-100: alpha ~ 1e-50).
     explicit RadialTable(const std::function<double(double s)>& w);
 
     double total() const { return total_; }  // integral of w over (0, inf), as tabulated
