@@ -6,6 +6,7 @@
 
 #include "smithlab/errors.hpp"
 #include "smithlab/samplers.hpp"
+#include "smithlab/smith.hpp"
 
 namespace smithlab::report {
 
@@ -13,18 +14,14 @@ namespace {
 
 constexpr double pi = std::numbers::pi;
 
-// Lambda of a direction above the surface, by the NDF's closed form.
-double Lambda_of(const AnyNdf& ndf, const Vec3& w) {
-    const double sin = std::hypot(w.x(), w.y());
-    return sin == 0.0 ? 0.0 : ndf.Lambda(w.z() / sin);
-}
-
 // The integrand's pieces for one NDF seen from wo.
 struct Conductor {
     AnyNdf ndf;
     Vec3 wo;
     double Lambda_o;
-    double G2(const Vec3& wi) const { return 1.0 / (1.0 + Lambda_of(ndf, wi) + Lambda_o); }
+    double G2(const Vec3& wi) const {
+        return G2_from_Lambdas(Lambda(ndf, cot_theta(wi)), Lambda_o, true, G2Form::height_correlated);
+    }
     double D(const Vec3& m) const {
         const double s = tan2_theta(m);
         return D_from_P22(ndf.slope_density(s), s);
@@ -52,7 +49,7 @@ std::vector<SamplingRow> run_sampling_experiment(const Scene::Sampling& s, const
     const Vec3 wo = direction_from_theta_deg(s.theta_o);
     std::vector<SamplingRow> rows;
     for (const AnyNdf& ndf : list) {
-        const auto c = std::make_shared<const Conductor>(Conductor{ndf, wo, Lambda_of(ndf, wo)});
+        const auto c = std::make_shared<const Conductor>(Conductor{ndf, wo, Lambda(ndf, cot_theta(wo))});
         const BoundSampler dcos = prepare(find_sampler(samplers, "dcos"), ndf, wo);
         const bool ggx = ndf.family() == "ggx";
         const BoundSampler vndf = prepare(find_sampler(samplers, ggx ? "vndf-ggx" : "vndf"), ndf, wo);

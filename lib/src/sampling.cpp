@@ -5,6 +5,7 @@
 #include <string>
 
 #include "smithlab/errors.hpp"
+#include "smithlab/ndfs.hpp"
 
 namespace smithlab {
 
@@ -71,9 +72,8 @@ NormalSample VisibleNormalSampler::sample(const Vec3& wi, Rng& g) const {
 double VisibleNormalSampler::pdf(const Vec3& wi, const Vec3& m) const {
     const double wm = wi.dot(m);
     if (!(m.z() > 0.0 && wm > 0.0 && wi.z() > 0.0)) return 0.0;
-    const double s = tan2_theta(m), sin_i = std::hypot(wi.x(), wi.y());
-    const double Lambda = sin_i == 0.0 ? 0.0 : Lambda_->Lambda(wi.z() / sin_i);
-    return wm * D_from_P22(dcos_.P22(s), s) / (wi.z() * (1.0 + Lambda));
+    const double s = tan2_theta(m);
+    return wm * D_from_P22(dcos_.P22(s), s) / (wi.z() * (1.0 + Lambda_->Lambda(cot_theta(wi))));
 }
 
 double VisibleNormalSampler::table_error() const {
@@ -101,13 +101,9 @@ NormalSample sample_ggx_visible(double alpha, const Vec3& wi, Rng& g) {
 double pdf_ggx_visible(double alpha, const Vec3& wi, const Vec3& m) {
     const double wm = wi.dot(m);
     if (!(m.z() > 0.0 && wm > 0.0 && wi.z() > 0.0)) return 0.0;
-    const double s = tan2_theta(m), a2 = alpha * alpha;
-    const double P22 = a2 / (pi * (s + a2) * (s + a2));
-    const double sin_i = std::hypot(wi.x(), wi.y());
-    // Walter 2007 eq. 72 in the form of Ggx::Lambda: alpha^2 / (2 mu (mu + hypot(mu, alpha))).
-    const double mu = sin_i == 0.0 ? INFINITY : wi.z() / sin_i;
-    const double Lambda = sin_i == 0.0 ? 0.0 : a2 / (2.0 * mu * (mu + std::hypot(mu, alpha)));
-    return wm * D_from_P22(P22, s) / (wi.z() * (1.0 + Lambda));
+    const Ggx ggx{alpha};
+    const double s = tan2_theta(m);
+    return wm * D_from_P22(ggx.slope_density(s), s) / (wi.z() * (1.0 + ggx.Lambda(cot_theta(wi))));  // Lambda(inf) = 0
 }
 
 // ---- Hammon ---------------------------------------------------------------------------------------------

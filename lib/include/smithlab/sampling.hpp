@@ -37,6 +37,8 @@ inline double reflected_pdf(double pdf_m, const Vec3& i, const Vec3& m) { return
 
 // The normal of slope tan^2(theta) = s at azimuth phi; cos and sin come from s, exact at the pole.
 Vec3 normal_from_slope(double s, double phi);
+// mu = cot(theta) of a direction, the argument of Lambda: +inf straight up.
+inline double cot_theta(const Vec3& w) { return w.z() / std::hypot(w.x(), w.y()); }
 // tan^2(theta) of a unit vector, (x^2 + y^2) / z^2.
 inline double tan2_theta(const Vec3& m) { return (m.x() * m.x() + m.y() * m.y()) / (m.z() * m.z()); }
 // D(m) = P22 / cos^4 = P22(s) (1 + s)^2 (Walter 2007 eq. 42), from the slope density.
