@@ -44,10 +44,18 @@ Run run(const std::string& args) {
 
 void write(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
 
+// `smithlab report` on a scene written to d/name, into d/out.
+std::string report_args(const fs::path& d, const std::string& name, const std::string& out) {
+    return "report --scene '" + (d / name).string() + "' --out '" + (d / out).string() + "'";
+}
+Run run_scene(const fs::path& d, const std::string& name, const std::string& text, const std::string& out) {
+    write(d / name, text);
+    return run(report_args(d, name, out));
+}
+
 // A malformed scene: exit 2, a message holding `expected`, and no output directory. Returns the message.
 std::string check_bad_scene(const fs::path& d, const std::string& name, const std::string& text, const std::string& expected) {
-    write(d / name, text);
-    const Run r = run("report --scene '" + (d / name).string() + "' --out '" + (d / "never").string() + "'");
+    const Run r = run_scene(d, name, text, "never");
     INFO(name << ": " << r.err);
     CHECK(r.rc == 2);
     CHECK_THAT(r.err, Catch::Contains(expected));
@@ -228,7 +236,7 @@ TEST_CASE("report: a scene computes what it names, caches its references, and re
           "[variants]\ninclude = [\"dimov-spline\", \"schlick-ggx\"]\n"
           "[g2]\ninclude = [\"g2-hammon-lerp\"]\nmu = [0.5, 2.0]\n"
           "[timing]\nmin_time = 0.01\n");
-    const std::string args = "report --scene '" + (d / "small.toml").string() + "' --out '" + (d / "rep").string() + "'";
+    const std::string args = report_args(d, "small.toml", "rep");
     const Run r = run(args);
     INFO(r.err);
     REQUIRE(r.rc == 0);
@@ -260,11 +268,12 @@ TEST_CASE("report: a scene computes what it names, caches its references, and re
 TEST_CASE("report: the sampling experiment, the blog's point measured", "[cli][report][sampling]") {
     const fs::path d = scratch();
     fs::remove_all(d / "smp");
-    write(d / "smp.toml",
-          "[grid]\nalpha = [0.5]\nmu = [1.0]\n[[ndf]]\nfamily = \"ggx\"\n[variants]\ninclude = [\"schlick-ggx\"]\n"
-          "[timing]\nmin_time = 0.01\n"
-          "[sampling]\nfamilies = [\"ggx\", \"beckmann\"]\nalpha = [0.01, 0.5]\ntheta_o = 30\nsamples = 40000\nseed = 3\n");
-    const Run r = run("report --scene '" + (d / "smp.toml").string() + "' --out '" + (d / "smp").string() + "'");
+    const Run r = run_scene(
+        d, "smp.toml",
+        "[grid]\nalpha = [0.5]\nmu = [1.0]\n[[ndf]]\nfamily = \"ggx\"\n[variants]\ninclude = [\"schlick-ggx\"]\n"
+        "[timing]\nmin_time = 0.01\n"
+        "[sampling]\nfamilies = [\"ggx\", \"beckmann\"]\nalpha = [0.01, 0.5]\ntheta_o = 30\nsamples = 40000\nseed = 3\n",
+        "smp");
     INFO(r.err);
     REQUIRE(r.rc == 0);
     CHECK(fs::exists(d / "smp" / "sampling_efficiency.png"));
@@ -309,10 +318,11 @@ TEST_CASE("report: the sampling experiment, the blog's point measured", "[cli][r
 TEST_CASE("report: Dimov 2015's figures reproduce, and are drawn", "[cli][report]") {
     const fs::path d = scratch();
     fs::remove_all(d / "dimov");
-    write(d / "dimov.toml",
-          "[grid]\nalpha = [0.3]\nmu = [1.0]\n[[ndf]]\nfamily = \"ggx\"\n[variants]\ninclude = [\"schlick-ggx\"]\n"
-          "[timing]\nmin_time = 0.01\n[figures]\ndimov_gamma4_vs_10 = true\ndimov_spline_mean = true\n");
-    const Run r = run("report --scene '" + (d / "dimov.toml").string() + "' --out '" + (d / "dimov").string() + "'");
+    const Run r = run_scene(
+        d, "dimov.toml",
+        "[grid]\nalpha = [0.3]\nmu = [1.0]\n[[ndf]]\nfamily = \"ggx\"\n[variants]\ninclude = [\"schlick-ggx\"]\n"
+        "[timing]\nmin_time = 0.01\n[figures]\ndimov_gamma4_vs_10 = true\ndimov_spline_mean = true\n",
+        "dimov");
     INFO(r.err);
     REQUIRE(r.rc == 0);
     // Sec. 6: "up to 0.3" for |G1(gamma = 4) - G1(gamma = 10)| over alpha in (0, 1), mu in (0, 2).
