@@ -1,6 +1,8 @@
 // The smithlab executable, driven as a user would: good runs, bad input (exit 2, the offending item named,
 // no output file), the CSV contract.
 #include <catch2/catch.hpp>
+
+#include "cli_run.hpp"
 #include <cmath>
 #include <algorithm>
 #include <cstdio>
@@ -11,57 +13,9 @@
 #include <sstream>
 #include <string>
 
-namespace fs = std::filesystem;
+using namespace smithlab_test;
 
 namespace {
-
-struct Run {
-    int rc;
-    std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
-
-fs::path scratch() {
-    const fs::path d = fs::temp_directory_path() / ("smithlab_cli_test_" + std::to_string(::getpid()));
-    fs::create_directories(d);
-    return d;
-}
-
-// args is passed to the shell as is: quote specs with single quotes.
-Run run(const std::string& args) {
-    const fs::path d = scratch();
-    const std::string cmd = std::string("'") + SMITHLAB_EXE + "' " + args + " > '" + (d / "out").string() + "' 2> '" +
-                            (d / "err").string() + "'";
-    const int status = std::system(cmd.c_str());
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(d / "out"), slurp(d / "err")};
-}
-
-void write(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
-
-// `smithlab report` on a scene written to d/name, into d/out.
-std::string report_args(const fs::path& d, const std::string& name, const std::string& out) {
-    return "report --scene '" + (d / name).string() + "' --out '" + (d / out).string() + "'";
-}
-Run run_scene(const fs::path& d, const std::string& name, const std::string& text, const std::string& out) {
-    write(d / name, text);
-    return run(report_args(d, name, out));
-}
-
-// A malformed scene: exit 2, a message holding `expected`, and no output directory. Returns the message.
-std::string check_bad_scene(const fs::path& d, const std::string& name, const std::string& text, const std::string& expected) {
-    const Run r = run_scene(d, name, text, "never");
-    INFO(name << ": " << r.err);
-    CHECK(r.rc == 2);
-    CHECK_THAT(r.err, Catch::Contains(expected));
-    CHECK_FALSE(fs::exists(d / "never"));
-    return r.err;
-}
 
 // The largest value of the last column of a CSV file with a header.
 double max_of_last_column(std::istream& in) {

@@ -1,0 +1,67 @@
+// Drive the smithlab executable from a test as a user would: run it through the shell, capture stdout, stderr and
+// the exit code. Shared by the CLI, scene, output and fuzz tests.
+#pragma once
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace smithlab_test {
+
+struct Run {
+    int rc;
+    std::string out, err;
+};
+
+inline std::string slurp(const fs::path& p) {
+    std::ifstream in(p);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+inline fs::path scratch() {
+    const fs::path d = fs::temp_directory_path() / ("smithlab_cli_test_" + std::to_string(::getpid()));
+    fs::create_directories(d);
+    return d;
+}
+
+// args is passed to the shell as is: quote specs with single quotes.
+inline Run run(const std::string& args) {
+    const fs::path d = scratch();
+    const std::string cmd = std::string("'") + SMITHLAB_EXE + "' " + args + " > '" + (d / "out").string() + "' 2> '" +
+                            (d / "err").string() + "'";
+    const int status = std::system(cmd.c_str());
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(d / "out"), slurp(d / "err")};
+}
+
+inline void write(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
+
+// `smithlab report` on a scene written to d/name, into d/out.
+inline std::string report_args(const fs::path& d, const std::string& name, const std::string& out) {
+    return "report --scene '" + (d / name).string() + "' --out '" + (d / out).string() + "'";
+}
+inline Run run_scene(const fs::path& d, const std::string& name, const std::string& text, const std::string& out) {
+    write(d / name, text);
+    return run(report_args(d, name, out));
+}
+
+// A malformed scene: exit 2, a message holding `expected`, and no output directory. Returns the message.
+inline std::string check_bad_scene(const fs::path& d, const std::string& name, const std::string& text, const std::string& expected) {
+    const Run r = run_scene(d, name, text, "never");
+    INFO(name << ": " << r.err);
+    CHECK(r.rc == 2);
+    CHECK_THAT(r.err, Catch::Contains(expected));
+    CHECK_FALSE(fs::exists(d / "never"));
+    return r.err;
+}
+
+}  // namespace smithlab_test
