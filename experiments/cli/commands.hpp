@@ -1,8 +1,6 @@
 // The `smithlab` subcommands. Each returns the process exit code: 0 fine, 1 a check failed, 2 bad input.
 #pragma once
 
-#include <functional>
-#include <ostream>
 #include <string>
 #include <vector>
 
@@ -37,6 +35,7 @@ int run_check(const CheckArgs& args, const NdfRegistry& registry);
 struct ReportArgs {
     std::string scene, out = "report";
     bool print_scene = false;
+    double max_work = 0.0;  // evaluations a scene may cost: report::default_max_work (set by add_report) or --max-work
 };
 void add_report(CLI::App& app, ReportArgs& args);
 int run_report(const ReportArgs& args, const NdfRegistry& registry, const VariantRegistry& variants);
@@ -45,18 +44,15 @@ struct SampleArgs {
     std::string ndf, sampler, output;
     double theta_i = 0.0;
     long long n = 1000;
-    unsigned long long seed = 1;
+    std::string seed = "1";  // text, parsed strictly (parse_seed): no sign, no wrap-around
     bool list_samplers = false;
 };
 void add_sample(CLI::App& app, SampleArgs& args);
 int run_sample(const SampleArgs& args, const NdfRegistry& registry);
 
-// Writes to `path` through a temporary file in the same directory and a rename: never a partial file, also when
-// `write` throws (the temporary is removed and the exception goes on).
-void write_atomically(const std::string& path, const std::function<void(std::ostream&)>& write);
-void write_atomically(const std::string& path, const std::string& text);
-
 // Parses a double, accepting "inf"; NaN and trailing junk are input errors naming `what`.
 double parse_number(const std::string& text, const std::string& what);
+// Parses a seed: decimal digits only, 0 .. 2^64 - 1; anything else is an input error naming `what`.
+unsigned long long parse_seed(const std::string& text, const std::string& what);
 
 }  // namespace smithlab::cli

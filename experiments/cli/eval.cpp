@@ -9,23 +9,15 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include "commands.hpp"
 #include "smithlab/csv.hpp"
+#include "output_file.hpp"
 #include "smithlab/errors.hpp"
 
 namespace smithlab::cli {
-
-double parse_number(const std::string& text, const std::string& what) {
-    errno = 0;
-    char* end = nullptr;
-    const double v = std::strtod(text.c_str(), &end);
-    if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE)
-        throw input_error(what + " is not a number: '" + text + "'");
-    if (std::isnan(v)) throw input_error(what + " is NaN");
-    return v;
-}
 
 namespace {
 
@@ -90,8 +82,12 @@ Prepared prepare(const std::string& spec, const NdfRegistry& registry, const Rou
 }
 
 int eval_csv(const EvalArgs& a, const NdfRegistry& registry, const Route& o) {
+    // The output is checked before any work: a path that cannot be written, or is the input, is refused now.
+    std::optional<output::OutputTarget> target;
+    if (!a.output.empty() && a.output != "-") target = output::resolve_output(a.output, {a.input});
     std::ifstream file;
     if (a.input != "-") {
+        output::require_readable_input(a.input, "input file");
         file.open(a.input, std::ios::binary);
         if (!file) throw input_error("cannot open input file '" + a.input + "'");
     }
@@ -103,8 +99,9 @@ int eval_csv(const EvalArgs& a, const NdfRegistry& registry, const Route& o) {
     int ndf_col = -1, mu_col = -1;
     for (std::size_t k = 0; k < head.fields.size(); ++k) {
         const std::string& h = head.fields[k];
-        if (h == "ndf") ndf_col = static_cast<int>(k);
-        if (h == "mu") mu_col = static_cast<int>(k);
+        int* col = h == "ndf" ? &ndf_col : h == "mu" ? &mu_col : nullptr;
+        if (col && *col >= 0) throw input_error(src + ":" + std::to_string(head.line) + ": header has two '" + h + "' columns");
+        if (col) *col = static_cast<int>(k);
         if (h == "lambda" || h == "g1")
             throw input_error(src + ": header already has a '" + h + "' column, which eval would write");
     }
@@ -140,7 +137,7 @@ int eval_csv(const EvalArgs& a, const NdfRegistry& registry, const Route& o) {
             row.push_back(format_g17(lambda));
             row.push_back(format_g17(g1));
             write_csv_record(out, row);
-        } catch (const input_error& e) {
+        } catch (const std::exception& e) {  // bad input, or a numeric failure on this row's values
             std::cerr << src << ":" << rec.line << ": " << e.what() << "\n";
             ++bad;
         }
@@ -150,10 +147,10 @@ int eval_csv(const EvalArgs& a, const NdfRegistry& registry, const Route& o) {
         std::cerr << "smithlab: error: " << bad << " bad row(s) in " << src << "; no output written\n";
         return exit_bad_input;
     }
-    if (a.output.empty() || a.output == "-")
-        std::cout << out.str();
+    if (target)
+        output::write_output(*target, out.str());
     else
-        write_atomically(a.output, out.str());
+        std::cout << out.str();
     return exit_ok;
 }
 

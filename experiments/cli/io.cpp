@@ -1,32 +1,30 @@
-// Output helpers shared by the subcommands.
-#include <filesystem>
-#include <fstream>
+// Parsing of option values shared by the subcommands.
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
 
 #include "commands.hpp"
 #include "smithlab/errors.hpp"
 
 namespace smithlab::cli {
 
-void write_atomically(const std::string& path, const std::function<void(std::ostream&)>& write) {
-    namespace fs = std::filesystem;
-    const fs::path target(path);
-    const fs::path tmp = target.parent_path() / (target.filename().string() + ".partial");
-    try {
-        std::ofstream out(tmp, std::ios::binary);
-        if (!out) throw input_error("cannot write output file '" + path + "'");
-        write(out);
-        out.close();
-        if (!out) throw input_error("cannot write output file '" + path + "'");
-    } catch (...) {
-        std::error_code ignored;
-        fs::remove(tmp, ignored);
-        throw;
-    }
-    fs::rename(tmp, target);
+double parse_number(const std::string& text, const std::string& what) {
+    errno = 0;
+    char* end = nullptr;
+    const double v = std::strtod(text.c_str(), &end);
+    if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE)
+        throw input_error(what + " is not a number: '" + text + "'");
+    if (std::isnan(v)) throw input_error(what + " is NaN");
+    return v;
 }
 
-void write_atomically(const std::string& path, const std::string& text) {
-    write_atomically(path, [&](std::ostream& out) { out << text; });
+unsigned long long parse_seed(const std::string& text, const std::string& what) {
+    if (text.empty() || text.size() > 20 || text.find_first_not_of("0123456789") != std::string::npos)
+        throw input_error(what + " must be an integer in [0, 18446744073709551615], got '" + text + "'");
+    errno = 0;
+    const unsigned long long v = std::strtoull(text.c_str(), nullptr, 10);
+    if (errno == ERANGE) throw input_error(what + " must be an integer in [0, 18446744073709551615], got '" + text + "'");
+    return v;
 }
 
 }  // namespace smithlab::cli

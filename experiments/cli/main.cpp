@@ -1,13 +1,33 @@
 // smithlab -- command-line front end. `smithlab --help` and `smithlab SUBCOMMAND --help` explain everything.
 #include <exception>
+#include <filesystem>
 #include <iostream>
 
 #include "commands.hpp"
+#include "signal_cleanup.hpp"
 #include "smithlab/errors.hpp"
 #include "smithlab/gtr/registry.hpp"
 
+namespace {
+
+// CLI11 says only "A subcommand is required" for `smithlab frobnicate`: name it and list the known ones.
+bool unknown_subcommand(CLI::App& app, int argc, char** argv) {
+    if (argc < 2 || argv[1][0] == '-') return false;
+    std::string known;
+    for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
+        if (sub->get_name() == argv[1]) return false;
+        known += (known.empty() ? "" : ", ") + sub->get_name();
+    }
+    std::cerr << "smithlab: error: unknown subcommand '" << argv[1] << "' (known: " << known
+              << "; see smithlab --help)\n";
+    return true;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
     using namespace smithlab;
+    output::install_signal_cleanup();  // before any thread: outputs a signal interrupts leave no temporary
     const NdfRegistry registry = builtin_registry();
     const VariantRegistry variants = builtin_variants();
 
@@ -29,6 +49,7 @@ int main(int argc, char** argv) {
     cli::add_sample(app, sample_args);
     CLI::App* list = app.add_subcommand("list", "List the registered NDFs, their parameters and example specs");
 
+    if (unknown_subcommand(app, argc, argv)) return cli::exit_bad_input;
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -56,6 +77,9 @@ int main(int argc, char** argv) {
             return cli::exit_ok;
         }
     } catch (const input_error& e) {
+        std::cerr << "smithlab: error: " << e.what() << "\n";
+        return cli::exit_bad_input;
+    } catch (const std::filesystem::filesystem_error& e) {  // a path the user gave that cannot be used
         std::cerr << "smithlab: error: " << e.what() << "\n";
         return cli::exit_bad_input;
     } catch (const std::exception& e) {

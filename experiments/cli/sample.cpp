@@ -2,8 +2,10 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <optional>
 
 #include "commands.hpp"
+#include "output_file.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
 #include "smithlab/samplers.hpp"
@@ -26,7 +28,7 @@ void add_sample(CLI::App& app, SampleArgs& a) {
         ->capture_default_str()
         ->check(CLI::Range(0.0, 179.999999));
     c->add_option("--n", a.n, "number of samples")->capture_default_str()->check(CLI::Range(1LL, 1000000000LL));
-    c->add_option("--seed", a.seed, "seed of the PCG generator")->capture_default_str();
+    c->add_option("--seed", a.seed, "seed of the PCG generator, an integer in [0, 2^64)")->capture_default_str();
     c->add_option("--output", a.output, "output CSV file (default: stdout)");
     c->add_flag("--list-samplers", a.list_samplers, "list the samplers with a one-line description");
 }
@@ -40,11 +42,14 @@ int run_sample(const SampleArgs& a, const NdfRegistry& registry) {
     if (a.ndf.empty() || a.sampler.empty())
         throw input_error("sample needs --ndf SPEC and --sampler NAME (see smithlab sample --help)");
     require(a.theta_i >= 0.0 && a.theta_i < 180.0, "--theta-i", "in [0, 180) degrees", a.theta_i);  // NaN too
+    const unsigned long long seed = parse_seed(a.seed, "--seed");
+    std::optional<output::OutputTarget> target;  // checked before any work
+    if (!a.output.empty() && a.output != "-") target = output::resolve_output(a.output);
     const AnyNdf ndf = registry.make(a.ndf);
     const BoundSampler sampler = prepare(find_sampler(samplers, a.sampler), ndf, direction_from_theta_deg(a.theta_i));
     // Rows stream out (a billion of them do not fit in memory); a file appears only when complete.
     auto write = [&](std::ostream& out) {
-        Rng rng = make_rng(a.seed);
+        Rng rng = make_rng(seed);
         write_csv_record(out, {"x", "y", "z", "pdf"});
         const auto n = static_cast<std::size_t>(a.n);
         for (std::size_t i = 0; i < n; ++i) {
@@ -53,10 +58,10 @@ int run_sample(const SampleArgs& a, const NdfRegistry& registry) {
             if (n >= 1000000 && (i + 1) % (n / 10) == 0) std::cerr << "sample: " << i + 1 << "/" << n << "\n";
         }
     };
-    if (a.output.empty() || a.output == "-")
-        write(std::cout);
+    if (target)
+        output::write_output(*target, write);
     else
-        write_atomically(a.output, write);
+        write(std::cout);
     return exit_ok;
 }
 

@@ -8,6 +8,11 @@
 #include <string>
 #include <vector>
 
+#include <sys/wait.h>
+
+#include <csignal>
+
+#include "signal_cleanup.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/gtr/gtr.hpp"
 #include "smithlab/smith.hpp"
@@ -94,7 +99,10 @@ void write_figures(const Scene& scene, const fs::path& dir) {
     if (!fs::exists(script)) script = SMITHLAB_PLOT_SCRIPT;
     const std::string cmd = "/usr/bin/python3 '" + script.string() + "' '" + dir.string() + "'";
     std::fprintf(stderr, "report: drawing the figures (%s)\n", cmd.c_str());
-    if (std::system(cmd.c_str()) != 0) {
+    const int status = std::system(cmd.c_str());
+    if (WIFSIGNALED(status) && (WTERMSIG(status) == SIGINT || WTERMSIG(status) == SIGTERM))
+        output::end_as_signalled(WTERMSIG(status));  // the user's Ctrl-C reached the plot script too
+    if (status != 0) {
         std::fprintf(stderr, "report: warning: the figures were not drawn; their data is in %s (needs Debian's "
                              "python3-matplotlib, see .ci/deps)\n", dir.string().c_str());
         std::ofstream(dir / "report.md", std::ios::app) << "\n**The figures were not drawn** (python3-matplotlib missing?); "

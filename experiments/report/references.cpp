@@ -1,10 +1,14 @@
 #include "references.hpp"
 
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 
+#include "output_file.hpp"
 #include "smithlab/csv.hpp"
+#include "smithlab/errors.hpp"
 #include "smithlab/smith.hpp"
 
 namespace smithlab::report {
@@ -34,14 +38,38 @@ double compute_reference(const AnyNdf& ndf, double mu, Route r) {
     return NAN;
 }
 
+namespace {
+
+// A record's check: FNV-1a (64 bit) of its fields, in hex. A record cut short, edited or half-written does not
+// match it and is computed again.
+std::string check_of(const std::string& spec, const std::string& mu, const std::string& route, const std::string& lambda) {
+    std::uint64_t h = 14695981039346656037ull;
+    for (const std::string* f : {&spec, &mu, &route, &lambda}) {
+        for (unsigned char c : *f) h = (h ^ c) * 1099511628211ull;
+        h = (h ^ 0x1fu) * 1099511628211ull;  // a field separator no field holds
+    }
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+    return hex;
+}
+
+}  // namespace
+
 ReferenceCache::ReferenceCache(fs::path file) : file_(std::move(file)) {
     std::ifstream in(file_);
     if (!in) return;
     const auto records = read_csv(in);
-    for (std::size_t i = 1; i < records.size(); ++i)
-        if (records[i].error.empty() && records[i].fields.size() == 4)
-            values_[records[i].fields[0] + "|" + records[i].fields[1] + "|" + records[i].fields[2]] =
-                std::strtod(records[i].fields[3].c_str(), nullptr);
+    for (std::size_t i = 1; i < records.size(); ++i) {
+        const std::vector<std::string>& f = records[i].fields;
+        char* end = nullptr;
+        const double v = f.size() == 5 ? std::strtod(f[3].c_str(), &end) : NAN;
+        if (!records[i].error.empty() || f.size() != 5 || end != f[3].c_str() + f[3].size() || !std::isfinite(v) ||
+            check_of(f[0], f[1], f[2], f[3]) != f[4]) {
+            ++discarded_;
+            continue;
+        }
+        values_[f[0] + "|" + f[1] + "|" + f[2]] = v;
+    }
     loaded_ = values_.size();
 }
 
@@ -53,13 +81,18 @@ double ReferenceCache::get(const AnyNdf& ndf, double mu, Route r) {
 }
 
 void ReferenceCache::save() const {
-    fs::create_directories(file_.parent_path());
-    std::ofstream out(file_);
-    write_csv_record(out, {"spec", "mu", "route", "lambda"});
-    for (const auto& [key, v] : values_) {
-        const auto a = key.find('|'), b = key.find('|', a + 1);
-        write_csv_record(out, {key.substr(0, a), key.substr(a + 1, b - a - 1), key.substr(b + 1), format_g17(v)});
-    }
+    std::error_code ec;
+    fs::create_directories(file_.parent_path(), ec);
+    if (ec) throw input_error("cannot create the reference cache's directory '" + file_.parent_path().string() + "': " + ec.message());
+    output::write_output(output::resolve_output(file_.string()), [&](std::ostream& out) {
+        write_csv_record(out, {"spec", "mu", "route", "lambda", "check"});
+        for (const auto& [key, v] : values_) {
+            const auto a = key.find('|'), b = key.find('|', a + 1);
+            const std::string spec = key.substr(0, a), mu = key.substr(a + 1, b - a - 1), route = key.substr(b + 1);
+            const std::string lambda = format_g17(v);
+            write_csv_record(out, {spec, mu, route, lambda, check_of(spec, mu, route, lambda)});
+        }
+    });
 }
 
 }  // namespace smithlab::report

@@ -22,7 +22,8 @@ const char* name_of(Route r);
 Route route_for(const LambdaVariant& v, const AnyNdf& ndf);
 double compute_reference(const AnyNdf& ndf, double mu, Route r);
 
-// References by (spec, mu, route), read from and saved to a CSV file (DIR/cache/references.csv).
+// References by (spec, mu, route), read from and saved to a CSV file (DIR/cache/references.csv). Each record carries
+// a check of its fields; one that does not match (cut short by a kill, edited) is discarded and computed again.
 class ReferenceCache {
 public:
     explicit ReferenceCache(std::filesystem::path file);
@@ -30,11 +31,12 @@ public:
     void save() const;
     std::size_t loaded() const { return loaded_; }
     std::size_t computed() const { return computed_; }
+    std::size_t discarded() const { return discarded_; }
 
 private:
     std::filesystem::path file_;
     std::map<std::string, double> values_;
-    std::size_t loaded_ = 0, computed_ = 0;
+    std::size_t loaded_ = 0, computed_ = 0, discarded_ = 0;
 };
 
 }  // namespace smithlab::report

@@ -14,6 +14,7 @@
 #include "sampling_experiment.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
+#include "staged_directory.hpp"
 #include "timing.hpp"
 
 namespace smithlab::report {
@@ -129,9 +130,10 @@ int run_report(const Scene& scene, const std::string& out_dir, const NdfRegistry
         sampling = run_sampling_experiment(scene.sampling, ndfs);
     }
 
-    const fs::path dir(out_dir);
-    fs::create_directories(dir);
-    ReferenceCache cache(dir / "cache" / "references.csv");
+    // Everything but the cache is written to a stage and moved into out_dir when complete (staged_directory.hpp).
+    output::StagedDirectory staged(out_dir, "report");
+    const fs::path& dir = staged.path();
+    ReferenceCache cache(fs::path(out_dir) / "cache" / "references.csv");
 
     for (std::size_t i = 0; i < rows.size(); ++i) {
         Row& row = rows[i];
@@ -186,7 +188,9 @@ int run_report(const Scene& scene, const std::string& out_dir, const NdfRegistry
         }
     }
     cache.save();
-    std::fprintf(stderr, "report: references: %zu reused from the cache, %zu computed\n", cache.loaded(), cache.computed());
+    std::fprintf(stderr, "report: references: %zu reused from the cache, %zu computed", cache.loaded(), cache.computed());
+    if (cache.discarded()) std::fprintf(stderr, " (%zu damaged cache records discarded)", cache.discarded());
+    std::fprintf(stderr, "\n");
 
     std::vector<Timed> timed;
     for (Row& r : rows) {
@@ -274,7 +278,8 @@ int run_report(const Scene& scene, const std::string& out_dir, const NdfRegistry
         }
     }
     write_figures(scene, dir);
-    std::fprintf(stderr, "report: wrote %s/report.md and its data\n", dir.string().c_str());
+    staged.publish();
+    std::fprintf(stderr, "report: wrote %s/report.md and its data\n", out_dir.c_str());
     return 0;
 }
 

@@ -1,0 +1,53 @@
+#include "staged_directory.hpp"
+
+#include <vector>
+
+#include "output_file.hpp"
+#include "smithlab/errors.hpp"
+
+namespace smithlab::output {
+
+namespace fs = std::filesystem;
+
+void require_output_directory(const fs::path& out) {
+    std::error_code ec;
+    const fs::file_status st = fs::status(out, ec);
+    if (st.type() != fs::file_type::not_found && st.type() != fs::file_type::directory)
+        throw input_error("output directory '" + out.string() + "' exists and is not a directory");
+}
+
+StagedDirectory::StagedDirectory(const fs::path& out, const std::string& name) : out_(out) {
+    require_output_directory(out);
+    std::error_code ec;
+    fs::create_directories(out, ec);
+    if (ec) throw input_error("output directory '" + out.string() + "' cannot be created: " + ec.message());
+    remove_stale_temporaries(out, name);
+    stage_.emplace(out / temporary_name(name));
+    fs::create_directories(stage_->path(), ec);
+    if (ec) throw input_error("output directory '" + out.string() + "' is not writable: " + ec.message());
+}
+
+StagedDirectory::~StagedDirectory() {
+    std::error_code ignored;
+    if (stage_) fs::remove_all(stage_->path(), ignored);
+}
+
+void StagedDirectory::publish() {
+    const fs::path& stage = stage_->path();
+    std::vector<fs::directory_entry> entries(fs::recursive_directory_iterator(stage), {});  // before moving any
+    for (const fs::directory_entry& entry : entries) {
+        const fs::path target = out_ / fs::relative(entry.path(), stage);
+        if (entry.is_directory()) {
+            if (!fs::is_directory(target)) fs::create_directories(target);
+            continue;
+        }
+        std::error_code ec;
+        fs::rename(entry.path(), target, ec);
+        if (ec) throw input_error("cannot move '" + target.string() + "' into place: " + ec.message());
+    }
+    std::error_code ignored;
+    fs::remove_all(stage, ignored);
+    stage_.reset();
+}
+
+}  // namespace smithlab::output

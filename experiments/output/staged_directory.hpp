@@ -1,0 +1,36 @@
+// A directory of outputs (the report's) built aside and moved in when complete: a run that fails or is killed
+// leaves the previous contents as they were, never a truncated file.
+//
+// The stage is OUT/.report.PID.smithlab-partial; publish() renames each file into OUT (each rename is atomic, so
+// a reader sees every file either old or new and whole), then removes the stage. A signal removes the stage
+// (signal_cleanup.hpp); a SIGKILL's stage is removed by the next run into OUT.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "signal_cleanup.hpp"
+
+namespace smithlab::output {
+
+class StagedDirectory {
+public:
+    // Refuses `out` unless it is a directory or absent (input_error); creates it and the stage.
+    StagedDirectory(const std::filesystem::path& out, const std::string& name);
+    ~StagedDirectory();  // removes the stage unless published
+    StagedDirectory(const StagedDirectory&) = delete;
+    StagedDirectory& operator=(const StagedDirectory&) = delete;
+
+    const std::filesystem::path& path() const { return stage_->path(); }  // write everything here
+    void publish();
+
+private:
+    std::filesystem::path out_;
+    std::optional<Temporary> stage_;
+};
+
+// `out` as a directory to write into: absent (then its parent must exist or be creatable) or a directory.
+void require_output_directory(const std::filesystem::path& out);
+
+}  // namespace smithlab::output
