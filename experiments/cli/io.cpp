@@ -19,11 +19,11 @@ double parse_number(const std::string& text, const std::string& what) {
 }
 
 unsigned long long parse_seed(const std::string& text, const std::string& what) {
-    if (text.empty() || text.size() > 20 || text.find_first_not_of("0123456789") != std::string::npos)
-        throw input_error(what + " must be an integer in [0, 18446744073709551615], got '" + text + "'");
     errno = 0;
-    const unsigned long long v = std::strtoull(text.c_str(), nullptr, 10);
-    if (errno == ERANGE) throw input_error(what + " must be an integer in [0, 18446744073709551615], got '" + text + "'");
+    const bool digits = !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
+    const unsigned long long v = digits ? std::strtoull(text.c_str(), nullptr, 10) : 0;
+    if (!digits || errno == ERANGE)
+        throw input_error(what + " must be an integer in [0, 18446744073709551615], got '" + text + "'");
     return v;
 }
 

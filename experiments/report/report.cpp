@@ -97,6 +97,7 @@ void write_sampling(const std::vector<SamplingRow>& rows, const Scene::Sampling&
 
 int run_report(const Scene& scene, const std::string& out_dir, const NdfRegistry& ndfs, const VariantRegistry& variants) {
     // Validate everything before computing or writing anything.
+    output::require_output_directory(out_dir);
     std::vector<AnyNdf> grid_ndfs;
     for (const NdfFamily& f : scene.ndfs) {
         const NdfInfo* info = ndfs.find(f.family);
