@@ -1,4 +1,5 @@
-// The `smithlab` subcommands. Each returns the process exit code: 0 fine, 1 a check failed, 2 bad input.
+// The `smithlab` subcommands. Each returns the process exit code: 0 fine, 1 a check failed, 2 bad input; main()
+// answers 3 for an internal error (a bug on an accepted input: please report it), never 1.
 #pragma once
 
 #include <string>
@@ -12,7 +13,7 @@
 
 namespace smithlab::cli {
 
-constexpr int exit_ok = 0, exit_failed = 1, exit_bad_input = 2;
+constexpr int exit_ok = 0, exit_failed = 1, exit_bad_input = 2, exit_internal = 3;
 
 struct EvalArgs {
     std::string ndf, input, output, method = "auto", backend = "boost", downward = "smith";

@@ -83,8 +83,8 @@ int main(int argc, char** argv) {
         std::cerr << "smithlab: error: " << e.what() << "\n";
         return cli::exit_bad_input;
     } catch (const std::exception& e) {
-        std::cerr << "smithlab: internal error: " << e.what() << "\n";
-        return cli::exit_failed;
+        std::cerr << "smithlab: internal error (please report it, with the command): " << e.what() << "\n";
+        return cli::exit_internal;
     }
     return cli::exit_ok;
 }
