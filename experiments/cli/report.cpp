@@ -1,5 +1,9 @@
 // smithlab report: the error-against-run-time report of the Lambda variants (and the sampling experiment), from a
 // scene file.
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -8,8 +12,25 @@
 #include "report.hpp"
 #include "scene.hpp"
 #include "smithlab/errors.hpp"
+#include "work_estimate.hpp"
 
 namespace smithlab::cli {
+
+namespace {
+
+// The scene file's text; a directory, a missing or unreadable file is an input error naming it.
+std::string read_scene_file(const std::string& path) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) throw input_error("scene file '" + path + "' is a directory");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw input_error("cannot open scene file '" + path + "': " + std::strerror(errno));
+    std::stringstream text;
+    text << in.rdbuf();
+    if (in.bad()) throw input_error("cannot read scene file '" + path + "'");
+    return text.str();
+}
+
+}  // namespace
 
 void add_report(CLI::App& app, ReportArgs& a) {
     CLI::App* c = app.add_subcommand(
@@ -21,12 +42,21 @@ void add_report(CLI::App& app, ReportArgs& a) {
         "visible-normal sampling of a conductor's albedo); the figures named in [figures].\n"
         "Writes OUT/report.md, OUT/variants.csv, OUT/bench.json (and g2_variants.csv, sampling.csv, *.png);\n"
         "references are cached in OUT/cache and reused when the same scene runs again. Only what the scene names\n"
-        "is computed; a malformed scene is an error naming the key, exit 2, and nothing is written.\n"
+        "is computed.\n"
+        "The scene is read strictly: an unknown key or section (the nearest known one is suggested), a value of the\n"
+        "wrong type (an integer is taken where a real is meant), an integer out of bounds is an error naming the key\n"
+        "and FILE:LINE, exit 2, and nothing is written.\n"
+        "Before computing, the work is estimated in evaluations (Lambda evaluations: selected variants x NDFs x mu;\n"
+        "G2 evaluations; reference Lambdas; samples of the sampling experiment); a scene above --max-work is refused\n"
+        "with the estimate, exit 2. The default scene is about 1.2e7.\n"
         "Examples:\n"
         "  smithlab report\n"
-        "  smithlab report --scene my_scene.toml --out my_report");
+        "  smithlab report --scene my_scene.toml --out my_report\n"
+        "  smithlab report --scene big.toml --max-work 1e9");
     c->add_option("--scene", a.scene, "scene file (TOML)");
     c->add_option("--out", a.out, "output directory")->capture_default_str();
+    a.max_work = report::default_max_work;
+    c->add_option("--max-work", a.max_work, "the most evaluations a scene may cost (inf: no limit)")->capture_default_str();
     c->add_flag("--print-scene", a.print_scene, "print the default scene and exit");
 }
 
@@ -35,16 +65,13 @@ int run_report(const ReportArgs& a, const NdfRegistry& registry, const VariantRe
         std::cout << report::default_scene_text();
         return exit_ok;
     }
-    std::string text = report::default_scene_text(), source = "<default scene>";
-    if (!a.scene.empty()) {
-        std::ifstream in(a.scene);
-        if (!in) throw input_error("cannot open scene file '" + a.scene + "'");
-        std::stringstream ss;
-        ss << in.rdbuf();
-        text = ss.str();
-        source = a.scene;
-    }
-    return report::run_report(report::parse_scene(text, source), a.out, registry, variants);
+    require(a.max_work > 0.0, "--max-work", "> 0 (inf: no limit)", a.max_work);
+    const std::string source = a.scene.empty() ? "<default scene>" : a.scene;
+    const report::Scene scene = report::parse_scene(a.scene.empty() ? report::default_scene_text() : read_scene_file(a.scene), source);
+    const report::Work work = report::estimate_work(scene, variants);
+    report::check_work(work, a.max_work, source);
+    std::fprintf(stderr, "report: work estimated at %s (limit --max-work %g)\n", report::describe(work).c_str(), a.max_work);
+    return report::run_report(scene, a.out, registry, variants);
 }
 
 }  // namespace smithlab::cli

@@ -42,7 +42,10 @@ struct Scene {
     } figures;
 };
 
-// Throws input_error naming the scene (source) and the offending key.
+// Read strictly (strict_table.hpp): an unknown key or section, a value of the wrong type (an integer is taken for
+// a real), an integer out of its bounds (an axis's n in [2, 1e7], sampling.samples in [100, 1e8]) are refused with
+// an input_error "SOURCE:LINE: key ..." naming the nearest known key or the expected type. The size of the work
+// is checked separately, before anything is computed (work_estimate.hpp).
 Scene parse_scene(const std::string& text, const std::string& source);
 
 // The default scene, embedded at build time from experiments/scenes/g1_report.toml.

@@ -1,0 +1,36 @@
+// The size of a report scene's work, estimated from the scene alone before anything is computed, and the limit
+// that refuses a scene too large to finish (a 3000 x 3000 x 100 grid would otherwise compute for minutes and end
+// in bad_alloc). The unit is one evaluation: a Lambda of a variant at a grid point, a G2 of a G2 variant, a
+// reference Lambda, a sample of the sampling experiment. It is an upper bound: a variant is counted on every NDF
+// of the grid, also those it does not apply to, and every reference is counted as computed, also those a cache
+// already holds. The report keeps ~60 bytes per Lambda evaluation (grid point, error) and ~100 per reference,
+// so the default limit, 1e8, bounds its memory to a few GB.
+#pragma once
+
+#include <string>
+
+#include "scene.hpp"
+#include "smithlab/variants.hpp"
+
+namespace smithlab::report {
+
+inline constexpr double default_max_work = 1e8;
+
+struct Work {
+    double lambda_evaluations = 0.0;  // selected variants x NDFs of the grid x mu
+    double g2_evaluations = 0.0;      // selected G2 variants x families x alpha x mu_i x mu_o
+    double references = 0.0;          // reference Lambdas: per grid point one per route (at most 3), and the G2 table's
+    double samples = 0.0;             // sampling: families x alpha x strategies x samples
+    double total() const { return lambda_evaluations + g2_evaluations + references + samples; }
+};
+
+Work estimate_work(const Scene& scene, const VariantRegistry& variants);
+
+// "1.23e+07 evaluations (Lambda 1.1e+05, G2 2.2e+03, references 7.3e+03, samples 1.2e+07)".
+std::string describe(const Work& work);
+
+// Throws input_error naming the scene (source), the estimate, the limit and how to raise it when the work exceeds
+// max_work.
+void check_work(const Work& work, double max_work, const std::string& source);
+
+}  // namespace smithlab::report
