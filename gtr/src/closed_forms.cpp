@@ -114,6 +114,15 @@ double Lambda_gtr_integer_sum(double alpha, int gamma, double mu) {
 }
 
 double Lambda_gtr_closed(double alpha, int gamma, double mu) {
+    // Far from the scales alpha and 1, Lambda is its asymptote to every digit: mu^2 Lambda = C (1 + O((1 + alpha^2)
+    // / mu^2)) above mu = 1e100 (every GTR tail is r^-4), and mu Lambda = E[q+] - mu/2 + O(mu / alpha) below 1e-100;
+    // the forms below would overflow their intermediate products there (mu^3 at mu = 1e103, 1/mu at 1e-309).
+    constexpr double big = 1e100, small = 1e-100;
+    if (mu > big) {
+        const double r = big / mu;
+        return Lambda_gtr_closed(alpha, gamma, big) * r * r;
+    }
+    if (mu < small) return Lambda_gtr_closed(alpha, gamma, small) * (small / mu);
     switch (gamma) {
         case 0: return lambda0(mu);
         case 1: return lambda1(alpha, mu);

@@ -43,6 +43,12 @@ double Lambda_gtr_interpolated(double alpha, double gamma, double mu, const Gamm
     using Q = GammaInterpolant::Quantity;
     if (how.max_knot < 4 || how.max_knot > gtr_max_closed_gamma)  // message built only on failure: this is a hot path
         require(false, "interpolant max_knot", "in [4, " + std::to_string(gtr_max_closed_gamma) + "]", how.max_knot);
+    // Beyond mu in [1e-100, 1e100] the knots are their asymptotes C/mu^2 and E[q+]/mu (closed_forms.cpp), and so is
+    // the interpolant: carried out from the end of the range, so that an overflowing Lambda at a knot (mu = 1e-310)
+    // is not interpolated into NaN.
+    constexpr double big = 1e100, small = 1e-100;
+    if (mu > big) return Lambda_gtr_interpolated(alpha, gamma, big, how) * ((big / mu) * (big / mu));
+    if (mu < small) return Lambda_gtr_interpolated(alpha, gamma, small, how) * (small / mu);
     const std::size_t n = static_cast<std::size_t>(how.max_knot) + 1;
     std::vector<double> x(n), y(n);
     for (std::size_t k = 0; k < n; ++k) {
@@ -61,7 +67,7 @@ double Lambda_gtr_interpolated(double alpha, double gamma, double mu, const Gamm
     const double v = gsl_interp_eval(interp.get(), x.data(), y.data(), g, nullptr);
     switch (how.quantity) {
         case Q::G1: return Lambda_of_interpolated_G1(v);
-        case Q::Lambda: return v;
+        case Q::Lambda: return std::max(v, 0.0);  // a spline of Lambda overshoots below 0 (G1 > 1): clamped, as G1 is
         case Q::log_Lambda: return std::exp(v);
     }
     return v;

@@ -9,6 +9,16 @@
 namespace smithlab {
 
 double G1_gtr_dimov_spline(double alpha, double gamma, double mu) {
+    // Beyond mu in [1e-100, 1e100] the knots' Lambda is its asymptote (closed_forms.cpp), C/mu^2 or E[q+]/mu: the
+    // spline's Lambda at the end of the range is carried out the same way, so that no 1 - G1 of a G1 within 1e-300
+    // of 0 or 1 turns into NaN (mu = 1e307).
+    constexpr double big = 1e100, small = 1e-100;
+    if (mu > big || mu < small) {
+        const double edge = mu > big ? big : small, g = G1_gtr_dimov_spline(alpha, gamma, edge);
+        if (!(g > 0.0 && g < 1.0)) return g;
+        const double scale = mu > big ? (big / mu) * (big / mu) : small / mu;
+        return 1.0 / (1.0 + (1.0 - g) / g * scale);
+    }
     std::array<double, 5> y;
     for (int k = 0; k < 5; ++k) y[k] = 1.0 / (1.0 + Lambda_gtr_closed(alpha, k, mu));
     // Natural cubic spline on unit-spaced knots: M0 = M4 = 0 and, for the second derivatives M1..M3,

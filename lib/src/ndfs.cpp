@@ -45,6 +45,8 @@ double Beckmann::Lambda(double mu) const {
     // a = mu/alpha carried as a + a_lo (one rounding error removed): Lambda's relative sensitivity to a is ~2 a^2,
     // which would cost 3 digits near the underflow of exp(-a^2) if a were rounded once.
     const double a = mu / alpha;
+    // Past a = 27.3, e^{-a^2} < 1e-324: Lambda underflows to 0 (and a^2 would overflow to inf * 0 = NaN at 1.3e154).
+    if (a > 28.0) return 0.0;
     const double a_lo = std::fma(-a, alpha, mu) / alpha;
     const double a2 = a * a;
     const double a2_lo = std::fma(a, a, -a2) + 2.0 * a * a_lo;

@@ -2,6 +2,8 @@
 
 #include <array>
 #include <boost/math/special_functions/beta.hpp>
+#include <numbers>
+#include <sstream>
 #include <string>
 
 namespace smithlab {
@@ -49,6 +51,19 @@ double tan_minus_x(double t, double tan_t) {
 // tested range; closed forms have no such limit.
 void require_mu(double mu) {
     require(mu >= 1e-12 && mu <= 1e12, "mu", "in [1e-12, 1e12] for the quadrature methods (0 and inf are handled exactly)", mu);
+}
+
+void require_quadrature_scale(double mu, double P22_at_pole, const char* method) {
+    if (!(P22_at_pole > 0.0 && P22_at_pole < INFINITY)) return;  // no core scale to speak of (a plug-in's D(1) = 0)
+    const double r0 = 1.0 / std::sqrt(std::numbers::pi * P22_at_pole);
+    if (mu >= 1e-12 * r0) return;
+    std::ostringstream msg;
+    msg.precision(17);
+    msg << "mu must be >= 1e-12 x the ndf's slope scale 1/sqrt(pi P22(0)) = " << r0 << " for the " << method
+        << " methods (their grazing peak at mu/alpha is too narrow below; the closed form, where there is one, has no "
+           "such limit), got "
+        << mu;
+    throw input_error(msg.str());
 }
 
 }  // namespace detail

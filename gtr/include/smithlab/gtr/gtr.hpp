@@ -38,7 +38,12 @@ struct Gtr {
 // the 0/0 at gamma -> 1 (-> 1/(-2 ln alpha)) and at alpha -> 1 (-> 1/pi overall) keep every digit.
 double gtr_K(double alpha, double gamma);
 
-// alpha in [1e-50, 1] (below, alpha^6 underflows in the closed forms), gamma >= 0, both finite.
+// The accepted domain: alpha in [1e-50, 1] (below, alpha^6 underflows in the closed forms), gamma in [0, 1e6].
+// Large gamma is a Beckmann-like lobe of width alpha / sqrt(gamma) (t^gamma ~ exp(-gamma r^2 / alpha^2)); P22, D and
+// the D cos sampler are written for it (log1p of 1 - t), and the 1D quadrature matches the 50-digit reference there
+// (tests/test_domain.cpp); 1e6 is as far as that reference reaches (its (r^2 + alpha^2)^gamma at r^2 = 1e120 leaves
+// cpp_bin_float's exponent range near gamma = 2.7e6), and a lobe narrower than alpha / 1000 is no material.
+inline constexpr double gtr_max_gamma = 1e6;
 Gtr gtr(double alpha, double gamma);
 
 }  // namespace smithlab

@@ -19,7 +19,9 @@ std::string name_of(const GammaInterpolant& how);
 std::string description_of(const GammaInterpolant& how);
 
 // alpha in (0, 1], gamma >= 0, mu finite > 0. An interpolated G1 outside [0, 1] (Akima overshoots both ways at
-// small alpha) is clamped to it, i.e. Lambda = 0 or +inf: the report shows such failures rather than hiding them.
+// small alpha) is clamped to it, i.e. Lambda = 0 or +inf, and an interpolated Lambda below 0 is clamped to 0: the
+// report shows such failures rather than hiding them. Outside mu in [1e-100, 1e100] the interpolant at the end of
+// that range is carried on by the asymptotes C/mu^2 and E[q+]/mu, as the knots are.
 double Lambda_gtr_interpolated(double alpha, double gamma, double mu, const GammaInterpolant& how);
 
 }  // namespace smithlab
