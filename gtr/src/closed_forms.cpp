@@ -3,7 +3,9 @@
 #include <array>
 #include <boost/math/quadrature/gauss.hpp>
 #include <boost/math/special_functions/log1p.hpp>
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <string>
 
@@ -104,13 +106,27 @@ double Lambda_gtr_integer_sum(double alpha, int gamma, double mu) {
     const double A = std::hypot(mu, alpha);
     const double ratio = alpha / A;
     const std::array<double, 30> b = brackets(n, alpha, mu, A);
-    double sum = 0.0;
+    // alpha^(2(n-k)+3) (alpha/A)^(2k+1) reaches 1e-2900 at alpha = 1e-50, gamma = 31 while K / mu is 1e146 and Lambda
+    // 1e-251: each power is carried as a mantissa (frexp: in [0.5, 1), so fa^63 >= 1e-19) and a binary exponent, the
+    // terms summed relative to the largest exponent, and the exponent put back last (ldexp rounds once, gradually).
+    int ea = 0, er = 0;
+    const double fa = std::frexp(alpha, &ea), fr = std::frexp(ratio, &er);
+    std::array<double, 30> mant{};
+    std::array<int, 30> ex{};
+    int emax = std::numeric_limits<int>::min();
     double cb = std::numbers::pi / 2;  // C(n, k) B(1/2, k + 3/2), starting from B(1/2, 3/2) = pi/2
     for (int k = 0; k <= n; ++k) {
-        sum += cb * std::pow(one_minus_a2, k) * std::pow(alpha, 2 * (n - k) + 3) * std::pow(ratio, 2 * k + 1) * b[k];
+        const int pa = 2 * (n - k) + 3, pr = 2 * k + 1;
+        mant[k] = cb * std::pow(one_minus_a2, k) * std::pow(fa, pa) * std::pow(fr, pr) * b[k];
+        ex[k] = ea * pa + er * pr;
+        if (mant[k] > 0.0) emax = std::max(emax, ex[k]);
         cb *= (n - k) / (k + 1.0) * (k + 1.5) / (k + 2.0);  // C(n,k+1)/C(n,k) and B(1/2,k+5/2)/B(1/2,k+3/2)
     }
-    return gtr_K(alpha, gamma) * sum / mu;
+    if (emax == std::numeric_limits<int>::min()) return 0.0;
+    double sum = 0.0;
+    for (int k = 0; k <= n; ++k)
+        if (mant[k] > 0.0) sum += std::ldexp(mant[k], std::max(ex[k] - emax, -2000));
+    return std::ldexp(gtr_K(alpha, gamma) / mu * sum, emax);
 }
 
 double Lambda_gtr_closed(double alpha, int gamma, double mu) {

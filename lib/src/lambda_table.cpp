@@ -59,9 +59,13 @@ LambdaTable::LambdaTable(std::function<double(double)> exact, const LambdaTableO
         // Lambda underflows to 0 from here on (a Beckmann-like tail, exp(-mu^2/alpha^2)): the table ends a pad
         // before the last knot where it is positive, and the exact route answers beyond (with 0, or nearly).
         y.pop_back();
-        if (y.size() < static_cast<std::size_t>(2.0 * pad / h) + 8)
-            throw input_error("cannot tabulate Lambda: it underflows to 0 at mu = " + std::to_string(std::exp(x0_ + h * i)) +
-                              ", too close to mu_min");
+        if (y.size() < static_cast<std::size_t>(2.0 * pad / h) + 8) {
+            // Lambda underflows next to mu_min already (Beckmann(1e-50): from mu ~ 1e-48 on): nothing to tabulate, and
+            // the exact route answers everywhere (with 0 or nearly).
+            mu_min_ = INFINITY;
+            mu_max_ = -INFINITY;
+            return;
+        }
         n = y.size() - 1;
         mu_max_ = std::min(mu_max_, std::exp(x0_ + h * static_cast<double>(n) - pad));
         break;

@@ -33,6 +33,7 @@ class LambdaTable {
 public:
     // exact(mu) must be Lambda at any mu (0, inf and mu < 0 included). input_error on bad options, on a Lambda
     // that is negative or not finite at a knot (it names mu), or when no step down to 2^-13 meets the tolerance.
+    // Where Lambda underflows to 0 within a few knots of mu_min, the table is empty and exact() answers every call.
     LambdaTable(std::function<double(double)> exact, const LambdaTableOptions& opts);
 
     double Lambda(double mu) const {
