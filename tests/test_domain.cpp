@@ -393,6 +393,22 @@ TEST_CASE("the long-double reference agrees with the 50-digit one of reference.h
     }
 }
 
+TEST_CASE("the per-distribution checks pass over the accepted domain, or refuse", "[domain][checks]") {
+    // `check` failed 6-9 of its checks at alpha 1e-5 .. 1e-50 (D read through cos theta_m; log axes split at 1).
+    const smithlab::NdfRegistry r = smithlab::builtin_registry();
+    for (const char* spec : {"ggx(alpha=1e-5)", "ggx(alpha=1e-50)", "ggx(alpha=1e20)", "beckmann(alpha=1e-20)",
+                             "beckmann(alpha=1e-50)", "beckmann(alpha=1e8)", "blinn(n=1e90)", "gtr(alpha=1e-50, gamma=0.5)",
+                             "gtr(alpha=1e-30, gamma=31)", "gtr(alpha=1e-8, gamma=2.5)", "gtr(alpha=0.3, gamma=1e6)"}) {
+        const AnyNdf ndf = r.make(spec);
+        for (const auto& c : smithlab::run_checks(ndf)) {
+            INFO(spec << ": " << c.name << " " << c.where << " value=" << c.value << " expected=" << c.expected);
+            CHECK(c.passed());
+        }
+    }
+    // beyond a slope scale of 1e22 no mu is left for the quadrature routes: refused, naming it
+    CHECK_THROWS_WITH(smithlab::run_checks(r.make("ggx(alpha=1e30)")), Catch::Contains("slope scale"));
+}
+
 // ---- samplers ----------------------------------------------------------------------------------------------
 
 TEST_CASE("samplers at extreme incidence: a finite sample with its finite pdf, or a refusal, quickly", "[domain][sampling]") {

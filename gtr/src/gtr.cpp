@@ -83,8 +83,8 @@ double Gtr::Dcos_r2(double v) const {
         d = std::abs(y) < 0.5 ? -std::log1p(-y) / k : -std::log(v + (1.0 - v) * std::exp(-kL)) / k;
     }
     if (d < 0.5 * L) {
-        const double t = std::exp(-d);
-        return std::max(0.0, a2 * (-std::expm1(-d)) / (t - a2));
+        const double one_minus_t = -std::expm1(-d);  // t - alpha^2 = (1 - alpha^2) - (1 - t): no cancellation at d < L/2
+        return std::max(0.0, a2 * one_minus_t / (one_minus_a2 - one_minus_t));
     }
     // The tail: L_c = log1p(v expm1(kL)) / k; past kL = 700, where expm1 overflows (gamma = 20 at alpha = 1e-16),
     // as L + log(v + (1 - v) e^{-kL}) / k, which cancels nothing there: v >= 2^-53 > e^{-kL}.

@@ -156,8 +156,9 @@ double HammonSampler::facing_fraction(const Vec3& wi) const {
     const double mu = wi.z() / sin_i;
     // Only normals steeper than tan^2 = mu^2 can face away from (mu > 0) or towards (mu < 0) wi: where the D cos
     // mass beyond mu^2 is below double's resolution (wi within ~1e-6 degrees of the normal for alpha = 0.3), Z is 1 or
-    // 0 exactly, and the quadrature below would have to find the lobe 700 e-folds from its split.
-    if (dcos_.sf(mu * mu) < 1e-17) return mu > 0.0 ? 1.0 : 0.0;
+    // 0 (when that mass is 0) exactly, and the quadrature below would have to find the lobe 700 e-folds from its split.
+    const double beyond = dcos_.sf(mu * mu);
+    if (mu > 0.0 ? beyond < 1e-17 : beyond == 0.0) return mu > 0.0 ? 1.0 : 0.0;
     auto h = [&](double s) {
         const double c = std::clamp(-mu / std::sqrt(s), -1.0, 1.0);
         return std::acos(c) * dcos_.P22(s);  // (acos / pi) * pi P22
