@@ -34,6 +34,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <optional>
 #include <random>
 #include <regex>
@@ -148,17 +149,17 @@ std::string random_bytes(Gen& g, std::size_t max_len) {
 // A value for a numeric option or field: half the time a typical valid one (from `valid`), else an extreme, junk,
 // a random decimal of any size, or random bytes.
 template <class Valid>
-std::string number_text(Gen& g, Valid valid) {
+std::string number_text(Gen& g, Valid valid, double p_valid = 0.5) {
+    if (g.chance(p_valid)) return valid(g);
     const double u = g.unit();
-    if (u < 0.5) return valid(g);
-    if (u < 0.8) return g.pick(special_numbers);
-    if (u < 0.95) return random_number(g);
+    if (u < 0.6) return g.pick(special_numbers);
+    if (u < 0.9) return random_number(g);
     return random_bytes(g, 8);
 }
 
 // strtod over the whole text: the value a strict parser would see, or nullopt for text that is not one number.
 std::optional<double> strict_number(const std::string& t) {
-    if (t.empty() || std::isspace(static_cast<unsigned char>(t.front()))) return std::nullopt;
+    if (t.empty()) return std::nullopt;  // leading blanks are strtod's to skip: " 1" may be taken as 1
     char* end = nullptr;
     const double v = std::strtod(t.c_str(), &end);
     if (end != t.c_str() + t.size()) return std::nullopt;
@@ -179,31 +180,33 @@ std::string valid_gamma(Gen& g) {
 }
 std::string valid_blinn_n(Gen& g) { return g17(g.chance(0.8) ? g.log_uniform(0.1, 2000.0) : g.log_uniform(1e-20, 1e20)); }
 
+// Each value of a spec is a typical valid one 80% of the time, so that a spec with two values reaches the NDF.
 std::string value_for(Gen& g, const std::string& key) {
-    if (key == "gamma") return number_text(g, valid_gamma);
-    if (key == "n") return number_text(g, valid_blinn_n);
-    return number_text(g, valid_alpha);
+    if (key == "gamma") return number_text(g, valid_gamma, 0.8);
+    if (key == "n") return number_text(g, valid_blinn_n, 0.8);
+    return number_text(g, valid_alpha, 0.8);
 }
 
 // A spec from the grammar name(key=value, ...), with its pieces chosen to be mostly right.
 std::string structured_spec(Gen& g) {
-    static const std::vector<std::string> names = {"ggx", "beckmann", "blinn", "gtr", "gtr", "gtr", "GTR", "Ggx",
-                                                   "phong", "x", "_", "", "ggx2", "gtr gtr", "1gtr"};
+    static const std::vector<std::string> good_names = {"ggx", "beckmann", "blinn", "gtr", "gtr", "gtr"};
+    static const std::vector<std::string> bad_names = {"GTR", "Ggx", "phong", "", "_", "gtr gtr", "1gtr", "ggx2"};
     static const std::vector<std::string> other_keys = {"alpha", "gamma", "n", "beta", "ALPHA", "", "1a", "a b", "alpha "};
-    const std::string name = g.pick(names);
+    // Each piece is right most of the time, so that one or two wrong ones are found in a spec that is otherwise fine.
+    const std::string name = g.chance(0.9) ? g.pick(good_names) : g.pick(bad_names);
     std::vector<std::string> keys = name == "gtr"        ? std::vector<std::string>{"alpha", "gamma"}
                                     : name == "blinn"    ? std::vector<std::string>{"n"}
                                     : name == "ggx" || name == "beckmann" ? std::vector<std::string>{"alpha"}
                                                                           : std::vector<std::string>{g.pick(other_keys)};
-    if (g.chance(0.1)) keys.push_back(g.pick(other_keys));        // an extra or duplicate key
-    if (g.chance(0.1) && keys.size() > 1) keys.erase(keys.begin());  // a missing one
+    if (g.chance(0.05)) keys.push_back(g.pick(other_keys));        // an extra or duplicate key
+    if (g.chance(0.05) && keys.size() > 1) keys.erase(keys.begin());  // a missing one
     if (g.chance(0.2)) std::swap(keys.front(), keys.back());
     std::string s = g.chance(0.05) ? " " + name : name;
     if (g.chance(0.05)) return s;  // no parentheses
     s += g.chance(0.1) ? " (" : "(";
     for (std::size_t i = 0; i < keys.size(); ++i) {
-        if (i) s += g.pick<std::string>({", ", ",", " , ", ", ", ";", ",,"});
-        s += keys[i] + g.pick<std::string>({"=", "=", "=", " = ", "==", ""}) + value_for(g, keys[i]);
+        if (i) s += g.chance(0.9) ? ", " : g.pick<std::string>({",", " , ", ";", ",,", ""});
+        s += keys[i] + (g.chance(0.9) ? "=" : g.pick<std::string>({" = ", "==", "", ":"})) + value_for(g, keys[i]);
     }
     if (g.chance(0.05)) s += ",";
     s += g.chance(0.95) ? ")" : g.pick<std::string>({"", "))", ") x", "("});
@@ -279,8 +282,8 @@ std::string debris(const fs::path& dir) {
     std::string found;
     std::error_code ec;
     for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator(); it.increment(ec))
-        if (it->path().filename().string().find(".partial") != std::string::npos) found += " " + it->path().string();
-    return found.empty() ? "" : "temporary files left behind:" + found;
+        if (it->path().filename().string().find(".partial") != std::string::npos) found += std::string(" ") + it->path().string();
+    return found.empty() ? "" : std::string("temporary files left behind:") + found;
 }
 
 // A class of CLI inputs: judges each run, reports each failure with its reproducer, and gives up on the class after
@@ -291,9 +294,13 @@ struct Campaign {
     std::size_t runs = 0, failures = 0, hangs = 0;
     std::set<std::string> kinds;  // distinct failure kinds, for the summary
 
+    std::map<int, std::size_t> exits;  // exit code -> runs
+
     bool give_up() const { return hangs >= 3; }
     void record(const std::string& args, const Run& r, std::string why, const std::string& context = "") {
         ++runs;
+        ++exits[r.rc];
+        if (std::getenv("SMITHLAB_FUZZ_VERBOSE")) std::cout << "  exit " << r.rc << ": smithlab " << args << std::endl;
         if (why.empty()) return;
         ++failures;
         if (why.rfind("hang", 0) == 0) ++hangs;
@@ -303,9 +310,13 @@ struct Campaign {
                            << "\n  stderr: " << first_lines(r.err) << (context.empty() ? "" : "\n" + context));
     }
     ~Campaign() {
-        std::cout << "test_fuzz [" << cls << "]: " << runs << " runs, " << failures << " failures";
+        std::cout << "test_fuzz [" << cls << "]: " << runs << " runs (";
+        for (const auto& [rc, k] : exits) std::cout << (rc == exits.begin()->first ? "" : ", ") << k << " exit " << rc;
+        std::cout << "), " << failures << " failures";
         for (const auto& k : kinds) std::cout << " | " << k;
         std::cout << (give_up() ? " (stopped after 3 hangs)" : "") << std::endl;
+        INFO("[" << cls << "]: no input was accepted: the generator no longer reaches past the parser");
+        CHECK(exits.count(0) == 1);
     }
 };
 
@@ -447,11 +458,16 @@ namespace {
 const std::vector<std::string>& method_names() {
     static const std::vector<std::string> names = [] {
         std::vector<std::string> v = {"auto", "closed", "spline", "quadrature", "quadrature2d"};
-        for (const auto& variant : smithlab::builtin_variants().list()) v.push_back(variant.name);
+        const smithlab::VariantRegistry variants = smithlab::builtin_variants();
+        for (const auto& variant : variants.list()) v.push_back(variant.name);
         return v;
     }();
     return names;
 }
+
+// A CLI run gets each option's value valid this often: most runs then carry one or two hostile values and reach
+// past the parser to the code that uses the others.
+constexpr double cli_valid = 0.75;
 
 std::string valid_mu(Gen& g) {
     if (g.chance(0.1)) return g.pick<std::string>({"0", "inf", "-inf", "-0"});
@@ -493,8 +509,8 @@ std::string bad_n(const std::string& t) {
 // Sample counts: small valid ones, or values around and beyond the limits (never the expensive valid range).
 std::string n_text(Gen& g) {
     const double u = g.unit();
-    if (u < 0.5) return std::to_string(1 + g.below(200));
-    if (u < 0.8) return g.pick<std::string>({"0", "-1", "-0", "1000000001", "1e3", "1.5", "", "nan", "inf", "1e10",
+    if (u < cli_valid) return std::to_string(1 + g.below(200));
+    if (u < 0.9) return g.pick<std::string>({"0", "-1", "-0", "1000000001", "1e3", "1.5", "", "nan", "inf", "1e10",
                                              "9223372036854775807", "9223372036854775808", "18446744073709551617",
                                              " 5", "5 ", "0x10", "abc", "+7", "10.0"});
     std::string t = random_number(g);
@@ -505,7 +521,7 @@ std::string n_text(Gen& g) {
 
 std::string seed_text(Gen& g) {
     if (g.chance(0.5)) return std::to_string(g.rng());
-    return number_text(g, [](Gen& h) { return std::to_string(h.below(1000)); });
+    return number_text(g, [](Gen& h) { return std::to_string(h.below(1000)); }, cli_valid);
 }
 
 }  // namespace
@@ -516,30 +532,30 @@ TEST_CASE("fuzz: eval options (--ndf, --mu, --method, --backend, --tolerance, --
     Campaign c("eval");
     const fs::path d = fresh_dir("fuzz_eval");
     for (std::size_t i = 0; i < n && !c.give_up(); ++i) {
-        const std::string spec = g.chance(0.8) ? structured_spec(g) : spec_text(g);
-        const std::string mu = number_text(g, valid_mu);
+        const std::string spec = g.chance(0.9) ? structured_spec(g) : spec_text(g);
+        const std::string mu = number_text(g, valid_mu, cli_valid);
         std::string args = "eval --ndf " + shell_quote(spec) + " --mu " + shell_quote(mu);
         std::string refuse;
         if (!spec_accepted(spec)) refuse = "the spec is refused by builtin_registry().make()";
         if (!strict_number(mu) || is_nan_word(mu)) refuse = "--mu is not a number or NaN";
         if (g.chance(0.6)) {
-            const std::string m = g.chance(0.9) ? g.pick(method_names()) : random_bytes(g, 10);
+            const std::string m = g.chance(0.95) ? g.pick(method_names()) : random_bytes(g, 10);
             args += " --method " + shell_quote(m);
             if (std::find(method_names().begin(), method_names().end(), m) == method_names().end())
                 refuse = "unknown --method";
         }
         if (g.chance(0.3)) {
-            const std::string b = g.pick<std::string>({"boost", "gsl", "gsl", "GSL", "", "qags"});
+            const std::string b = g.chance(cli_valid) ? g.pick<std::string>({"boost", "gsl"}) : g.pick<std::string>({"GSL", "", "qags"});
             args += " --backend " + shell_quote(b);
             if (b != "boost" && b != "gsl") refuse = "unknown --backend";
         }
         if (g.chance(0.4)) {
-            const std::string t = number_text(g, valid_tolerance);
+            const std::string t = number_text(g, valid_tolerance, cli_valid);
             args += " --tolerance " + shell_quote(t);
             if (const std::string why = out_of_range("--tolerance", t, 1e-15, 0.1); !why.empty()) refuse = why;
         }
         if (g.chance(0.15)) {
-            const std::string w = g.pick<std::string>({"smith", "hammon", "Smith", ""});
+            const std::string w = g.chance(cli_valid) ? g.pick<std::string>({"smith", "hammon"}) : g.pick<std::string>({"Smith", ""});
             args += " --downward " + shell_quote(w);
             if (w != "smith" && w != "hammon") refuse = "unknown --downward";
         }
@@ -563,14 +579,15 @@ TEST_CASE("fuzz: sample options (--ndf, --sampler, --theta-i, --n, --seed, --out
     const fs::path d = fresh_dir("fuzz_sample");
     const std::vector<smithlab::SamplerInfo> samplers = smithlab::builtin_samplers();
     for (std::size_t i = 0; i < n && !c.give_up(); ++i) {
-        const std::string spec = g.chance(0.85) ? structured_spec(g) : spec_text(g);
+        const std::string spec = g.chance(0.9) ? structured_spec(g) : spec_text(g);
         std::string refuse = spec_accepted(spec) ? "" : "the spec is refused by builtin_registry().make()";
         const bool known_sampler = g.chance(0.9);
         const smithlab::SamplerInfo& s = samplers[g.below(samplers.size())];
         const std::string sampler = known_sampler ? s.name : g.pick<std::string>({"", "VNDF", "dcos ", "x"});
         if (!known_sampler) refuse = "unknown --sampler";
         std::string args = "sample --ndf " + shell_quote(spec) + " --sampler " + shell_quote(sampler);
-        const std::string theta = number_text(g, [](Gen& h) { return g17(h.chance(0.7) ? 89.0 * h.unit() : 180.0 * h.unit()); });
+        const std::string theta =
+            number_text(g, [](Gen& h) { return g17(h.chance(0.7) ? 89.0 * h.unit() : 180.0 * h.unit()); }, cli_valid);
         if (g.chance(0.8)) {
             args += " --theta-i " + shell_quote(theta);
             const bool upper = known_sampler && s.incidence == smithlab::SamplerInfo::Incidence::upper;
@@ -631,7 +648,7 @@ TEST_CASE("fuzz: eval --input on generated CSV files", "[fuzz][cli][csv]") {
         if (g.chance(0.5)) header.insert(header.begin() + g.below(3), g.pick<std::string>({"id", "note", "x y", "a,b", "\"q\""}));
         if (g.chance(0.1)) {
             header.push_back(g.pick<std::string>({"ndf", "mu"}));
-            refuse = "a duplicate '" + header.back() + "' column";
+            refuse = std::string("a duplicate '") + header.back() + "' column";
         }
         if (g.chance(0.05)) {
             header.erase(header.begin() + g.below(header.size()));
@@ -640,7 +657,7 @@ TEST_CASE("fuzz: eval --input on generated CSV files", "[fuzz][cli][csv]") {
         }
         if (g.chance(0.05)) {
             header.push_back(g.pick<std::string>({"lambda", "g1"}));
-            refuse = "a '" + header.back() + "' column, which eval writes";
+            refuse = std::string("a '") + header.back() + "' column, which eval writes";
         }
         const auto col = [&](const std::string& name) {
             return std::size_t(std::find(header.begin(), header.end(), name) - header.begin());
@@ -652,13 +669,13 @@ TEST_CASE("fuzz: eval --input on generated CSV files", "[fuzz][cli][csv]") {
         for (std::size_t k = 0; k < 2; ++k) specs.push_back(structured_spec(g));
         for (std::size_t k = 0; k < rows; ++k) {
             std::vector<std::string> row(header.size());
-            for (std::size_t f = 0; f < row.size(); ++f) row[f] = g.chance(0.8) ? "p" + std::to_string(k) : csv_field_text(g);
+            for (std::size_t f = 0; f < row.size(); ++f) row[f] = g.chance(0.8) ? std::string("p") + std::to_string(k) : csv_field_text(g);
             if (col("ndf") < row.size()) {
                 row[col("ndf")] = g.chance(0.8) ? g.pick(specs) : spec_text(g);
                 if (!spec_accepted(row[col("ndf")])) refuse = "row " + std::to_string(k + 2) + ": a refused spec";
             }
             if (col("mu") < row.size()) {
-                row[col("mu")] = number_text(g, valid_mu);
+                row[col("mu")] = number_text(g, valid_mu, cli_valid);
                 if (!strict_number(row[col("mu")]) || is_nan_word(row[col("mu")]))
                     refuse = "row " + std::to_string(k + 2) + ": mu not a number or NaN";
             }
@@ -850,6 +867,21 @@ Mutated mutate_scene(Gen& g, const std::string& base) {
     const std::size_t at = g.pick(key_lines);
     const std::string key = lines[at].substr(0, lines[at].find(" = "));
     Mutated m;
+    if (g.chance(0.3)) {  // a valid scene with extreme values on one axis: it must run right or be refused
+        std::vector<std::size_t> axes;
+        for (std::size_t k = 0; k < lines.size(); ++k)
+            if (kind_of(lines[k].substr(0, lines[k].find(" = "))) == Kind::axis) axes.push_back(k);
+        const std::size_t k = g.pick(axes);
+        const std::string axis = lines[k].substr(0, lines[k].find(" = "));
+        const std::vector<std::string> extremes =
+            axis == "gamma" ? std::vector<std::string>{"0.0", "1e-9", "0.999999999", "1.0", "1.000000001", "19.7", "31.0", "32.5", "1000.0", "1e15"}
+            : axis == "mu"  ? std::vector<std::string>{"1e-12", "1e-4", "0.5", "1e4", "1e12", "1e154", "1e-300", "1e300"}
+                            : std::vector<std::string>{"1e-4", "1e-3", "0.3", "0.999999", "1.0", "1e-15", "1e-50", "2.0", "1e10"};
+        std::string v = "[" + g.pick(extremes);
+        for (std::size_t j = g.below(3); j > 0; --j) v += ", " + g.pick(extremes);
+        lines[k] = axis + " = " + v + "]";
+        return {join_lines(lines), "", lines[k]};
+    }
     switch (g.below(8)) {
         case 0: {  // a key misspelled
             const std::string t = typo(g, key);
