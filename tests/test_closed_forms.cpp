@@ -76,7 +76,7 @@ TEST_CASE("generated closed forms for integer gamma: equal to Dimov's printed fo
             }
 }
 
-TEST_CASE("generated closed forms for integer gamma up to 31 against the 50-digit quadrature", "[closed][generated]") {
+TEST_CASE("generated closed forms for integer gamma up to 31 against the 50-digit quadrature", "[closed][generated][slow]") {
     double worst = 0.0;
     for (int gamma : {5, 7, 10, 20, 31})
         for (double alpha : {1e-4, 0.01, 0.1, 0.3, 0.999999, 1.0})

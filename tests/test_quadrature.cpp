@@ -34,7 +34,7 @@ void check_1d(const N& ndf, const ref::SlopeDensity& f, double mu, const std::st
 
 }  // namespace
 
-TEST_CASE("1D quadrature Lambda of GTR over the domain, stiff corners included", "[quadrature]") {
+TEST_CASE("1D quadrature Lambda of GTR over the domain, stiff corners included", "[quadrature][slow]") {
     Worst worst;
     const std::vector<double> gammas = {0.0, 0.5, 1.0 - 1e-9, 1.0, 1.0 + 1e-7, 1.5, 2.5, 4.0, 7.0, 10.0};
     const std::vector<double> alphas = {1e-4, 0.01, 0.3, 0.999999, 1.0};

@@ -97,11 +97,11 @@ TEST_CASE("chi-square: D cos samplers, analytic and tabulated, every NDF family,
     run_chi2("dcos");
 }
 
-TEST_CASE("chi-square: visible-normal samplers, generic and GGX, normal to grazing incidence", "[sampling][chi2]") {
+TEST_CASE("chi-square: visible-normal samplers, generic and GGX, normal to grazing incidence", "[sampling][chi2][slow]") {
     run_chi2("vndf");
 }
 
-TEST_CASE("chi-square: Hammon's facing-restricted D cos, rays going down and up", "[sampling][chi2]") {
+TEST_CASE("chi-square: Hammon's facing-restricted D cos, rays going down and up", "[sampling][chi2][slow]") {
     run_chi2("hammon");
 }
 

@@ -1,5 +1,6 @@
 // Parsing of option values shared by the subcommands.
 #include <cerrno>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 
@@ -12,7 +13,8 @@ double parse_number(const std::string& text, const std::string& what) {
     errno = 0;
     char* end = nullptr;
     const double v = std::strtod(text.c_str(), &end);
-    if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE)
+    // strtod skips leading blanks; a number with blanks around it is refused at either end alike.
+    if (text.empty() || std::isspace(static_cast<unsigned char>(text[0])) || end != text.c_str() + text.size() || errno == ERANGE)
         throw input_error(what + " is not a number: '" + text + "'");
     if (std::isnan(v)) throw input_error(what + " is NaN");
     return v;

@@ -1,7 +1,5 @@
 #include "staged_directory.hpp"
 
-#include <vector>
-
 #include "output_file.hpp"
 #include "smithlab/errors.hpp"
 
@@ -19,6 +17,7 @@ void require_output_directory(const fs::path& out) {
 StagedDirectory::StagedDirectory(const fs::path& out, const std::string& name) : out_(out) {
     require_output_directory(out);
     std::error_code ec;
+    for (fs::path p = fs::absolute(out, ec); !ec && !p.empty() && !fs::exists(p, ec); p = p.parent_path()) created_.push_back(p);
     fs::create_directories(out, ec);
     if (ec) throw input_error("output directory '" + out.string() + "' cannot be created: " + ec.message());
     remove_stale_temporaries(out, name);
@@ -29,7 +28,9 @@ StagedDirectory::StagedDirectory(const fs::path& out, const std::string& name) :
 
 StagedDirectory::~StagedDirectory() {
     std::error_code ignored;
-    if (stage_) fs::remove_all(stage_->path(), ignored);
+    if (!stage_) return;
+    fs::remove_all(stage_->path(), ignored);
+    for (const fs::path& p : created_) fs::remove(p, ignored);  // only if empty: a saved cache stays
 }
 
 void StagedDirectory::publish() {

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "signal_cleanup.hpp"
 
@@ -18,7 +19,7 @@ class StagedDirectory {
 public:
     // Refuses `out` unless it is a directory or absent (input_error); creates it and the stage.
     StagedDirectory(const std::filesystem::path& out, const std::string& name);
-    ~StagedDirectory();  // removes the stage unless published
+    ~StagedDirectory();  // unless published: removes the stage, and the directories it created if they stayed empty
     StagedDirectory(const StagedDirectory&) = delete;
     StagedDirectory& operator=(const StagedDirectory&) = delete;
 
@@ -28,6 +29,7 @@ public:
 private:
     std::filesystem::path out_;
     std::optional<Temporary> stage_;
+    std::vector<std::filesystem::path> created_;  // out and the parents it had to create, innermost first
 };
 
 // `out` as a directory to write into: absent (then its parent must exist or be creatable) or a directory.

@@ -38,6 +38,11 @@ double compute_reference(const AnyNdf& ndf, double mu, Route r) {
     return NAN;
 }
 
+void require_row_domain(const LambdaVariant& v, const AnyNdf& ndf, double mu) {
+    const bool own = v.name.rfind("q1d-", 0) == 0 || v.name.rfind("q2d-", 0) == 0;
+    if (own || route_for(v, ndf) != Route::closed) require_quadrature_domain(ndf, mu);
+}
+
 namespace {
 
 // A record's check: FNV-1a (64 bit) of its fields, in hex. A record cut short, edited or half-written does not

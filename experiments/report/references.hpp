@@ -21,6 +21,9 @@ enum class Route { closed, q1d_boost, q2d_boost };
 const char* name_of(Route r);
 Route route_for(const LambdaVariant& v, const AnyNdf& ndf);
 double compute_reference(const AnyNdf& ndf, double mu, Route r);
+// input_error, before any work, unless every quadrature that the variant's row at (ndf, mu) runs (its reference's
+// route, the variant's own) accepts mu.
+void require_row_domain(const LambdaVariant& v, const AnyNdf& ndf, double mu);
 
 // References by (spec, mu, route), read from and saved to a CSV file (DIR/cache/references.csv). Each record carries
 // a check of its fields; one that does not match (cut short by a kill, edited) is discarded and computed again.

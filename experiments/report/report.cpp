@@ -117,10 +117,26 @@ int run_report(const Scene& scene, const std::string& out_dir, const NdfRegistry
     if (rows.empty()) throw input_error("scene selects no variant (see smithlab eval --list-methods)");
     for (double mu : scene.mus) require(mu > 0.0 && std::isfinite(mu), "scene: grid.mu", "finite and > 0", mu);
     for (double mu : scene.g2.mus) require(mu > 0.0 && std::isfinite(mu), "scene: g2.mu", "finite and > 0", mu);
+    for (const Row& row : rows)
+        for (const AnyNdf& ndf : grid_ndfs)
+            if (row.variant->applies(ndf))
+                for (double mu : scene.mus) try {
+                        require_row_domain(*row.variant, ndf, mu);
+                    } catch (const input_error& e) {
+                        throw input_error("scene: grid.mu = " + format_g17(mu) + " for " + ndf.spec() + " (variant " +
+                                          row.variant->name + "): " + e.what());
+                    }
     std::vector<AnyNdf> g2_ndfs;
     if (!scene.g2.include.empty())
         for (const std::string& family : scene.g2.families)
             for (double a : scene.alphas) g2_ndfs.push_back(ndfs.make(format_spec({family, {{"alpha", a}}})));
+    for (const AnyNdf& ndf : g2_ndfs)  // the exact G2's Lambdas come by quadrature where there is no closed form
+        if (!ndf.has_closed_Lambda())
+            for (double mu : scene.g2.mus) try {
+                    require_quadrature_domain(ndf, mu);
+                } catch (const input_error& e) {
+                    throw input_error("scene: g2.mu = " + format_g17(mu) + " for " + ndf.spec() + ": " + e.what());
+                }
 
     // The sampling experiment validates its keys before it computes anything.
     std::vector<SamplingRow> sampling;

@@ -19,7 +19,7 @@ std::string joined(const std::vector<std::string>& names) {
 
 // A section is a table opened by a [header] or [[header]] line, as opposed to a key = value.
 bool is_section(const toml::value& v) {
-    const std::string& line = v.location().line_str();
+    const std::string line = v.location().line_str();  // a copy: location() is a temporary
     const auto first = line.find_first_not_of(" \t");
     return (v.is_table() || v.is_array()) && first != std::string::npos && line[first] == '[';
 }

@@ -51,6 +51,14 @@ void require_mu(double mu);
 void require_quadrature_scale(double mu, double P22_at_pole, const char* method);
 }  // namespace detail
 
+// input_error unless the quadrature methods (Lambda_1d, Lambda_2d) accept mu for ndf; `method` names them in the
+// message. For callers that validate a whole grid before they compute any of it.
+template <Ndf N>
+void require_quadrature_domain(const N& ndf, double mu, const char* method = "quadrature") {
+    detail::require_mu(mu);
+    detail::require_quadrature_scale(mu, slope_density(ndf, 0.0), method);
+}
+
 // P22(p, q), Walter 2007 eq. 42.
 template <Ndf N>
 double P22(const N& ndf, double p, double q) {
@@ -78,8 +86,7 @@ double P2(const N& ndf, double q, const QuadratureOptions& opts = {}) {
 // with sec v - 1 = tan^2 v / (sec v + 1) to keep the digits near v = 0.
 template <Ndf N>
 double Lambda_2d(const N& ndf, double mu, const QuadratureOptions& opts = {}) {
-    detail::require_mu(mu);
-    detail::require_quadrature_scale(mu, slope_density(ndf, 0.0), "quadrature2d");
+    require_quadrature_domain(ndf, mu, "quadrature2d");
     QuadratureOptions inner = opts;
     inner.tolerance = opts.tolerance * 0.1;
     return mu * integrate_quarter_turn([&](double, double tn, double sec2) {
@@ -98,8 +105,7 @@ double Lambda_2d(const N& ndf, double mu, const QuadratureOptions& opts = {}) {
 // huge nor a tiny mu overflows. At grazing angles the peak of f sits at pi/2 - t ~ mu/alpha (integrate_quarter_turn).
 template <Ndf N>
 double Lambda_1d(const N& ndf, double mu, const QuadratureOptions& opts = {}) {
-    detail::require_mu(mu);
-    detail::require_quadrature_scale(mu, slope_density(ndf, 0.0), "quadrature");
+    require_quadrature_domain(ndf, mu);
     const double mu2 = mu * mu;
     return 2.0 * integrate_quarter_turn([&](double t, double tn, double sec2) {
         const double r2 = mu2 * sec2;
