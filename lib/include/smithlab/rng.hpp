@@ -1,9 +1,19 @@
-// smithlab/rng.hpp -- the random numbers every sampler draws: a PCG generator (O'Neill 2014, pcg-cpp) that callers
-// own and pass in. No global state: the same seed gives the same samples.
+// smithlab/rng.hpp -- the random numbers every sampler draws. No global state: generators are values the caller
+// owns and passes in, and the same seed gives the same samples.
+//
+//   Rng      a PCG generator (O'Neill 2014, pcg-cpp), for sequential streams (`smithlab sample`, the tests).
+//   WalkRng  a counter-based generator (Salmon, Moraes, Dror, Shaw 2011, "Parallel random numbers: as easy as
+//            1, 2, 3", Philox4x64-10 from Random123) keyed by (seed, cell) and counting from (walk, 0): the numbers of
+//            walk k of a cell are a pure function of (seed, cell, k), whichever thread or process runs it.
 #pragma once
 
+#include <Random123/philox.h>
+
+#include <concepts>
 #include <cstdint>
+#include <limits>
 #include <pcg_random.hpp>
+#include <random>
 
 namespace smithlab {
 
@@ -12,7 +22,35 @@ using Rng = pcg64;
 // A generator for `seed` and stream `stream` (independent sequences for, e.g., one per thread or per estimate).
 inline Rng make_rng(std::uint64_t seed, std::uint64_t stream = 0) { return Rng(seed, stream); }
 
+class WalkRng {
+public:
+    using result_type = std::uint64_t;
+    static constexpr result_type min() { return 0; }
+    static constexpr result_type max() { return std::numeric_limits<result_type>::max(); }
+
+    WalkRng(std::uint64_t seed, std::uint64_t cell, std::uint64_t walk) : key_{{seed, cell}}, ctr_{{walk, 0, 0, 0}} {}
+
+    result_type operator()() {
+        if (next_ == 4) {
+            block_ = r123::Philox4x64()(ctr_, key_);
+            ++ctr_.v[1];
+            next_ = 0;
+        }
+        return block_.v[next_++];
+    }
+
+private:
+    r123::Philox4x64::key_type key_;
+    r123::Philox4x64::ctr_type ctr_;
+    r123::Philox4x64::ctr_type block_{};
+    int next_ = 4;
+};
+
 // Uniform in [0, 1): the top 53 bits, so every value is a multiple of 2^-53 and 1 is never returned.
-inline double uniform01(Rng& g) { return static_cast<double>(g() >> 11) * 0x1.0p-53; }
+template <class G>
+    requires std::uniform_random_bit_generator<G> && (G::min() == 0) && (G::max() == ~std::uint64_t{0})
+double uniform01(G& g) {
+    return static_cast<double>(g() >> 11) * 0x1.0p-53;
+}
 
 }  // namespace smithlab
