@@ -28,20 +28,26 @@ bool is_identifier(std::string_view s) {
 
 namespace {
 
-[[noreturn]] void bad_spec(std::string_view text, const std::string& why) {
-    throw input_error("ndf spec '" + std::string(text) + "': " + why);
+[[noreturn]] void bad_spec(std::string_view what, std::string_view text, const std::string& why) {
+    throw input_error(std::string(what) + " '" + std::string(text) + "': " + why);
+}
+
+// A spec's name: an identifier in which '-' may join words ("fresnel-diffuse").
+bool is_spec_name(std::string_view s) {
+    return !s.empty() && s[0] != '-' && s.back() != '-' && is_identifier(s.substr(0, 1)) &&
+           std::all_of(s.begin(), s.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-'; });
 }
 
 }  // namespace
 
-NdfSpec parse_spec(std::string_view text) {
+NdfSpec parse_spec(std::string_view text, std::string_view what) {
     const std::string_view s = trim(text);
     NdfSpec spec;
     const auto open = s.find('(');
     spec.name = std::string(trim(s.substr(0, open)));
-    if (!is_identifier(spec.name)) bad_spec(text, "expected a name like ggx(alpha=0.2)");
+    if (!is_spec_name(spec.name)) bad_spec(what, text, "expected a name like ggx(alpha=0.2)");
     if (open == std::string_view::npos) return spec;
-    if (s.back() != ')') bad_spec(text, "missing closing ')'");
+    if (s.back() != ')') bad_spec(what, text, "missing closing ')'");
     std::string_view body = trim(s.substr(open + 1, s.size() - open - 2));
     if (body.empty()) return spec;
     std::set<std::string, std::less<>> seen;
@@ -49,16 +55,16 @@ NdfSpec parse_spec(std::string_view text) {
         const auto comma = body.find(',');
         const std::string_view item = trim(body.substr(0, comma));
         const auto eq = item.find('=');
-        if (eq == std::string_view::npos) bad_spec(text, "parameter '" + std::string(item) + "' is not key=value");
+        if (eq == std::string_view::npos) bad_spec(what, text, "parameter '" + std::string(item) + "' is not key=value");
         const std::string key(trim(item.substr(0, eq)));
         const std::string value(trim(item.substr(eq + 1)));
-        if (!is_identifier(key)) bad_spec(text, "bad parameter name '" + key + "'");
-        if (!seen.insert(key).second) bad_spec(text, "parameter '" + key + "' given twice");
+        if (!is_identifier(key)) bad_spec(what, text, "bad parameter name '" + key + "'");
+        if (!seen.insert(key).second) bad_spec(what, text, "parameter '" + key + "' given twice");
         errno = 0;
         char* end = nullptr;
         const double v = value.empty() ? 0.0 : std::strtod(value.c_str(), &end);
         if (value.empty() || end != value.c_str() + value.size() || errno == ERANGE)
-            bad_spec(text, "value of '" + key + "' is not a number: '" + value + "'");
+            bad_spec(what, text, "value of '" + key + "' is not a number: '" + value + "'");
         spec.params.emplace_back(key, v);
         if (comma == std::string_view::npos) break;
         body.remove_prefix(comma + 1);

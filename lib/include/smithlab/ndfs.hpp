@@ -28,6 +28,8 @@ struct Ggx {
     // tan^2 = alpha^2 (1 - v) / v.
     double Dcos_sf(double r2) const { return alpha * alpha / (alpha * alpha + r2); }
     double Dcos_r2(double v) const { return alpha * alpha * (1.0 - v) / v; }
+    // The capability "GGX of this alpha": its visible normals are sampled in closed form (visible_normals.hpp).
+    double ggx_alpha() const { return alpha; }
 };
 
 // Beckmann, Walter 2007 eq. 25: D = exp(-tan^2 / alpha^2) / (pi alpha^2 cos^4).

@@ -8,14 +8,16 @@
 
 namespace smithlab {
 
-// A parsed spec: name(key=value, ...). Values are doubles.
+// A parsed spec: name(key=value, ...). Values are doubles. NDFs and facet materials are named this way.
 struct NdfSpec {
     std::string name;
     std::vector<std::pair<std::string, double>> params;
 };
 
-// Grammar: name [ "(" [ key "=" number { "," key "=" number } ] ")" ], blanks allowed between tokens.
-NdfSpec parse_spec(std::string_view text);  // throws input_error quoting the text and the bad part
+// Grammar: name [ "(" [ key "=" number { "," key "=" number } ] ")" ], blanks allowed between tokens; a name is an
+// identifier whose words may be joined by '-' ("fresnel-diffuse"). Throws input_error quoting `what` (the kind of
+// spec, e.g. "material spec"), the text and the bad part.
+NdfSpec parse_spec(std::string_view text, std::string_view what = "ndf spec");
 
 // A name or parameter key: a letter or '_' followed by letters, digits and '_'.
 bool is_identifier(std::string_view s);

@@ -1,0 +1,142 @@
+// smithlab/walk/facets.hpp -- what a single facet does with light: the facet materials of the microsurface walk.
+//
+// Each material, in the frame of the macrosurface, with wi pointing away from the facet toward where the light came
+// from and m the facet's normal (wi.m > 0):
+//   sample(wi, m, g)      the next direction and the weight it carries (0: absorbed), and whether the event was diffuse;
+//   phase(ms, wi, wo, g)  the phase function rho(wi -> wo) = integral of D_wi(m) f_m(wi, wo) <wo.m> dm over the visible
+//                         normals D_wi of wi, the density (with its weight) of the next direction, split into its
+//                         specular and diffuse parts: analytic where the facet is a mirror (the half vector
+//                         decides m: F D(h) / (4 A(wi)), Heitz et al. 2016 eq. 20 with Walter 2007 eq. 14),
+//                         one-sample estimates over m ~ D_wi where it is diffuse (Heitz et al. 2016, sec. 5.3).
+// The closed set of materials is a std::variant (Material), visited once per cell, never per bounce.
+#pragma once
+
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <string_view>
+#include <variant>
+
+#include "smithlab/fresnel.hpp"
+#include "smithlab/geometry.hpp"
+#include "smithlab/rng.hpp"
+#include "smithlab/sampling.hpp"
+
+namespace smithlab::walk {
+
+struct Scatter {
+    Vec3 wo;
+    double weight;  // 0: absorbed
+    bool diffuse;
+};
+
+struct Phase {
+    double specular = 0.0, diffuse = 0.0;
+};
+
+namespace detail {
+// The specular part of a phase function, F(wi.h) D(h) / (4 A(wi)), h the half vector of wi and wo.
+template <class Microsurface, class Fresnel>
+double mirror_phase(const Microsurface& ms, const Vec3& wi, const Vec3& wo, Fresnel F) {
+    Vec3 h = wi + wo;
+    const double n2 = h.squaredNorm();
+    if (!(n2 > 0.0) || !(h.z() > 0.0)) return 0.0;
+    h /= std::sqrt(n2);
+    const double c = wi.dot(h);
+    if (!(c > 0.0)) return 0.0;
+    return F(c) * ms.normals().D(h) / (4.0 * ms.normals().projected_area(wi));
+}
+
+// A direction about m with cos(theta) = c and a uniform azimuth.
+template <class G>
+Vec3 about(const Vec3& m, double c, G& g) {
+    const double s = std::sqrt(std::max(0.0, (1.0 - c) * (1.0 + c))), phi = 2.0 * std::numbers::pi * uniform01(g);
+    return Frame(m).to_world(Vec3(s * std::cos(phi), s * std::sin(phi), c));
+}
+
+// Hammon 2017 appendix, "Transmission Direction": cos(theta) about the facet normal drawn from the lobe
+// k (1 - (1 - c)^5) c, k = 21 / (20 pi), whose CDF in c is
+//     Y(c) = 7/2 c^3 - 21/4 c^4 + 21/5 c^5 - 7/4 c^6 + 3/10 c^7,
+// solved for Y = u by Newton's method from Shirley's rational first guess (the slide's), kept in [0, 1] by bisection.
+double hammon_lobe_cos(double u);
+}  // namespace detail
+
+// F = 1: every facet a perfect mirror.
+struct Mirror {
+    template <class G>
+    Scatter sample(const Vec3& wi, const Vec3& m, G&) const {
+        return {reflect(wi, m), 1.0, false};
+    }
+    template <class Microsurface, class G>
+    Phase phase(const Microsurface& ms, const Vec3& wi, const Vec3& wo, G&) const {
+        return {detail::mirror_phase(ms, wi, wo, [](double) { return 1.0; }), 0.0};
+    }
+};
+
+// Mirror facets of a conductor, complex index eta + i k, with the exact Fresnel reflectance (fresnel.hpp).
+struct Conductor {
+    double eta, k;
+    template <class G>
+    Scatter sample(const Vec3& wi, const Vec3& m, G&) const {
+        return {reflect(wi, m), fresnel_conductor(wi.dot(m), eta, k), false};
+    }
+    template <class Microsurface, class G>
+    Phase phase(const Microsurface& ms, const Vec3& wi, const Vec3& wo, G&) const {
+        return {detail::mirror_phase(ms, wi, wo, [this](double c) { return fresnel_conductor(c, eta, k); }), 0.0};
+    }
+};
+
+// Lambertian facets (Heitz et al. 2016, sec. 5.3, the diffuse microsurface): each reflects albedo / pi about m.
+struct Lambert {
+    double albedo;
+    template <class G>
+    Scatter sample(const Vec3&, const Vec3& m, G& g) const {
+        if (albedo == 0.0) return {m, 0.0, true};
+        return {detail::about(m, std::sqrt(uniform01(g)), g), albedo, true};  // Malley: cos = sqrt(u)
+    }
+    template <class Microsurface, class G>
+    Phase phase(const Microsurface& ms, const Vec3& wi, const Vec3& wo, G& g) const {
+        if (albedo == 0.0) return {};
+        const Vec3 m = ms.visible_normal(wi, g);
+        return {0.0, albedo / std::numbers::pi * std::max(0.0, wo.dot(m))};
+    }
+};
+
+// Hammon 2017's facets ("Reflection/Transmission", "Transmission Direction"): Schlick F reflects specularly; the
+// rest enters, is tinted by albedo, and leaves through the facet again into the lobe k (1 - (1 - cos)^5) cos about m,
+// k = 21 / (20 pi): facet BRDF F spec + (1 - F(wi.m)) albedo k (1 - (1 - wo.m)^5), symmetric in wi and wo.
+// The branch is chosen with probability F (Russian roulette between the two, unbiased), so weights stay in [0, 1].
+struct FresnelDiffuse {
+    double f0, albedo;
+    static constexpr double k = 21.0 / (20.0 * std::numbers::pi);
+
+    template <class G>
+    Scatter sample(const Vec3& wi, const Vec3& m, G& g) const {
+        if (uniform01(g) < fresnel_schlick(f0, wi.dot(m))) return {reflect(wi, m), 1.0, false};
+        if (albedo == 0.0) return {m, 0.0, true};
+        return {detail::about(m, detail::hammon_lobe_cos(uniform01(g)), g), albedo, true};
+    }
+    template <class Microsurface, class G>
+    Phase phase(const Microsurface& ms, const Vec3& wi, const Vec3& wo, G& g) const {
+        Phase p{detail::mirror_phase(ms, wi, wo, [this](double c) { return fresnel_schlick(f0, c); }), 0.0};
+        if (albedo == 0.0) return p;
+        const Vec3 m = ms.visible_normal(wi, g);
+        const double c = wo.dot(m);
+        if (c > 0.0) {
+            const double t = 1.0 - c, t5 = t * t * t * t * t;
+            p.diffuse = (1.0 - fresnel_schlick(f0, wi.dot(m))) * albedo * k * (1.0 - t5) * c;
+        }
+        return p;
+    }
+};
+
+using Material = std::variant<Mirror, Conductor, Lambert, FresnelDiffuse>;
+
+// "mirror", "conductor(eta=, k=)", "lambert(albedo=1)", "fresnel-diffuse(f0=0.02, albedo=1)": input_error naming an
+// unknown material (with the known ones), an unknown or missing parameter, or a value out of its range.
+Material parse_material(std::string_view spec);
+std::string format_material(const Material& material);
+// Whether any event of the material is diffuse (the tallies of the diffuse component exist only then).
+bool has_diffuse(const Material& material);
+
+}  // namespace smithlab::walk

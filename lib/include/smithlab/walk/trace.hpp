@@ -1,0 +1,95 @@
+// smithlab/walk/trace.hpp -- one cell: many walks from one incident direction on one microsurface and material,
+// tallied (tally.hpp) over threads in fixed blocks (parallel.hpp). Walk k of a cell draws from WalkRng(seed, cell, k).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+
+#include "smithlab/walk/parallel.hpp"
+#include "smithlab/walk/tally.hpp"
+#include "smithlab/walk/walk.hpp"
+
+namespace smithlab::walk {
+
+struct CellRequest {
+    Vec3 wi;                      // toward the light, wi.z > 0
+    std::uint64_t seed = 1, cell = 0;
+    std::int64_t walks = 100'000;
+    WalkLimits limits;
+    BrdfBins brdf;                // empty: no directional tally is allocated
+    unsigned threads = 0;         // 0: all cores
+    std::int64_t block = 4096;    // walks per block (part of the result's definition: the merge order)
+};
+
+struct CellResult {
+    AlbedoTally albedo;
+    std::optional<BrdfTally> brdf;
+};
+
+// The blocks' boundaries: block b holds walks [b * block, min(walks, (b + 1) * block)).
+inline std::uint64_t block_count(std::int64_t walks, std::int64_t block) {
+    return static_cast<std::uint64_t>((walks + block - 1) / block);
+}
+
+// progress(fraction done) is called from a worker after each merged block (outside any walk).
+template <class Microsurface, class M>
+CellResult trace_cell(const Microsurface& ms, const M& material, const CellRequest& r,
+                      const std::function<void(double)>& progress = {}) {
+    struct Partial {
+        AlbedoTally albedo;
+        std::optional<BrdfTally> brdf;
+    };
+    const std::uint64_t blocks = block_count(r.walks, r.block);
+    Partial init;
+    if (!r.brdf.empty()) init.brdf.emplace(r.brdf);
+    Partial total = reduce_blocks(
+        blocks, r.threads, std::move(init),
+        [&](std::uint64_t b) {
+            Partial p;
+            if (!r.brdf.empty()) p.brdf.emplace(r.brdf);
+            const std::int64_t first = static_cast<std::int64_t>(b) * r.block, last = std::min(r.walks, first + r.block);
+            for (std::int64_t k = first; k < last; ++k) {
+                WalkRng g(r.seed, r.cell, static_cast<std::uint64_t>(k));
+                const WalkSample s = sample_walk(ms, material, r.wi, g, r.limits);
+                p.albedo.add(s);
+                if (p.brdf) p.brdf->add(s);
+            }
+            return p;
+        },
+        [](Partial& t, const Partial& p) {
+            t.albedo.merge(p.albedo);
+            if (t.brdf) t.brdf->merge(*p.brdf);
+        },
+        [&](std::uint64_t merged) {
+            if (progress) progress(static_cast<double>(merged) / static_cast<double>(blocks));
+        });
+    return {std::move(total.albedo), std::move(total.brdf)};
+}
+
+struct EvalRequest {
+    Vec3 wi, wo;                  // wi.z > 0; wo anywhere (f |cos theta_o| = 0 below for the materials here)
+    std::uint64_t seed = 1, cell = 0;
+    std::int64_t walks = 100'000;
+    WalkLimits limits;
+    unsigned threads = 0;
+    std::int64_t block = 4096;
+};
+
+template <class Microsurface, class M>
+EvalTally eval_cell(const Microsurface& ms, const M& material, const EvalRequest& r) {
+    return reduce_blocks(
+        block_count(r.walks, r.block), r.threads, EvalTally{},
+        [&](std::uint64_t b) {
+            EvalTally p;
+            const std::int64_t first = static_cast<std::int64_t>(b) * r.block, last = std::min(r.walks, first + r.block);
+            for (std::int64_t k = first; k < last; ++k) {
+                WalkRng g(r.seed, r.cell, static_cast<std::uint64_t>(k));
+                p.add(eval_walk(ms, material, r.wi, r.wo, g, r.limits));
+            }
+            return p;
+        },
+        [](EvalTally& t, const EvalTally& p) { t.merge(p); }, [](std::uint64_t) {});
+}
+
+}  // namespace smithlab::walk

@@ -1,0 +1,125 @@
+#include "smithlab/walk/facets.hpp"
+
+#include <algorithm>
+#include <map>
+#include <string>
+
+#include "smithlab/errors.hpp"
+#include "smithlab/spec.hpp"
+
+namespace smithlab::walk {
+
+namespace detail {
+
+double hammon_lobe_cos(double u) {
+    auto Y = [](double c) {  // Horner form of the slide's polynomial, c^3 (7/2 - 21/4 c + 21/5 c^2 - 7/4 c^3 + 3/10 c^4)
+        return c * c * c * (3.5 + c * (-5.25 + c * (4.2 + c * (-1.75 + c * 0.3))));
+    };
+    auto dY = [](double c) {  // (21/10) c (1 - (1 - c)^5)
+        const double t = 1.0 - c, t2 = t * t;
+        return 2.1 * c * (1.0 - t2 * t2 * t);
+    };
+    if (!(u > 0.0)) return 0.0;
+    if (!(u < 1.0)) return 1.0;
+    // Shirley's rational first guess, as printed on the slide.
+    double c = (0.0114813 + u * (154.4 + u * (13002.4 + u * 38295.9))) / (1.0 + u * (1483.57 + u * (33596.4 + u * 16520.2)));
+    double lo = 0.0, hi = 1.0;
+    for (int i = 0; i < 60; ++i) {
+        const double r = Y(c) - u;
+        if (r > 0.0) hi = std::min(hi, c); else lo = std::max(lo, c);
+        const double d = dY(c);
+        double next = d > 0.0 ? c - r / d : 0.5 * (lo + hi);
+        if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+        if (std::abs(next - c) <= 1e-16 * c) return next;
+        c = next;
+        if (hi - lo <= 1e-16) break;
+    }
+    return c;
+}
+
+}  // namespace detail
+
+namespace {
+
+// The parameters of a material spec by key, each checked against its range; unknown keys refused.
+class MaterialParams {
+public:
+    MaterialParams(const NdfSpec& spec, std::initializer_list<std::string> keys) : name_(spec.name) {
+        for (const auto& [key, value] : spec.params) {
+            if (std::find(keys.begin(), keys.end(), key) == keys.end()) {
+                std::string known;
+                for (const std::string& k : keys) known += (known.empty() ? "" : ", ") + k;
+                throw input_error("material '" + name_ + "': unknown parameter '" + key + "'" +
+                                  (known.empty() ? " (it takes none)" : " (it takes " + known + ")"));
+            }
+            values_[key] = value;
+        }
+    }
+    double get(const std::string& key, double fallback, double lo, double hi) const {
+        const auto it = values_.find(key);
+        if (it == values_.end()) {
+            if (std::isnan(fallback)) throw input_error("material '" + name_ + "': parameter '" + key + "' is required");
+            return fallback;
+        }
+        const double v = it->second;
+        require(v >= lo && v <= hi, "material '" + name_ + "': " + key,
+                "in [" + num(lo) + ", " + num(hi) + "]", v);
+        return v;
+    }
+
+private:
+    static std::string num(double x) {
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%g", x);
+        return buf;
+    }
+    std::string name_;
+    std::map<std::string, double> values_;
+};
+
+constexpr double required = NAN;
+
+}  // namespace
+
+Material parse_material(std::string_view text) {
+    const NdfSpec spec = parse_spec(text, "material spec");
+    const std::string& n = spec.name;
+    if (n == "mirror") {
+        MaterialParams p(spec, {});
+        return Mirror{};
+    }
+    if (n == "conductor") {
+        MaterialParams p(spec, {"eta", "k"});
+        return Conductor{p.get("eta", required, 1e-6, 1e6), p.get("k", required, 0.0, 1e6)};
+    }
+    if (n == "lambert") {
+        MaterialParams p(spec, {"albedo"});
+        return Lambert{p.get("albedo", 1.0, 0.0, 1.0)};
+    }
+    if (n == "fresnel-diffuse") {
+        MaterialParams p(spec, {"f0", "albedo"});
+        return FresnelDiffuse{p.get("f0", 0.02, 0.0, 1.0), p.get("albedo", 1.0, 0.0, 1.0)};
+    }
+    throw input_error("unknown material '" + n + "' (known: mirror, conductor(eta=, k=), lambert(albedo=1), "
+                      "fresnel-diffuse(f0=0.02, albedo=1))");
+}
+
+std::string format_material(const Material& material) {
+    struct Format {
+        std::string operator()(const Mirror&) const { return "mirror"; }
+        std::string operator()(const Conductor& c) const { return format_spec({"conductor", {{"eta", c.eta}, {"k", c.k}}}); }
+        std::string operator()(const Lambert& l) const { return format_spec({"lambert", {{"albedo", l.albedo}}}); }
+        std::string operator()(const FresnelDiffuse& f) const {
+            return format_spec({"fresnel-diffuse", {{"f0", f.f0}, {"albedo", f.albedo}}});
+        }
+    };
+    return std::visit(Format{}, material);
+}
+
+bool has_diffuse(const Material& material) {
+    if (const auto* l = std::get_if<Lambert>(&material)) return l->albedo > 0.0;
+    if (const auto* f = std::get_if<FresnelDiffuse>(&material)) return f->albedo > 0.0;
+    return false;
+}
+
+}  // namespace smithlab::walk

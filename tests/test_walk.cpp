@@ -1,0 +1,235 @@
+// The microsurface walk (lib/include/smithlab/walk/) against what it must reproduce: energy conservation (white
+// furnace, by both estimators), the analytic single-scattering BRDF for its first bounce, reciprocity, independence
+// of the height law, the same bits for any number of threads; and a wrong walk (a Lambda that does not belong to D)
+// is caught by the furnace.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <numbers>
+#include <smithlab/smithlab.hpp>
+#include <smithlab/single_scattering.hpp>
+#include <smithlab/walk/trace.hpp>
+#include <string>
+
+namespace {
+
+using smithlab::Vec3;
+namespace walk = smithlab::walk;
+constexpr double pi = std::numbers::pi;
+
+Vec3 dir(double theta_deg, double phi_deg) {
+    const double t = theta_deg * pi / 180.0, p = phi_deg * pi / 180.0;
+    return {std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t)};
+}
+
+// The integral over the upper hemisphere of the eval estimator, f |cos theta_o|, by wo ~ cos / pi, one walk each:
+// the directional albedo, with its standard error.
+template <class MS, class M>
+walk::Estimate eval_albedo(const MS& ms, const M& material, const Vec3& wi, int n, std::uint64_t seed) {
+    walk::Moments m;
+    for (int k = 0; k < n; ++k) {
+        smithlab::WalkRng g(seed, 99, static_cast<std::uint64_t>(k));
+        const double r = std::sqrt(smithlab::uniform01(g)), phi = 2.0 * pi * smithlab::uniform01(g);
+        const Vec3 wo(r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(1e-300, 1.0 - r * r)));
+        const walk::EvalSample s = walk::eval_walk(ms, material, wi, wo, g);
+        double f = 0.0;
+        for (int o = 0; o < walk::order_bins; ++o) f += s.specular[o] + s.diffuse[o];
+        m.add(f * pi / wo.z());
+    }
+    return walk::estimate(m, n);
+}
+
+// A microsurface whose Lambda is not D's: GGX's D with Lambda scaled by 1.3.
+struct WrongLambda {
+    smithlab::Ggx ggx;
+    double D(double c) const { return ggx.D(c); }
+    double slope_density(double r2) const { return ggx.slope_density(r2); }
+    double Lambda(double mu) const { return 1.3 * ggx.Lambda(mu); }
+};
+
+}  // namespace
+
+TEST_CASE("white furnace, sample estimator: every walk leaves with all its energy", "[walk]") {
+    const walk::Material materials[] = {walk::Mirror{}, walk::Lambert{1.0}, walk::FresnelDiffuse{0.02, 1.0}};
+    for (double alpha : {0.01, 0.3, 1.0}) {
+        const walk::Microsurface ms(smithlab::ggx(alpha));
+        for (const walk::Material& material : materials) {
+            for (double theta : {0.0, 45.0, 85.0}) {
+                walk::CellRequest r;
+                r.wi = dir(theta, 0.0);
+                r.walks = 20'000;
+                const walk::CellResult c = std::visit([&](const auto& m) { return walk::trace_cell(ms, m, r); }, material);
+                INFO("alpha " << alpha << " " << walk::format_material(material) << " theta_i " << theta);
+                CHECK(c.albedo.capped == 0);
+                const walk::Estimate all = c.albedo.albedo(walk::Hemisphere::all, walk::all_orders, walk::Component::all);
+                CHECK(all.value == Approx(1.0).margin(1e-12));
+                CHECK(c.albedo.albedo(walk::Hemisphere::transmission, walk::all_orders, walk::Component::all).value == 0.0);
+            }
+        }
+    }
+}
+
+TEST_CASE("white furnace, eval estimator: the hemisphere integral of f cos is 1", "[walk]") {
+    const Vec3 wi = dir(60.0, 0.0);
+    auto check = [&](const auto& ms, const walk::Material& material, const std::string& what) {
+        const walk::Estimate e = std::visit([&](const auto& m) { return eval_albedo(ms, m, wi, 40'000, 5); }, material);
+        INFO(what << " " << walk::format_material(material) << ": " << e.value << " +- " << e.stderr_);
+        CHECK(std::abs(e.value - 1.0) < 4.0 * e.stderr_ + 1e-3);
+        CHECK(e.stderr_ < 0.02);
+    };
+    for (const walk::Material& m : {walk::Material{walk::Mirror{}}, walk::Material{walk::Lambert{1.0}},
+                                    walk::Material{walk::FresnelDiffuse{0.02, 1.0}}}) {
+        check(walk::Microsurface(smithlab::ggx(0.5)), m, "ggx(0.5)");
+        check(walk::Microsurface(smithlab::beckmann(0.5)), m, "beckmann(0.5)");
+        check(walk::Microsurface(smithlab::gtr(0.5, 1.5)), m, "gtr(0.5, 1.5)");
+        check(walk::Microsurface(smithlab::gtr(0.5, 3.7)), m, "gtr(0.5, 3.7)");
+        check(walk::Microsurface(smithlab::DOnly<smithlab::Ggx>{smithlab::ggx(0.5)}), m, "D-only ggx(0.5)");
+    }
+}
+
+TEST_CASE("a Lambda that does not belong to D fails the furnace", "[walk]") {
+    const walk::Microsurface ms(WrongLambda{smithlab::ggx(0.5)});
+    const walk::Estimate e = eval_albedo(ms, walk::Mirror{}, dir(60.0, 0.0), 40'000, 5);
+    INFO(e.value << " +- " << e.stderr_);
+    CHECK(std::abs(e.value - 1.0) > 10.0 * e.stderr_);
+}
+
+TEST_CASE("the first bounce is the analytic single-scattering BRDF", "[walk]") {
+    for (double alpha : {0.1, 0.5}) {
+        const smithlab::Ggx ggx = smithlab::ggx(alpha);
+        const walk::Microsurface ms(ggx);
+        for (auto [ti, pi_, to, po] : {std::array{30.0, 0.0, 30.0, 180.0}, std::array{70.0, 0.0, 50.0, 150.0},
+                                       std::array{85.0, 0.0, 80.0, 180.0}, std::array{10.0, 0.0, 60.0, 90.0}}) {
+            const Vec3 wi = dir(ti, pi_), wo = dir(to, po);
+            walk::EvalRequest r{.wi = wi, .wo = wo, .walks = 40'000};
+            r.limits.max_order = 1;
+            const walk::EvalTally t = walk::eval_cell(ms, walk::Conductor{0.2, 3.0}, r);
+            const double want = smithlab::single_scattering_reflection(
+                ggx, wi, wo, [](double c) { return smithlab::fresnel_conductor(c, 0.2, 3.0); });
+            const walk::Estimate got = t.value(0, walk::Component::specular);
+            INFO("alpha " << alpha << " wi " << ti << " wo " << to << "," << po << ": " << got.value << " +- "
+                          << got.stderr_ << " against " << want);
+            CHECK(std::abs(got.value - want) < 4.0 * got.stderr_ + 1e-12);
+            CHECK(got.stderr_ < 0.05 * want + 1e-9);
+            CHECK(t.value(1, walk::Component::all).value == 0.0);  // nothing past order 1 when it is not asked for
+        }
+    }
+}
+
+TEST_CASE("reciprocity: f(wi, wo) = f(wo, wi)", "[walk]") {
+    const walk::Microsurface ms(smithlab::ggx(0.6));
+    const std::array<std::array<double, 4>, 5> pairs = {{{20, 0, 60, 180}, {45, 0, 80, 90}, {75, 30, 10, 250},
+                                                         {88, 0, 60, 120}, {50, 10, 87, 200}}};
+    for (const walk::Material& material : {walk::Material{walk::Mirror{}}, walk::Material{walk::Lambert{0.8}},
+                                           walk::Material{walk::FresnelDiffuse{0.04, 0.9}}}) {
+        for (const auto& p : pairs) {
+            const Vec3 a = dir(p[0], p[1]), b = dir(p[2], p[3]);
+            auto f = [&](const Vec3& wi, const Vec3& wo, std::uint64_t cell) {
+                walk::EvalRequest r{.wi = wi, .wo = wo, .cell = cell, .walks = 40'000};
+                const walk::EvalTally t = std::visit([&](const auto& m) { return walk::eval_cell(ms, m, r); }, material);
+                const walk::Estimate e = t.value();
+                return walk::Estimate{e.value / wo.z(), e.stderr_ / wo.z()};
+            };
+            const walk::Estimate ab = f(a, b, 1), ba = f(b, a, 2);
+            INFO(walk::format_material(material) << " (" << p[0] << "," << p[1] << ") <-> (" << p[2] << "," << p[3]
+                                                 << "): " << ab.value << " +- " << ab.stderr_ << " vs " << ba.value
+                                                 << " +- " << ba.stderr_);
+            CHECK(std::abs(ab.value - ba.value) < 4.0 * std::hypot(ab.stderr_, ba.stderr_));
+        }
+    }
+}
+
+TEST_CASE("the height law does not change the result", "[walk]") {
+    const smithlab::Ggx ggx = smithlab::ggx(0.8);
+    const walk::Microsurface<smithlab::Ggx, walk::UniformHeights> uniform(ggx);
+    const walk::Microsurface<smithlab::Ggx, walk::GaussianHeights> gaussian(ggx);
+    walk::CellRequest r;
+    r.wi = dir(70.0, 0.0);
+    r.walks = 100'000;
+    const walk::CellResult a = walk::trace_cell(uniform, walk::Lambert{1.0}, r);
+    r.seed = 2;
+    const walk::CellResult b = walk::trace_cell(gaussian, walk::Lambert{1.0}, r);
+    for (int order = 0; order < walk::order_bins; ++order) {
+        const walk::Estimate x = a.albedo.albedo(walk::Hemisphere::reflection, order, walk::Component::all);
+        const walk::Estimate y = b.albedo.albedo(walk::Hemisphere::reflection, order, walk::Component::all);
+        INFO("order bin " << order << ": " << x.value << " +- " << x.stderr_ << " vs " << y.value << " +- " << y.stderr_);
+        CHECK(std::abs(x.value - y.value) < 4.0 * std::hypot(x.stderr_, y.stderr_));
+    }
+}
+
+TEST_CASE("the same bits for any number of threads; orders not asked for are not traced", "[walk]") {
+    const walk::Microsurface ms(smithlab::gtr(0.4, 1.5));
+    walk::CellRequest r;
+    r.wi = dir(50.0, 20.0);
+    r.walks = 30'000;
+    r.block = 1000;
+    r.brdf = {8, 16, false};
+    r.threads = 1;
+    const walk::CellResult one = walk::trace_cell(ms, walk::Lambert{0.9}, r);
+    for (unsigned threads : {2u, 3u}) {
+        r.threads = threads;
+        const walk::CellResult many = walk::trace_cell(ms, walk::Lambert{0.9}, r);
+        for (std::size_t i = 0; i < one.albedo.bins.size(); ++i) {
+            CHECK(one.albedo.bins[i].sum == many.albedo.bins[i].sum);
+            CHECK(one.albedo.bins[i].sum2 == many.albedo.bins[i].sum2);
+        }
+        for (std::size_t i = 0; i < one.brdf->cells.size(); ++i) CHECK(one.brdf->cells[i].sum == many.brdf->cells[i].sum);
+        CHECK(one.albedo.events == many.albedo.events);
+    }
+    r.limits.max_order = 1;
+    const walk::CellResult first = walk::trace_cell(ms, walk::Lambert{0.9}, r);
+    CHECK(first.albedo.events == first.albedo.walks);  // a ray from above always hits, and stops there
+    CHECK(one.albedo.events > first.albedo.walks + first.albedo.walks / 5);
+    CHECK(first.albedo.albedo(walk::Hemisphere::all, 1, walk::Component::all).value == 0.0);
+    // Order 1 is the same walks' first bounces either way.
+    CHECK(first.albedo.albedo(walk::Hemisphere::all, 0, walk::Component::all).value ==
+          one.albedo.albedo(walk::Hemisphere::all, 0, walk::Component::all).value);
+}
+
+TEST_CASE("material specs: named, validated, refused with the item named", "[walk]") {
+    CHECK(walk::format_material(walk::parse_material("fresnel-diffuse")) == "fresnel-diffuse(f0=0.02, albedo=1)");
+    CHECK(walk::format_material(walk::parse_material("conductor(eta=0.2, k=3)")) == "conductor(eta=0.2, k=3)");
+    CHECK_THROWS_WITH(walk::parse_material("velvet"), Catch::Contains("unknown material 'velvet'"));
+    CHECK_THROWS_WITH(walk::parse_material("lambert(albedo=1.5)"), Catch::Contains("albedo"));
+    CHECK_THROWS_WITH(walk::parse_material("lambert(rho=0.5)"), Catch::Contains("unknown parameter 'rho'"));
+    CHECK_THROWS_WITH(walk::parse_material("conductor(eta=1)"), Catch::Contains("'k' is required"));
+    CHECK_THROWS_WITH(walk::parse_material("mirror(albedo=nan)"), Catch::Contains("albedo"));
+}
+
+TEST_CASE("Hammon's transmission lobe is sampled from its CDF", "[walk]") {
+    for (double u : {1e-12, 1e-6, 0.01, 0.3, 0.5, 0.9, 0.999999}) {
+        const double c = walk::detail::hammon_lobe_cos(u);
+        const double Y = 3.5 * std::pow(c, 3) - 5.25 * std::pow(c, 4) + 4.2 * std::pow(c, 5) - 1.75 * std::pow(c, 6) +
+                         0.3 * std::pow(c, 7);
+        CHECK(Y == Approx(u).epsilon(1e-10));
+    }
+}
+
+TEST_CASE("the two estimators agree, order by order", "[walk]") {
+    const Vec3 wi = dir(70.0, 0.0);
+    auto check = [&](const auto& ms, const std::string& what) {
+        walk::CellRequest r;
+        r.wi = wi;
+        r.walks = 100'000;
+        const walk::CellResult c = walk::trace_cell(ms, walk::Mirror{}, r);
+        std::array<walk::Moments, walk::order_bins> eval{};
+        const int n = 40'000;
+        for (int k = 0; k < n; ++k) {
+            smithlab::WalkRng g(3, 7, static_cast<std::uint64_t>(k));
+            const double rr = std::sqrt(smithlab::uniform01(g)), phi = 2.0 * pi * smithlab::uniform01(g);
+            const Vec3 wo(rr * std::cos(phi), rr * std::sin(phi), std::sqrt(std::max(1e-300, 1.0 - rr * rr)));
+            const walk::EvalSample s = walk::eval_walk(ms, walk::Mirror{}, wi, wo, g);
+            for (int o = 0; o < walk::order_bins; ++o) eval[o].add((s.specular[o] + s.diffuse[o]) * pi / wo.z());
+        }
+        for (int o = 0; o < walk::order_bins; ++o) {
+            const walk::Estimate a = c.albedo.albedo(walk::Hemisphere::reflection, o, walk::Component::all);
+            const walk::Estimate b = walk::estimate(eval[o], n);
+            INFO(what << " order bin " << o << ": sample " << a.value << " +- " << a.stderr_ << ", eval " << b.value
+                      << " +- " << b.stderr_);
+            CHECK(std::abs(a.value - b.value) < 4.0 * std::hypot(a.stderr_, b.stderr_) + 1e-4);
+        }
+    };
+    check(walk::Microsurface(smithlab::ggx(0.7)), "ggx(0.7), closed-form visible normals");
+    check(walk::Microsurface(smithlab::DOnly<smithlab::Ggx>{smithlab::ggx(0.7)}), "D-only ggx(0.7)");
+    check(walk::Microsurface(smithlab::gtr(0.7, 1.5)), "gtr(0.7, 1.5)");
+    check(walk::Microsurface(smithlab::beckmann(0.7)), "beckmann(0.7)");
+}
