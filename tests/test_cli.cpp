@@ -294,3 +294,45 @@ TEST_CASE("report: Dimov 2015's figures reproduce, and are drawn", "[cli][report
     CHECK(fs::exists(d / "dimov" / "gamma4_vs_10.png"));  // .ci/deps installs python3-matplotlib
     CHECK_FALSE(fs::exists(d / "dimov" / "pareto.png"));  // not asked for, not drawn
 }
+
+TEST_CASE("trace: albedo.csv and meta.json, the same bits for any --threads; bad input exits 2 with nothing written",
+          "[cli][walk]") {
+    const fs::path d = scratch();
+    const std::string cell = "--ndf 'gtr(alpha=0.4, gamma=1.5)' --material 'lambert(albedo=0.8)' --theta-i 60 --walks 20000";
+    std::string first;
+    for (int threads : {1, 2, 3}) {
+        const fs::path out = d / ("trace" + std::to_string(threads));
+        const Run r = run("trace " + cell + " --threads " + std::to_string(threads) + " --output '" + out.string() + "'");
+        REQUIRE(r.rc == 0);
+        const std::string csv = slurp(out / "albedo.csv");
+        CHECK(csv.rfind("ndf,material,theta_i,phi_i,hemisphere,order,component,albedo,stderr,walks\n", 0) == 0);
+        CHECK(csv.find("\"gtr(alpha=0.4, gamma=1.5)\",lambert(albedo=0.8),60,0,all,all,all,") != std::string::npos);
+        CHECK(slurp(out / "meta.json").find("\"walks\": 20000") != std::string::npos);
+        if (first.empty()) first = csv;
+        CHECK(csv == first);
+    }
+    for (const std::string& bad : {"--material velvet", "--material 'lambert(albedo=2)'", "--walks 0", "--theta-i 90",
+                                   "--ndf 'ggx(alpha=-1)'", "--seed -1", "--downward up"}) {
+        const fs::path out = d / "refused";
+        const Run r = run("trace " + bad + " --output '" + out.string() + "'");
+        INFO(bad << ": " << r.err);
+        CHECK(r.rc == 2);
+        CHECK(r.err.find("error") != std::string::npos);
+        CHECK(!fs::exists(out));
+    }
+}
+
+TEST_CASE("brdf: the eval estimator's value, its orders and the analytic single scattering", "[cli][walk]") {
+    const Run r = run("brdf --ndf 'ggx(alpha=0.5)' --material mirror --wi 45,0 --wo 60,180 --n 100000 --seed 3");
+    REQUIRE(r.rc == 0);
+    double order1 = 0, err1 = 0, single = 0;
+    std::istringstream in(r.out);
+    for (std::string key; in >> key;) {
+        if (key == "order_1") in >> order1 >> err1;
+        else if (key == "single_analytic") in >> single;
+        else in.ignore(1000, '\n');
+    }
+    REQUIRE(single > 0.0);
+    CHECK(std::abs(order1 - single) < 4.0 * err1);
+    CHECK(run("brdf --ndf 'ggx(alpha=0.5)' --material mirror --wi 120,0 --wo 60,180").rc == 2);
+}

@@ -51,6 +51,25 @@ struct SampleArgs {
 void add_sample(CLI::App& app, SampleArgs& args);
 int run_sample(const SampleArgs& args, const NdfRegistry& registry);
 
+struct TraceArgs {
+    std::string ndf = "ggx(alpha=0.5)", material = "mirror", downward = "smith", output = "trace";
+    double theta_i = 45.0, phi_i = 0.0;
+    long long walks = 1'000'000;
+    int max_order = 0, threads = 0;
+    std::string seed = "1";
+};
+void add_trace(CLI::App& app, TraceArgs& args);
+int run_trace(const TraceArgs& args, const NdfRegistry& registry);
+
+struct BrdfArgs {
+    std::string ndf, material, wi, wo, downward = "smith";
+    long long n = 1'000'000;
+    int threads = 0;
+    std::string seed = "1";
+};
+void add_brdf(CLI::App& app, BrdfArgs& args);
+int run_brdf(const BrdfArgs& args, const NdfRegistry& registry);
+
 // Parses a double, accepting "inf"; NaN and trailing junk are input errors naming `what`.
 double parse_number(const std::string& text, const std::string& what);
 // Parses a seed: decimal digits only, 0 .. 2^64 - 1; anything else is an input error naming `what`.

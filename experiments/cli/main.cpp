@@ -47,6 +47,10 @@ int main(int argc, char** argv) {
     cli::add_report(app, report_args);
     cli::SampleArgs sample_args;
     cli::add_sample(app, sample_args);
+    cli::TraceArgs trace_args;
+    cli::add_trace(app, trace_args);
+    cli::BrdfArgs brdf_args;
+    cli::add_brdf(app, brdf_args);
     CLI::App* list = app.add_subcommand("list", "List the registered NDFs, their parameters and example specs");
 
     if (unknown_subcommand(app, argc, argv)) return cli::exit_bad_input;
@@ -66,6 +70,8 @@ int main(int argc, char** argv) {
         if (app.got_subcommand("check")) return cli::run_check(check_args, registry);
         if (app.got_subcommand("report")) return cli::run_report(report_args, registry, variants);
         if (app.got_subcommand("sample")) return cli::run_sample(sample_args, registry);
+        if (app.got_subcommand("trace")) return cli::run_trace(trace_args, registry);
+        if (app.got_subcommand("brdf")) return cli::run_brdf(brdf_args, registry);
         if (list->parsed()) {
             for (const NdfInfo* info : registry.list()) {
                 std::cout << info->name << "(";

@@ -20,7 +20,6 @@
 #include "smithlab/fresnel.hpp"
 #include "smithlab/geometry.hpp"
 #include "smithlab/rng.hpp"
-#include "smithlab/sampling.hpp"
 
 namespace smithlab::walk {
 
