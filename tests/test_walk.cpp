@@ -1,7 +1,7 @@
 // The microsurface walk (lib/include/smithlab/walk/) against what it must reproduce: energy conservation (white
 // furnace, by both estimators), the analytic single-scattering BRDF for its first bounce, reciprocity, independence
 // of the height law, the same bits for any number of threads; and a wrong walk (a Lambda that does not belong to D)
-// is caught by the furnace.
+// is caught by the furnace. The statistical cases are [slow]: the sanitized CI build runs the others (tests/CMakeLists.txt).
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <numbers>
@@ -48,7 +48,7 @@ struct WrongLambda {
 
 }  // namespace
 
-TEST_CASE("white furnace, sample estimator: every walk leaves with all its energy", "[walk]") {
+TEST_CASE("white furnace, sample estimator: every walk leaves with all its energy", "[walk][slow]") {
     const walk::Material materials[] = {walk::Mirror{}, walk::Lambert{1.0}, walk::FresnelDiffuse{0.02, 1.0}};
     for (double alpha : {0.01, 0.3, 1.0}) {
         const walk::Microsurface ms(smithlab::ggx(alpha));
@@ -68,7 +68,7 @@ TEST_CASE("white furnace, sample estimator: every walk leaves with all its energ
     }
 }
 
-TEST_CASE("white furnace, eval estimator: the hemisphere integral of f cos is 1", "[walk]") {
+TEST_CASE("white furnace, eval estimator: the hemisphere integral of f cos is 1", "[walk][slow]") {
     const Vec3 wi = dir(60.0, 0.0);
     auto check = [&](const auto& ms, const walk::Material& material, const std::string& what) {
         const walk::Estimate e = std::visit([&](const auto& m) { return eval_albedo(ms, m, wi, 40'000, 5); }, material);
@@ -86,14 +86,14 @@ TEST_CASE("white furnace, eval estimator: the hemisphere integral of f cos is 1"
     }
 }
 
-TEST_CASE("a Lambda that does not belong to D fails the furnace", "[walk]") {
+TEST_CASE("a Lambda that does not belong to D fails the furnace", "[walk][slow]") {
     const walk::Microsurface ms(WrongLambda{smithlab::ggx(0.5)});
     const walk::Estimate e = eval_albedo(ms, walk::Mirror{}, dir(60.0, 0.0), 40'000, 5);
     INFO(e.value << " +- " << e.stderr_);
     CHECK(std::abs(e.value - 1.0) > 10.0 * e.stderr_);
 }
 
-TEST_CASE("the first bounce is the analytic single-scattering BRDF", "[walk]") {
+TEST_CASE("the first bounce is the analytic single-scattering BRDF", "[walk][slow]") {
     for (double alpha : {0.1, 0.5}) {
         const smithlab::Ggx ggx = smithlab::ggx(alpha);
         const walk::Microsurface ms(ggx);
@@ -115,7 +115,7 @@ TEST_CASE("the first bounce is the analytic single-scattering BRDF", "[walk]") {
     }
 }
 
-TEST_CASE("reciprocity: f(wi, wo) = f(wo, wi)", "[walk]") {
+TEST_CASE("reciprocity: f(wi, wo) = f(wo, wi)", "[walk][slow]") {
     const walk::Microsurface ms(smithlab::ggx(0.6));
     const std::array<std::array<double, 4>, 5> pairs = {{{20, 0, 60, 180}, {45, 0, 80, 90}, {75, 30, 10, 250},
                                                          {88, 0, 60, 120}, {50, 10, 87, 200}}};
@@ -138,7 +138,7 @@ TEST_CASE("reciprocity: f(wi, wo) = f(wo, wi)", "[walk]") {
     }
 }
 
-TEST_CASE("the height law does not change the result", "[walk]") {
+TEST_CASE("the height law does not change the result", "[walk][slow]") {
     const smithlab::Ggx ggx = smithlab::ggx(0.8);
     const walk::Microsurface<smithlab::Ggx, walk::UniformHeights> uniform(ggx);
     const walk::Microsurface<smithlab::Ggx, walk::GaussianHeights> gaussian(ggx);
@@ -204,7 +204,7 @@ TEST_CASE("Hammon's transmission lobe is sampled from its CDF", "[walk]") {
     }
 }
 
-TEST_CASE("the two estimators agree, order by order", "[walk]") {
+TEST_CASE("the two estimators agree, order by order", "[walk][slow]") {
     const Vec3 wi = dir(70.0, 0.0);
     auto check = [&](const auto& ms, const std::string& what) {
         walk::CellRequest r;
