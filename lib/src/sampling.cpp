@@ -36,16 +36,6 @@ void require_unit(const Vec3& w, const char* what) {
 }
 }  // namespace
 
-Vec3 normal_from_slope(double s, double phi) {
-    if (!(s < INFINITY)) return {std::cos(phi), std::sin(phi), 0.0};
-    const double c = 1.0 / std::sqrt(1.0 + s), sn = std::sqrt(s) * c;
-    return {sn * std::cos(phi), sn * std::sin(phi), c};
-}
-
-Vec3 direction_from_theta_deg(double theta_deg) {
-    const double t = theta_deg * pi / 180.0;
-    return {std::sin(t), 0.0, std::cos(t)};
-}
 
 // ---- D cos ----------------------------------------------------------------------------------------------
 

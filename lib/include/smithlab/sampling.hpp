@@ -15,6 +15,7 @@
 #include <memory>
 #include <numbers>
 
+#include "smithlab/geometry.hpp"
 #include "smithlab/lambda_table.hpp"
 #include "smithlab/ndf.hpp"
 #include "smithlab/quadrature.hpp"
@@ -23,28 +24,15 @@
 
 namespace smithlab {
 
-using Vec3 = Eigen::Vector3d;
 
 struct NormalSample {
     Vec3 m;
     double pdf;  // of m, with respect to solid angle
 };
 
-// Mirror reflection of i about m, and the pdf of the reflected direction given m's: pdf_m / (4 |i.m|)
-// (Walter 2007 eq. 14; the blog's "one extra step").
-inline Vec3 reflect(const Vec3& i, const Vec3& m) { return 2.0 * i.dot(m) * m - i; }
-inline double reflected_pdf(double pdf_m, const Vec3& i, const Vec3& m) { return pdf_m / (4.0 * std::abs(i.dot(m))); }
 
-// The normal of slope tan^2(theta) = s at azimuth phi; cos and sin come from s, exact at the pole.
-Vec3 normal_from_slope(double s, double phi);
-// mu = cot(theta) of a direction, the argument of Lambda: +inf straight up.
-inline double cot_theta(const Vec3& w) { return w.z() / std::hypot(w.x(), w.y()); }
-// tan^2(theta) of a unit vector, (x^2 + y^2) / z^2.
-inline double tan2_theta(const Vec3& m) { return (m.x() * m.x() + m.y() * m.y()) / (m.z() * m.z()); }
 // D(m) = P22 / cos^4 = P22(s) (1 + s)^2 (Walter 2007 eq. 42), from the slope density.
 inline double D_from_P22(double P22, double s) { return P22 * (1.0 + s) * (1.0 + s); }
-// The direction of polar angle theta (degrees) in the xz-plane: (sin, 0, cos).
-Vec3 direction_from_theta_deg(double theta_deg);
 
 class DcosSampler {
 public:
