@@ -295,7 +295,7 @@ TEST_CASE("report: Dimov 2015's figures reproduce, and are drawn", "[cli][report
     CHECK_FALSE(fs::exists(d / "dimov" / "pareto.png"));  // not asked for, not drawn
 }
 
-TEST_CASE("trace: albedo.csv and meta.json, the same bits for any --threads; bad input exits 2 with nothing written",
+TEST_CASE("trace: albedo.csv and meta.json, the same bits for any --threads, and bad input exits 2 with nothing written",
           "[cli][walk]") {
     const fs::path d = scratch();
     const std::string cell = "--ndf 'gtr(alpha=0.4, gamma=1.5)' --material 'lambert(albedo=0.8)' --theta-i 60 --walks 20000";

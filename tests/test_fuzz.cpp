@@ -341,7 +341,7 @@ TEST_CASE("fuzz: NDF specs, in-process (parse_spec, builtin_registry().make, one
         INFO("input " << i << ": spec '" << text << "'");
         try {
             const smithlab::NdfSpec spec = smithlab::parse_spec(text);
-            CHECK(smithlab::is_identifier(spec.name));
+            CHECK(smithlab::is_spec_name(spec.name));
             // The canonical text parses back to itself.
             const std::string canon = smithlab::format_spec(spec);
             CHECK(smithlab::format_spec(smithlab::parse_spec(canon)) == canon);

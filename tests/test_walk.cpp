@@ -156,7 +156,7 @@ TEST_CASE("the height law does not change the result", "[walk][slow]") {
     }
 }
 
-TEST_CASE("the same bits for any number of threads; orders not asked for are not traced", "[walk]") {
+TEST_CASE("the same bits for any number of threads, and orders not asked for are not traced", "[walk]") {
     const walk::Microsurface ms(smithlab::gtr(0.4, 1.5));
     walk::CellRequest r;
     r.wi = dir(50.0, 20.0);

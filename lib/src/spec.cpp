@@ -32,11 +32,14 @@ namespace {
     throw input_error(std::string(what) + " '" + std::string(text) + "': " + why);
 }
 
-// A spec's name: an identifier in which '-' may join words ("fresnel-diffuse").
+}  // namespace
+
 bool is_spec_name(std::string_view s) {
     return !s.empty() && s[0] != '-' && s.back() != '-' && is_identifier(s.substr(0, 1)) &&
            std::all_of(s.begin(), s.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-'; });
 }
+
+namespace {
 
 }  // namespace
 

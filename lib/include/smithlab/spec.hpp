@@ -22,6 +22,9 @@ NdfSpec parse_spec(std::string_view text, std::string_view what = "ndf spec");
 // A name or parameter key: a letter or '_' followed by letters, digits and '_'.
 bool is_identifier(std::string_view s);
 
+// A spec's name: an identifier in which '-' may join words ("fresnel-diffuse").
+bool is_spec_name(std::string_view s);
+
 // "name(k1=v1, k2=v2)" with every value in its shortest round-trip form.
 std::string format_spec(const NdfSpec& spec);
 
