@@ -1,6 +1,6 @@
 // tests/chi2.hpp -- a chi-square goodness-of-fit test for normal samplers, after Mitsuba 3's chi2 harness and
 // pbrt-v4's bsdfs_test: sample, histogram, integrate the sampler's pdf over every bin, pool the bins expecting
-// fewer than 5, and compare.
+// fewer than 5 (a pool still below 5 joins the smallest cell), and compare.
 //
 // Bins are equal-area in (phi, cos theta') on the hemisphere of normals whose slopes are divided by `scale` (the
 // NDF's typical slope): at alpha = 1e-3 equal-area bins in cos theta itself would put every sample in one bin.
@@ -15,6 +15,7 @@
 #include <smithlab/quadrature.hpp>
 #include <smithlab/samplers.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace chi2 {
@@ -79,24 +80,30 @@ inline Result test(const smithlab::BoundSampler& sampler, const Bins& bins, std:
             expected[i * bins.n_phi + j] = bins.integral(sampler.pdf, i, j);
             r.pdf_integral += expected[i * bins.n_phi + j];
         }
-    // Pool the bins expecting < 5 samples. (A sample where the pdf is 0 is caught above, sample by sample.)
+    // Pool the bins expecting < 5 samples; a pool that itself expects < 5 joins the smallest of the other cells (as
+    // Mitsuba's harness merges it), so that no cell expects fewer than 5: one legitimate sample in a pool expecting
+    // 0.01 would otherwise add 100 to the statistic. (A sample where the pdf is 0 is caught above, sample by sample.)
     double pooled_o = 0.0, pooled_e = 0.0;
-    int cells = 0;
+    std::vector<std::pair<double, double>> cells;  // (observed, expected)
     for (int b = 0; b < nb; ++b) {
         const double e = expected[b] * static_cast<double>(n);
         if (e < 5.0) {
             pooled_o += observed[b];
             pooled_e += e;
-            continue;
+        } else {
+            cells.emplace_back(observed[b], e);
         }
-        r.statistic += (observed[b] - e) * (observed[b] - e) / e;
-        ++cells;
     }
-    if (pooled_e > 0.0) {
-        r.statistic += (pooled_o - pooled_e) * (pooled_o - pooled_e) / pooled_e;
-        ++cells;
+    if (pooled_e >= 5.0 || (pooled_e > 0.0 && cells.empty())) {
+        cells.emplace_back(pooled_o, pooled_e);
+    } else if (pooled_e > 0.0) {
+        auto smallest = std::min_element(cells.begin(), cells.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
+        smallest->first += pooled_o;
+        smallest->second += pooled_e;
     }
-    r.dof = cells - 1;
+    for (const auto& [o, e] : cells) r.statistic += (o - e) * (o - e) / e;
+    const int n_cells = static_cast<int>(cells.size());
+    r.dof = n_cells - 1;
     if (r.dof < 1) {
         r.note = "fewer than two cells after pooling";
         return r;

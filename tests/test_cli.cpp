@@ -107,7 +107,12 @@ TEST_CASE("sample: CSV of unit normals and their pdfs, reproducible by seed, bad
     }
     CHECK(n == 500);
     CHECK_THAT(run("sample --list-samplers").out, Catch::Contains("vndf-ggx") && Catch::Contains("hammon"));
-    for (const char* bad : {"--sampler nope", "--sampler vndf --theta-i 95", "--sampler vndf --theta-i nan", "--sampler vndf --n 0"}) {
+    // Visible normals of a direction below the horizon (issue 10) are drawn; --theta-i stays in [0, 180).
+    const Run below = run("sample --ndf 'ggx(alpha=0.3)' --sampler vndf --theta-i 135 --n 3 --seed 1");
+    CHECK(below.rc == 0);
+    CHECK(std::count(below.out.begin(), below.out.end(), '\n') == 4);
+    for (const char* bad : {"--sampler nope", "--sampler vndf --theta-i 180", "--sampler vndf --theta-i nan", "--sampler vndf --n 0",
+                            "--sampler vndf-beckmann --theta-i 10"}) {
         const Run r = run(std::string("sample --ndf 'ggx(alpha=0.3)' ") + bad + " --output '" + (d / "never.csv").string() + "'");
         INFO(bad << ": " << r.err);
         CHECK(r.rc == 2);

@@ -51,8 +51,11 @@ std::vector<SamplingRow> run_sampling_experiment(const Scene::Sampling& s, const
     for (const AnyNdf& ndf : list) {
         const auto c = std::make_shared<const Conductor>(Conductor{ndf, wo, Lambda(ndf, cot_theta(wo))});
         const BoundSampler dcos = prepare(find_sampler(samplers, "dcos"), ndf, wo);
-        const bool ggx = ndf.family() == "ggx";
-        const BoundSampler vndf = prepare(find_sampler(samplers, ggx ? "vndf-ggx" : "vndf"), ndf, wo);
+        // Visible normals in closed form where the NDF offers one (its capability, ndf.hpp), else by rejection.
+        const char* visible = !std::isnan(ggx_alpha(ndf))        ? "vndf-ggx"
+                              : !std::isnan(beckmann_alpha(ndf)) ? "vndf-beckmann"
+                                                                 : "vndf";
+        const BoundSampler vndf = prepare(find_sampler(samplers, visible), ndf, wo);
         const double cos_o = wo.z();
         std::vector<std::function<double(Rng&)>> weights = {
             [c, cos_o](Rng& g) {  // Malley: a uniform disk point lifted to the hemisphere is cosine-distributed

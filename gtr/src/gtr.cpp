@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "smithlab/errors.hpp"
@@ -93,6 +94,8 @@ double Gtr::Dcos_r2(double v) const {
                                  : -std::log1p(v * std::expm1(kL)) / e;
     return std::max(0.0, one_minus_a2 / std::expm1(Lc) - a2);
 }
+
+double Gtr::ggx_alpha() const { return gamma == 2.0 ? alpha : std::numeric_limits<double>::quiet_NaN(); }
 
 bool Gtr::has_closed_Lambda() const { return gtr_has_closed_form(gamma); }
 

@@ -59,21 +59,31 @@ double Beckmann::Lambda(double mu) const {
         const double erfc_a = boost::math::erfc(a) - 2.0 * a_lo * gauss;
         ierfc = gauss - (a + a_lo) * erfc_a;
     } else {
-        // Asymptotic series (A&S 7.1.23 integrated once): ierfc(a) = e^{-a^2}/sqrt(pi) sum_{k>=1} (-1)^{k+1} (2k-1)!! / (2a^2)^k.
-        // At a >= 6 its smallest term is below e^{-36} = 2e-16 of the sum.
-        const double x = 1.0 / (2.0 * a2);
-        double term = x, sum = x;
-        for (int k = 2; k < 60; ++k) {
-            const double next = -term * (2 * k - 1) * x;
-            if (std::abs(next) >= std::abs(term)) break;
-            term = next;
-            sum += term;
-            if (std::abs(term) < 1e-17 * sum) break;
-        }
-        ierfc = gauss * sum;
+        ierfc = gauss * detail::ierfc_scaled_asymptotic(a);
     }
     return ierfc / (2.0 * a);
 }
+
+namespace {
+// sum_{k>=k0} (-1)^{k-k0} (2k-1)!! x^k, x = 1 / (2 a^2), (-1)!! = 1, stopped at its smallest term or at 1e-17.
+double asymptotic_sum(double a, int k0) {
+    const double x = 1.0 / (2.0 * a * a);
+    double term = k0 == 0 ? 1.0 : x, sum = term;
+    for (int k = k0 + 1; k < 60; ++k) {
+        const double next = -term * (2 * k - 1) * x;
+        if (std::abs(next) >= std::abs(term)) break;
+        term = next;
+        sum += term;
+        if (std::abs(term) < 1e-17 * sum) break;
+    }
+    return sum;
+}
+}  // namespace
+
+// A&S 7.1.23: sqrt(pi) a e^{a^2} erfc(a) ~ sum_{k>=0} (-1)^k (2k-1)!! / (2a^2)^k; integrated once (ierfc' = -erfc):
+// sqrt(pi) e^{a^2} ierfc(a) ~ sum_{k>=1} (-1)^{k+1} (2k-1)!! / (2a^2)^k.
+double detail::erfc_scaled_asymptotic(double a) { return asymptotic_sum(a, 0) / a; }
+double detail::ierfc_scaled_asymptotic(double a) { return asymptotic_sum(a, 1); }
 
 double BlinnPhong::D(double c) const {
     if (c < 0.0) return 0.0;

@@ -1,5 +1,6 @@
 #include "smithlab/samplers.hpp"
 
+#include <cmath>
 #include <memory>
 
 #include "smithlab/errors.hpp"
@@ -11,15 +12,21 @@ namespace {
 using Incidence = SamplerInfo::Incidence;
 
 bool any_ndf(const AnyNdf&) { return true; }
-bool is_ggx(const AnyNdf& n) { return n.family() == "ggx" || (n.family() == "gtr" && n.param("gamma") == 2.0); }
+// The capabilities (ndf.hpp): the NDF is exactly GGX / Beckmann of some alpha.
+bool is_ggx(const AnyNdf& n) { return !std::isnan(ggx_alpha(n)); }
+bool is_beckmann(const AnyNdf& n) { return !std::isnan(beckmann_alpha(n)); }
 
 BoundSampler dcos(const AnyNdf& ndf, bool tabulate) {
     auto s = std::make_shared<const DcosSampler>(ndf, tabulate);
     return {[s](Rng& g) { return s->sample(g); }, [s](const Vec3& m) { return s->pdf(m); }, s->table_error()};
 }
 
-BoundSampler visible(const AnyNdf& ndf, const Vec3& wi, bool tabulate) {
-    auto s = std::make_shared<const VisibleNormalSampler>(ndf, tabulate);
+// Visible normals of wi by a route; input_error at once when no normal is visible from wi.
+BoundSampler visible(const AnyNdf& ndf, const Vec3& wi, VisibleRoute route) {
+    auto s = std::make_shared<const VisibleNormalSampler>(ndf, route);
+    if (!(s->projected_area(wi) > 0.0))
+        throw input_error("visible-normal sampler: no microfacet normal of '" + ndf.spec() +
+                          "' is visible from wi (straight down, or a projected area that underflows in double)");
     return {[s, wi](Rng& g) { return s->sample(wi, g); }, [s, wi](const Vec3& m) { return s->pdf(wi, m); },
             s->table_error()};
 }
@@ -32,16 +39,15 @@ std::vector<SamplerInfo> builtin_samplers() {
          Incidence::ignored, any_ndf, [](const AnyNdf& n, const Vec3&) { return dcos(n, false); }},
         {"dcos-table", "D(m) cos(theta_m) by a tabulated inverse CDF of pi P22(tan^2), for any NDF", Incidence::ignored,
          any_ndf, [](const AnyNdf& n, const Vec3&) { return dcos(n, true); }},
-        {"vndf", "visible normals G1 <wi.m> D / cos(theta_i), any NDF: slope-space rejection (Heitz & d'Eon 2014 law)",
-         Incidence::upper, any_ndf, [](const AnyNdf& n, const Vec3& wi) { return visible(n, wi, false); }},
+        {"vndf", "visible normals <wi.m>^+ D / A(wi), wi anywhere, any NDF: slope-space rejection (Heitz & d'Eon 2014 law)",
+         Incidence::any, any_ndf, [](const AnyNdf& n, const Vec3& wi) { return visible(n, wi, VisibleRoute::rejection); }},
         {"vndf-table", "visible normals as vndf, with the D cos part tabulated too (what a D-only NDF gets)",
-         Incidence::upper, any_ndf, [](const AnyNdf& n, const Vec3& wi) { return visible(n, wi, true); }},
-        {"vndf-ggx", "GGX visible normals in closed form, spherical caps (Dupuy & Benyoub 2023)", Incidence::upper, is_ggx,
-         [](const AnyNdf& n, const Vec3& wi) -> BoundSampler {
-             const double a = n.param("alpha");
-             return {[a, wi](Rng& g) { return sample_ggx_visible(a, wi, g); },
-                     [a, wi](const Vec3& m) { return pdf_ggx_visible(a, wi, m); }, 0.0};
-         }},
+         Incidence::any, any_ndf, [](const AnyNdf& n, const Vec3& wi) { return visible(n, wi, VisibleRoute::tabulated); }},
+        {"vndf-ggx", "GGX visible normals in closed form, spherical caps (Dupuy & Benyoub 2023), wi anywhere",
+         Incidence::any, is_ggx, [](const AnyNdf& n, const Vec3& wi) { return visible(n, wi, VisibleRoute::automatic); }},
+        {"vndf-beckmann", "Beckmann visible normals in closed form (Heitz & d'Eon 2014 slopes, Newton on ierfc), wi anywhere",
+         Incidence::any, is_beckmann,
+         [](const AnyNdf& n, const Vec3& wi) { return visible(n, wi, VisibleRoute::automatic); }},
         {"hammon", "D(m) cos(theta_m) over the normals facing wi, Hammon 2017's shrunk range (ray T = -wi; wi may be below)",
          Incidence::any, any_ndf, [](const AnyNdf& n, const Vec3& wi) -> BoundSampler {
              auto s = std::make_shared<const HammonSampler>(n);

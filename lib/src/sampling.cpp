@@ -1,6 +1,5 @@
 #include "smithlab/sampling.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -10,151 +9,128 @@
 namespace smithlab {
 
 namespace {
-constexpr double pi = std::numbers::pi;
 
-// Rejection loops give up (input_error) after this many tries instead of hanging: every loop here accepts with
-// probability >= 1/pi per try for any accepted NDF and direction, so reaching it means a law that cannot be drawn.
-constexpr long max_tries = 10'000'000;
-[[noreturn]] void give_up(const char* sampler) {
-    throw input_error(std::string(sampler) + ": no sample accepted in 1e7 tries (a law that cannot be drawn in double)");
+[[noreturn]] void give_up(const std::string& sampler) {
+    throw input_error(sampler + ": no sample accepted in 1e7 tries (a law that cannot be drawn in double)");
 }
 
-// 1 + Lambda(mu) for the visible-normal pdfs. Past mu = 1e12 (within 1e-10 degrees of the normal), beyond the range
-// of the quadrature routes, Lambda is carried on as C/mu^2 from 1e12: the asymptote of every slope law with a tail
-// P22 ~ r^-4 or lighter (every built-in NDF), where Lambda(1e12) r0^-2 ~ 1e-24 is already below double's resolution
-// of 1 + Lambda unless the slope scale r0 is huge (GGX alpha = 1e40), and then the asymptote is exact.
-double one_plus_Lambda(const LambdaTable& t, double mu) {
-    constexpr double far = 1e12;
-    if (mu <= far) return 1.0 + t.Lambda(mu);
-    const double r = far / mu;
-    return 1.0 + t.Lambda(far) * r * r;
-}
-
-void require_unit(const Vec3& w, const char* what) {
+void require_unit(const Vec3& w, const std::string& what) {
     if (!(std::abs(w.squaredNorm() - 1.0) < 1e-9))
-        throw input_error(std::string(what) + " must be a unit vector (|w|^2 = " + std::to_string(w.squaredNorm()) + ")");
+        throw input_error(what + " must be a unit vector (|w|^2 = " + std::to_string(w.squaredNorm()) + ")");
 }
-}  // namespace
 
+// A normal from draw() with a positive, finite pdf: one of underflowing density is drawn again; a draw that
+// returns no_normal() gives up.
+template <class Draw, class Pdf>
+NormalSample with_pdf(const Draw& draw, const Pdf& pdf, const std::string& who) {
+    for (long tries = 0; tries < max_tries; ++tries) {
+        const Vec3 m = draw();
+        if (std::isnan(m.x())) give_up(who);
+        const double p = pdf(m);
+        if (p > 0.0 && p < INFINITY) return {m, p};
+    }
+    give_up(who);
+}
+
+// A visible normal with a positive, finite pdf. Where none is visible (A(wi) = 0: straight down, or a projected area
+// that underflows in double) input_error at the first draw, which is then refused or of pdf 0.
+template <Ndf N>
+NormalSample visible_sample(const VisibleNormals<N>& normals, const Vec3& wi, Rng& g, const std::string& who) {
+    require_unit(wi, who + ": wi");
+    for (long tries = 0; tries < max_tries; ++tries) {
+        const Vec3 m = normals.sample(wi, g);
+        const double p = std::isnan(m.x()) ? 0.0 : normals.pdf(wi, m);
+        if (p > 0.0 && p < INFINITY) return {m, p};
+        if (!(normals.projected_area(wi) > 0.0))
+            throw input_error(who + ": no microfacet normal is visible from wi (straight down, or a projected area that "
+                                    "underflows in double)");
+        if (std::isnan(m.x())) give_up(who);
+    }
+    give_up(who);
+}
+
+// ln N(w) and d ln N / dw for N(w) = ierfc(w) + (w - b) erfc(w), w >= b (visible_normals_closed.hpp). Below w = 6
+// directly (ierfc(w) = e^{-w^2}/sqrt(pi) - w erfc(w) cancels at most a factor 2 w^2 < 72 for w > 0, nothing below);
+// above, scaled by sqrt(pi) e^{w^2}, the asymptotic series of both, positive: E = sqrt(pi) e^{w^2} N. dN/dw =
+// -(w - b) (2 / sqrt(pi)) e^{-w^2}.
+struct LogN {
+    double value, slope;
+};
+LogN beckmann_log_N(double w, double b) {
+    constexpr double sqrt_pi = 1.7724538509055160273;
+    if (w < 6.0) {
+        const double gauss = std::exp(-w * w) / sqrt_pi, erfc_w = std::erfc(w);
+        const double N = (gauss - w * erfc_w) + (w - b) * erfc_w;
+        return {std::log(N), -2.0 * (w - b) * gauss / N};
+    }
+    const double E = detail::ierfc_scaled_asymptotic(w) + (w - b) * detail::erfc_scaled_asymptotic(w);
+    return {-w * w + std::log(E / sqrt_pi), -2.0 * (w - b) / E};
+}
+
+}  // namespace
 
 // ---- D cos ----------------------------------------------------------------------------------------------
 
 NormalSample DcosSampler::sample(Rng& g) const {
-    for (long tries = 0; tries < max_tries; ++tries) {
-        const double s = isf_(1.0 - uniform01(g));  // v in (0, 1]: s finite
-        const Vec3 m = normal_from_slope(s, 2.0 * pi * uniform01(g));
-        const double p = pdf(m);
-        if (p > 0.0 && p < INFINITY) return {m, p};  // a normal of underflowing density is drawn again
-    }
-    give_up("D cos sampler");
+    return with_pdf([&] { return law_.sample(g); }, [&](const Vec3& m) { return law_.pdf(m); }, "D cos sampler");
 }
 
-double DcosSampler::pdf(const Vec3& m) const {
-    if (!(m.z() > 0.0)) return 0.0;
-    const double s = tan2_theta(m);
-    return P22_(s) * (1.0 + s) * std::sqrt(1.0 + s);
-}
-
-// ---- visible normals, any NDF ---------------------------------------------------------------------------
+// ---- visible normals ------------------------------------------------------------------------------------
 
 NormalSample VisibleNormalSampler::sample(const Vec3& wi, Rng& g) const {
-    require_unit(wi, "visible-normal sampler: wi");
-    if (!(wi.z() > 0.0)) throw input_error("visible-normal sampler: wi must be above the surface (wi.z > 0)");
-    const double sin_i = std::hypot(wi.x(), wi.y());
-    if (sin_i == 0.0) return dcos_.sample(g);  // normal incidence: D_wi = D cos
-    const double mu = wi.z() / sin_i, cos_phi = wi.x() / sin_i, sin_phi = wi.y() / sin_i;
-    const double p_dcos = mu / (mu + 2.0 * pi * r_law_->total());
-    for (long tries = 0; tries < max_tries; ++tries) {
-        const double v = 1.0 - uniform01(g);
-        const double s = uniform01(g) < p_dcos ? dcos_.isf(v) : r_law_->isf(v);
-        const double r = std::sqrt(s), phi = 2.0 * pi * uniform01(g);
-        const double x = r * std::cos(phi), y = r * std::sin(phi);
-        if (uniform01(g) * (mu + r) >= mu - x) continue;  // accept with (mu - x)^+ / (mu + r)
-        // The normal of slope (x, y) is (-x, -y, 1)/|.|, then turned back to wi's azimuth.
-        const double n = 1.0 / std::sqrt(1.0 + s);
-        const Vec3 m{(-x * cos_phi + y * sin_phi) * n, (-x * sin_phi - y * cos_phi) * n, n};
-        const double p = pdf(wi, m);
-        if (p > 0.0 && p < INFINITY) return {m, p};
-    }
-    give_up("visible-normal sampler");
+    return visible_sample(*normals_, wi, g, "visible-normal sampler");
 }
-
-double VisibleNormalSampler::pdf(const Vec3& wi, const Vec3& m) const {
-    const double wm = wi.dot(m);
-    if (!(m.z() > 0.0 && wm > 0.0 && wi.z() > 0.0)) return 0.0;
-    const double s = tan2_theta(m);
-    return wm * D_from_P22(dcos_.P22(s), s) / (wi.z() * one_plus_Lambda(*Lambda_, cot_theta(wi)));
-}
-
-double VisibleNormalSampler::table_error() const {
-    return std::max({dcos_.table_error(), r_law_->error_estimate(), Lambda_->error_estimate()});
-}
-
-// ---- visible normals, GGX -------------------------------------------------------------------------------
 
 NormalSample sample_ggx_visible(double alpha, const Vec3& wi, Rng& g) {
-    require_unit(wi, "ggx visible-normal sampler: wi");
-    if (!(wi.z() > 0.0)) throw input_error("ggx visible-normal sampler: wi must be above the surface (wi.z > 0)");
-    const Vec3 wi_std = Vec3(alpha * wi.x(), alpha * wi.y(), wi.z()).normalized();
-    for (long tries = 0; tries < max_tries; ++tries) {
-        const double phi = 2.0 * pi * uniform01(g);
-        const double z = (1.0 - uniform01(g)) * (1.0 + wi_std.z()) - wi_std.z();
-        const double sin_t = std::sqrt(std::max(0.0, (1.0 - z) * (1.0 + z)));
-        const Vec3 h = Vec3(sin_t * std::cos(phi), sin_t * std::sin(phi), z) + wi_std;
-        if (!(h.z() > 0.0)) continue;
-        const Vec3 m = Vec3(alpha * h.x(), alpha * h.y(), h.z()).normalized();
-        const double p = pdf_ggx_visible(alpha, wi, m);
-        if (p > 0.0 && p < INFINITY) return {m, p};
-    }
-    give_up("ggx visible-normal sampler");
+    return visible_sample(VisibleNormals<Ggx>(Ggx{alpha}), wi, g, "ggx visible-normal sampler");
 }
 
-double pdf_ggx_visible(double alpha, const Vec3& wi, const Vec3& m) {
-    const double wm = wi.dot(m);
-    if (!(m.z() > 0.0 && wm > 0.0 && wi.z() > 0.0)) return 0.0;
-    const Ggx ggx{alpha};
-    const double s = tan2_theta(m);
-    return wm * D_from_P22(ggx.slope_density(s), s) / (wi.z() * (1.0 + ggx.Lambda(cot_theta(wi))));  // Lambda(inf) = 0
+double pdf_ggx_visible(double alpha, const Vec3& wi, const Vec3& m) { return VisibleNormals<Ggx>(Ggx{alpha}).pdf(wi, m); }
+
+// Newton's method on ln N, concave (N is the survival function of a log-concave density), so that from either side
+// of the root its steps converge, monotonically once right of it; kept inside the bracket [lo, hi] all the same. Once
+// the residual in ln N is below 1e-9, one more step leaves ~1e-18 (quadratic convergence): it is taken and returned.
+double beckmann_visible_slope(double mu, double u) {
+    const double b = -mu, target = std::log(u) + beckmann_log_N(b, b).value;
+    // Starts: for b >= 1 the law of t = w - b is ~ Gamma(2, 1 / (2b)), survival (1 + z) e^{-z} at z = 2bt, solved by
+    // two fixed-point steps; else about the mode of (w - b) e^{-w^2}, right of it.
+    double w;
+    if (b >= 1.0) {
+        double z = -std::log(u);
+        z = -std::log(u) + std::log1p(z);
+        z = -std::log(u) + std::log1p(z);
+        w = b + std::max(z, 1e-3) / (2.0 * b);
+    } else {
+        w = 0.5 * (b + std::sqrt(b * b + 2.0)) + 0.5 * std::sqrt(-std::log(u));
+    }
+    double lo = b, hi = INFINITY;
+    for (int i = 0; i < 100; ++i) {
+        const LogN f = beckmann_log_N(w, b);
+        const double d = f.value - target;
+        if (d > 0.0) lo = w;
+        else hi = w;
+        double next = f.slope < 0.0 ? w - d / f.slope : NAN;
+        if (std::abs(d) <= 1e-9 && next > b) return -next;
+        if (!(next > lo && next < hi)) next = hi < INFINITY ? 0.5 * (lo + hi) : lo + 2.0 * (lo - b) + 1.0;
+        w = next;
+    }
+    return -w;
 }
 
 // ---- Hammon ---------------------------------------------------------------------------------------------
 
 Vec3 HammonSampler::sample_normal(const Vec3& wi, Rng& g) const {
     require_unit(wi, "hammon sampler: wi");
-    const Vec3 T = -wi;
-    const double Txy2 = T.x() * T.x() + T.y() * T.y();
-    if (Txy2 == 0.0 && T.z() > 0.0) throw input_error("hammon sampler: no microfacet faces a ray travelling straight up");
-    // Hammon's shrink: only u1 >= F(tan^2 theta_c) can face an upward ray, i.e. v = 1 - u1 <= S(tan^2 theta_c).
-    const double S_c = T.z() > 0.0 ? dcos_.sf(T.z() * T.z() / Txy2) : 1.0;
-    for (long tries = 0; tries < max_tries; ++tries) {
-        const double s = dcos_.isf(S_c * (1.0 - uniform01(g)));
-        const Vec3 m = normal_from_slope(s, 2.0 * pi * uniform01(g));
-        if (T.dot(m) < 0.0) return m;
-        if (T.z() > 0.0) {
-            const Vec3 turned(-m.x(), -m.y(), m.z());
-            if (T.dot(turned) < 0.0) return turned;
-        }
-    }
-    give_up("hammon sampler");
+    if (wi.x() == 0.0 && wi.y() == 0.0 && wi.z() < 0.0)
+        throw input_error("hammon sampler: no microfacet faces a ray travelling straight up");
+    const Vec3 m = sample_hammon_normal(law_, wi, g);
+    if (std::isnan(m.x())) give_up("hammon sampler");
+    return m;
 }
 
 double HammonSampler::facing_fraction(const Vec3& wi) const {
     require_unit(wi, "hammon sampler: wi");
-    const double sin_i = std::hypot(wi.x(), wi.y());
-    if (sin_i == 0.0) return wi.z() > 0.0 ? 1.0 : 0.0;
-    // For tan(theta_m) = r, the azimuths with wi.m > 0 are cos(phi) > -mu / r, mu = cot(theta_i) (signed).
-    const double mu = wi.z() / sin_i;
-    // Only normals steeper than tan^2 = mu^2 can face away from (mu > 0) or towards (mu < 0) wi: where the D cos
-    // mass beyond mu^2 is below double's resolution (wi within ~1e-6 degrees of the normal for alpha = 0.3), Z is 1 or
-    // 0 (when that mass is 0) exactly, and the quadrature below would have to find the lobe 700 e-folds from its split.
-    const double beyond = dcos_.sf(mu * mu);
-    if (mu > 0.0 ? beyond < 1e-17 : beyond == 0.0) return mu > 0.0 ? 1.0 : 0.0;
-    auto h = [&](double s) {
-        const double c = std::clamp(-mu / std::sqrt(s), -1.0, 1.0);
-        return std::acos(c) * dcos_.P22(s);  // (acos / pi) * pi P22
-    };
-    // Split at the kink s = mu^2, kept inside [1e-300, 1e300] (mu = 5.7e201 at theta_i = 1e-200 degrees).
-    return integrate_log_axis(h, {}, mu != 0.0 ? std::clamp(mu * mu, 1e-300, 1e300) : 1.0);
+    return hammon_facing_fraction(law_, wi);
 }
 
 }  // namespace smithlab

@@ -51,7 +51,9 @@ double Lambda_beckmann_rational(double alpha, double mu) {
 
 namespace {
 
-bool is_ggx_like(const AnyNdf& n) { return n.family() == "ggx" || (n.family() == "gtr" && n.param("gamma") == 2.0); }
+// The capabilities (ndf.hpp): the approximations made for GGX or Beckmann apply to whatever NDF is exactly one.
+bool is_ggx_like(const AnyNdf& n) { return !std::isnan(ggx_alpha(n)); }
+bool is_beckmann(const AnyNdf& n) { return !std::isnan(beckmann_alpha(n)); }
 
 }  // namespace
 
@@ -68,11 +70,11 @@ std::vector<G2Variant> builtin_G2_variants() {
          [](const AnyNdf& n, double mi, double mo) { return G2(n, mi, mo, G2Form::uncorrelated); }},
         {"g2-schlick-uncorrelated", "Hammon 2017 / Unreal Schlick-style G1(L) G1(V) for GGX, k = alpha/2", is_ggx_like,
          [](const AnyNdf& n, double mi, double mo) {
-             const double a = n.param("alpha");
+             const double a = ggx_alpha(n);
              return 1.0 / ((1.0 + Lambda_schlick_ggx(a, mi)) * (1.0 + Lambda_schlick_ggx(a, mo)));
          }},
         {"g2-hammon-lerp", "Hammon 2017 height-correlated G2 approximation for GGX, 2 NL NV / lerp(2 NL NV, NL + NV, alpha)",
-         is_ggx_like, [](const AnyNdf& n, double mi, double mo) { return G2_hammon_lerp(n.param("alpha"), mi, mo); }},
+         is_ggx_like, [](const AnyNdf& n, double mi, double mo) { return G2_hammon_lerp(ggx_alpha(n), mi, mo); }},
     };
 }
 
@@ -104,12 +106,11 @@ void register_core_variants(VariantRegistry& r) {
            }});
     r.add({"schlick-ggx", "Hammon 2017 / Unreal Schlick-style G1 for GGX, k = alpha/2", is_ggx_like,
            [](const AnyNdf& n) -> LambdaOfMu {
-               return [a = n.param("alpha")](double mu) { return Lambda_schlick_ggx(a, mu); };
+               return [a = ggx_alpha(n)](double mu) { return Lambda_schlick_ggx(a, mu); };
            }});
     r.add({"beckmann-rational", "Walter 2007 eq. 27 rational approximation of Beckmann G1",
-           [](const AnyNdf& n) { return n.family() == "beckmann"; },
-           [](const AnyNdf& n) -> LambdaOfMu {
-               return [a = n.param("alpha")](double mu) { return Lambda_beckmann_rational(a, mu); };
+           is_beckmann, [](const AnyNdf& n) -> LambdaOfMu {
+               return [a = beckmann_alpha(n)](double mu) { return Lambda_beckmann_rational(a, mu); };
            }});
 }
 

@@ -1,9 +1,11 @@
 // smithlab/any_ndf.hpp -- a type-erased NDF, so that the CLI, scene files and the registry can hold any of them.
 //
 // AnyNdf is itself an Ndf: the Smith engine works on it unchanged, and it forwards the optional members
-// (slope form, closed-form Lambda, spline Lambda) of whatever it holds, answering at run time whether they exist.
+// (slope form, closed-form Lambda, spline Lambda, analytic D cos sampler, the capabilities ggx_alpha and
+// beckmann_alpha) of whatever it holds, answering at run time whether they exist.
 #pragma once
 
+#include <concepts>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -36,6 +38,10 @@ public:
     double Dcos_sf(double r2) const;
     double Dcos_r2(double v) const;
 
+    // The alpha of the GGX (Beckmann) distribution the held NDF is, or NaN (ndf.hpp).
+    double ggx_alpha() const { return self_->ggx_alpha(); }
+    double beckmann_alpha() const { return self_->beckmann_alpha(); }
+
     // The canonical spec string, e.g. "gtr(alpha=0.3, gamma=1.5)".
     const std::string& spec() const { return spec_; }
     // Its family name ("gtr") and a parameter by name (input_error if it has none such).
@@ -54,6 +60,8 @@ private:
         virtual bool has_Dcos() const = 0;
         virtual double Dcos_sf(double r2) const = 0;
         virtual double Dcos_r2(double v) const = 0;
+        virtual double ggx_alpha() const = 0;
+        virtual double beckmann_alpha() const = 0;
     };
     template <Ndf N>
     struct Model final : Base {
@@ -79,6 +87,8 @@ private:
             if constexpr (HasDcosSampler<N>) return ndf.Dcos_r2(v);
             else return 0.0;  // unreachable: AnyNdf checks has_Dcos() first
         }
+        double ggx_alpha() const override { return smithlab::ggx_alpha(ndf); }
+        double beckmann_alpha() const override { return smithlab::beckmann_alpha(ndf); }
         N ndf;
     };
 
@@ -86,5 +96,12 @@ private:
     NdfSpec parts_;
     std::string spec_;
 };
+
+// Any NDF as an AnyNdf, an AnyNdf as itself: how the type-erased samplers (sampling.hpp) hold one. Spec "unnamed()".
+template <Ndf N>
+AnyNdf as_any(const N& ndf) {
+    if constexpr (std::same_as<N, AnyNdf>) return ndf;
+    else return AnyNdf(ndf, NdfSpec{"unnamed", {}});
+}
 
 }  // namespace smithlab

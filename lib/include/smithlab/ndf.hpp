@@ -14,10 +14,15 @@
 //                                          (sampling.hpp tabulates one for an NDF without them). The survival
 //                                          side keeps the tail's digits: Hammon's sampler draws from a tail of
 //                                          mass 1e-15.
+//   double ggx_alpha() const               capabilities: the alpha of the GGX (Beckmann) distribution this NDF is
+//   double beckmann_alpha() const          exactly, NaN when it is not (at its parameters: GTR is GGX at gamma = 2).
+//                                          smithlab then uses that family's closed forms (visible normals in closed
+//                                          form, the approximations made for it) without knowing the NDF's name.
 #pragma once
 
 #include <cmath>
 #include <concepts>
+#include <limits>
 
 namespace smithlab {
 
@@ -47,6 +52,16 @@ concept HasDcosSampler = requires(const N& n, double x) {
     { n.Dcos_r2(x) } -> std::convertible_to<double>;
 };
 
+template <class N>
+concept HasGgxAlpha = requires(const N& n) {
+    { n.ggx_alpha() } -> std::convertible_to<double>;
+};
+
+template <class N>
+concept HasBeckmannAlpha = requires(const N& n) {
+    { n.beckmann_alpha() } -> std::convertible_to<double>;
+};
+
 namespace detail {
 [[noreturn]] void throw_nonfinite_D(double cos_theta_m, double d);
 
@@ -71,6 +86,9 @@ double slope_density(const N& ndf, double r2) {
     if constexpr (HasSlopeDensity<N>) return ndf.slope_density(r2);
     else return detail::D_cos4(ndf, r2);
 }
+
+// D(m) = P22 / cos^4 = P22(s) (1 + s)^2 (Walter 2007 eq. 42), from the slope density at s = tan^2(theta_m).
+inline double D_from_P22(double P22, double s) { return P22 * (1.0 + s) * (1.0 + s); }
 
 // N seen through D alone: what smithlab derives for a plugged-in NDF (slope form from D, Lambda by quadrature,
 // tabulated samplers), to set beside what N's own members give.
@@ -97,6 +115,19 @@ template <Ndf N>
 bool has_spline_Lambda(const N& ndf) {
     if constexpr (requires { ndf.has_spline_Lambda(); }) return ndf.has_spline_Lambda();
     else return HasSplineLambda<N>;
+}
+
+// The capabilities: the alpha of the GGX (Beckmann) distribution `ndf` is, or NaN. Type-erased NDFs answer at run time.
+template <Ndf N>
+double ggx_alpha(const N& ndf) {
+    if constexpr (HasGgxAlpha<N>) return ndf.ggx_alpha();
+    else return std::numeric_limits<double>::quiet_NaN();
+}
+
+template <Ndf N>
+double beckmann_alpha(const N& ndf) {
+    if constexpr (HasBeckmannAlpha<N>) return ndf.beckmann_alpha();
+    else return std::numeric_limits<double>::quiet_NaN();
 }
 
 }  // namespace smithlab

@@ -28,7 +28,7 @@ struct Ggx {
     // tan^2 = alpha^2 (1 - v) / v.
     double Dcos_sf(double r2) const { return alpha * alpha / (alpha * alpha + r2); }
     double Dcos_r2(double v) const { return alpha * alpha * (1.0 - v) / v; }
-    // The capability "GGX of this alpha": its visible normals are sampled in closed form (visible_normals.hpp).
+    // The capability "GGX of this alpha" (ndf.hpp): visible normals in closed form, the GGX approximations.
     double ggx_alpha() const { return alpha; }
 };
 
@@ -43,6 +43,8 @@ struct Beckmann {
     // D cos sampling, Walter 2007 eq. 28-29 (the blog's arctan form): S = exp(-r^2/alpha^2), tan^2 = -alpha^2 ln v.
     double Dcos_sf(double r2) const { return std::exp(-r2 / (alpha * alpha)); }
     double Dcos_r2(double v) const { return -alpha * alpha * std::log(v); }
+    // The capability "Beckmann of this alpha" (ndf.hpp): visible normals in closed form, Walter's rational G1.
+    double beckmann_alpha() const { return alpha; }
 };
 
 // Blinn-Phong normalized for D cos: D = (n + 2) / (2 pi) cos^n (Walter 2007 eq. 30). No closed-form Lambda.
@@ -54,6 +56,14 @@ struct BlinnPhong {
     double Dcos_sf(double r2) const { return std::exp(-0.5 * (n + 2.0) * std::log1p(r2)); }
     double Dcos_r2(double v) const { return std::expm1(-2.0 / (n + 2.0) * std::log(v)); }
 };
+
+namespace detail {
+// For a >= 6, by their asymptotic series (A&S 7.1.23, and integrated once; at a >= 6 the smallest term is below
+// e^{-36} = 2e-16 of the sum): sqrt(pi) e^{a^2} erfc(a) and sqrt(pi) e^{a^2} ierfc(a), ierfc(a) = integral_a^inf erfc
+// = e^{-a^2} / sqrt(pi) - a erfc(a) (A&S 7.2.5).
+double erfc_scaled_asymptotic(double a);
+double ierfc_scaled_asymptotic(double a);
+}  // namespace detail
 
 Ggx ggx(double alpha);            // alpha in [1e-50, 1e50]
 Beckmann beckmann(double alpha);  // alpha in [1e-50, 1e50]

@@ -28,7 +28,7 @@ struct SamplerInfo {
     std::function<BoundSampler(const AnyNdf&, const Vec3& wi)> prepare;
 };
 
-// dcos, dcos-table, vndf, vndf-table, vndf-ggx, hammon.
+// dcos, dcos-table, vndf, vndf-table, vndf-ggx, vndf-beckmann, hammon.
 std::vector<SamplerInfo> builtin_samplers();
 // input_error naming the unknown sampler and listing the known ones.
 const SamplerInfo& find_sampler(const std::vector<SamplerInfo>& samplers, std::string_view name);

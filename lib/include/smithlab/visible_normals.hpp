@@ -1,151 +1,219 @@
-// smithlab/visible_normals.hpp -- visible normals of a direction anywhere on the sphere, for one NDF, templated on
-// it (no virtual call, std::function or allocation in a sample): what the microsurface walk draws its hit normals from.
+// smithlab/visible_normals.hpp -- the visible normals of a direction anywhere on the sphere, for one NDF, templated on
+// it (no virtual call, std::function, allocation or exception in a sample): what the microsurface walk draws its hit
+// normals from, and what the type-erased VisibleNormalSampler (sampling.hpp) wraps.
 //
 // For a unit v the law is D_v(m) = <v.m>^+ D(m) / A(v) over m.z > 0, with the projected area
-//     A(v) = (1 + Lambda(v)) cos(theta_v)  over the whole sphere, Lambda(-mu) = -1 - Lambda(mu)
-// (Heitz, Hanika, d'Eon, Dachsbacher 2016, sec. 4.2): for v below the horizon A(v) = Lambda(|mu|) |v.z|.
+//     A(v) = (1 + Lambda(v)) cos(theta_v)  over the whole sphere, Smith's Lambda(-mu) = -1 - Lambda(mu)
+// (Heitz, Hanika, d'Eon, Dachsbacher 2016, "Multiple-scattering microfacet BSDFs with the Smith model", sec. 4, the
+// microflake view of the Smith volume): A(v) = (1 + Lambda(mu)) v.z above the horizon, Lambda(|mu|) |v.z| below.
+// Both are |v_xy| W(|mu|) + max(v.z, 0) with W(a) = a Lambda(a) = integral_a^inf (q - a) P2(q) dq (Walter 2007 eq. 48
+// times a), so A(v) - A(-v) = v.z. Above the horizon D_v = G1(v) <v.m> D / cos(theta_v) (Heitz 2014).
+//
 // In slope space, with v turned into the xz-plane and mu = cot(theta_v) of either sign, the visible slopes have
-// density P22(x, y) (mu - x)^+ (Heitz & d'Eon 2014, eq. 5-6). Sampled exactly by rejection:
-//   mu > 0: from P22 r (mu + r) x uniform phi, a mixture of the D cos law of r and the law P22 r^2 dr, accepting
-//           with (mu - x)^+ / (mu + r) (the algorithm of VisibleNormalSampler, sampling.hpp);
-//   mu < 0: only slopes r > |mu| can face v: from the law P22 r^2 dr truncated to r > |mu| (its survival drawn in
-//           (0, S(mu^2)]) x uniform phi, accepting with (mu - x)^+ / r <= 1. Its acceptance stays O(1) for tails
-//           P22 ~ r^-4 (GGX, GTR); for a Gaussian tail (Beckmann) it falls as |mu| / alpha grows, where a ray's
-//           chance to hit, Lambda(|mu|), falls as exp(-mu^2 / alpha^2).
+// density P22(x, y) (mu - x)^+ (Heitz & d'Eon 2014, eq. 5-6; its integral is |v_xy|-free: W(|mu|) + max(mu, 0)).
+// Routes (VisibleRoute):
+//   closed form   when the NDF is GGX or Beckmann by its capability (ndf.hpp: ggx_alpha(), beckmann_alpha()):
+//                 visible_normals_closed.hpp.
+//   rejection     any NDF, exact up to the tables it reads:
+//     mu >= 0: in polar slopes (r, phi) the target is P22 r (mu - r cos phi)^+, drawn from P22 r (mu + r) x uniform
+//              phi -- a mixture of the D cos law of r (weight mu) and the law P22 r^2 dr (weight 2 pi M, M its
+//              integral: a RadialTable) -- accepting with (mu - r cos phi)^+ / (mu + r). Acceptance
+//              mu (1 + Lambda) / (mu + 2 pi M): 1 at normal incidence, 1/pi at grazing.
+//     mu < 0:  with a = -mu and x' = -x, the target P22 (x' - a)^+ is the marginal of P22(x'^2 + y^2) 1[a < xi < x']:
+//              draw xi from its marginal, the half-plane mass U0(xi) = P(X > xi) on xi > a, whose survival is
+//              W(xi) / W(a) (dW/dx = -U0), by solving W(xi) = (1 - u) W(a) in ln xi (Illinois regula falsi, on the
+//              NDF's FastLambda); then (x', y) from P22 on the half-plane x' > xi: s = r^2 from the D cos law
+//              truncated to s > xi^2 (its survival drawn in (0, S(xi^2)]), phi uniform on the arc |phi| < delta,
+//              cos delta = xi / r, accepted with delta / (pi / 2) (exact: the target over the proposal is 2 delta).
+//              Acceptance E[delta] / (pi / 2): O(1) for tails P22 ~ r^-4 (GGX, GTR), falling like alpha / a for a
+//              Gaussian tail (Beckmann; its closed form has no such loss), where the law P22 r^2 dr truncated to
+//              r > a, the direct proposal, falls like (alpha / a)^3.
+//   tabulated     rejection with the D cos law tabulated too (what a D-only NDF gets).
+// A sampler that cannot draw returns no_normal() (dcos_law.hpp): v straight down (A = 0), a projected area that
+// underflows, or max_tries rejections.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
-#include <concepts>
+#include <limits>
 #include <memory>
 #include <numbers>
-#include <optional>
 
+#include "smithlab/dcos_law.hpp"
 #include "smithlab/fast_lambda.hpp"
 #include "smithlab/geometry.hpp"
 #include "smithlab/ndf.hpp"
+#include "smithlab/quadrature.hpp"
 #include "smithlab/radial_table.hpp"
 #include "smithlab/rng.hpp"
+#include "smithlab/visible_normals_closed.hpp"
 
 namespace smithlab {
 
-// The D cos law of s = tan^2(theta_m): the NDF's analytic survival function and inverse when it has them (at run
-// time), else a RadialTable of pi P22 (radial_table.hpp).
-template <Ndf N>
-class DcosLaw {
-public:
-    explicit DcosLaw(const N& ndf) : ndf_(ndf) {
-        if (!has_Dcos_sampler(ndf_))
-            table_ = std::make_shared<const RadialTable>([n = ndf_](double s) { return std::numbers::pi * slope_density(n, s); });
-    }
-    double sf(double s) const {
-        if constexpr (HasDcosSampler<N>)
-            if (!table_) return ndf_.Dcos_sf(s);
-        return table_->sf(s);
-    }
-    double isf(double v) const {
-        if constexpr (HasDcosSampler<N>)
-            if (!table_) return ndf_.Dcos_r2(v);
-        return table_->isf(v);
-    }
-    double P22(double s) const { return slope_density(ndf_, s); }
-    const N& ndf() const { return ndf_; }
-
-private:
-    N ndf_;
-    std::shared_ptr<const RadialTable> table_;
-};
-
-// Capability: an NDF that is GGX of some alpha (ggx_alpha() >= 0; NaN when a type is GGX only at some parameters).
-template <class N>
-concept HasGgxAlpha = requires(const N& n) {
-    { n.ggx_alpha() } -> std::convertible_to<double>;
-};
-
-// GGX visible normals in closed form, any v with A(v) > 0: Dupuy & Benyoub 2023, "Sound and Fast Sampling of Visible
-// GGX Normals with Spherical Caps", listing 3: stretch v to alpha = 1, where D_v is the clamped cosine about v; a
-// uniform point u of the sphere's cap u.z > -v.z, added to v, is m.z > 0 distributed so; unstretch. For v below the
-// horizon the cap is (|v.z|, 1]: the same formula.
-template <class G>
-Vec3 sample_ggx_visible_normal(double alpha, const Vec3& v, G& g) {
-    const Vec3 vs = Vec3(alpha * v.x(), alpha * v.y(), v.z()).normalized();
-    const double phi = 2.0 * std::numbers::pi * uniform01(g);
-    const double z = (1.0 - uniform01(g)) * (1.0 + vs.z()) - vs.z();
-    const double sin_t = std::sqrt(std::max(0.0, (1.0 - z) * (1.0 + z)));
-    const Vec3 h(sin_t * std::cos(phi) + vs.x(), sin_t * std::sin(phi) + vs.y(), std::max(z + vs.z(), 0x1p-1000));
-    return Vec3(alpha * h.x(), alpha * h.y(), h.z()).normalized();
-}
+// automatic: the closed form when the NDF offers one, else rejection (with the NDF's analytic D cos law if any).
+enum class VisibleRoute { automatic, rejection, tabulated };
 
 template <Ndf N>
 class VisibleNormals {
 public:
-    explicit VisibleNormals(const N& ndf)
-        : dcos_(ndf), Lambda_(ndf),
-          r_law_(std::make_shared<const RadialTable>([ndf](double s) { return 0.5 * slope_density(ndf, s) * std::sqrt(s); })) {}
-
-    // A normal m (m.z > 0, v.m > 0) from D_v, for a unit v with A(v) > 0 (v not straight down).
-    template <class G>
-    Vec3 sample(const Vec3& v, G& g) const {
-        constexpr double pi = std::numbers::pi;
-        if constexpr (HasGgxAlpha<N>) {
-            const double alpha = dcos_.ndf().ggx_alpha();
-            if (alpha >= 0.0) return sample_ggx_visible_normal(alpha, v, g);
+    explicit VisibleNormals(const N& ndf, VisibleRoute route = VisibleRoute::automatic)
+        : dcos_(ndf, route == VisibleRoute::tabulated), Lambda_(ndf) {
+        if (route == VisibleRoute::automatic) {
+            ggx_ = ggx_alpha(ndf);
+            if (std::isnan(ggx_)) beckmann_ = beckmann_alpha(ndf);
         }
-        const double sin_v = std::sqrt(v.x() * v.x() + v.y() * v.y());
-        if (sin_v == 0.0) return from_slope(dcos_.isf(1.0 - uniform01(g)), 2.0 * pi * uniform01(g));  // D cos
-        const double mu = v.z() / sin_v, cos_phi = v.x() / sin_v, sin_phi = v.y() / sin_v;
-        const double p_dcos = mu > 0.0 ? mu / (mu + 2.0 * pi * r_law_->total()) : 0.0;
-        const double tail = mu > 0.0 ? 1.0 : r_law_->sf(mu * mu);  // the mass of r > |mu| when v points down
-        for (long tries = 0;; ++tries) {
-            const double u = 1.0 - uniform01(g);
-            const double s = mu > 0.0 && uniform01(g) < p_dcos ? dcos_.isf(u) : r_law_->isf(tail * u);
-            const double r = std::sqrt(s), phi = 2.0 * pi * uniform01(g);
-            const double x = r * std::cos(phi), y = r * std::sin(phi);
-            // accept with (mu - x)^+ / (mu + r) upward, (mu - x)^+ / r downward (x < mu < 0 there)
-            const double bound = mu > 0.0 ? mu + r : r;
-            if (uniform01(g) * bound >= mu - x && tries < max_tries) continue;
-            const double n = 1.0 / std::sqrt(1.0 + s);
-            return {(-x * cos_phi + y * sin_phi) * n, (-x * sin_phi - y * cos_phi) * n, n};
-        }
+        auto r2_law = [ndf](double s) { return 0.5 * slope_density(ndf, s) * std::sqrt(s); };  // P22 r^2 dr in s
+        if (!closed_form()) r_law_ = std::make_shared<const RadialTable>(r2_law);
+        // W(0) = E[x^+] = 2 M, the projected area of a horizontal direction.
+        if (r_law_) W0_ = 2.0 * r_law_->total();
+        else if (!Lambda_.tabulated()) W0_ = 1e-100 * Lambda_(1e-100);  // W(0) - 1e-100 / 2
+        if (!(W0_ > 0.0 && W0_ < INFINITY)) W0_ = 2.0 * integrate_log_axis(r2_law);
     }
 
-    // D_v(m) = <v.m>^+ D(m) / A(v).
+    // A normal m (m.z > 0, v.m > 0) from D_v, for a unit v with A(v) > 0; no_normal() when it cannot draw.
+    template <class G>
+    Vec3 sample(const Vec3& v, G& g) const {
+        if (ggx_ > 0.0) return sample_ggx_visible_normal(ggx_, v, g);
+        if (beckmann_ > 0.0) return sample_beckmann_visible_normal(beckmann_, v, g);
+        const double sin_v = std::hypot(v.x(), v.y());
+        if (sin_v == 0.0) return v.z() > 0.0 ? dcos_.sample(g) : no_normal();  // straight up: D_v = D cos
+        const double mu = v.z() / sin_v, c = v.x() / sin_v, sn = v.y() / sin_v;
+        for (int k = 0; k < 100; ++k) {
+            const Slope p = mu >= 0.0 ? slope_above(mu, g) : slope_below(-mu, g);
+            if (!(p.s >= 0.0)) return no_normal();
+            // The normal of slope (x, y) is (-x, -y, 1) / |.|, turned back to v's azimuth.
+            const double n = 1.0 / std::sqrt(1.0 + p.s);
+            const Vec3 m((-p.x * c + p.y * sn) * n, (-p.x * sn - p.y * c) * n, n);
+            if (v.dot(m) > 0.0) return m;  // not, only by rounding at grazing slopes
+        }
+        return no_normal();
+    }
+
+    // D_v(m) = <v.m>^+ D(m) / A(v); 0 where A(v) = 0.
     double pdf(const Vec3& v, const Vec3& m) const {
         const double vm = v.dot(m);
         if (!(m.z() > 0.0 && vm > 0.0)) return 0.0;
-        return vm * D(m) / projected_area(v);
+        const double A = projected_area(v);
+        return A > 0.0 ? vm * D(m) / A : 0.0;
     }
 
-    // A(v) = (1 + Lambda) v.z upward, Lambda(|mu|) |v.z| downward; both |mu| Lambda(|mu|) |v_xy| + max(v.z, 0).
+    // A(v) = |v_xy| W(|mu|) + max(v.z, 0), Smith's convention over the whole sphere.
     double projected_area(const Vec3& v) const {
-        const double sin_v = std::sqrt(v.x() * v.x() + v.y() * v.y());
-        if (sin_v == 0.0) return v.z() > 0.0 ? 1.0 : 0.0;
-        const double a = std::max(std::abs(v.z() / sin_v), 1e-300);  // mu Lambda(mu) -> E[q+] as mu -> 0
-        return a * Lambda_(a) * sin_v + std::max(v.z(), 0.0);
+        const double sin_v = std::hypot(v.x(), v.y());
+        if (sin_v == 0.0) return std::max(v.z(), 0.0);
+        return sin_v * W(std::abs(v.z()) / sin_v) + std::max(v.z(), 0.0);
     }
 
-    // D(m) from the slope form, D = P22 (1 + s)^2 (Walter 2007 eq. 42); 0 for m.z <= 0.
+    // D(m) from the slope form, P22(s) (1 + s)^2 (Walter 2007 eq. 42), exact near the pole; within 1e-50 of the
+    // horizon, where (1 + s)^2 and P22's own powers of s overflow, the NDF's D(cos theta_m); 0 for m.z <= 0.
     double D(const Vec3& m) const {
         if (!(m.z() > 0.0)) return 0.0;
-        const double s = (m.x() * m.x() + m.y() * m.y()) / (m.z() * m.z());
-        return dcos_.P22(s) * (1.0 + s) * (1.0 + s);
+        const double s = tan2_theta(m);
+        return s < 1e100 ? D_from_P22(dcos_.P22(s), s) : dcos_.ndf().D(m.z());
     }
 
     const FastLambda<N>& Lambda() const { return Lambda_; }
     const DcosLaw<N>& dcos() const { return dcos_; }
+    bool closed_form() const { return ggx_ > 0.0 || beckmann_ > 0.0; }
+    // The worst of its tables' estimates: the CDF tables' in probability, the Lambda table's relative.
+    double table_error() const {
+        return std::max({dcos_.table_error(), r_law_ ? r_law_->error_estimate() : 0.0, Lambda_.error_estimate()});
+    }
 
 private:
-    // A rejection loop that cannot accept within this many tries (a law that cannot be drawn in double) returns its
-    // last proposal rather than hang: it never happens for an accepted NDF and direction (acceptance >= 1/pi upward).
-    static constexpr long max_tries = 10'000'000;
-    static Vec3 from_slope(double s, double phi) {
-        const double c = 1.0 / std::sqrt(1.0 + s), sn = std::sqrt(s) * c;
-        return {sn * std::cos(phi), sn * std::sin(phi), c};
+    struct Slope {
+        double x, y, s;  // s = x^2 + y^2, carried from the law of s (exact near the pole); NaN: gave up
+    };
+    static Slope none() { return {0.0, 0.0, std::numeric_limits<double>::quiet_NaN()}; }
+
+    // W(a) = a Lambda(a). Where a tabulated Lambda hands the call to quadrature and that refuses (a < 1e-12,
+    // a > 1e12), and wherever a Lambda(a) would over- or underflow (a < 1e-100), the ends of W: W(0) - a/2 (dW/da =
+    // -U0, U0(0) = 1/2; the next term, a^2 P2(0) / 2, is below 1e-24 / r0 there), and W(1e12) 1e12 / a (Lambda ~ C /
+    // mu^2 for every tail P22 ~ r^-4 or lighter).
+    double W(double a) const {
+        constexpr double near = 1e-12, far = 1e12;
+        if (a < 1e-100 || (Lambda_.tabulated() && a < near)) return W0_ - 0.5 * a;
+        if (!(a < INFINITY)) return 0.0;
+        if (Lambda_.tabulated() && a > far) return far * Lambda_(far) * (far / a);
+        return a * Lambda_(a);
+    }
+
+    // mu >= 0: the mixture proposal, accepted with (mu - x)^+ / (mu + r).
+    template <class G>
+    Slope slope_above(double mu, G& g) const {
+        constexpr double pi = std::numbers::pi;
+        const double p_dcos = mu / (mu + 2.0 * pi * r_law_->total());
+        for (long tries = 0; tries < max_tries; ++tries) {
+            const double u = 1.0 - uniform01(g);
+            const double s = uniform01(g) < p_dcos ? dcos_.isf(u) : r_law_->isf(u);
+            const double r = std::sqrt(s), phi = 2.0 * pi * uniform01(g);
+            const double x = r * std::cos(phi);
+            if (uniform01(g) * (mu + r) < mu - x) return {x, r * std::sin(phi), s};
+        }
+        return none();
+    }
+
+    // mu = -a < 0: xi, then the half-plane beyond it.
+    template <class G>
+    Slope slope_below(double a, G& g) const {
+        const double Wa = W(a);
+        if (!(Wa > 0.0)) return none();
+        for (long tries = 0; tries < max_tries;) {
+            const double xi = solve_W(a, Wa, (1.0 - uniform01(g)) * Wa);
+            const double S_xi = dcos_.sf(xi * xi);
+            ++tries;
+            if (!(S_xi > 0.0)) continue;
+            for (; tries < max_tries; ++tries) {
+                const double s = dcos_.isf(S_xi * (1.0 - uniform01(g)));
+                const double delta = std::atan2(std::sqrt(std::max(0.0, s - xi * xi)), xi);  // r cos(delta) = xi
+                if (uniform01(g) * (0.5 * std::numbers::pi) >= delta) continue;
+                const double phi = delta * (2.0 * uniform01(g) - 1.0), r = std::sqrt(s);
+                return {-r * std::cos(phi), r * std::sin(phi), s};
+            }
+        }
+        return none();
+    }
+
+    // xi >= a with W(xi) = T, T in (0, W(a)]: F(y) = ln W(e^y) - ln T is decreasing in y = ln xi and >= 0 at ln a.
+    // Bracketed by secant steps from a first step of 1/64 (at least doubling, at most 64-fold), then Illinois (regula
+    // falsi halving the stale end), bisecting where F is not finite (W underflows); to |F| <= 1e-14 (the survival's
+    // relative error) or a bracket of 1e-15 in ln xi.
+    double solve_W(double a, double Wa, double T) const {
+        const double lnT = std::log(T);
+        auto F = [&](double y) { return std::log(W(std::exp(y))) - lnT; };
+        double lo = std::log(a), f_lo = std::log(Wa) - lnT;
+        if (!(f_lo > 1e-14)) return a;
+        double hi = lo + 1.0 / 64.0, f_hi = F(hi);
+        for (int i = 0; i < 60 && f_hi > 0.0; ++i) {
+            const double step = hi - lo, slope = (f_hi - f_lo) / step;
+            const double next = hi + std::clamp(slope < 0.0 ? -f_hi / slope : INFINITY, 2.0 * step, 64.0 * step);
+            lo = hi, f_lo = f_hi;
+            hi = next, f_hi = F(hi);
+        }
+        int side = 0;
+        for (int i = 0; i < 200 && hi - lo > 1e-15 * std::max(1.0, std::abs(lo)); ++i) {
+            double y = std::isfinite(f_hi) ? (lo * f_hi - hi * f_lo) / (f_hi - f_lo) : 0.5 * (lo + hi);
+            if (!(y > lo && y < hi)) y = 0.5 * (lo + hi);
+            const double f = F(y);
+            if (std::abs(f) <= 1e-14) return std::exp(y);
+            if (f > 0.0) {
+                lo = y, f_lo = f;
+                if (side == 1) f_hi *= 0.5;
+                side = 1;
+            } else {
+                hi = y, f_hi = f;
+                if (side == -1) f_lo *= 0.5;
+                side = -1;
+            }
+        }
+        return std::exp(0.5 * (lo + hi));
     }
 
     DcosLaw<N> dcos_;
     FastLambda<N> Lambda_;
-    std::shared_ptr<const RadialTable> r_law_;
+    std::shared_ptr<const RadialTable> r_law_;  // the law P22 r^2 dr in s = r^2; rejection routes only
+    double ggx_ = std::numeric_limits<double>::quiet_NaN(), beckmann_ = std::numeric_limits<double>::quiet_NaN();
+    double W0_ = std::numeric_limits<double>::quiet_NaN();
 };
 
 }  // namespace smithlab

@@ -32,6 +32,10 @@ struct Gtr {
     //     L_c(v) = -log1p(v expm1(-e L)) / e,  r^2 = (1 - alpha^2) / expm1(L_c) - alpha^2.
     double Dcos_sf(double r2) const;
     double Dcos_r2(double v) const;
+
+    // The capability "GGX of this alpha" (smithlab/ndf.hpp): at gamma = 2, D = alpha^2 / (pi (1 + (alpha^2 - 1)
+    // cos^2)^2) is GGX (Burley 2012, appendix B); NaN at every other gamma.
+    double ggx_alpha() const;
 };
 
 // K = (1 - alpha^2)/(pi alpha^2) * (gamma - 1) / (1 - alpha^{2(gamma - 1)}), evaluated with expm1/log1p so that

@@ -1,0 +1,64 @@
+// smithlab/visible_normals_closed.hpp -- visible normals in closed form, for a direction v anywhere on the sphere
+// with A(v) > 0: the law D_v(m) = <v.m>^+ D(m) / A(v) over m.z > 0 (visible_normals.hpp) of the GGX and the Beckmann
+// distributions. Both stretch v to the alpha = 1 configuration (slopes scale by alpha; Heitz & d'Eon 2014,
+// "Importance Sampling Microfacet-Based BSDFs using the Distribution of Visible Normals", sec. 4, steps 1-5), sample
+// there, and unstretch. An NDF reaches these through its capability ggx_alpha() / beckmann_alpha() (ndf.hpp).
+// no_normal() (dcos_law.hpp) when v is straight down (no normal is visible) or rounding defeats 100 draws.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "smithlab/dcos_law.hpp"
+#include "smithlab/geometry.hpp"
+#include "smithlab/rng.hpp"
+
+namespace smithlab {
+
+// GGX: Dupuy & Benyoub 2023, "Sound and Fast Sampling of Visible GGX Normals with Spherical Caps", listing 3. At
+// alpha = 1, D_v is the clamped cosine about vs restricted to m.z > 0, and m = normalize(vs + u) for u uniform on the
+// unit sphere has density <vs.m>^+ on the whole sphere, so u uniform on the cap u.z > -vs.z gives it on m.z > 0 --
+// for vs of either sign of z: below the horizon the cap is (|vs.z|, 1], the same formula.
+template <class G>
+Vec3 sample_ggx_visible_normal(double alpha, const Vec3& v, G& g) {
+    const Vec3 vs = Vec3(alpha * v.x(), alpha * v.y(), v.z()).normalized();
+    for (int tries = 0; tries < 100; ++tries) {
+        const double phi = 2.0 * std::numbers::pi * uniform01(g);
+        const double z = (1.0 - uniform01(g)) * (1.0 + vs.z()) - vs.z();
+        const double sin_t = std::sqrt(std::max(0.0, (1.0 - z) * (1.0 + z)));
+        const Vec3 h(sin_t * std::cos(phi) + vs.x(), sin_t * std::sin(phi) + vs.y(), z + vs.z());
+        if (!(h.z() > 0.0)) continue;
+        const Vec3 m = Vec3(alpha * h.x(), alpha * h.y(), h.z()).normalized();
+        if (m.z() > 0.0 && v.dot(m) > 0.0) return m;
+    }
+    return no_normal();
+}
+
+// Beckmann, alpha = 1 configuration, v turned into the xz-plane with mu = cot(theta) of either sign: the visible
+// slopes (x, y) have density (mu - x)^+ e^{-x^2} e^{-y^2} / pi (Heitz & d'Eon 2014 eq. 5-6 with P22 = e^{-x^2-y^2}/pi):
+// y is Gaussian of variance 1/2, independent, and x is this function of u in (0, 1] (sampling.cpp): with w = -x,
+// b = -mu, the density (w - b)^+ e^{-w^2} has survival N(w) / N(b), N(w) = ierfc(w) + (w - b) erfc(w) (A&S 7.2.5:
+// ierfc' = -erfc), all terms positive for w >= b; solved by Newton's method on ln N.
+double beckmann_visible_slope(double mu, double u);
+
+template <class G>
+Vec3 sample_beckmann_visible_normal(double alpha, const Vec3& v, G& g) {
+    const double sin_v = std::hypot(v.x(), v.y());
+    if (sin_v == 0.0) {
+        if (!(v.z() > 0.0)) return no_normal();
+        // Straight up, D_v = D cos: tan^2 = -alpha^2 ln(1 - u) (Walter 2007 eq. 28).
+        return normal_from_slope(-alpha * alpha * std::log(1.0 - uniform01(g)), 2.0 * std::numbers::pi * uniform01(g));
+    }
+    const double mu = v.z() / (alpha * sin_v), c = v.x() / sin_v, s = v.y() / sin_v;
+    for (int tries = 0; tries < 100; ++tries) {
+        const double x = beckmann_visible_slope(mu, 1.0 - uniform01(g));
+        const double y = std::sqrt(-std::log(1.0 - uniform01(g))) * std::cos(2.0 * std::numbers::pi * uniform01(g));
+        const double sx = alpha * (c * x - s * y), sy = alpha * (s * x + c * y);  // turned back, unstretched
+        const Vec3 m = Vec3(-sx, -sy, 1.0) / std::sqrt(1.0 + sx * sx + sy * sy);  // the normal of slope (sx, sy)
+        if (v.dot(m) > 0.0) return m;
+    }
+    return no_normal();
+}
+
+}  // namespace smithlab
