@@ -1,9 +1,13 @@
 // Quadrature Lambda (reduced 1D and nested 2D routes, Boost and GSL backends) against the 50-digit r-form reference.
 // Domain of the core issue: alpha in [1e-4, 1], mu in [1e-4, 1e4], gamma in [0, 10], Blinn n in [0.5, 1000].
 // Required: 1D <= 1e-10 everywhere; 2D <= 1e-8 for alpha >= 0.01, mu in [0.01, 100], gamma <= 4.
+#include <gsl/gsl_errno.h>
+
+#include <atomic>
 #include <catch2/catch.hpp>
 #include <cfloat>
 #include <random>
+#include <thread>
 #include <smithlab/smithlab.hpp>
 
 #include "reference.hpp"
@@ -157,4 +161,35 @@ TEST_CASE("Nested 2D route holds outside its required domain too: the corners wh
             CHECK(ref::close(got, want, 1e-8));
         }
     }
+}
+
+// GSL's error handler (quadrature.hpp, "Threads"): switched off once, never set and restored around a call.
+// sqrt(x) on [0, 1] at the tightest tolerance makes QAG report GSL_EROUND on every call (after 35 intervals).
+TEST_CASE("GSL's error handler: off from the first GSL integration on, and no call touches it again", "[quadrature]") {
+    auto root = [](double x) { return std::sqrt(x); };
+    CHECK(std::abs(smithlab::integrate(root, 0.0, 1.0, {Backend::gsl, 1e-14}) - 2.0 / 3.0) <= 1e-14);
+    gsl_error_handler_t* off = gsl_set_error_handler(nullptr);  // reads it (nullptr: GSL's default, which aborts)
+    CHECK(off != nullptr);
+    // A handler installed now receives the report of the next call: smithlab did not switch it off for the call.
+    static int reports = 0;
+    gsl_set_error_handler([](const char*, const char*, int, int) { ++reports; });
+    (void)smithlab::integrate(root, 0.0, 1.0, {Backend::gsl, 1e-14});
+    gsl_set_error_handler(off);
+    CHECK(reports == 1);
+}
+
+TEST_CASE("GSL integrations in four threads at once: the results of one thread, and no abort", "[quadrature]") {
+    // With the handler set off and restored around each call, one thread's restore re-armed GSL's abort under
+    // another's call: this aborted in 9 of 10 runs of 4 x 250 calls.
+    auto root = [](double x) { return std::sqrt(x); };
+    const double one = smithlab::integrate(root, 0.0, 1.0, {Backend::gsl, 1e-14});
+    std::atomic<int> differ{0};
+    std::vector<std::thread> threads;
+    for (int t = 0; t < 4; ++t)
+        threads.emplace_back([&] {
+            for (int i = 0; i < 1000; ++i)
+                if (smithlab::integrate(root, 0.0, 1.0, {Backend::gsl, 1e-14}) != one) ++differ;
+        });
+    for (std::thread& t : threads) t.join();
+    CHECK(differ == 0);
 }

@@ -44,9 +44,19 @@ double integrate_boost(FunctionRef f, double a, double b, double tol) {
     }
 }
 
-// GSL QAG / QAGIU. GSL's default error handler aborts the process; it is switched off only for the duration
-// of the call and the caller's handler restored. GSL refuses epsrel below 50 eps when epsabs = 0.
+// GSL QAG / QAGIU report a failure to meet the tolerance (GSL_EROUND, routine near 1e-12; GSL_EMAXITER, ..) through
+// GSL's error handler, whose default aborts the process; it is one process-wide pointer. Setting it off and back
+// around each call raced as soon as two threads integrated (one thread's restore re-armed the abort under the
+// other's call), so it is switched off once, at the first GSL integration: a function-local static is initialized
+// exactly once, and every later call happens after it (C++11 [stmt.dcl]/4). Every status is then returned (and
+// ignored, below). GSL refuses epsrel below 50 eps when epsabs = 0.
+void switch_gsl_handler_off_once() {
+    static const bool off = (gsl_set_error_handler_off(), true);
+    (void)off;
+}
+
 double integrate_gsl(FunctionRef f, double a, double b, double tol) {
+    switch_gsl_handler_off_once();
     constexpr std::size_t limit = 1000;
     std::unique_ptr<gsl_integration_workspace, decltype(&gsl_integration_workspace_free)> ws(
         gsl_integration_workspace_alloc(limit), &gsl_integration_workspace_free);
@@ -56,12 +66,10 @@ double integrate_gsl(FunctionRef f, double a, double b, double tol) {
     F.params = &f;
     const double epsrel = std::max(tol, 1.2e-14);
     double result = 0.0, abserr = 0.0;
-    gsl_error_handler_t* previous = gsl_set_error_handler_off();
     if (std::isinf(b))
         gsl_integration_qagiu(&F, a, 0.0, epsrel, limit, ws.get(), &result, &abserr);
     else
         gsl_integration_qag(&F, a, b, 0.0, epsrel, limit, GSL_INTEG_GAUSS21, ws.get(), &result, &abserr);
-    gsl_set_error_handler(previous);
     // A status of GSL_EROUND (round-off limits the error estimate) still comes with the best estimate, which is
     // what we want at tolerances near machine precision; accuracy is established by the tests, not the status.
     return result;

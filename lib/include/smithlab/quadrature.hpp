@@ -4,6 +4,10 @@
 // GSL: QAG (21-point Gauss-Kronrod, globally adaptive) and QAGIU for [a, inf).
 // Both stop on a *relative* error. An absolute rule silently returns three correct digits when the integral is
 // 1e-78 (DESIGN.md, "Numerical facts").
+// Threads: any number may integrate at once (Boost's node tables are per thread). GSL reports a missed tolerance
+// through its process-wide error handler, whose default aborts: smithlab switches it off (gsl_set_error_handler_off)
+// once, at its first GSL integration, and never touches it again. A program that installs its own GSL handler
+// after that receives those reports (GSL_EROUND is routine at 1e-12); one that restores GSL's default aborts on them.
 #pragma once
 
 #include <cmath>
