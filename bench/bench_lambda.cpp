@@ -7,6 +7,7 @@
 #include <array>
 #include <smithlab/smithlab.hpp>
 #include <string>
+#include <utility>
 
 namespace {
 
@@ -83,6 +84,33 @@ void register_table() {
             for (auto _ : s) benchmark::DoNotOptimize(smithlab::tabulate_Lambda(smithlab::gtr(0.3, gamma)).knots());
         })->Unit(benchmark::kMillisecond);
     }
+    // Outside the old range [1e-5, 1e5], where the exact route used to answer: the small-mu asymptote (mu = 1e-7)
+    // and the continued tail (1e7) of a D-only GGX (nothing closed-form), against that exact route at 1e-7.
+    using DOnlyGgx = smithlab::DOnly<smithlab::Ggx>;
+    for (const auto& [at, mu] : {std::pair{"1e-7", 1e-7}, std::pair{"1e7", 1e7}}) {
+        benchmark::RegisterBenchmark((std::string("G1/table/outside-range/donly-ggx(0.3)/mu=") + at).c_str(),
+                                     [mu](benchmark::State& s) {
+                                         const smithlab::LambdaTable t = smithlab::tabulate_Lambda(DOnlyGgx{smithlab::ggx(0.3)});
+                                         double m = mu;
+                                         for (auto _ : s) {
+                                             benchmark::DoNotOptimize(m);  // not a constant to fold
+                                             benchmark::DoNotOptimize(t.G1(m));
+                                         }
+                                         s.SetItemsProcessed(s.iterations());
+                                     });
+    }
+    benchmark::RegisterBenchmark("G1/quadrature1d/donly-ggx(0.3)/mu=1e-7", [](benchmark::State& s) {
+        const DOnlyGgx ndf{smithlab::ggx(0.3)};
+        double m = 1e-7;
+        for (auto _ : s) {
+            benchmark::DoNotOptimize(m);
+            benchmark::DoNotOptimize(smithlab::G1(ndf, m));
+        }
+        s.SetItemsProcessed(s.iterations());
+    })->Unit(benchmark::kMicrosecond);
+    benchmark::RegisterBenchmark("table-build/donly-ggx(0.3)", [](benchmark::State& s) {
+        for (auto _ : s) benchmark::DoNotOptimize(smithlab::tabulate_Lambda(DOnlyGgx{smithlab::ggx(0.3)}).knots());
+    })->Unit(benchmark::kMillisecond);
 }
 
 // Every registered variant, on the first of GTR(0.3, 1.5), GGX(0.3), Beckmann(0.3) it applies to.

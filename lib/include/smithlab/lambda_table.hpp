@@ -1,17 +1,31 @@
-// smithlab/lambda_table.hpp -- a fast Lambda for one NDF, tabulated once from an exact route.
+// smithlab/lambda_table.hpp -- a fast Lambda for one NDF at every mu, tabulated once from an exact route.
 //
-// Lambda(mu) spans 1/mu (mu -> 0: mu Lambda -> E[q+], the mean positive slope) to 1/mu^2 (mu -> inf, for tails
-// P22 ~ r^-4 such as every GTR), with its features O(1) wide in ln mu wherever they sit (at mu ~ alpha, and at
-// mu ~ 1 where a heavy GTR tail bends). So the table holds
-//     f(x) = ln(mu Lambda(mu)),  x = ln mu,
-// which is flat at the left end and of slope -1 at the right, as a natural cubic spline on a uniform grid in x,
-// refined by halving the step until the interpolation error estimated from the fourth differences,
-// (5/384) max |Delta^4 f| (the cubic spline bound (5/384) h^4 max |f''''|, de Boor, "A Practical Guide to Splines",
-// ch. V), is below the tolerance. An error in f is the relative error of Lambda. An evaluation costs a log, a
-// cubic and an exp. Outside [mu_min, mu_max] the table hands the call to the exact route it was built from; where
-// Lambda underflows to 0 inside the range (Beckmann-like tails), the table stops short of it and does the same.
+// With x = ln mu, the table holds f(x) = ln(mu Lambda(mu)) (README, "The fast evaluator: LambdaTable") in three
+// pieces; none calls the exact route, allocates or throws after construction (read-only: any number of threads):
+//   mu < mu_lo: the two-term asymptote. From Lambda = (1/mu) int_mu^inf (q - mu) P2(q) dq (Walter 2007 eq. 48) and
+//     P(q > 0) = 1/2, mu Lambda = c0 - mu/2 + R(mu) exactly, with c0 = E[q+] (the mean positive slope) and
+//     R(mu) = int_0^mu (mu - q) P2(q) dq >= 0. The table answers (g_lo - mu/2)/mu with g_lo = mu_lo Lambda(mu_lo) +
+//     mu_lo/2 = c0 + R(mu_lo), in error by R(mu_lo) - R(mu), in [0, R(mu_lo)]. R(mu)/mu does not decrease for any
+//     P2 >= 0, so R(mu_lo) <= (g(e^h mu_lo) - g(mu_lo)) / (e^h - 1), g = mu Lambda + mu/2: a bound from two knots
+//     h = 0.5 apart, with no assumption on the law. mu_lo is the first knot, stepping down from mu_min, where it
+//     bounds the relative error by tolerance/4.
+//   [mu_lo, mu_hi]: a cubic spline of f on a uniform grid in x, its end second derivatives from the knots (one-sided,
+//     O(h^3)), refined by halving the step until (5/384) max |Delta^4 f| (the spline bound (5/384) h^4 max |f''''|,
+//     de Boor, "A Practical Guide to Splines", ch. V) is below the tolerance. An evaluation: a log, a cubic, an exp.
+//   mu > mu_hi: f continued linearly with the spline's end slope s (Lambda ~ C mu^(s-1)): exact for a power tail
+//     P22 ~ r^-(2+2k), Lambda ~ C mu^-2k (every GTR and GGX: k = 1; Blinn-Phong: k = 1 + n/2). mu_hi is the first
+//     knot, stepping up from mu_max, where mu Lambda is below 1e-5 of its limit c0 (past the slope scale: a flat f at
+//     mu_max, GGX alpha = 1e50, is no tail) and the secant slopes of f have settled: if the slope converges at least
+//     like 1/mu (GTR, GGX, Blinn: 1/mu^2), the continuation's error is then below tolerance/4 wherever
+//     Lambda >= DBL_MIN. A second slope scale beyond mu_max that leaves no trace in the slope there is not seen (GTR's,
+//     at 1 and sqrt(gamma), are within the default). Where Lambda drops below 1e-290 first (a tail like Beckmann's
+//     exp(-mu^2/alpha^2)), mu_hi is that point (to 1e-6 in ln mu), and beyond it the table answers a value in
+//     [0, 1e-290] that reaches 0 (the truth is < 1e-290 there: Lambda decreases).
+// mu = 0 gives +inf, mu = +inf gives 0, and NaN or mu < 0 give NaN: the table is Lambda for mu >= 0 (G1 takes |mu|;
+// downward directions are the caller's convention, smith.hpp).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <functional>
@@ -23,45 +37,53 @@
 namespace smithlab {
 
 struct LambdaTableOptions {
-    double mu_min = 1e-5;
+    double mu_min = 1e-5;  // the spline covers at least [mu_min, mu_max], less where Lambda drops below 1e-290
     double mu_max = 1e5;
-    double tolerance = 1e-6;  // on the relative error of Lambda, as estimated (measured: 5x below)
-    LambdaOptions exact = {};  // the route the knots (and calls outside the range) are computed by
+    double tolerance = 1e-6;  // on the relative error of Lambda, as estimated (measured: ~5x below)
+    LambdaOptions exact = {};  // the route the knots are computed by
 };
 
 class LambdaTable {
 public:
-    // exact(mu) must be Lambda at any mu (0, inf and mu < 0 included). input_error on bad options, on a Lambda
-    // that is negative or not finite at a knot (it names mu), or when no step down to 2^-13 meets the tolerance.
-    // Where Lambda underflows to 0 within a few knots of mu_min, the table is empty and exact() answers every call.
-    LambdaTable(std::function<double(double)> exact, const LambdaTableOptions& opts);
+    // exact(mu) is Lambda at mu > 0; it is called only here. input_error on bad options, on a Lambda that is negative,
+    // NaN or inf at a knot (it names mu), where exact() refuses a mu the table needs (before its asymptotes hold),
+    // and when no step down to 2^-13 meets the tolerance.
+    LambdaTable(const std::function<double(double)>& exact, const LambdaTableOptions& opts);
 
     double Lambda(double mu) const {
-        if (!(mu >= mu_min_ && mu <= mu_max_)) return exact_(mu);
         const double x = std::log(mu);
-        const double t = (x - x0_) * inv_h_;
-        const auto i = static_cast<std::size_t>(t);
-        const double u = t - static_cast<double>(i);
-        const std::array<double, 4>& c = coef_[i];
-        return std::exp(((c[3] * u + c[2]) * u + c[1]) * u + c[0] - x);
+        if (x >= x_lo_ && x <= x_hi_) {
+            const double t = (x - x_lo_) * inv_h_;
+            const std::size_t i = std::min(static_cast<std::size_t>(t), coef_.size() - 1);
+            const double u = t - static_cast<double>(i);
+            const std::array<double, 4>& c = coef_[i];
+            return std::exp(((c[3] * u + c[2]) * u + c[1]) * u + c[0] - x);
+        }
+        if (x < x_lo_) return g_lo_ / mu - 0.5;                          // mu = 0: +inf
+        if (x > x_hi_) return std::exp(ln_Lambda_hi_ + slope_hi_ * (x - x_hi_));  // mu = +inf: 0
+        return x;                                                        // NaN, mu < 0
     }
     double G1(double mu) const { return 1.0 / (1.0 + Lambda(std::abs(mu))); }
 
-    double mu_min() const { return mu_min_; }
-    double mu_max() const { return mu_max_; }                // below opts.mu_max where Lambda underflows
-    double step() const { return 1.0 / inv_h_; }            // in ln mu
+    double mu_min() const { return std::exp(x_lo_); }  // the spline's range, [mu_lo, mu_hi]
+    double mu_max() const { return std::exp(x_hi_); }
+    double step() const { return 1.0 / inv_h_; }  // in ln mu
     std::size_t knots() const { return coef_.size() + 1; }
-    double error_estimate() const { return error_estimate_; }  // relative, of Lambda
+    bool underflows() const { return underflows_; }  // beyond mu_max(), Lambda < 1e-290
+    double error_estimate() const { return error_estimate_; }  // relative, of Lambda, the worst of the three pieces
 
 private:
-    std::function<double(double)> exact_;
-    double mu_min_, mu_max_, x0_ = 0.0, inv_h_ = 1.0, error_estimate_ = 0.0;
-    std::vector<std::array<double, 4>> coef_;  // per interval, in u = (x - x_i)/h in [0, 1)
+    double x_lo_ = 0.0, x_hi_ = 0.0, inv_h_ = 1.0;
+    double g_lo_ = 0.0;                             // c0 + R(mu_lo)
+    double ln_Lambda_hi_ = 0.0, slope_hi_ = -1.0;  // ln Lambda at mu_hi, and its slope in ln mu beyond
+    bool underflows_ = false;
+    double error_estimate_ = 0.0;
+    std::vector<std::array<double, 4>> coef_;  // per interval, in u = (x - x_i)/h in [0, 1]
 };
 
 template <Ndf N>
 LambdaTable tabulate_Lambda(const N& ndf, const LambdaTableOptions& opts = {}) {
-    return LambdaTable([ndf, e = opts.exact](double mu) { return smithlab::Lambda(ndf, mu, e); }, opts);
+    return LambdaTable([&ndf, e = opts.exact](double mu) { return smithlab::Lambda(ndf, mu, e); }, opts);
 }
 
 }  // namespace smithlab
