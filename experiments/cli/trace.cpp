@@ -29,11 +29,7 @@ auto with_microsurface(const AnyNdf& ndf, const walk::MicrosurfaceOptions& opts,
     if (family == "ggx") return f(walk::Microsurface(ggx(ndf.param("alpha")), opts));
     if (family == "beckmann") return f(walk::Microsurface(beckmann(ndf.param("alpha")), opts));
     if (family == "blinn") return f(walk::Microsurface(blinn(ndf.param("n")), opts));
-    if (family == "gtr") {
-        const double gamma = ndf.param("gamma");
-        if (gamma == 2.0) return f(walk::Microsurface(ggx(ndf.param("alpha")), opts));  // the closed-form sampler
-        return f(walk::Microsurface(gtr(ndf.param("alpha"), gamma), opts));
-    }
+    if (family == "gtr") return f(walk::Microsurface(gtr(ndf.param("alpha"), ndf.param("gamma")), opts));
     return f(walk::Microsurface(ndf, opts));
 }
 

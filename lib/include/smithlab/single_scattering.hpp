@@ -19,7 +19,7 @@ template <Ndf N>
 double D_of_normal(const N& ndf, const Vec3& m) {
     if (!(m.z() > 0.0)) return 0.0;
     const double s = tan2_theta(m);
-    return slope_density(ndf, s) * (1.0 + s) * (1.0 + s);  // D = P22 / cos^4 (Walter 2007 eq. 42)
+    return D_from_P22(slope_density(ndf, s), s);
 }
 
 // f(wi, wo) |cos theta_o| in reflection (wi.z > 0, wo.z > 0; 0 otherwise).

@@ -56,20 +56,14 @@ public:
         return L == 0.0 ? 1.0 : std::exp(L * ln_C1(h));
     }
 
-    // The normal a ray travelling along w hits.
-    template <class G>
-    Vec3 hit_normal(const Vec3& w, G& g) const {
-        return normals_.sample(Vec3(-w), g);
-    }
-
-    // A normal drawn from the visible normals of v (the law the phase functions integrate over).
+    // A normal drawn from the visible normals of v: the normal a ray travelling along -v hits, and the law the
+    // phase functions integrate over.
     template <class G>
     Vec3 visible_normal(const Vec3& v, G& g) const {
         return normals_.sample(v, g);
     }
 
     const VisibleNormals<N>& normals() const { return normals_; }
-    const MicrosurfaceOptions& options() const { return opts_; }
 
 private:
     // ln C1(h), kept finite at the bottom of the law (C1 = 0) so that products with Lambda stay numbers.

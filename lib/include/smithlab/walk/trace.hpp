@@ -16,7 +16,7 @@ struct CellRequest {
     Vec3 wi;                      // toward the light, wi.z > 0
     std::uint64_t seed = 1, cell = 0;
     std::int64_t walks = 100'000;
-    WalkLimits limits;
+    WalkLimits limits{};
     BrdfBins brdf;                // empty: no directional tally is allocated
     unsigned threads = 0;         // 0: all cores
     std::int64_t block = 4096;    // walks per block (part of the result's definition: the merge order)
@@ -71,7 +71,7 @@ struct EvalRequest {
     Vec3 wi, wo;                  // wi.z > 0; wo anywhere (f |cos theta_o| = 0 below for the materials here)
     std::uint64_t seed = 1, cell = 0;
     std::int64_t walks = 100'000;
-    WalkLimits limits;
+    WalkLimits limits{};
     unsigned threads = 0;
     std::int64_t block = 4096;
 };

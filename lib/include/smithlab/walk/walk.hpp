@@ -21,7 +21,7 @@ namespace smithlab::walk {
 
 // Tallies by scattering order: 1, 2, 3, 4+.
 inline constexpr int order_bins = 4;
-inline int order_bin(int order) { return std::min(order, order_bins) - 1; }
+inline int order_bin(std::int64_t order) { return static_cast<int>(std::min<std::int64_t>(order, order_bins)) - 1; }
 
 struct WalkLimits {
     int max_order = 0;               // > 0: the walk ends after this many hits (the orders beyond are not asked for)
@@ -46,8 +46,8 @@ WalkSample sample_walk(const Microsurface& ms, const M& material, const Vec3& wi
         if (!ms.next_height(w, h, 1.0 - uniform01(g))) return {w, weight, static_cast<int>(order), diffuse, true, false};
         if (order + 1 > limits.max_events) return {w, 0.0, static_cast<int>(order), diffuse, false, true};
         if (limits.max_order > 0 && order + 1 > limits.max_order) return {w, 0.0, static_cast<int>(order), diffuse, false, false};
-        const Vec3 m = ms.hit_normal(w, g);
-        const Scatter s = material.sample(Vec3(-w), m, g);
+        const Vec3 v = -w;
+        const Scatter s = material.sample(v, ms.visible_normal(v, g), g);
         weight *= s.weight;
         diffuse = diffuse || s.diffuse;
         if (weight == 0.0) return {w, 0.0, static_cast<int>(order + 1), diffuse, false, false};
@@ -81,11 +81,11 @@ EvalSample eval_walk(const Microsurface& ms, const M& material, const Vec3& wi, 
         const double e = ms.escape(wo, h);
         if (e > 0.0) {
             const Phase p = material.phase(ms, v, wo, g);
-            const int b = order_bin(static_cast<int>(std::min<std::int64_t>(order, order_bins)));
+            const int b = order_bin(order);
             (diffuse ? out.diffuse : out.specular)[b] += weight * e * p.specular;
             out.diffuse[b] += weight * e * p.diffuse;
         }
-        const Scatter s = material.sample(v, ms.hit_normal(w, g), g);
+        const Scatter s = material.sample(v, ms.visible_normal(v, g), g);
         weight *= s.weight;
         diffuse = diffuse || s.diffuse;
         if (weight == 0.0) break;
