@@ -44,6 +44,12 @@ TEST_CASE("eval prints lambda and g1", "[cli]") {
     CHECK_THAT(down.out, Catch::Contains("lambda  -1.207106781186547") && Catch::Contains("g1      0.828427124746190"));
     CHECK_THAT(run("eval --ndf 'ggx(alpha=0.5)' --mu -0.5 --downward hammon").out,
                Catch::Contains("lambda  -0.207106781186547"));
+    // A subnormal mu is a number (it was refused as "not a number"): GGX's Lambda ~ alpha / (2 mu) there, 2.5e309
+    // overflows to inf and G1 underflows to 0 exactly as the closed form says.
+    const Run tiny = run("eval --ndf 'ggx(alpha=0.5)' --mu 1e-310");
+    CHECK(tiny.rc == 0);
+    CHECK_THAT(tiny.out, Catch::Contains("g1      "));
+    CHECK_THAT(run("eval --ndf 'ggx(alpha=1e-10)' --mu 1e-310").out, Catch::Contains("lambda  5.00000000000001") && Catch::Contains("e+299"));
 }
 
 TEST_CASE("bad input exits 2 and names the offending item", "[cli]") {
@@ -57,6 +63,9 @@ TEST_CASE("bad input exits 2 and names the offending item", "[cli]") {
                           Case{"eval --ndf 'phong(n=2)' --mu 1", "phong"},
                           Case{"eval --ndf 'ggx(alpha=0.3)' --mu nan", "mu"},
                           Case{"eval --ndf 'ggx(alpha=0.3)' --mu abc", "mu"},
+                          Case{"eval --ndf 'ggx(alpha=0.3)' --mu 1e-400", "smallest double"},
+                          Case{"eval --ndf 'ggx(alpha=0.3)' --mu 1e400", "largest double"},
+                          Case{"eval --ndf 'ggx(alpha=1e999)' --mu 1", "largest double"},
                           Case{"eval --ndf 'blinn(n=4)' --mu 1 --method closed", "closed"},
                           Case{"eval --ndf 'ggx(alpha=0.3)' --mu 1 --method magic", "magic"},
                           Case{"eval --ndf 'ggx(alpha=0.3)' --mu 1 --method dimov-spline", "dimov-spline"},

@@ -370,6 +370,34 @@ TEST_CASE("the issue's reproducers: right or refused", "[domain]") {
     }
 }
 
+// A plug-in with only D: its slope form comes through cos theta_m, which carries a slope r only to ~1e-16 / r^2. It
+// was silently wrong below a slope scale of 1e-4 (0.43 at alpha 1e-8, 1e164 at 1e-50); now right where accepted and
+// refused, naming the fix, below 1e-3 -- directly, type-erased, and by the table the walk builds.
+TEST_CASE("a D-only plug-in: right by quadrature down to a slope scale of 1e-3, refused below", "[domain]") {
+    using DOnlyGgx = smithlab::DOnly<smithlab::Ggx>;
+    smithlab::LambdaOptions q;
+    q.method = smithlab::Method::quadrature;
+    for (double mu : {1e-2, 1.0, 30.0}) {
+        INFO("mu=" << mu);
+        const DOnlyGgx ok{smithlab::Ggx{1e-3}};
+        const LD want = reference_Lambda(ggx_ref(1e-3), mu, {1e-3, mu});
+        CHECK(rel_err(smithlab::Lambda(ok, mu, q), want) < 1e-10);
+        CHECK(rel_err(smithlab::Lambda(smithlab::as_any(ok), mu, q), want) < 1e-10);
+    }
+    for (double alpha : {9e-4, 1e-4, 1e-8, 1e-50}) {
+        INFO("alpha=" << alpha);
+        const DOnlyGgx bad{smithlab::Ggx{alpha}};
+        CHECK_THROWS_WITH(smithlab::Lambda(bad, 1.0, q), Catch::Contains("only D") && Catch::Contains("slope_density"));
+        CHECK_THROWS_WITH(smithlab::Lambda(smithlab::as_any(bad), 1.0), Catch::Contains("only D"));
+        q.method = smithlab::Method::quadrature2d;
+        CHECK_THROWS_AS(smithlab::Lambda(bad, 1.0, q), input_error);
+        q.method = smithlab::Method::quadrature;
+        CHECK_THROWS_WITH(smithlab::tabulate_Lambda(bad), Catch::Contains("only D"));
+        // the NDF's own slope form has no such limit
+        CHECK(rel_err(smithlab::Lambda(smithlab::Ggx{alpha}, 1.0, q), reference_Lambda(ggx_ref(alpha), 1.0, {alpha, 1.0})) < 1e-10);
+    }
+}
+
 TEST_CASE("the long-double reference agrees with the 50-digit one of reference.hpp", "[domain][reference]") {
     struct Case {
         Density f;

@@ -10,12 +10,7 @@
 namespace smithlab::cli {
 
 double parse_number(const std::string& text, const std::string& what) {
-    errno = 0;
-    char* end = nullptr;
-    const double v = std::strtod(text.c_str(), &end);
-    // strtod skips leading blanks; a number with blanks around it is refused at either end alike.
-    if (text.empty() || std::isspace(static_cast<unsigned char>(text[0])) || end != text.c_str() + text.size() || errno == ERANGE)
-        throw input_error(what + " is not a number: '" + text + "'");
+    const double v = parse_double(text, what);
     if (std::isnan(v)) throw input_error(what + " is NaN");
     return v;
 }

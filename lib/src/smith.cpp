@@ -66,6 +66,19 @@ void require_quadrature_scale(double mu, double P22_at_pole, const char* method)
     throw input_error(msg.str());
 }
 
+void require_slope_digits(double P22_at_pole, const char* method) {
+    if (!(P22_at_pole > 0.0 && P22_at_pole < INFINITY)) return;
+    const double r0 = 1.0 / std::sqrt(std::numbers::pi * P22_at_pole);
+    if (r0 >= 1e-3) return;
+    std::ostringstream msg;
+    msg.precision(3);
+    msg << "this ndf has only D(cos theta_m), and its slope scale 1/sqrt(pi P22(0)) = " << r0
+        << " is below 1e-3: cos theta_m cannot carry the digits of such slopes (relative error ~1e-16 / scale^2 in "
+           "Lambda), so the "
+        << method << " methods refuse it; give the NDF a slope_density(r2) member (P22 as a function of tan^2 theta_m)";
+    throw input_error(msg.str());
+}
+
 }  // namespace detail
 
 double G2_from_Lambdas(double Lambda_i, double Lambda_o, bool same_side, G2Form form) {

@@ -2,9 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
 #include <charconv>
-#include <cstdlib>
 #include <set>
 
 #include "smithlab/errors.hpp"
@@ -63,11 +61,12 @@ NdfSpec parse_spec(std::string_view text, std::string_view what) {
         const std::string value(trim(item.substr(eq + 1)));
         if (!is_identifier(key)) bad_spec(what, text, "bad parameter name '" + key + "'");
         if (!seen.insert(key).second) bad_spec(what, text, "parameter '" + key + "' given twice");
-        errno = 0;
-        char* end = nullptr;
-        const double v = value.empty() ? 0.0 : std::strtod(value.c_str(), &end);
-        if (value.empty() || end != value.c_str() + value.size() || errno == ERANGE)
-            bad_spec(what, text, "value of '" + key + "' is not a number: '" + value + "'");
+        double v = 0.0;
+        try {
+            v = parse_double(value, "value of '" + key + "'");
+        } catch (const input_error& e) {
+            bad_spec(what, text, e.what());
+        }
         spec.params.emplace_back(key, v);
         if (comma == std::string_view::npos) break;
         body.remove_prefix(comma + 1);

@@ -24,6 +24,8 @@ public:
 
     double D(double cos_theta_m) const { return self_->D(cos_theta_m); }
     double slope_density(double r2) const { return self_->slope_density(r2); }
+    // Whether that slope form is the held NDF's own, not derived from its D (ndf.hpp).
+    bool has_slope_density() const { return self_->has_slope(); }
 
     bool has_closed_Lambda() const { return self_->has_closed(); }
     // Throws input_error when the held NDF has no closed form.
@@ -53,6 +55,7 @@ private:
         virtual ~Base() = default;
         virtual double D(double c) const = 0;
         virtual double slope_density(double r2) const = 0;
+        virtual bool has_slope() const = 0;
         virtual bool has_closed() const = 0;
         virtual double closed(double mu) const = 0;
         virtual bool has_spline() const = 0;
@@ -68,6 +71,7 @@ private:
         explicit Model(N n) : ndf(std::move(n)) {}
         double D(double c) const override { return ndf.D(c); }
         double slope_density(double r2) const override { return smithlab::slope_density(ndf, r2); }
+        bool has_slope() const override { return smithlab::has_slope_density(ndf); }
         bool has_closed() const override { return smithlab::has_closed_Lambda(ndf); }
         double closed(double mu) const override {
             if constexpr (HasClosedLambda<N>) return ndf.Lambda(mu);

@@ -17,4 +17,10 @@ struct input_error : std::invalid_argument {
 // Throws input_error("<what> must be <rule>, got <value>") unless ok. Allocates nothing when ok.
 void require(bool ok, std::string_view what, std::string_view rule, double value);
 
+// The one strict reading of a number from text (option values, spec parameters): all of `text`, no blanks around it,
+// as a double, subnormals included. Throws input_error("<what> ...: '<text>'") saying which rule it breaks: not a
+// number, beyond the largest double (1.8e308), or a nonzero value below the smallest (4.9e-324), which would read
+// as 0. "nan" reads as NaN: the caller's own rule refuses it, naming the item.
+double parse_double(std::string_view text, std::string_view what);
+
 }  // namespace smithlab

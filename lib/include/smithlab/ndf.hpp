@@ -98,6 +98,15 @@ struct DOnly {
     double D(double cos_theta_m) const { return ndf.D(cos_theta_m); }
 };
 
+// Whether `ndf` has its own slope form P22(r^2) (else smithlab derives it from D through cos theta_m, which
+// cannot carry a slope's digits near the pole: smith.hpp refuses that route below a core scale of 1e-3).
+// Type-erased NDFs answer at run time.
+template <Ndf N>
+bool has_slope_density(const N& ndf) {
+    if constexpr (requires { ndf.has_slope_density(); }) return ndf.has_slope_density();
+    else return HasSlopeDensity<N>;
+}
+
 // Whether `ndf` offers a closed-form / spline Lambda. Type-erased NDFs answer at run time.
 template <Ndf N>
 bool has_closed_Lambda(const N& ndf) {

@@ -49,6 +49,10 @@ void require_mu(double mu);
 // mu / alpha ~ 1e-13 Boost's tanh-sinh steps over it (GGX(1e49) at mu = 0.5 came out 1.85e48 for 1e49; Beckmann at
 // alpha = 18, mu = 1e-12 60 % low), and the nested route takes minutes. GSL holds further; the rule is the tested one.
 void require_quadrature_scale(double mu, double P22_at_pole, const char* method);
+// ... and, for an NDF that has only D (its slope form derived through cos theta_m), r0 >= 1e-3: cos theta_m carries a
+// slope r ~ r0 only to 1e-16 / r0^2 relative (sin^2 = (1 - c)(1 + c)), which put 2.3e-9 into Lambda at r0 = 1e-4,
+// 0.43 at 1e-8 and 1e164 at 1e-50 (tests/test_domain.cpp); at 1e-3 it is 2e-11.
+void require_slope_digits(double P22_at_pole, const char* method);
 }  // namespace detail
 
 // input_error unless the quadrature methods (Lambda_1d, Lambda_2d) accept mu for ndf; `method` names them in the
@@ -56,7 +60,9 @@ void require_quadrature_scale(double mu, double P22_at_pole, const char* method)
 template <Ndf N>
 void require_quadrature_domain(const N& ndf, double mu, const char* method = "quadrature") {
     detail::require_mu(mu);
-    detail::require_quadrature_scale(mu, slope_density(ndf, 0.0), method);
+    const double P22_at_pole = slope_density(ndf, 0.0);
+    if (!has_slope_density(ndf)) detail::require_slope_digits(P22_at_pole, method);
+    detail::require_quadrature_scale(mu, P22_at_pole, method);
 }
 
 // P22(p, q), Walter 2007 eq. 42.
