@@ -3,8 +3,9 @@
 #include <catch2/catch.hpp>
 
 #include "cli_run.hpp"
-#include <cmath>
+#include <smithlab/csv.hpp>
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -12,6 +13,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <vector>
 
 using namespace smithlab_test;
 
@@ -325,7 +327,7 @@ TEST_CASE("trace: albedo.csv and meta.json, the same bits for any --threads, and
         if (first.empty()) first = csv;
         CHECK(csv == first);
     }
-    for (const std::string& bad : {"--material velvet", "--material 'lambert(albedo=2)'", "--walks 0", "--theta-i 90",
+    for (const std::string bad : {"--material velvet", "--material 'lambert(albedo=2)'", "--walks 0", "--theta-i 90",
                                    "--ndf 'ggx(alpha=-1)'", "--seed -1", "--downward up"}) {
         const fs::path out = d / "refused";
         const Run r = run("trace " + bad + " --output '" + out.string() + "'");
@@ -349,4 +351,143 @@ TEST_CASE("brdf: the eval estimator's value, its orders and the analytic single 
     REQUIRE(single > 0.0);
     CHECK(std::abs(order1 - single) < 4.0 * err1);
     CHECK(run("brdf --ndf 'ggx(alpha=0.5)' --material mirror --wi 120,0 --wo 60,180").rc == 2);
+}
+
+namespace {
+
+// Each record of a CSV file (header first), through smithlab's reader.
+std::vector<std::vector<std::string>> records(const fs::path& p) {
+    std::ifstream in(p);
+    std::vector<std::vector<std::string>> out;
+    for (smithlab::CsvRecord& r : smithlab::read_csv(in)) out.push_back(std::move(r.fields));
+    return out;
+}
+
+const char* trace_scene_text = R"toml(title = "a small sweep"
+materials = ["mirror", "lambert(albedo=0.7)"]
+[walks]
+n = 3000
+seed = 5
+[grid]
+alpha = [0.3]
+theta_i = [30, 70]
+[[ndf]]
+family = "gtr"
+gamma = [1.5]
+[[ndf]]
+spec = "beckmann(alpha=0.5)"
+[brdf]
+theta_bins = 4
+phi_bins = 6
+)toml";
+
+std::string trace_args(const fs::path& scene, const fs::path& out, int threads) {
+    return "trace '" + scene.string() + "' --output '" + out.string() + "' --threads " + std::to_string(threads);
+}
+
+}  // namespace
+
+TEST_CASE("trace: a scene file -- albedo.csv and brdf.csv for every cell, the same bits for any --threads; a rerun "
+          "traces nothing; brdf.csv holds the reflected energy",
+          "[cli][walk][scene]") {
+    const fs::path d = scratch() / "trace_scene";
+    fs::remove_all(d);
+    fs::create_directories(d);
+    write(d / "scene.toml", trace_scene_text);
+    Run r = run(trace_args(d / "scene.toml", d / "a", 1));
+    REQUIRE(r.rc == 0);
+    CHECK_THAT(r.out, Catch::Contains("cells 8\ntraced 8\nreused 0\n"));
+    const auto albedo = records(d / "a" / "albedo.csv"), brdf = records(d / "a" / "brdf.csv");
+    REQUIRE(albedo.size() == 1 + 8 * 45);  // 2 NDFs x 2 materials x 2 angles; 3 hemispheres x 5 orders x 3 components
+    REQUIRE(brdf.size() == 1 + 8 * 4 * 6 * 5 * 3);
+    CHECK(albedo[1][0] == "gtr(alpha=0.3, gamma=1.5)");
+    CHECK(albedo.back()[0] == "beckmann(alpha=0.5)");
+    // Every walk's weight lands in one bin: the bins' value x solid angle sum to the cell's reflection albedo.
+    std::map<std::string, double> reflected, binned;
+    for (const auto& f : albedo)
+        if (f[4] == "reflection" && f[5] == "all" && f[6] == "all") reflected[f[0] + f[1] + f[2]] = std::stod(f[7]);
+    const double omega = 2.0 * M_PI / (4 * 6);
+    for (std::size_t i = 1; i < brdf.size(); ++i)
+        if (brdf[i][9] == "all" && brdf[i][10] == "all") binned[brdf[i][0] + brdf[i][1] + brdf[i][2]] += std::stod(brdf[i][11]) * omega;
+    REQUIRE(reflected.size() == 8);
+    for (const auto& [cell, a] : reflected) {
+        INFO(cell);
+        CHECK(binned[cell] == Approx(a).epsilon(1e-12));
+    }
+    CHECK(reflected.at("beckmann(alpha=0.5)mirror30") == 1.0);  // mirror facets: every walk leaves, energy 1
+
+    // The same bits for 3 threads, and a rerun reuses every cell.
+    REQUIRE(run(trace_args(d / "scene.toml", d / "b", 3)).rc == 0);
+    CHECK(slurp(d / "b" / "albedo.csv") == slurp(d / "a" / "albedo.csv"));
+    CHECK(slurp(d / "b" / "brdf.csv") == slurp(d / "a" / "brdf.csv"));
+    r = run(trace_args(d / "scene.toml", d / "a", 2));
+    REQUIRE(r.rc == 0);
+    CHECK_THAT(r.out, Catch::Contains("traced 0\nreused 8\n"));
+    CHECK(slurp(d / "b" / "albedo.csv") == slurp(d / "a" / "albedo.csv"));
+    // A scene that changes what a cell is (its walks) traces every cell again.
+    std::string more = trace_scene_text;
+    more.replace(more.find("n = 3000"), 8, "n = 3001");
+    write(d / "more.toml", more);
+    CHECK_THAT(run(trace_args(d / "more.toml", d / "a", 2)).out, Catch::Contains("traced 8\nreused 0\n"));
+}
+
+TEST_CASE("trace: max_order = 1 ends every walk at its first hit -- fewer bounces, nothing beyond order 1", "[cli][walk][scene]") {
+    const fs::path d = scratch() / "trace_order";
+    fs::remove_all(d);
+    fs::create_directories(d);
+    const std::string base = "materials = [\"lambert(albedo=1)\"]\n[grid]\nalpha = [0.8]\ntheta_i = [60]\n[[ndf]]\nfamily = \"ggx\"\n";
+    write(d / "all.toml", base + "[walks]\nn = 4000\n");
+    write(d / "one.toml", base + "[walks]\nn = 4000\nmax_order = 1\n");
+    REQUIRE(run(trace_args(d / "all.toml", d / "all", 1)).rc == 0);
+    REQUIRE(run(trace_args(d / "one.toml", d / "one", 1)).rc == 0);
+    auto bounces = [&](const char* dir) {
+        const std::string meta = slurp(d / dir / "meta.json");
+        const std::size_t at = meta.rfind("\"bounces\": ");
+        return std::stoll(meta.substr(at + 11));
+    };
+    CHECK(bounces("one") <= 4000);
+    CHECK(bounces("all") > 4000 + 4000 / 5);  // lambert(1) at alpha 0.8: ~1.6 hits per walk
+    for (const auto& f : records(d / "one" / "albedo.csv"))
+        if (f[5] == "2" || f[5] == "3" || f[5] == "4+") CHECK(f[7] == "0");
+}
+
+TEST_CASE("trace: the default sweep, and a malformed scene exits 2 naming the key, with nothing written", "[cli][walk][scene]") {
+    const fs::path d = scratch() / "trace_default";
+    fs::remove_all(d);
+    fs::create_directories(d);
+    // The embedded default scene, with fewer walks: 2 NDFs x 4 alphas x 2 materials x 3 angles.
+    std::string def = run("trace --print-scene").out;
+    REQUIRE(def.find("n = 200000") != std::string::npos);
+    def.replace(def.find("n = 200000"), 10, "n = 600");
+    write(d / "default.toml", def);
+    const Run r = run(trace_args(d / "default.toml", d / "out", 2));
+    REQUIRE(r.rc == 0);
+    CHECK_THAT(r.out, Catch::Contains("cells 48\n"));
+    for (const auto& f : records(d / "out" / "albedo.csv"))
+        if (f[1] == "mirror" && f[4] == "all" && f[5] == "all" && f[6] == "all") CHECK(f[7] == "1");
+
+    struct Bad {
+        std::string text, named;
+    };
+    const std::string grid = "[grid]\nalpha = [0.5]\ntheta_i = [45]\n";
+    const std::string ndf = "[[ndf]]\nfamily = \"ggx\"\n";
+    for (const Bad& b : {Bad{"materials = [\"velvet\"]\n" + grid + ndf, "velvet"},
+                         Bad{"materials = [\"mirror\"]\n[grid]\nalpha = [0.5]\ntheta_i = [90]\n" + ndf, "theta_i"},
+                         Bad{"materials = [\"mirror\"]\n[walks]\nn = 0\n" + grid + ndf, "walks.n"},
+                         Bad{"materials = [\"mirror\"]\n[walks]\nm = 3\n" + grid + ndf, "did you mean"},
+                         Bad{"materials = [\"mirror\"]\n" + ndf, "grid"},
+                         Bad{"materials = [\"mirror\"]\n" + grid + "[[ndf]]\nspec = \"ggx(alpha=-1)\"\n", "alpha"},
+                         Bad{"materials = [\"mirror\"]\n" + grid + "[[ndf]]\nspec = \"ggx(alpha=1)\"\nfamily = \"ggx\"\n", "exactly one"},
+                         Bad{"materials = [\"mirror\"]\n" + grid + ndf + "[walks]\ndownward = \"up\"\n", "downward"},
+                         Bad{"materials = [\"mirror\"]\n" + grid + ndf + "[brdf]\ntheta_bins = 0\nphi_bins = 4\n", "theta_bins"},
+                         Bad{"materials = [\"mirror\"\n", "malformed"}}) {
+        write(d / "bad.toml", b.text);
+        const Run bad = run(trace_args(d / "bad.toml", d / "never", 1));
+        INFO(b.text << "\n-> " << bad.err);
+        CHECK(bad.rc == 2);
+        CHECK_THAT(bad.err, Catch::Contains(b.named));
+        CHECK_FALSE(fs::exists(d / "never"));
+    }
+    CHECK(run("trace '" + (d / "default.toml").string() + "' --ndf 'ggx(alpha=0.5)'").rc == 2);  // a scene or flags
+    CHECK(run("trace '" + (d / "missing.toml").string() + "' --output '" + (d / "never").string() + "'").rc == 2);
 }

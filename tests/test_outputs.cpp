@@ -265,3 +265,44 @@ TEST_CASE("report: a damaged reference cache record is computed again, not reuse
     CHECK_THAT(r.err, Catch::Contains("5 reused from the cache, 1 computed (1 damaged cache records discarded)"));
     CHECK(first_fields(slurp(d / "rep" / "variants.csv"), 6) == clean);
 }
+
+TEST_CASE("a killed trace resumes from its last finished cell, and its files are the uninterrupted run's bits",
+          "[outputs][kill][walk]") {
+    const fs::path d = scratch() / "kill_trace";
+    fs::remove_all(d);
+    fs::create_directories(d);
+    write(d / "scene.toml",
+          "materials = [\"lambert(albedo=0.9)\"]\n[walks]\nn = 40000\nseed = 9\n[grid]\nalpha = [0.2, 0.4, 0.6, 0.8]\n"
+          "theta_i = [0, 20, 40, 60, 80]\n[[ndf]]\nfamily = \"ggx\"\n");
+    const fs::path out = d / "out", cells = out / "cells";
+    const auto finished = [&] {
+        std::error_code ec;
+        int n = 0;
+        for (const auto& e : fs::directory_iterator(cells, ec))
+            if (e.path().extension() == ".csv") ++n;
+        return n;
+    };
+    // Killed (SIGKILL: nothing of it runs after) once two of its 20 cells are done.
+    const pid_t pid = spawn({"trace", (d / "scene.toml").string(), "--output", out.string(), "--threads", "1"});
+    REQUIRE(wait_for(pid, [&] { return finished() >= 2; }));
+    kill_and_wait(pid, SIGKILL);
+    const int kept = finished();
+    REQUIRE(kept < 20);
+    CHECK_FALSE(fs::exists(out / "albedo.csv"));
+    // The rerun traces only the rest; its files are those of a run never killed (another thread count, too).
+    const std::string cmd = "trace '" + (d / "scene.toml").string() + "' --threads 2 --output ";
+    Run r = run(cmd + "'" + out.string() + "'");
+    REQUIRE(r.rc == 0);
+    CHECK_THAT(r.out, Catch::Contains("traced " + std::to_string(20 - kept) + "\nreused " + std::to_string(kept) + "\n"));
+    CHECK(temporaries(out).empty());
+    REQUIRE(run(cmd + "'" + (d / "whole").string() + "'").rc == 0);
+    CHECK(slurp(out / "albedo.csv") == slurp(d / "whole" / "albedo.csv"));
+    // A damaged cell file (cut short) is traced again, not read.
+    const fs::path one = cells / "cell-000007.csv";
+    std::string text = slurp(one);
+    write(one, text.substr(0, text.size() / 2));
+    r = run(cmd + "'" + out.string() + "'");
+    REQUIRE(r.rc == 0);
+    CHECK_THAT(r.out, Catch::Contains("traced 1\nreused 19\n"));
+    CHECK(slurp(out / "albedo.csv") == slurp(d / "whole" / "albedo.csv"));
+}

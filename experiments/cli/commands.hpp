@@ -52,11 +52,14 @@ void add_sample(CLI::App& app, SampleArgs& args);
 int run_sample(const SampleArgs& args, const NdfRegistry& registry);
 
 struct TraceArgs {
+    std::string scene;  // a scene file; empty: the cell flags below, or the default sweep when none is given
     std::string ndf = "ggx(alpha=0.5)", material = "mirror", downward = "smith", output = "trace";
     double theta_i = 45.0, phi_i = 0.0;
     long long walks = 1'000'000;
     int max_order = 0, threads = 0;
     std::string seed = "1";
+    bool print_scene = false;
+    std::vector<CLI::Option*> cell_options;  // the flags that name one cell: any given means "trace that cell"
 };
 void add_trace(CLI::App& app, TraceArgs& args);
 int run_trace(const TraceArgs& args, const NdfRegistry& registry);
@@ -72,6 +75,8 @@ int run_brdf(const BrdfArgs& args, const NdfRegistry& registry);
 
 // Parses a double, accepting "inf"; NaN and trailing junk are input errors naming `what`.
 double parse_number(const std::string& text, const std::string& what);
+// The text of a scene file; a directory, a missing or unreadable file is an input error naming it.
+std::string read_scene_file(const std::string& path);
 // Parses a seed: decimal digits only, 0 .. 2^64 - 1; anything else is an input error naming `what`.
 unsigned long long parse_seed(const std::string& text, const std::string& what);
 

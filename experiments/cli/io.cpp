@@ -1,8 +1,12 @@
-// Parsing of option values shared by the subcommands.
+// Parsing of option values, and reading of scene files, shared by the subcommands.
 #include <cerrno>
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include "commands.hpp"
 #include "smithlab/errors.hpp"
@@ -13,6 +17,17 @@ double parse_number(const std::string& text, const std::string& what) {
     const double v = parse_double(text, what);
     if (std::isnan(v)) throw input_error(what + " is NaN");
     return v;
+}
+
+std::string read_scene_file(const std::string& path) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) throw input_error("scene file '" + path + "' is a directory");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw input_error("cannot open scene file '" + path + "': " + std::strerror(errno));
+    std::stringstream text;
+    text << in.rdbuf();
+    if (in.bad()) throw input_error("cannot read scene file '" + path + "'");
+    return text.str();
 }
 
 unsigned long long parse_seed(const std::string& text, const std::string& what) {

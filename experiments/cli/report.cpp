@@ -1,12 +1,7 @@
 // smithlab report: the error-against-run-time report of the Lambda variants (and the sampling experiment), from a
 // scene file.
-#include <cerrno>
 #include <cstdio>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <iostream>
-#include <sstream>
 
 #include "commands.hpp"
 #include "report.hpp"
@@ -15,22 +10,6 @@
 #include "work_estimate.hpp"
 
 namespace smithlab::cli {
-
-namespace {
-
-// The scene file's text; a directory, a missing or unreadable file is an input error naming it.
-std::string read_scene_file(const std::string& path) {
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) throw input_error("scene file '" + path + "' is a directory");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw input_error("cannot open scene file '" + path + "': " + std::strerror(errno));
-    std::stringstream text;
-    text << in.rdbuf();
-    if (in.bad()) throw input_error("cannot read scene file '" + path + "'");
-    return text.str();
-}
-
-}  // namespace
 
 void add_report(CLI::App& app, ReportArgs& a) {
     CLI::App* c = app.add_subcommand(

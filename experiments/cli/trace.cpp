@@ -1,37 +1,22 @@
-// smithlab trace / smithlab brdf: the microsurface walk (lib/walk/) from the command line. Types are erased here,
-// once per cell: the NDF spec picks the concrete NDF type and the material spec the facet type, and the cell's
-// walks run on those (no virtual call per bounce).
-#include <chrono>
+// smithlab trace / smithlab brdf: the microsurface walk (lib/walk/) from the command line. `trace` runs a scene
+// (experiments/trace/: a file, the embedded default sweep, or one cell given by flags); `brdf` evaluates one
+// (wi, wo) pair. Types are erased once per cell (experiments/trace/dispatch.hpp).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <iostream>
-#include <nlohmann/json.hpp>
 
 #include "commands.hpp"
-#include "smithlab/csv.hpp"
+#include "dispatch.hpp"
 #include "smithlab/errors.hpp"
-#include "smithlab/gtr/gtr.hpp"
-#include "smithlab/ndfs.hpp"
 #include "smithlab/single_scattering.hpp"
 #include "smithlab/walk/trace.hpp"
-#include "staged_directory.hpp"
+#include "trace_run.hpp"
+#include "trace_scene.hpp"
 
 namespace smithlab::cli {
 
 namespace {
-
-// f(concrete microsurface) for the NDF the spec names: the built-in families by their own types, anything else
-// registered through AnyNdf (its D and Lambda then cost a virtual call each).
-template <class F>
-auto with_microsurface(const AnyNdf& ndf, const walk::MicrosurfaceOptions& opts, F&& f) {
-    const std::string& family = ndf.family();
-    if (family == "ggx") return f(walk::Microsurface(ggx(ndf.param("alpha")), opts));
-    if (family == "beckmann") return f(walk::Microsurface(beckmann(ndf.param("alpha")), opts));
-    if (family == "blinn") return f(walk::Microsurface(blinn(ndf.param("n")), opts));
-    if (family == "gtr") return f(walk::Microsurface(gtr(ndf.param("alpha"), ndf.param("gamma")), opts));
-    return f(walk::Microsurface(ndf, opts));
-}
 
 Vec3 incident(double theta, double phi, const char* what) {
     require(theta >= 0.0 && theta < 90.0, what, "in [0, 90) degrees (light from above the surface)", theta);
@@ -51,113 +36,85 @@ Vec3 parse_direction(const std::string& text, const char* what, bool upper) {
     return direction_from_deg(theta, phi);
 }
 
-walk::MicrosurfaceOptions options(const std::string& downward) {
-    if (downward == "smith") return {Downward::smith};
-    if (downward == "hammon") return {Downward::hammon_symmetric};
-    throw input_error("--downward must be smith or hammon, got '" + downward + "'");
+const char* order_name[] = {"1", "2", "3", "4+"};
+
+// The one cell the flags name, as a scene.
+trace::TraceScene cell_scene(const TraceArgs& a) {
+    require(a.walks > 0, "--walks", "> 0", static_cast<double>(a.walks));
+    require(a.max_order >= 0, "--max-order", ">= 0", a.max_order);
+    incident(a.theta_i, a.phi_i, "--theta-i");
+    trace::parse_downward(a.downward, "--downward");
+    trace::TraceScene s;
+    s.title = "one cell";
+    s.ndfs = {a.ndf};
+    s.materials = {a.material};
+    s.theta_i = {a.theta_i};
+    s.phi_i = {a.phi_i};
+    s.walks = a.walks;
+    s.seed = parse_seed(a.seed, "--seed");
+    s.max_order = a.max_order;
+    s.downward = a.downward;
+    return s;
 }
-
-// Progress with an ETA on stderr, at most every 2 s, for runs past a few seconds.
-struct Progress {
-    std::string what;
-    std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now(), last = start;
-    void operator()(double done) {
-        const auto now = std::chrono::steady_clock::now();
-        const double t = std::chrono::duration<double>(now - start).count();
-        if (t < 3.0 || std::chrono::duration<double>(now - last).count() < 2.0 || done >= 1.0) return;
-        last = now;
-        std::fprintf(stderr, "%s: %.0f%% done, %.0f s elapsed, ETA %.0f s\n", what.c_str(), 100.0 * done, t,
-                     t * (1.0 - done) / done);
-    }
-};
-
-const char* hemisphere_name[] = {"reflection", "transmission", "all"};
-const char* component_name[] = {"specular", "diffuse", "all"};
-const char* order_name[] = {"1", "2", "3", "4+", "all"};
 
 }  // namespace
 
 void add_trace(CLI::App& app, TraceArgs& a) {
     CLI::App* c = app.add_subcommand("trace", "Path trace the Smith microsurface: albedo by hemisphere, order, component");
     c->footer(
+        "Runs a scene (TOML, read strictly like report's; --print-scene shows the embedded default and documents\n"
+        "every key): NDFs x materials x incident directions, one cell each. With neither a scene nor cell flags it\n"
+        "runs the default sweep (GGX and GTR gamma = 1.5, mirror and lambert(albedo=1), alpha 0.1..1, theta_i 0, 45,\n"
+        "75; a few seconds). The cell flags (--ndf ... --downward) trace one cell instead, defaults as shown.\n"
         "Examples:\n"
+        "  smithlab trace\n"
+        "  smithlab trace my_sweep.toml --output sweep/ --threads 8\n"
         "  smithlab trace --ndf 'ggx(alpha=0.5)' --material mirror --theta-i 45 --walks 1000000\n"
         "  smithlab trace --ndf 'gtr(alpha=0.3, gamma=1.5)' --material 'lambert(albedo=1)' --theta-i 70 --output t/\n"
         "Materials: mirror, conductor(eta=, k=), lambert(albedo=1), fresnel-diffuse(f0=0.02, albedo=1).\n"
-        "Writes DIR/albedo.csv (ndf,material,theta_i,phi_i,hemisphere,order,component,albedo,stderr,walks) and\n"
-        "DIR/meta.json (the cell, seed, version, walks, bounces traced, seconds, threads), both only when complete.\n"
-        "Walk k draws from a counter-based generator keyed by (seed, cell, k): the files are the same bits for any\n"
-        "--threads. --max-order N ends every walk after N hits (the orders beyond are not traced).");
-    c->add_option("--ndf", a.ndf, "NDF spec")->capture_default_str();
-    c->add_option("--material", a.material, "facet material spec")->capture_default_str();
-    c->add_option("--theta-i", a.theta_i, "incident polar angle, degrees in [0, 90)")->capture_default_str();
-    c->add_option("--phi-i", a.phi_i, "incident azimuth, degrees")->capture_default_str();
-    c->add_option("--walks", a.walks, "walks in the cell (> 0)")->capture_default_str();
-    c->add_option("--max-order", a.max_order, "end walks after this many hits (0: no limit)")->capture_default_str();
-    c->add_option("--downward", a.downward, "Lambda of downward rays: smith (-1 - Lambda) or hammon (-Lambda)")
-        ->capture_default_str();
-    c->add_option("--seed", a.seed, "seed, an integer in [0, 2^64)")->capture_default_str();
+        "Writes DIR/albedo.csv (ndf,material,theta_i,phi_i,hemisphere,order,component,albedo,stderr,walks), with\n"
+        "[brdf] in the scene DIR/brdf.csv (f |cos theta_o| per equal-solid-angle bin, order and component), and\n"
+        "DIR/meta.json (the scene, seed, version, walks, bounces traced, seconds, threads), all only when complete.\n"
+        "Each finished cell is kept in DIR/cells/: a killed run resumes from its last finished cell, and the same\n"
+        "scene run again traces nothing. Walk k of cell c draws from a counter-based generator keyed by (seed, c, k):\n"
+        "the files are the same bits for any --threads, resumed or not. max_order = N ends every walk after N hits\n"
+        "(the orders beyond are not traced).");
+    c->add_option("scene", a.scene, "scene file (TOML); none: the default sweep, or the cell the flags name");
+    a.cell_options = {
+        c->add_option("--ndf", a.ndf, "NDF spec")->capture_default_str(),
+        c->add_option("--material", a.material, "facet material spec")->capture_default_str(),
+        c->add_option("--theta-i", a.theta_i, "incident polar angle, degrees in [0, 90)")->capture_default_str(),
+        c->add_option("--phi-i", a.phi_i, "incident azimuth, degrees")->capture_default_str(),
+        c->add_option("--walks", a.walks, "walks in the cell (> 0)")->capture_default_str(),
+        c->add_option("--max-order", a.max_order, "end walks after this many hits (0: no limit)")->capture_default_str(),
+        c->add_option("--downward", a.downward, "Lambda of downward rays: smith (-1 - Lambda) or hammon (-Lambda)")
+            ->capture_default_str(),
+        c->add_option("--seed", a.seed, "seed, an integer in [0, 2^64)")->capture_default_str()};
     c->add_option("--threads", a.threads, "threads (0: all cores)")->capture_default_str();
     c->add_option("--output", a.output, "output directory")->capture_default_str();
+    c->add_flag("--print-scene", a.print_scene, "print the default scene and exit");
 }
 
 int run_trace(const TraceArgs& a, const NdfRegistry& registry) {
-    const unsigned long long seed = parse_seed(a.seed, "--seed");
-    require(a.walks > 0, "--walks", "> 0", static_cast<double>(a.walks));
-    require(a.max_order >= 0, "--max-order", ">= 0", a.max_order);
-    const AnyNdf ndf = registry.make(a.ndf);
-    const walk::Material material = walk::parse_material(a.material);
-    const walk::MicrosurfaceOptions opts = options(a.downward);
-    walk::CellRequest r;
-    r.wi = incident(a.theta_i, a.phi_i, "--theta-i");
-    r.seed = seed;
-    r.walks = a.walks;
-    r.limits.max_order = a.max_order;
-    r.threads = static_cast<unsigned>(a.threads);
-    output::StagedDirectory out(a.output, "trace");  // checked before any work
-
-    const auto t0 = std::chrono::steady_clock::now();
-    Progress progress{"trace"};
-    const walk::CellResult cell = with_microsurface(ndf, opts, [&](const auto& ms) {
-        return std::visit([&](const auto& m) { return walk::trace_cell(ms, m, r, std::ref(progress)); }, material);
-    });
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-
-    {
-        std::ofstream csv(out.path() / "albedo.csv");
-        write_csv_record(csv, {"ndf", "material", "theta_i", "phi_i", "hemisphere", "order", "component", "albedo",
-                               "stderr", "walks"});
-        for (int h = 0; h < 3; ++h)
-            for (int o = 0; o <= walk::order_bins; ++o)
-                for (int c = 0; c < 3; ++c) {
-                    const walk::Estimate e = cell.albedo.albedo(static_cast<walk::Hemisphere>(h),
-                                                                o == walk::order_bins ? walk::all_orders : o,
-                                                                static_cast<walk::Component>(c));
-                    write_csv_record(csv, {ndf.spec(), walk::format_material(material), format_g17(a.theta_i),
-                                           format_g17(a.phi_i), hemisphere_name[h], order_name[o], component_name[c],
-                                           format_g17(e.value), format_g17(e.stderr_), std::to_string(a.walks)});
-                }
-        nlohmann::json meta = {{"ndf", ndf.spec()},
-                               {"material", walk::format_material(material)},
-                               {"theta_i", a.theta_i},
-                               {"phi_i", a.phi_i},
-                               {"downward", a.downward},
-                               {"max_order", a.max_order},
-                               {"seed", seed},
-                               {"cell", r.cell},
-                               {"version", SMITHLAB_VERSION},
-                               {"walks", a.walks},
-                               {"bounces", cell.albedo.events},
-                               {"capped_walks", cell.albedo.capped},
-                               {"seconds", seconds},
-                               {"threads", a.threads}};
-        std::ofstream(out.path() / "meta.json") << meta.dump(2) << "\n";
-        if (!csv) throw std::runtime_error("trace: could not write albedo.csv");
+    if (a.print_scene) {
+        std::cout << trace::default_trace_scene_text();
+        return exit_ok;
     }
-    out.publish();
-    const walk::Estimate all = cell.albedo.albedo(walk::Hemisphere::all, walk::all_orders, walk::Component::all);
-    std::printf("albedo %.17g\nstderr %.17g\nwalks %lld\nbounces %lld\nseconds %.3g\n", all.value, all.stderr_,
-                static_cast<long long>(a.walks), static_cast<long long>(cell.albedo.events), seconds);
+    require(a.threads >= 0, "--threads", ">= 0 (0: all cores)", a.threads);
+    const bool flags = std::any_of(a.cell_options.begin(), a.cell_options.end(), [](const CLI::Option* o) { return o->count() > 0; });
+    if (flags && !a.scene.empty())
+        throw input_error("trace: give a scene file or the cell flags (--ndf, --material, ...), not both");
+    const std::string source = !a.scene.empty() ? a.scene : flags ? "<flags>" : "<default scene>";
+    const trace::TraceScene scene = flags ? cell_scene(a)
+                                    : trace::parse_trace_scene(a.scene.empty() ? trace::default_trace_scene_text()
+                                                                               : read_scene_file(a.scene),
+                                                               source);
+    const trace::RunSummary sum = trace::run_scene(scene, source, registry, a.output, static_cast<unsigned>(a.threads));
+    if (sum.total.size() == 1) std::printf("albedo %.17g\nstderr %.17g\n", sum.total[0].value, sum.total[0].stderr_);
+    std::printf("cells %lld\ntraced %lld\nreused %lld\nwalks %lld\nbounces %lld\nseconds %.3g\noutput %s\n",
+                static_cast<long long>(sum.cells), static_cast<long long>(sum.traced),
+                static_cast<long long>(sum.reused), static_cast<long long>(scene.walks),
+                static_cast<long long>(sum.bounces), sum.seconds, a.output.c_str());
     return exit_ok;
 }
 
@@ -188,9 +145,8 @@ int run_brdf(const BrdfArgs& a, const NdfRegistry& registry) {
     r.seed = seed;
     r.walks = a.n;
     r.threads = static_cast<unsigned>(a.threads);
-    const walk::EvalTally t = with_microsurface(ndf, options(a.downward), [&](const auto& ms) {
-        return std::visit([&](const auto& m) { return walk::eval_cell(ms, m, r); }, material);
-    });
+    const walk::EvalTally t = trace::with_walk_types(ndf, material, trace::parse_downward(a.downward, "--downward"),
+                                                     [&](const auto& ms, const auto& m) { return walk::eval_cell(ms, m, r); });
     const walk::Estimate v = t.value();
     std::printf("value %.17g\nstderr %.17g\n", v.value, v.stderr_);
     for (int o = 0; o < walk::order_bins; ++o) {

@@ -1,10 +1,12 @@
 #include "strict_table.hpp"
 
 #include <algorithm>
-#include <charconv>
+#include <cmath>
+#include <sstream>
 #include <utility>
 
 #include "nearest_name.hpp"
+#include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
 
 namespace smithlab::report {
@@ -24,18 +26,27 @@ bool is_section(const toml::value& v) {
     return (v.is_table() || v.is_array()) && first != std::string::npos && line[first] == '[';
 }
 
-// The shortest text that reads back as x (toml::format writes 0.1 as 0.10000000000000001).
-std::string shortest(double x) {
-    char text[32];
-    const auto end = std::to_chars(text, text + sizeof text, x).ptr;
-    return std::string(text, end);
+
+
+// The most points one axis may hold: a scene's size is bounded by the work limit (work_estimate.hpp), but an axis
+// is made before the work is estimated, so it has its own bound (80 MB of doubles, made in ~0.1 s).
+constexpr std::int64_t max_axis_points = 10'000'000;
+
+std::vector<double> spaced(double lo, double hi, std::int64_t n, bool log) {
+    std::vector<double> out;
+    for (std::int64_t i = 0; i < n; ++i) {
+        const double t = static_cast<double>(i) / static_cast<double>(n - 1);
+        out.push_back(log ? lo * std::pow(hi / lo, t) : lo + t * (hi - lo));
+    }
+    out.back() = hi;
+    return out;
 }
 
 }  // namespace
 
 std::string describe_toml(const toml::value& v) {
     const auto shown = [&](const char* kind) {
-        std::string text = v.is_floating() ? shortest(v.as_floating()) : toml::format(v);
+        std::string text = v.is_floating() ? format_shortest(v.as_floating()) : toml::format(v);
         if (text.size() > 40) text = text.substr(0, 37) + "...";
         return std::string(kind) + " (" + text + ")";
     };
@@ -182,5 +193,36 @@ void StrictTable::done() const {
     for (const auto& [key, value] : table_->as_table())
         if (!read_.count(key)) fail(key, "is not used by this reader (a key it declares but does not read)");
 }
+
+toml::value parse_toml(const std::string& text, const std::string& source) {
+    try {
+        std::istringstream in(text);
+        return toml::parse(in, source);
+    } catch (const std::exception& e) {  // toml11's syntax errors carry the line
+        throw input_error("malformed scene " + source + ":\n" + e.what());
+    }
+}
+
+// A list of numbers, or {log = [lo, hi], n = N}, or {lin = [lo, hi], n = N}.
+std::vector<double> read_axis(StrictTable& t, const std::string& key) {
+    const toml::value& v = t.value(key);
+    if (v.is_array()) {
+        std::vector<double> out = t.reals(key);
+        if (out.empty()) t.fail(key, "is an empty list");
+        return out;
+    }
+    if (!v.is_table()) t.fail(key, "must be a list of numbers, {log = [lo, hi], n = N} or {lin = [lo, hi], n = N}, got " + describe_toml(v));
+    StrictTable spacing = t.table(key, {"log", "lin", "n"});
+    const bool log = spacing.has("log");
+    if (log == spacing.has("lin")) t.fail(key, "must hold exactly one of log = [lo, hi] and lin = [lo, hi]");
+    const std::string range_key = log ? "log" : "lin";
+    const std::vector<double> range = spacing.reals(range_key);
+    const std::int64_t n = spacing.integer("n", 2, max_axis_points);
+    spacing.done();
+    if (range.size() != 2 || !std::isfinite(range[0]) || !std::isfinite(range[1]) || !(range[0] < range[1]) || (log && !(range[0] > 0)))
+        spacing.fail(range_key, "must be [lo, hi], finite, with lo < hi (and lo > 0 for log)");
+    return spaced(range[0], range[1], n, log);
+}
+
 
 }  // namespace smithlab::report

@@ -69,4 +69,11 @@ private:
 // "an integer (5)", "a string (\"x\")", "a table": what a value is, for "must be X, got Y".
 std::string describe_toml(const toml::value& v);
 
+// A scene's text parsed as TOML; a syntax error is an input_error "malformed scene SOURCE:" with toml11's line.
+toml::value parse_toml(const std::string& text, const std::string& source);
+
+// An axis of a scene, the one convention of every scene format: a list of numbers, or {log = [lo, hi], n = N}
+// (N points evenly spaced in log), or {lin = [lo, hi], n = N}, 2 <= N <= 1e7. An empty list is refused.
+std::vector<double> read_axis(StrictTable& t, const std::string& key);
+
 }  // namespace smithlab::report

@@ -1,6 +1,8 @@
 #include "smithlab/checks.hpp"
+#include "smithlab/csv.hpp"
 
-#include <charconv>
+#include <cmath>
+#include <numbers>
 
 namespace smithlab::detail {
 
@@ -12,9 +14,7 @@ double clamped_cosine_azimuth(double a, double b) {
 }
 
 std::string format_where(const char* name, double value) {
-    char buf[64];
-    const auto r = std::to_chars(buf, buf + sizeof buf, value);
-    return std::string(name) + "=" + std::string(buf, r.ptr);
+    return std::string(name) + "=" + format_shortest(value);
 }
 
 }  // namespace smithlab::detail

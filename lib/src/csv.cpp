@@ -1,5 +1,6 @@
 #include "smithlab/csv.hpp"
 
+#include <charconv>
 #include <cstdio>
 #include <istream>
 #include <iterator>
@@ -78,6 +79,12 @@ std::string format_g17(double v) {
     char buf[40];
     std::snprintf(buf, sizeof buf, "%.17g", v);
     return buf;
+}
+
+std::string format_shortest(double v) {
+    char text[32];
+    const auto end = std::to_chars(text, text + sizeof text, v).ptr;
+    return std::string(text, end);
 }
 
 std::string csv_field(std::string_view s) {

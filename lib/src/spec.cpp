@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cctype>
-#include <charconv>
 #include <set>
 
+#include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
 
 namespace smithlab {
@@ -78,9 +78,7 @@ std::string format_spec(const NdfSpec& spec) {
     const auto& params = spec.params;
     std::string out = spec.name + "(";
     for (std::size_t i = 0; i < params.size(); ++i) {
-        char buf[64];
-        const auto r = std::to_chars(buf, buf + sizeof buf, params[i].second);  // shortest round-trip form
-        out += (i ? ", " : "") + params[i].first + "=" + std::string(buf, r.ptr);
+        out += (i ? ", " : "") + params[i].first + "=" + format_shortest(params[i].second);
     }
     return out + ")";
 }

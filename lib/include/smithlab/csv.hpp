@@ -20,6 +20,8 @@ std::vector<CsvRecord> read_csv(std::istream& in);
 
 // A number with 17 significant digits ("%.17g"): every double round-trips.
 std::string format_g17(double v);
+// The shortest text that reads back as v (std::to_chars): 0.1 as "0.1", where "%.17g" gives 0.10000000000000001.
+std::string format_shortest(double v);
 
 // One field, quoted only when it must be (comma, quote, CR or LF inside).
 std::string csv_field(std::string_view s);

@@ -1,0 +1,84 @@
+#include "trace_scene.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "smithlab/csv.hpp"
+#include "smithlab/spec.hpp"
+#include "strict_table.hpp"
+
+namespace smithlab::trace {
+
+namespace {
+
+using report::StrictTable;
+
+void read_ndfs(StrictTable& doc, const std::vector<double>& alphas, TraceScene& s) {
+    for (StrictTable& n : doc.tables("ndf", {"family", "gamma", "spec"})) {
+        if (n.has("spec") == n.has("family")) n.fail("spec", "or family: give exactly one of them");
+        if (n.has("spec")) {
+            if (n.has("gamma")) n.fail("gamma", "goes with family, not with a fixed spec");
+            s.ndfs.push_back(n.text("spec"));
+        } else {
+            const std::string family = n.text("family");
+            if (alphas.empty()) n.fail("family", "is swept over grid.alpha, which is missing");
+            const std::vector<double> gammas = n.has("gamma") ? report::read_axis(n, "gamma") : std::vector<double>{};
+            for (double a : alphas) {
+                if (gammas.empty()) s.ndfs.push_back(format_spec({family, {{"alpha", a}}}));
+                for (double g : gammas) s.ndfs.push_back(format_spec({family, {{"alpha", a}, {"gamma", g}}}));
+            }
+        }
+        n.done();
+    }
+    if (s.ndfs.empty()) doc.fail("ndf", "is missing: no [[ndf]] table names an NDF");
+}
+
+}  // namespace
+
+TraceScene parse_trace_scene(const std::string& text, const std::string& source) {
+    const toml::value data = report::parse_toml(text, source);
+    StrictTable doc(data, source, "", {"title", "materials", "walks", "grid", "ndf", "brdf"});
+    TraceScene s;
+    s.title = doc.text("title", s.title);
+    s.materials = doc.texts("materials");
+    if (s.materials.empty()) doc.fail("materials", "is an empty list");
+
+    if (auto w = doc.optional_table("walks", {"n", "seed", "max_order", "downward"})) {
+        s.walks = w->integer("n", 1, 1'000'000'000'000, s.walks);
+        s.seed = static_cast<std::uint64_t>(w->integer("seed", 0, std::numeric_limits<std::int64_t>::max(), 1));
+        s.max_order = static_cast<int>(w->integer("max_order", 0, 1'000'000, 0));
+        s.downward = w->text("downward", s.downward);
+        if (s.downward != "smith" && s.downward != "hammon") w->fail("downward", "must be \"smith\" or \"hammon\", got \"" + s.downward + "\"");
+        w->done();
+    }
+
+    StrictTable grid = doc.table("grid", {"alpha", "theta_i", "phi_i"});
+    const std::vector<double> alphas = grid.has("alpha") ? report::read_axis(grid, "alpha") : std::vector<double>{};
+    s.theta_i = report::read_axis(grid, "theta_i");
+    for (double t : s.theta_i)
+        if (!(t >= 0.0 && t < 90.0)) grid.fail("theta_i", "must be in [0, 90) degrees (light from above), got " + format_shortest(t));
+    s.phi_i = grid.has("phi_i") ? report::read_axis(grid, "phi_i") : std::vector<double>{0.0};
+    for (double p : s.phi_i)
+        if (!std::isfinite(p)) grid.fail("phi_i", "must be finite");
+    read_ndfs(doc, alphas, s);
+    grid.done();
+
+    if (auto b = doc.optional_table("brdf", {"theta_bins", "phi_bins"})) {
+        s.brdf.n_theta = static_cast<int>(b->integer("theta_bins", 1, 10'000));
+        s.brdf.n_phi = static_cast<int>(b->integer("phi_bins", 1, 10'000));
+        b->done();
+    }
+    doc.done();
+    return s;
+}
+
+std::vector<TraceCell> cells(const TraceScene& s) {
+    std::vector<TraceCell> out;
+    for (const std::string& ndf : s.ndfs)
+        for (const std::string& material : s.materials)
+            for (double t : s.theta_i)
+                for (double p : s.phi_i) out.push_back({out.size(), ndf, material, t, p});
+    return out;
+}
+
+}  // namespace smithlab::trace

@@ -1,0 +1,44 @@
+// The path tracer's scene file (TOML, read strictly like the report's: strict_table.hpp): which NDFs, materials
+// and incident directions, how many walks, and which tallies. experiments/scenes/trace_default.toml documents every
+// key and is the embedded default. A scene expands to cells, NDF x material x theta_i x phi_i in that order; a
+// cell's position in that order keys its random stream.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "smithlab/walk/tally.hpp"
+
+namespace smithlab::trace {
+
+struct TraceScene {
+    std::string title = "smithlab trace";
+    std::vector<std::string> ndfs;       // NDF specs, the families already expanded over alpha (and gamma)
+    std::vector<std::string> materials;  // facet material specs
+    std::vector<double> theta_i, phi_i;  // degrees
+    std::int64_t walks = 200'000;        // per cell
+    std::uint64_t seed = 1;
+    int max_order = 0;                   // 0: no limit
+    std::string downward = "smith";      // or "hammon"
+    walk::BrdfBins brdf;                 // empty: no brdf.csv
+};
+
+// One cell of a scene: where it stands in the sweep and what it traces.
+struct TraceCell {
+    std::uint64_t index;
+    std::string ndf, material;
+    double theta_i, phi_i;
+};
+
+// Refuses (input_error "SOURCE:LINE: key ...") an unknown key or section, a value of the wrong type, an integer out
+// of its bounds (walks.n in [1, 1e12], walks.max_order in [0, 1e6], brdf bins in [1, 1e4]), a theta_i outside
+// [0, 90) or a non-finite phi_i. NDF and material specs are checked by their parsers when the cells are prepared.
+TraceScene parse_trace_scene(const std::string& text, const std::string& source);
+
+// The embedded default, from experiments/scenes/trace_default.toml.
+const std::string& default_trace_scene_text();
+
+std::vector<TraceCell> cells(const TraceScene& scene);
+
+}  // namespace smithlab::trace
