@@ -21,27 +21,29 @@ Vec3 dir(double theta_deg, double phi_deg) {
     return {std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t)};
 }
 
-// The integral over the upper hemisphere of the eval estimator, f |cos theta_o|, by wo ~ cos / pi, one walk each:
-// the directional albedo by order bin and in all, each with its standard error.
+// The integral of the eval estimator, f |cos theta_o|, over a hemisphere of wo (above, or below: transmission), by
+// wo ~ |cos| / pi there, one walk each: the directional albedo by order bin and in all, each with its standard error.
 struct EvalAlbedo {
     std::array<walk::Estimate, walk::order_bins> orders;
     walk::Estimate all;
 };
 template <class MS, class M>
-EvalAlbedo eval_albedo(const MS& ms, const M& material, const Vec3& wi, int n, std::uint64_t seed, std::uint64_t cell) {
+EvalAlbedo eval_albedo(const MS& ms, const M& material, const Vec3& wi, int n, std::uint64_t seed, std::uint64_t cell,
+                       bool below = false) {
     std::array<walk::Moments, walk::order_bins> orders{};
     walk::Moments all;
     for (int k = 0; k < n; ++k) {
         smithlab::WalkRng g(seed, cell, static_cast<std::uint64_t>(k));
         const double r = std::sqrt(smithlab::uniform01(g)), phi = 2.0 * pi * smithlab::uniform01(g);
-        const Vec3 wo(r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(1e-300, 1.0 - r * r)));
+        const double c = std::sqrt(std::max(1e-300, 1.0 - r * r));
+        const Vec3 wo(r * std::cos(phi), r * std::sin(phi), below ? -c : c);
         const walk::EvalSample s = walk::eval_walk(ms, material, wi, wo, g);
         double f = 0.0;
         for (int o = 0; o < walk::order_bins; ++o) {
-            orders[o].add((s.specular[o] + s.diffuse[o]) * pi / wo.z());
+            orders[o].add((s.specular[o] + s.diffuse[o]) * pi / c);
             f += s.specular[o] + s.diffuse[o];
         }
-        all.add(f * pi / wo.z());
+        all.add(f * pi / c);
     }
     EvalAlbedo out{{}, walk::estimate(all, n)};
     for (int o = 0; o < walk::order_bins; ++o) out.orders[o] = walk::estimate(orders[o], n);
@@ -59,7 +61,8 @@ struct WrongLambda {
 }  // namespace
 
 TEST_CASE("white furnace, sample estimator: every walk leaves with all its energy", "[walk][slow]") {
-    const walk::Material materials[] = {walk::Mirror{}, walk::Lambert{1.0}, walk::FresnelDiffuse{0.02, 1.0}};
+    const walk::Material materials[] = {walk::Mirror{}, walk::Lambert{1.0}, walk::FresnelDiffuse{0.02, 1.0},
+                                        walk::Dielectric{1.5}};
     for (double alpha : {0.01, 0.3, 1.0}) {
         const walk::Microsurface ms(smithlab::ggx(alpha));
         for (const walk::Material& material : materials) {
@@ -72,7 +75,9 @@ TEST_CASE("white furnace, sample estimator: every walk leaves with all its energ
                 CHECK(c.albedo.capped == 0);
                 const walk::Estimate all = c.albedo.albedo(walk::Hemisphere::all, walk::all_orders, walk::Component::all);
                 CHECK(all.value == Approx(1.0).margin(1e-12));
-                CHECK(c.albedo.albedo(walk::Hemisphere::transmission, walk::all_orders, walk::Component::all).value == 0.0);
+                const double t = c.albedo.albedo(walk::Hemisphere::transmission, walk::all_orders, walk::Component::all).value;
+                if (walk::transmits(material)) CHECK(t > 0.3);  // eta 1.5: a flat interface transmits 0.96 at 0, 0.39 at 85 deg
+                else CHECK(t == 0.0);
             }
         }
     }
@@ -197,6 +202,9 @@ TEST_CASE("the same bits for any number of threads, and orders not asked for are
 
 TEST_CASE("material specs: named, validated, refused with the item named", "[walk]") {
     CHECK(walk::format_material(walk::parse_material("fresnel-diffuse")) == "fresnel-diffuse(f0=0.02, albedo=1)");
+    CHECK(walk::format_material(walk::parse_material("dielectric")) == "dielectric(eta=1.5)");
+    CHECK(walk::transmits(walk::parse_material("dielectric(eta=1.33)")));
+    CHECK_THROWS_WITH(walk::parse_material("dielectric(eta=0)"), Catch::Contains("eta"));
     CHECK(walk::format_material(walk::parse_material("conductor(eta=0.2, k=3)")) == "conductor(eta=0.2, k=3)");
     CHECK_THROWS_WITH(walk::parse_material("velvet"), Catch::Contains("unknown material 'velvet'"));
     CHECK_THROWS_WITH(walk::parse_material("lambert(albedo=1.5)"), Catch::Contains("albedo"));
@@ -234,4 +242,93 @@ TEST_CASE("the two estimators agree, order by order", "[walk][slow]") {
     check(walk::Microsurface(smithlab::DOnly<smithlab::Ggx>{smithlab::ggx(0.7)}), "D-only ggx(0.7)");
     check(walk::Microsurface(smithlab::gtr(0.7, 1.5)), "gtr(0.7, 1.5)");
     check(walk::Microsurface(smithlab::beckmann(0.7)), "beckmann(0.7)");
+}
+
+// ---- the dielectric: both sides of the surface --------------------------------------------------------------------
+
+TEST_CASE("dielectric: the eval estimator's energy over both hemispheres is 1, from above and from below", "[walk][slow]") {
+    // (alpha 0.3 and up: wo ~ cos has too much variance for a sharper lobe; the sample estimator's furnace, every walk
+    // leaving with its energy, covers alpha = 0.01.)
+    for (double alpha : {0.3, 0.6, 1.0}) {
+        const walk::Microsurface ms(smithlab::ggx(alpha));
+        // From below at 30 degrees (inside the glass, under the critical angle of 41.8) and at 60 (past it).
+        for (double theta : {0.0, 60.0, 85.0, 150.0, 120.0}) {
+            const Vec3 wi = dir(theta, 0.0);
+            const walk::Estimate up = eval_albedo(ms, walk::Dielectric{1.5}, wi, 100'000, 11, 1).all;
+            const walk::Estimate down = eval_albedo(ms, walk::Dielectric{1.5}, wi, 100'000, 11, 2, true).all;
+            const double total = up.value + down.value, err = std::hypot(up.stderr_, down.stderr_);
+            INFO("alpha " << alpha << " theta_i " << theta << ": up " << up.value << " down " << down.value << " total "
+                          << total << " +- " << err);
+            CHECK(std::abs(total - 1.0) < 4.0 * err + 2e-3);
+            CHECK(err < 0.02);
+        }
+    }
+}
+
+TEST_CASE("dielectric: the first bounce is Walter's reflection and transmission BSDF", "[walk][slow]") {
+    for (double alpha : {0.1, 0.5}) {
+        const smithlab::Ggx ggx = smithlab::ggx(alpha);
+        const walk::Microsurface ms(ggx);
+        const walk::Dielectric glass{1.5};
+        auto F = [](double c) { return smithlab::fresnel_dielectric(c, 1.5); };
+        for (auto [ti, to, po] : {std::array{30.0, 30.0, 180.0}, std::array{70.0, 60.0, 180.0},
+                                  std::array{30.0, 160.0, 180.0}, std::array{60.0, 150.0, 180.0}, std::array{80.0, 130.0, 150.0}}) {
+            const Vec3 wi = dir(ti, 0.0), wo = dir(to, po);
+            walk::EvalRequest r{.wi = wi, .wo = wo, .walks = 40'000};
+            r.limits.max_order = 1;
+            const walk::Estimate got = walk::eval_cell(ms, glass, r).value(0, walk::Component::specular);
+            const double want = wo.z() > 0.0 ? smithlab::single_scattering_reflection(ggx, wi, wo, F)
+                                             : smithlab::single_scattering_transmission(ggx, wi, wo, 1.0, 1.5, F);
+            INFO("alpha " << alpha << " wi " << ti << " wo " << to << "," << po << ": " << got.value << " +- "
+                          << got.stderr_ << " against " << want);
+            REQUIRE(want > 0.0);
+            CHECK(std::abs(got.value - want) < 4.0 * got.stderr_ + 1e-12);
+            CHECK(got.stderr_ < 0.05 * want);
+        }
+    }
+}
+
+TEST_CASE("dielectric: reciprocity, with eta^2 across the surface", "[walk][slow]") {
+    // f(wi, wo) / eta_o^2 = f(wo, wi) / eta_i^2 (Veach 1997, sec. 6.2), eta the index of each direction's medium.
+    const double eta = 1.5;
+    const walk::Microsurface ms(smithlab::ggx(0.6));
+    auto f = [&](const Vec3& wi, const Vec3& wo, std::uint64_t cell) {
+        walk::EvalRequest r{.wi = wi, .wo = wo, .cell = cell, .walks = 60'000};
+        const walk::Estimate e = walk::eval_cell(ms, walk::Dielectric{eta}, r).value();
+        return walk::Estimate{e.value / std::abs(wo.z()), e.stderr_ / std::abs(wo.z())};
+    };
+    const std::array<std::array<double, 4>, 8> pairs = {{{20, 0, 160, 180}, {45, 0, 120, 90}, {75, 30, 170, 250},
+                                                         {60, 0, 100, 180}, {30, 0, 60, 180}, {80, 0, 40, 120},
+                                                         {110, 0, 150, 200}, {130, 0, 100, 90}}};
+    for (const auto& p : pairs) {
+        const Vec3 a = dir(p[0], p[1]), b = dir(p[2], p[3]);
+        const double eta_a = a.z() > 0.0 ? 1.0 : eta, eta_b = b.z() > 0.0 ? 1.0 : eta;
+        const walk::Estimate ab = f(a, b, 1), ba = f(b, a, 2);
+        const double x = ab.value / (eta_b * eta_b), y = ba.value / (eta_a * eta_a);
+        const double err = std::hypot(ab.stderr_ / (eta_b * eta_b), ba.stderr_ / (eta_a * eta_a));
+        INFO("(" << p[0] << "," << p[1] << ") <-> (" << p[2] << "," << p[3] << "): f/eta_o^2 " << x << " vs " << y << " +- " << err);
+        CHECK(x > 0.0);
+        CHECK(std::abs(x - y) < 4.0 * err);
+    }
+}
+
+TEST_CASE("dielectric: the two estimators agree, hemisphere by hemisphere and order by order", "[walk][slow]") {
+    const walk::Microsurface ms(smithlab::gtr(0.6, 1.5));
+    for (double theta : {50.0, 140.0}) {
+        const Vec3 wi = dir(theta, 0.0);
+        walk::CellRequest r;
+        r.wi = wi;
+        r.walks = 100'000;
+        const walk::CellResult c = walk::trace_cell(ms, walk::Dielectric{1.5}, r);
+        for (bool below : {false, true}) {
+            const EvalAlbedo eval = eval_albedo(ms, walk::Dielectric{1.5}, wi, 40'000, 3, below ? 8 : 7, below);
+            const walk::Hemisphere h = below ? walk::Hemisphere::transmission : walk::Hemisphere::reflection;
+            for (int o = 0; o < walk::order_bins; ++o) {
+                const walk::Estimate a = c.albedo.albedo(h, o, walk::Component::all), b = eval.orders[o];
+                INFO("theta_i " << theta << (below ? " below" : " above") << " order bin " << o << ": sample " << a.value
+                                << " +- " << a.stderr_ << ", eval " << b.value << " +- " << b.stderr_);
+                CHECK(std::abs(a.value - b.value) < 4.0 * std::hypot(a.stderr_, b.stderr_) + 1e-4);
+            }
+        }
+    }
 }

@@ -71,7 +71,8 @@ void add_trace(CLI::App& app, TraceArgs& a) {
         "  smithlab trace my_sweep.toml --output sweep/ --threads 8\n"
         "  smithlab trace --ndf 'ggx(alpha=0.5)' --material mirror --theta-i 45 --walks 1000000\n"
         "  smithlab trace --ndf 'gtr(alpha=0.3, gamma=1.5)' --material 'lambert(albedo=1)' --theta-i 70 --output t/\n"
-        "Materials: mirror, conductor(eta=, k=), lambert(albedo=1), fresnel-diffuse(f0=0.02, albedo=1).\n"
+        "Materials: mirror, conductor(eta=, k=), lambert(albedo=1), fresnel-diffuse(f0=0.02, albedo=1),\n"
+        "dielectric(eta=1.5) (reflection and transmission: hemisphere transmission is the light below).\n"
         "Writes DIR/albedo.csv (ndf,material,theta_i,phi_i,hemisphere,order,component,albedo,stderr,walks), with\n"
         "[brdf] in the scene DIR/brdf.csv (f |cos theta_o| per equal-solid-angle bin, order and component), and\n"
         "DIR/meta.json (the scene, seed, version, walks, bounces traced, seconds, threads), all only when complete.\n"
@@ -124,8 +125,9 @@ void add_brdf(CLI::App& app, BrdfArgs& a) {
         "Example:\n"
         "  smithlab brdf --ndf 'ggx(alpha=0.5)' --material mirror --wi 45,0 --wo 60,180 --n 1000000\n"
         "Prints value and stderr (the eval estimator: next-event estimation toward wo at every hit), then\n"
-        "order_1 .. order_4+ as 'value stderr', and single_analytic (F D G2 / (4 cos theta_i), height-correlated G2)\n"
-        "for mirror and conductor facets.");
+        "order_1 .. order_4+ as 'value stderr', and single_analytic (the single-scattering BSDF times |cos theta_o|,\n"
+        "Walter 2007 eq. 20 and 21 with the height-correlated G2) for mirror, conductor and dielectric facets.\n"
+        "With dielectric facets, --wo below the surface (theta > 90) is transmission.");
     c->add_option("--ndf", a.ndf, "NDF spec")->required();
     c->add_option("--material", a.material, "facet material spec")->required();
     c->add_option("--wi", a.wi, "THETA,PHI of the light, degrees, theta in [0, 90)")->required();
@@ -158,6 +160,11 @@ int run_brdf(const BrdfArgs& a, const NdfRegistry& registry) {
         std::printf("single_analytic %.17g\n", single([](double) { return 1.0; }));
     if (const auto* c = std::get_if<walk::Conductor>(&material))
         std::printf("single_analytic %.17g\n", single([c](double x) { return fresnel_conductor(x, c->eta, c->k); }));
+    if (const auto* d = std::get_if<walk::Dielectric>(&material)) {
+        auto F = [d](double x) { return fresnel_dielectric(x, d->eta); };
+        std::printf("single_analytic %.17g\n", r.wo.z() > 0.0 ? single(F)
+                                                              : single_scattering_transmission(ndf, r.wi, r.wo, 1.0, d->eta, F));
+    }
     return exit_ok;
 }
 

@@ -119,8 +119,10 @@ CellRows rows_of(const Prepared& p, const TraceScene& s, const walk::CellResult&
     return rows;
 }
 
-std::size_t brdf_rows(const TraceScene& s) {
-    return s.brdf.empty() ? 0 : static_cast<std::size_t>(s.brdf.n_theta) * s.brdf.n_phi * order_columns * 3;
+// brdf.csv's rows of a cell: both hemispheres for a material that transmits.
+std::size_t brdf_rows(const TraceScene& s, const walk::Material& m) {
+    if (s.brdf.empty()) return 0;
+    return (walk::transmits(m) ? 2u : 1u) * static_cast<std::size_t>(s.brdf.n_theta) * s.brdf.n_phi * order_columns * 3;
 }
 
 void write_cell(const fs::path& path, const Prepared& p, const CellRows& rows) {
@@ -159,7 +161,7 @@ std::optional<CellRows> read_cell(const fs::path& path, const Prepared& p, const
         else if (line.rfind("b,", 0) == 0) rows.brdf.push_back(line.substr(2));
         else return std::nullopt;
     }
-    if (rows.albedo.size() != 3u * order_columns * 3 || rows.brdf.size() != brdf_rows(s)) return std::nullopt;
+    if (rows.albedo.size() != 3u * order_columns * 3 || rows.brdf.size() != brdf_rows(s, p.material)) return std::nullopt;
     return rows;
 }
 
@@ -252,6 +254,7 @@ RunSummary run_scene(const TraceScene& s, const std::string& source, const NdfRe
                     const Prepared& p = prepared[i];
                     r.wi = direction_from_deg(p.cell.theta_i, p.cell.phi_i);
                     r.cell = p.cell.index;
+                    r.brdf.transmission = walk::transmits(p.material);
                     const std::int64_t before = sum.traced;
                     auto report = [&](double f) { progress((before + f) / to_trace, before, to_trace); };
                     const walk::CellResult result = std::visit(

@@ -100,8 +100,12 @@ Material parse_material(std::string_view text) {
         MaterialParams p(spec, {"f0", "albedo"});
         return FresnelDiffuse{p.get("f0", 0.02, 0.0, 1.0), p.get("albedo", 1.0, 0.0, 1.0)};
     }
+    if (n == "dielectric") {
+        MaterialParams p(spec, {"eta"});
+        return Dielectric{p.get("eta", 1.5, 1e-3, 1e3)};
+    }
     throw input_error("unknown material '" + n + "' (known: mirror, conductor(eta=, k=), lambert(albedo=1), "
-                      "fresnel-diffuse(f0=0.02, albedo=1))");
+                      "fresnel-diffuse(f0=0.02, albedo=1), dielectric(eta=1.5))");
 }
 
 std::string format_material(const Material& material) {
@@ -112,6 +116,7 @@ std::string format_material(const Material& material) {
         std::string operator()(const FresnelDiffuse& f) const {
             return format_spec({"fresnel-diffuse", {{"f0", f.f0}, {"albedo", f.albedo}}});
         }
+        std::string operator()(const Dielectric& d) const { return format_spec({"dielectric", {{"eta", d.eta}}}); }
     };
     return std::visit(Format{}, material);
 }
@@ -121,5 +126,7 @@ bool has_diffuse(const Material& material) {
     if (const auto* f = std::get_if<FresnelDiffuse>(&material)) return f->albedo > 0.0;
     return false;
 }
+
+bool transmits(const Material& material) { return std::holds_alternative<Dielectric>(material); }
 
 }  // namespace smithlab::walk

@@ -8,6 +8,9 @@
 //                         specular and diffuse parts: analytic where the facet is a mirror (the half vector
 //                         decides m: F D(h) / (4 A(wi)), Heitz et al. 2016 eq. 20 with Walter 2007 eq. 14),
 //                         one-sample estimates over m ~ D_wi where it is diffuse (Heitz et al. 2016, sec. 5.3).
+// A two-sided material (TwoSided: the dielectric) lets rays through to the other side of the microsurface. It works,
+// as every material does, in the frame of the side the ray is on (walk.hpp: below the surface, every vector and
+// height negated, where the microsurface looks as it does from above), and is told which side that is.
 // The closed set of materials is a std::variant (Material), visited once per cell, never per bounce.
 #pragma once
 
@@ -25,8 +28,9 @@ namespace smithlab::walk {
 
 struct Scatter {
     Vec3 wo;
-    double weight;  // 0: absorbed
+    double weight;             // 0: absorbed
     bool diffuse;
+    bool transmitted = false;  // through to the other side (two-sided materials only)
 };
 
 struct Phase {
@@ -129,13 +133,51 @@ struct FresnelDiffuse {
     }
 };
 
-using Material = std::variant<Mirror, Conductor, Lambert, FresnelDiffuse>;
+// A smooth dielectric interface on every facet, index eta below the surface over that above (Heitz et al. 2016,
+// sec. 6.2, the dielectric microsurface): the exact Fresnel reflectance F (fresnel.hpp) reflects, 1 - F refracts
+// (Snell), chosen with probability F (weights stay 1). On the side below, the relative index is 1 / eta and past the
+// critical angle everything reflects. The phase function toward wo, the part of it that leaves along wo from this
+// side: reflection when wo.z > 0 (F D(h) / (4 A(wi)), as for mirrors), refraction when wo.z < 0,
+//     (1 - F(wi.h)) <wi.h> D(h) / A(wi) |d omega_h / d omega_o|,  h = -(wi + eta' wo) / |.| turned up,
+// the Jacobian Walter 2007 eq. 17 (geometry.hpp, dm_dwo_refraction), eta' the relative index on this side.
+struct Dielectric {
+    double eta;
+    static constexpr bool two_sided = true;
 
-// "mirror", "conductor(eta=, k=)", "lambert(albedo=1)", "fresnel-diffuse(f0=0.02, albedo=1)": input_error naming an
+    template <class G>
+    Scatter sample(const Vec3& wi, const Vec3& m, G& g, bool above) const {
+        const double e = above ? eta : 1.0 / eta;
+        Vec3 t;
+        if (uniform01(g) < fresnel_dielectric(wi.dot(m), e) || !refract(wi, m, e, t)) return {reflect(wi, m), 1.0, false};
+        return {t, 1.0, false, true};
+    }
+    template <class Microsurface, class G>
+    Phase phase(const Microsurface& ms, const Vec3& wi, const Vec3& wo, G&, bool above) const {
+        const double e = above ? eta : 1.0 / eta;
+        if (wo.z() > 0.0) return {detail::mirror_phase(ms, wi, wo, [e](double c) { return fresnel_dielectric(c, e); }), 0.0};
+        Vec3 h = half_vector_transmission(wi, wo, e);
+        if (h.z() < 0.0) h = -h;
+        const double ci = wi.dot(h);
+        if (!(ci > 0.0 && wo.dot(h) < 0.0) || !(h.z() > 0.0)) return {};
+        return {(1.0 - fresnel_dielectric(ci, e)) * ci * ms.normals().D(h) / ms.normals().projected_area(wi) *
+                    dm_dwo_refraction(wi, wo, h, e),
+                0.0};
+    }
+};
+
+template <class M>
+concept TwoSided = requires { requires M::two_sided; };
+
+using Material = std::variant<Mirror, Conductor, Lambert, FresnelDiffuse, Dielectric>;
+
+// "mirror", "conductor(eta=, k=)", "lambert(albedo=1)", "fresnel-diffuse(f0=0.02, albedo=1)", "dielectric(eta=1.5)":
+// input_error naming an
 // unknown material (with the known ones), an unknown or missing parameter, or a value out of its range.
 Material parse_material(std::string_view spec);
 std::string format_material(const Material& material);
 // Whether any event of the material is diffuse (the tallies of the diffuse component exist only then).
 bool has_diffuse(const Material& material);
+// Whether light goes through it (the transmission tallies exist only then).
+bool transmits(const Material& material);
 
 }  // namespace smithlab::walk

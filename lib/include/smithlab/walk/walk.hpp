@@ -7,6 +7,13 @@
 //                      f(wi, wo) |cos theta_o|, split by scattering order and component.
 // Templated on the concrete NDF (through Microsurface), the height law, the facet material and the generator: no
 // virtual call, std::function, allocation, exception or string inside. wi and wo point away from the surface.
+//
+// Both sides (Heitz et al. 2016, sec. 6.2): a ray that a two-sided material (facets.hpp, the dielectric) lets through
+// travels on below the microsurface, where the walk works in the negated frame -- every direction and height of the
+// side below negated, in which the microsurface looks exactly as from above (its normals keep their law D, the
+// heights' law is symmetric) -- so the same height steps, escape test and visible normals serve both sides; only the
+// material is told the side (its relative index). Light may come from below (wi.z < 0) for a two-sided material;
+// for the others wi.z > 0.
 #pragma once
 
 #include <algorithm>
@@ -37,21 +44,43 @@ struct WalkSample {
     bool capped;
 };
 
+namespace detail {
+// One event of a walk on the side the ray is on (the local frame): the material's scattering, told the side when it
+// has two. A ray it lets through moves to the other side's frame: direction and height negated.
+template <class M, class G>
+Scatter scatter(const M& material, const Vec3& v, const Vec3& m, G& g, bool above) {
+    if constexpr (TwoSided<M>) return material.sample(v, m, g, above);
+    else return material.sample(v, m, g);
+}
+template <class Microsurface, class M, class G>
+Phase phase(const Microsurface& ms, const M& material, const Vec3& v, const Vec3& wo, G& g, bool above) {
+    if constexpr (TwoSided<M>) return material.phase(ms, v, wo, g, above);
+    else return material.phase(ms, v, wo, g);
+}
+}  // namespace detail
+
 template <class Microsurface, class M, class G>
 WalkSample sample_walk(const Microsurface& ms, const M& material, const Vec3& wi, G& g, const WalkLimits& limits = {}) {
-    Vec3 w = -wi;
+    bool above = !TwoSided<M> || wi.z() > 0.0;
+    Vec3 w = above ? -wi : wi;  // the travel direction in the frame of the ray's side
     double h = INFINITY, weight = 1.0;
     bool diffuse = false;
     for (std::int64_t order = 0;; ++order) {
-        if (!ms.next_height(w, h, 1.0 - uniform01(g))) return {w, weight, static_cast<int>(order), diffuse, true, false};
-        if (order + 1 > limits.max_events) return {w, 0.0, static_cast<int>(order), diffuse, false, true};
-        if (limits.max_order > 0 && order + 1 > limits.max_order) return {w, 0.0, static_cast<int>(order), diffuse, false, false};
+        const Vec3 world = above ? w : -w;
+        if (!ms.next_height(w, h, 1.0 - uniform01(g))) return {world, weight, static_cast<int>(order), diffuse, true, false};
+        if (order + 1 > limits.max_events) return {world, 0.0, static_cast<int>(order), diffuse, false, true};
+        if (limits.max_order > 0 && order + 1 > limits.max_order) return {world, 0.0, static_cast<int>(order), diffuse, false, false};
         const Vec3 v = -w;
-        const Scatter s = material.sample(v, ms.visible_normal(v, g), g);
+        const Scatter s = detail::scatter(material, v, ms.visible_normal(v, g), g, above);
         weight *= s.weight;
         diffuse = diffuse || s.diffuse;
-        if (weight == 0.0) return {w, 0.0, static_cast<int>(order + 1), diffuse, false, false};
+        if (weight == 0.0) return {world, 0.0, static_cast<int>(order + 1), diffuse, false, false};
         w = s.wo;
+        if (s.transmitted) {
+            w = -w;
+            h = -h;
+            above = !above;
+        }
     }
 }
 
@@ -65,7 +94,8 @@ template <class Microsurface, class M, class G>
 EvalSample eval_walk(const Microsurface& ms, const M& material, const Vec3& wi, const Vec3& wo, G& g,
                      const WalkLimits& limits = {}) {
     EvalSample out;
-    Vec3 w = -wi;
+    bool above = !TwoSided<M> || wi.z() > 0.0;
+    Vec3 w = above ? -wi : wi;
     double h = INFINITY, weight = 1.0;
     bool diffuse = false;
     for (std::int64_t order = 1;; ++order) {
@@ -77,19 +107,27 @@ EvalSample eval_walk(const Microsurface& ms, const M& material, const Vec3& wi, 
         }
         ++out.events;
         const Vec3 v = -w;
-        // Next-event estimation: the phase function toward wo times the chance to escape along it from here.
-        const double e = ms.escape(wo, h);
+        // Next-event estimation: the phase function toward wo times the chance to escape along it from here. From
+        // this side, wo up (local) is reached by reflection and escapes this side; wo down only through the surface,
+        // escaping on the other side (where it and the height are negated); one-sided phases are 0 there.
+        const Vec3 wo_local = above ? wo : -wo;
+        const double e = wo_local.z() > 0.0 ? ms.escape(wo_local, h) : TwoSided<M> ? ms.escape(-wo_local, -h) : 0.0;
         if (e > 0.0) {
-            const Phase p = material.phase(ms, v, wo, g);
+            const Phase p = detail::phase(ms, material, v, wo_local, g, above);
             const int b = order_bin(order);
             (diffuse ? out.diffuse : out.specular)[b] += weight * e * p.specular;
             out.diffuse[b] += weight * e * p.diffuse;
         }
-        const Scatter s = material.sample(v, ms.visible_normal(v, g), g);
+        const Scatter s = detail::scatter(material, v, ms.visible_normal(v, g), g, above);
         weight *= s.weight;
         diffuse = diffuse || s.diffuse;
         if (weight == 0.0) break;
         w = s.wo;
+        if (s.transmitted) {
+            w = -w;
+            h = -h;
+            above = !above;
+        }
     }
     return out;
 }
