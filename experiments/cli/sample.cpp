@@ -24,7 +24,7 @@ void add_sample(CLI::App& app, SampleArgs& a) {
         "The same seed gives the same rows. The output file is written only when every sample is drawn.");
     c->add_option("--ndf", a.ndf, "NDF spec, e.g. 'ggx(alpha=0.2)'");
     c->add_option("--sampler", a.sampler, "sampler name (see --list-samplers)");
-    c->add_option("--theta-i", a.theta_i, "incident polar angle in degrees, [0, 180) (vndf*: below 90)")
+    c->add_option("--theta-i", a.theta_i, "incident polar angle in degrees, [0, 180) (above 90: below the surface)")
         ->capture_default_str()
         ->check(CLI::Range(0.0, 179.999999));
     c->add_option("--n", a.n, "number of samples")->capture_default_str()->check(CLI::Range(1LL, 1000000000LL));
