@@ -351,6 +351,13 @@ TEST_CASE("brdf: the eval estimator's value, its orders and the analytic single 
     REQUIRE(single > 0.0);
     CHECK(std::abs(order1 - single) < 4.0 * err1);
     CHECK(run("brdf --ndf 'ggx(alpha=0.5)' --material mirror --wi 120,0 --wo 60,180").rc == 2);
+    // Light from below is for the dielectric only: f(wi, wo) / eta_o^2 = f(wo, wi) / eta_i^2 across the surface.
+    const Run below = run("brdf --ndf 'ggx(alpha=0.5)' --material 'dielectric(eta=1.5)' --wi 150,180 --wo 40,0 --n 20000");
+    REQUIRE(below.rc == 0);
+    CHECK_THAT(below.out, Catch::Contains("value ") && !Catch::Contains("single_analytic"));
+    CHECK_THAT(run("brdf --ndf 'ggx(alpha=0.5)' --material 'dielectric(eta=1.5)' --wi 40,0 --wo 150,180 --n 20000").out,
+               Catch::Contains("single_analytic "));
+    CHECK(run("brdf --ndf 'ggx(alpha=0.5)' --material 'dielectric(eta=1.5)' --wi 90,0 --wo 150,180").rc == 2);
 }
 
 namespace {
@@ -415,6 +422,13 @@ TEST_CASE("trace: a scene file -- albedo.csv and brdf.csv for every cell, the sa
         CHECK(binned[cell] == Approx(a).epsilon(1e-12));
     }
     CHECK(reflected.at("beckmann(alpha=0.5)mirror30") == 1.0);  // mirror facets: every walk leaves, energy 1
+    // Light from below into a dielectric: both hemispheres in brdf.csv, and the cell's energy all leaves.
+    write(d / "glass.toml", "materials = [\"dielectric(eta=1.5)\"]\n[walks]\nn = 2000\n[grid]\ntheta_i = [150]\n"
+                            "[[ndf]]\nspec = \"ggx(alpha=0.4)\"\n[brdf]\ntheta_bins = 2\nphi_bins = 3\n");
+    REQUIRE(run(trace_args(d / "glass.toml", d / "glass", 1)).rc == 0);
+    CHECK(records(d / "glass" / "brdf.csv").size() == 1 + 2 * 2 * 3 * 5 * 3);
+    for (const auto& f : records(d / "glass" / "albedo.csv"))
+        if (f[4] == "all" && f[5] == "all" && f[6] == "all") CHECK(f[7] == "1");
 
     // The same bits for 3 threads, and a rerun reuses every cell.
     REQUIRE(run(trace_args(d / "scene.toml", d / "b", 3)).rc == 0);
@@ -473,6 +487,7 @@ TEST_CASE("trace: the default sweep, and a malformed scene exits 2 naming the ke
     const std::string ndf = "[[ndf]]\nfamily = \"ggx\"\n";
     for (const Bad& b : {Bad{"materials = [\"velvet\"]\n" + grid + ndf, "velvet"},
                          Bad{"materials = [\"mirror\"]\n[grid]\nalpha = [0.5]\ntheta_i = [90]\n" + ndf, "theta_i"},
+                         Bad{"materials = [\"dielectric\", \"mirror\"]\n[grid]\nalpha = [0.5]\ntheta_i = [120]\n" + ndf, "from below"},
                          Bad{"materials = [\"mirror\"]\n[walks]\nn = 0\n" + grid + ndf, "walks.n"},
                          Bad{"materials = [\"mirror\"]\n[walks]\nm = 3\n" + grid + ndf, "did you mean"},
                          Bad{"materials = [\"mirror\"]\n" + ndf, "grid"},

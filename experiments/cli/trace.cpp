@@ -18,19 +18,25 @@ namespace smithlab::cli {
 
 namespace {
 
-Vec3 incident(double theta, double phi, const char* what) {
-    require(theta >= 0.0 && theta < 90.0, what, "in [0, 90) degrees (light from above the surface)", theta);
+// The light's direction: from above (theta in [0, 90)), or from below (theta in (90, 180]) for a material that
+// transmits (the dielectric); never grazing.
+Vec3 incident(double theta, double phi, const char* what, const walk::Material& m) {
+    if (walk::transmits(m))
+        require(theta >= 0.0 && theta <= 180.0 && theta != 90.0, what, "in [0, 180] degrees, not 90 (grazing)", theta);
+    else
+        require(theta >= 0.0 && theta < 90.0, what, "in [0, 90) degrees (light from above the surface; only a dielectric "
+                "takes light from below)", theta);
     require(std::isfinite(phi), what, "finite", phi);
     return direction_from_deg(theta, phi);
 }
 
-// "THETA,PHI" in degrees.
-Vec3 parse_direction(const std::string& text, const char* what, bool upper) {
+// "THETA,PHI" in degrees: the light's direction (incident), or the viewer's anywhere.
+Vec3 parse_direction(const std::string& text, const char* what, const walk::Material* light_on) {
     const auto comma = text.find(',');
     if (comma == std::string::npos) throw input_error(std::string(what) + ": expected THETA,PHI in degrees, got '" + text + "'");
     const double theta = parse_number(text.substr(0, comma), std::string(what) + " theta");
     const double phi = parse_number(text.substr(comma + 1), std::string(what) + " phi");
-    if (upper) return incident(theta, phi, what);
+    if (light_on) return incident(theta, phi, what, *light_on);
     require(theta >= 0.0 && theta <= 180.0, what, "theta in [0, 180] degrees", theta);
     require(std::isfinite(phi), what, "phi finite", phi);
     return direction_from_deg(theta, phi);
@@ -42,7 +48,7 @@ const char* order_name[] = {"1", "2", "3", "4+"};
 trace::TraceScene cell_scene(const TraceArgs& a) {
     require(a.walks > 0, "--walks", "> 0", static_cast<double>(a.walks));
     require(a.max_order >= 0, "--max-order", ">= 0", a.max_order);
-    incident(a.theta_i, a.phi_i, "--theta-i");
+    incident(a.theta_i, a.phi_i, "--theta-i", walk::parse_material(a.material));
     trace::parse_downward(a.downward, "--downward");
     trace::TraceScene s;
     s.title = "one cell";
@@ -84,7 +90,7 @@ void add_trace(CLI::App& app, TraceArgs& a) {
     a.cell_options = {
         c->add_option("--ndf", a.ndf, "NDF spec")->capture_default_str(),
         c->add_option("--material", a.material, "facet material spec")->capture_default_str(),
-        c->add_option("--theta-i", a.theta_i, "incident polar angle, degrees in [0, 90)")->capture_default_str(),
+        c->add_option("--theta-i", a.theta_i, "incident polar angle, degrees in [0, 90) (dielectric: also (90, 180], light from below)")->capture_default_str(),
         c->add_option("--phi-i", a.phi_i, "incident azimuth, degrees")->capture_default_str(),
         c->add_option("--walks", a.walks, "walks in the cell (> 0)")->capture_default_str(),
         c->add_option("--max-order", a.max_order, "end walks after this many hits (0: no limit)")->capture_default_str(),
@@ -130,7 +136,7 @@ void add_brdf(CLI::App& app, BrdfArgs& a) {
         "With dielectric facets, --wo below the surface (theta > 90) is transmission.");
     c->add_option("--ndf", a.ndf, "NDF spec")->required();
     c->add_option("--material", a.material, "facet material spec")->required();
-    c->add_option("--wi", a.wi, "THETA,PHI of the light, degrees, theta in [0, 90)")->required();
+    c->add_option("--wi", a.wi, "THETA,PHI of the light, degrees, theta in [0, 90) (dielectric: also (90, 180])")->required();
     c->add_option("--wo", a.wo, "THETA,PHI of the viewer, degrees")->required();
     c->add_option("--n", a.n, "walks (> 0)")->capture_default_str();
     c->add_option("--downward", a.downward, "smith or hammon")->capture_default_str();
@@ -143,7 +149,7 @@ int run_brdf(const BrdfArgs& a, const NdfRegistry& registry) {
     require(a.n > 0, "--n", "> 0", static_cast<double>(a.n));
     const AnyNdf ndf = registry.make(a.ndf);
     const walk::Material material = walk::parse_material(a.material);
-    walk::EvalRequest r{.wi = parse_direction(a.wi, "--wi", true), .wo = parse_direction(a.wo, "--wo", false)};
+    walk::EvalRequest r{.wi = parse_direction(a.wi, "--wi", &material), .wo = parse_direction(a.wo, "--wo", nullptr)};
     r.seed = seed;
     r.walks = a.n;
     r.threads = static_cast<unsigned>(a.threads);
@@ -160,7 +166,7 @@ int run_brdf(const BrdfArgs& a, const NdfRegistry& registry) {
         std::printf("single_analytic %.17g\n", single([](double) { return 1.0; }));
     if (const auto* c = std::get_if<walk::Conductor>(&material))
         std::printf("single_analytic %.17g\n", single([c](double x) { return fresnel_conductor(x, c->eta, c->k); }));
-    if (const auto* d = std::get_if<walk::Dielectric>(&material)) {
+    if (const auto* d = std::get_if<walk::Dielectric>(&material); d && r.wi.z() > 0.0) {
         auto F = [d](double x) { return fresnel_dielectric(x, d->eta); };
         std::printf("single_analytic %.17g\n", r.wo.z() > 0.0 ? single(F)
                                                               : single_scattering_transmission(ndf, r.wi, r.wo, 1.0, d->eta, F));

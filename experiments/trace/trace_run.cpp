@@ -218,6 +218,9 @@ RunSummary run_scene(const TraceScene& s, const std::string& source, const NdfRe
     for (const TraceCell& c : cells(s)) {
         const AnyNdf& ndf = ndfs.at(c.ndf);
         const walk::Material& m = materials.at(c.material);
+        if (c.theta_i > 90.0 && !walk::transmits(m))
+            throw input_error(source + ": theta_i = " + format_shortest(c.theta_i) + " is light from below the surface, which '" +
+                              walk::format_material(m) + "' facets never see (only a dielectric takes it; theta_i < 90 for the others)");
         prepared.push_back({c, ndf, m, cell_key(s, c, ndf, m)});
     }
 
