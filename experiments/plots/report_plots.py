@@ -160,6 +160,64 @@ def sampling_efficiency(d):
     fig.savefig(os.path.join(d, "sampling_efficiency.png"), dpi=110)
 
 
+def walk_albedo(d):
+    """Albedo by scattering order against alpha: one panel per theta_i x NDF x material, the orders stacked (they sum
+    to the albedo of all orders), and a last column with the energy single scattering loses (orders 2+)."""
+    table = rows(os.path.join(d, "walk_albedo.csv"))
+    label = {}
+    for r in table:
+        label[r["ndf"]] = r["family"] + (f" (gamma {num(r['gamma']):g})" if r["gamma"] else "")
+    pairs = list(dict.fromkeys((label[r["ndf"]], r["material"]) for r in table))
+    thetas = sorted({num(r["theta_i"]) for r in table})
+    value = {(label[r["ndf"]], r["material"], num(r["theta_i"]), r["order"]): [] for r in table}
+    for r in table:
+        value[(label[r["ndf"]], r["material"], num(r["theta_i"]), r["order"])].append(
+            (num(r["alpha"]), num(r["albedo"]), num(r["stderr"])))
+    alphas = sorted({num(r["alpha"]) for r in table})
+    log_x = len(alphas) > 1 and alphas[-1] / alphas[0] > 20
+    orders = ["1", "2", "3", "4+"]
+    colors = {"1": "tab:blue", "2": "tab:orange", "3": "tab:green", "4+": "tab:red"}
+    cols = len(pairs) + 1
+    fig, axes = plt.subplots(len(thetas), cols, figsize=(3.3 * cols, 3.0 * len(thetas) + 0.6), squeeze=False)
+    for i, theta in enumerate(thetas):
+        for j, (ndf, material) in enumerate(pairs):
+            ax = axes[i][j]
+            series = [sorted(value.get((ndf, material, theta, o), [])) for o in orders]
+            if not series[0]:
+                ax.axis("off")
+                continue
+            a = [p[0] for p in series[0]]
+            ax.stackplot(a, *[[p[1] for p in s] for s in series], labels=[f"order {o}" for o in orders],
+                         colors=[colors[o] for o in orders], alpha=0.8)
+            total = sorted(value[(ndf, material, theta, "all")])
+            ax.plot([p[0] for p in total], [p[1] for p in total], "k--", lw=1, label="all orders")
+            ax.set_ylim(0, 1.05)
+            ax.set_title(f"{ndf}, {material}, theta_i {theta:g}", fontsize=8)
+            ax.set_xlabel("alpha", fontsize=8)
+            ax.tick_params(labelsize=7)
+            if log_x:
+                ax.set_xscale("log")
+            if j == 0:
+                ax.set_ylabel("albedo by scattering order", fontsize=8)
+        ax = axes[i][-1]
+        for ndf, material in pairs:
+            pts = sorted(value.get((ndf, material, theta, "2+"), []))
+            if pts:
+                ax.errorbar([p[0] for p in pts], [p[1] for p in pts], yerr=[p[2] for p in pts], marker="o", ms=3,
+                            capsize=2, label=f"{ndf}, {material}")
+        ax.set_title(f"lost by single scattering (orders 2+), theta_i {theta:g}", fontsize=8)
+        ax.set_xlabel("alpha", fontsize=8)
+        ax.tick_params(labelsize=7)
+        ax.grid(True, alpha=0.3)
+        if log_x:
+            ax.set_xscale("log")
+        ax.legend(fontsize=6)
+    axes[0][0].legend(fontsize=6, loc="lower left")
+    fig.suptitle("Smith microsurface, path-traced: albedo by scattering order, and the energy single scattering loses")
+    fig.tight_layout()
+    fig.savefig(os.path.join(d, "walk_albedo.png"), dpi=100)
+
+
 def main():
     d = sys.argv[1]
     drawn = []
@@ -176,6 +234,9 @@ def main():
     if os.path.exists(os.path.join(d, "sampling.csv")):
         sampling_efficiency(d)
         drawn.append("sampling_efficiency.png")
+    if os.path.exists(os.path.join(d, "walk_albedo.csv")):
+        walk_albedo(d)
+        drawn.append("walk_albedo.png")
     print("report_plots: drew " + ", ".join(drawn), file=sys.stderr)
 
 

@@ -90,7 +90,7 @@ void write_figures(const Scene& scene, const fs::path& dir) {
     if (fig.dimov_heightfields) md << "\n## Dimov 2015, sec. 4: G1 height fields, gamma = 0..4\n\n![](dimov_heightfields.png)\n";
     md.close();
     if (!(fig.pareto || fig.error_maps || fig.dimov_heightfields || fig.dimov_gamma4_vs_10 ||
-          !scene.sampling.families.empty()))
+          !scene.sampling.families.empty() || !scene.walk.ndfs.empty()))
         return;
 
     // The plot script: next to an installed binary, or in the source tree of this build.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cfloat>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -16,6 +17,7 @@
 #include "smithlab/errors.hpp"
 #include "staged_directory.hpp"
 #include "timing.hpp"
+#include "walk_section.hpp"
 
 namespace smithlab::report {
 
@@ -138,6 +140,8 @@ int run_report(const Scene& scene, const std::string& out_dir, const NdfRegistry
                     throw input_error("scene: g2.mu = " + format_g17(mu) + " for " + ndf.spec() + ": " + e.what());
                 }
 
+    const std::vector<WalkCell> walk_sweep = walk_cells(scene.walk, ndfs);  // empty without [walk]
+
     // The sampling experiment validates its keys before it computes anything.
     std::vector<SamplingRow> sampling;
     if (!scene.sampling.families.empty()) {
@@ -145,6 +149,15 @@ int run_report(const Scene& scene, const std::string& out_dir, const NdfRegistry
                      scene.sampling.families.size() * scene.sampling.alphas.size(), sampling_strategies.size(),
                      scene.sampling.samples);
         sampling = run_sampling_experiment(scene.sampling, ndfs);
+    }
+    std::vector<WalkResult> walks;
+    double walk_seconds = 0.0;
+    if (!walk_sweep.empty()) {
+        std::fprintf(stderr, "report: walk section, %zu cells of %lld walks\n", walk_sweep.size(),
+                     static_cast<long long>(scene.walk.walks));
+        const auto t0 = std::chrono::steady_clock::now();
+        walks = trace_walk_cells(walk_sweep, scene.walk);
+        walk_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     }
 
     // Everything but the cache is written to a stage and moved into out_dir when complete (staged_directory.hpp).
@@ -284,6 +297,7 @@ int run_report(const Scene& scene, const std::string& out_dir, const NdfRegistry
         }
     }
     if (!sampling.empty()) write_sampling(sampling, scene.sampling, dir);
+    if (!walks.empty()) write_walk_section(walks, scene.walk, walk_seconds, dir);
     if (scene.figures.error_maps || scene.figures.pareto) {
         fs::create_directories(dir / "points");
         for (const Row& row : rows) {

@@ -1,5 +1,6 @@
 // smithlab report: every selected Lambda variant on the scene's grid, against an independent reference, with its
-// run time from Google Benchmark. Writes DIR/variants.csv, DIR/report.md, DIR/bench.json and a reference cache.
+// run time from Google Benchmark. Writes DIR/variants.csv, DIR/report.md, DIR/bench.json and a reference cache; with
+// the scene's [g2], [sampling] and [walk] sections, their tables (g2_variants.csv, sampling.csv, walk_albedo.csv).
 #pragma once
 
 #include <string>

@@ -1,9 +1,12 @@
 #include "scene.hpp"
 
+#include <cmath>
 #include <cstdint>
 #include <toml.hpp>
 
+#include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
+#include "smithlab/walk/facets.hpp"
 #include "strict_table.hpp"
 
 namespace smithlab::report {
@@ -11,7 +14,7 @@ namespace smithlab::report {
 namespace {
 
 NdfFamily ndf_family(StrictTable& t) {
-    NdfFamily f{t.text("family"), {}};
+    NdfFamily f{t.text("family"), {}, t.where("family")};
     if (t.has("gamma")) f.gammas = read_axis(t, "gamma");
     t.done();
     return f;
@@ -62,6 +65,30 @@ void read_sampling(StrictTable& doc, Scene& s) {
     sm->done();
 }
 
+void read_walk(StrictTable& doc, Scene& s) {
+    auto w = doc.optional_table("walk", {"ndf", "materials", "alpha", "theta_i", "walks", "seed"});
+    if (!w) return;
+    Scene::Walk& walk = s.walk;
+    for (StrictTable& n : w->tables("ndf", {"family", "gamma"})) walk.ndfs.push_back(ndf_family(n));
+    if (walk.ndfs.empty()) w->fail("ndf", "is missing: no [[walk.ndf]] table names an NDF family");
+    walk.materials = w->texts("materials", walk.materials);
+    if (walk.materials.empty()) w->fail("materials", "is an empty list");
+    for (const std::string& m : walk.materials) try {
+            walk::parse_material(m);
+        } catch (const input_error& e) {
+            w->fail("materials", "holds \"" + m + "\": " + e.what());
+        }
+    walk.alphas = read_axis(*w, "alpha");
+    for (double a : walk.alphas)
+        if (!std::isfinite(a)) w->fail("alpha", "must be finite, got " + format_shortest(a));
+    if (w->has("theta_i")) walk.theta_i = read_axis(*w, "theta_i");
+    for (double t : walk.theta_i)
+        if (!(t >= 0.0 && t < 90.0)) w->fail("theta_i", "must be in [0, 90) degrees (light from above), got " + format_shortest(t));
+    walk.walks = w->integer("walks", 100, 1'000'000'000, walk.walks);
+    walk.seed = static_cast<unsigned long long>(w->integer("seed", 0, INT64_MAX, 1));
+    w->done();
+}
+
 void read_figures(StrictTable& doc, Scene& s) {
     auto f = doc.optional_table("figures", {"pareto", "error_maps", "dimov_heightfields", "dimov_spline_mean", "dimov_gamma4_vs_10"});
     if (!f) return;
@@ -77,7 +104,7 @@ void read_figures(StrictTable& doc, Scene& s) {
 
 Scene parse_scene(const std::string& text, const std::string& source) {
     const toml::value data = parse_toml(text, source);
-    StrictTable doc(data, source, "", {"title", "grid", "ndf", "variants", "timing", "g2", "sampling", "figures"});
+    StrictTable doc(data, source, "", {"title", "grid", "ndf", "variants", "timing", "g2", "sampling", "walk", "figures"});
     Scene s;
     s.title = doc.text("title", "smithlab report");
     read_grid(doc, s);
@@ -85,6 +112,7 @@ Scene parse_scene(const std::string& text, const std::string& source) {
     read_timing(doc, s);
     read_g2(doc, s);
     read_sampling(doc, s);
+    read_walk(doc, s);
     read_figures(doc, s);
     doc.done();
     return s;

@@ -2,6 +2,7 @@
 // experiments/scenes/g1_report.toml documents every key and is the embedded default.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -10,6 +11,7 @@ namespace smithlab::report {
 struct NdfFamily {
     std::string family;          // a registered NDF with an `alpha` parameter
     std::vector<double> gammas;  // for gtr; empty otherwise
+    std::string where;           // "FILE:LINE: ndf.family", for the NDF parser's refusals
 };
 
 struct Scene {
@@ -33,6 +35,16 @@ struct Scene {
         std::size_t samples = 100000;    // per estimate
         unsigned long long seed = 1;
     } sampling;
+    // The walk section (walk_section.hpp): albedo by scattering order against alpha on the Smith microsurface,
+    // traced for each family x material x alpha x theta_i. Absent (ndfs empty) unless named.
+    struct Walk {
+        std::vector<NdfFamily> ndfs;
+        std::vector<std::string> materials = {"mirror", "lambert(albedo=1)"};  // facet specs (walk/facets.hpp)
+        std::vector<double> alphas;
+        std::vector<double> theta_i = {45.0};  // degrees, in [0, 90)
+        std::int64_t walks = 20000;            // per cell
+        unsigned long long seed = 1;
+    } walk;
     struct Figures {
         bool pareto = false;              // error against ns/eval, log-log, every variant
         bool error_maps = false;          // |dG1| over (alpha, mu), worst over gamma, one map per variant
@@ -43,9 +55,10 @@ struct Scene {
 };
 
 // Read strictly (strict_table.hpp): an unknown key or section, a value of the wrong type (an integer is taken for
-// a real), an integer out of its bounds (an axis's n in [2, 1e7], sampling.samples in [100, 1e8]) are refused with
-// an input_error "SOURCE:LINE: key ..." naming the nearest known key or the expected type. The size of the work
-// is checked separately, before anything is computed (work_estimate.hpp).
+// a real), an integer out of its bounds (an axis's n in [2, 1e7], sampling.samples in [100, 1e8], walk.walks in
+// [100, 1e9]), a walk material its parser refuses, a walk.theta_i outside [0, 90) are refused with an input_error
+// "SOURCE:LINE: key ..." naming the nearest known key or the expected type. The NDF families are checked with the
+// registry, and the size of the work is estimated (work_estimate.hpp), before anything is computed.
 Scene parse_scene(const std::string& text, const std::string& source);
 
 // The default scene, embedded at build time from experiments/scenes/g1_report.toml.

@@ -62,20 +62,25 @@ Work estimate_work(const Scene& scene, const VariantRegistry& variants) {
     }
     w.samples = static_cast<double>(scene.sampling.families.size() * scene.sampling.alphas.size() * sampling_strategies.size()) *
                 static_cast<double>(scene.sampling.samples);
+    double walk_ndfs = 0.0, walk_alphas = 0.0;
+    for (const NdfFamily& f : scene.walk.ndfs) walk_ndfs += static_cast<double>(std::max<std::size_t>(1, f.gammas.size()));
+    for (double a : scene.walk.alphas) walk_alphas += std::max(1.0, a);  // a walk's length grows like alpha above 1
+    w.walks = walk_ndfs * walk_alphas * static_cast<double>(scene.walk.materials.size() * scene.walk.theta_i.size()) *
+              static_cast<double>(scene.walk.walks);
     return w;
 }
 
 std::string describe(const Work& work) {
     return short_number(work.total()) + " evaluations (Lambda " + short_number(work.lambda_evaluations) + ", G2 " +
            short_number(work.g2_evaluations) + ", references " + short_number(work.references) + ", samples " +
-           short_number(work.samples) + ")";
+           short_number(work.samples) + (work.walks > 0.0 ? ", walks " + short_number(work.walks) : "") + ")";
 }
 
 void check_work(const Work& work, double max_work, const std::string& source) {
     if (work.total() <= max_work) return;
     throw input_error(source + ": the scene's work is estimated at " + describe(work) + ", above the limit of " +
                       short_number(max_work) + " evaluations; nothing was computed. Make the grid smaller, select fewer " +
-                      "variants or samples, or raise the limit: smithlab report --max-work " + short_number(rounded_up(work.total())));
+                      "variants, samples or walks, or raise the limit: smithlab report --max-work " + short_number(rounded_up(work.total())));
 }
 
 }  // namespace smithlab::report
