@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <chrono>
 #include <string>
 #include <thread>
@@ -65,15 +66,19 @@ int kill_and_wait(pid_t pid, int sig) {
     return status;
 }
 
-// The first `n` comma-separated fields of every line: a CSV without its timing columns.
+// The first `n` comma-separated fields of every line, the lines sorted: a CSV without its timing columns, and
+// without the row order that follows them (variants.csv is sorted by measured ns, which ties reorder under load).
 std::string first_fields(const std::string& csv, int n) {
-    std::string out;
+    std::vector<std::string> lines;
     std::istringstream in(csv);
     for (std::string line; std::getline(in, line);) {
         std::size_t pos = 0;
         for (int k = 0; k < n && pos != std::string::npos; ++k) pos = line.find(',', pos + 1);
-        out += line.substr(0, pos) + "\n";
+        lines.push_back(line.substr(0, pos));
     }
+    std::sort(lines.begin(), lines.end());
+    std::string out;
+    for (const std::string& l : lines) out += l + "\n";
     return out;
 }
 
