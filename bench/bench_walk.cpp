@@ -1,12 +1,14 @@
 // Walks per second of the microsurface walk (sample estimator, one thread unless the name says threads:2), each
 // benchmark named by its NDF and facet material, at theta_i = 45 degrees; items_per_second = walks/s, and the
-// counter bounces = hits per walk. The yardstick: Heitz et al. 2016's public code, ~2.4-2.7 M walks/s per
-// core here on GGX mirror alpha = 0.5 (float, global mt19937, virtual calls per bounce).
-// Run: build/bench/bench_walk --benchmark_min_time=0.5 --benchmark_repetitions=5 --benchmark_report_aggregates_only
+// counters bounces = hits per walk and bounces_per_second = hits/s. "[hit_normal=hammon]": Hammon's D cos hit
+// normals (walk::HitNormal) instead of visible normals. The yardstick: Heitz et al. 2016's public code,
+// ~2.4-2.7 M walks/s per core here on GGX mirror alpha = 0.5 (float, global mt19937, virtual calls per bounce).
+// Run: build/bench/bench_walk --benchmark_repetitions=7 --benchmark_report_aggregates_only
 #include <benchmark/benchmark.h>
 
 #include <smithlab/smithlab.hpp>
 #include <smithlab/walk/trace.hpp>
+#include <memory>
 #include <string>
 
 namespace {
@@ -27,14 +29,14 @@ void walks(benchmark::State& state, const MS& ms, const M& material) {
     }
     state.SetItemsProcessed(state.iterations());
     state.counters["bounces"] = static_cast<double>(bounces) / static_cast<double>(state.iterations());
+    state.counters["bounces_per_second"] = benchmark::Counter(static_cast<double>(bounces), benchmark::Counter::kIsRate);
 }
 
 template <class N, class M>
-void add(const std::string& name, const N& ndf, const M& material) {
-    benchmark::RegisterBenchmark(("walk/" + name).c_str(), [ndf, material](benchmark::State& s) {
-        const walk::Microsurface ms(ndf);
-        walks(s, ms, material);
-    });
+void add(const std::string& name, const N& ndf, const M& material, const walk::MicrosurfaceOptions& opts = {}) {
+    // The microsurface (its tables) is built once, outside the timed runs.
+    auto ms = std::make_shared<const walk::Microsurface<N>>(ndf, opts);
+    benchmark::RegisterBenchmark(("walk/" + name).c_str(), [ms, material](benchmark::State& s) { walks(s, *ms, material); });
 }
 
 template <class N, class M>
@@ -46,8 +48,11 @@ void add_cell(const std::string& name, const N& ndf, const M& material, unsigned
                                      r.wi = smithlab::direction_from_theta_deg(45.0);
                                      r.walks = 400'000;
                                      r.threads = threads;
-                                     for (auto _ : s) benchmark::DoNotOptimize(walk::trace_cell(ms, material, r).albedo.walks);
+                                     std::int64_t bounces = 0;
+                                     for (auto _ : s) bounces += walk::trace_cell(ms, material, r).albedo.events;
                                      s.SetItemsProcessed(s.iterations() * r.walks);
+                                     s.counters["bounces_per_second"] =
+                                         benchmark::Counter(static_cast<double>(bounces), benchmark::Counter::kIsRate);
                                  })
         ->UseRealTime()
         ->Unit(benchmark::kMillisecond);
@@ -58,6 +63,8 @@ const bool registered = [] {
     add("ggx(alpha=0.5)/lambert(albedo=1)", smithlab::ggx(0.5), walk::Lambert{1.0});
     add("ggx(alpha=0.5)/fresnel-diffuse(f0=0.02, albedo=1)", smithlab::ggx(0.5), walk::FresnelDiffuse{0.02, 1.0});
     add("ggx(alpha=0.5)/conductor(eta=0.2, k=3)", smithlab::ggx(0.5), walk::Conductor{0.2, 3.0});
+    add("ggx(alpha=0.5)/dielectric(eta=1.5)", smithlab::ggx(0.5), walk::Dielectric{1.5});
+    add("ggx(alpha=0.5)/mirror[hit_normal=hammon]", smithlab::ggx(0.5), walk::Mirror{}, {.hit_normal = walk::HitNormal::hammon_dcos});
     add("beckmann(alpha=0.5)/mirror", smithlab::beckmann(0.5), walk::Mirror{});
     add("gtr(alpha=0.5, gamma=1.5)/mirror", smithlab::gtr(0.5, 1.5), walk::Mirror{});
     add("gtr(alpha=0.5, gamma=1.5)/lambert(albedo=1)", smithlab::gtr(0.5, 1.5), walk::Lambert{1.0});

@@ -28,28 +28,37 @@ public:
     static constexpr result_type min() { return 0; }
     static constexpr result_type max() { return std::numeric_limits<result_type>::max(); }
 
-    WalkRng(std::uint64_t seed, std::uint64_t cell, std::uint64_t walk) : key_{{seed, cell}}, ctr_{{walk, 0, 0, 0}} {}
+    // The first block at once: a walk always draws, and its Philox rounds then overlap whatever comes before.
+    WalkRng(std::uint64_t seed, std::uint64_t cell, std::uint64_t walk) : key_{{seed, cell}}, ctr_{{walk, 0, 0, 0}} {
+        block_ = r123::Philox4x64()(ctr_, key_);
+        ++ctr_.v[1];
+    }
 
+    // Small enough to inline where it is called (a sampler keeps its registers); the next block, every 4 numbers, is
+    // out of line.
     result_type operator()() {
-        if (next_ == 4) {
-            block_ = r123::Philox4x64()(ctr_, key_);
-            ++ctr_.v[1];
-            next_ = 0;
-        }
+        if (next_ == 4) [[unlikely]] refill();
         return block_.v[next_++];
     }
 
 private:
+    [[gnu::noinline]] void refill() {
+        block_ = r123::Philox4x64()(ctr_, key_);
+        ++ctr_.v[1];
+        next_ = 0;
+    }
+
     r123::Philox4x64::key_type key_;
     r123::Philox4x64::ctr_type ctr_;
-    r123::Philox4x64::ctr_type block_{};
-    int next_ = 4;
+    r123::Philox4x64::ctr_type block_;
+    int next_ = 0;
 };
 
-// Uniform in [0, 1): the top 53 bits, so every value is a multiple of 2^-53 and 1 is never returned.
+// Uniform in [0, 1): the top 53 bits, so every value is a multiple of 2^-53 and 1 is never returned. Always inlined
+// (with WalkRng: a load, a shift, a conversion).
 template <class G>
     requires std::uniform_random_bit_generator<G> && (G::min() == 0) && (G::max() == ~std::uint64_t{0})
-double uniform01(G& g) {
+[[gnu::always_inline]] inline double uniform01(G& g) {
     return static_cast<double>(g() >> 11) * 0x1.0p-53;
 }
 

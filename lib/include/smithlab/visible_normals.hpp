@@ -46,6 +46,7 @@
 #include "smithlab/quadrature.hpp"
 #include "smithlab/radial_table.hpp"
 #include "smithlab/rng.hpp"
+#include "smithlab/turn.hpp"
 #include "smithlab/visible_normals_closed.hpp"
 
 namespace smithlab {
@@ -70,12 +71,18 @@ public:
         if (!(W0_ > 0.0 && W0_ < INFINITY)) W0_ = 2.0 * integrate_log_axis(r2_law);
     }
 
-    // A normal m (m.z > 0, v.m > 0) from D_v, for a unit v with A(v) > 0; no_normal() when it cannot draw.
+    // A normal m (m.z > 0, v.m > 0) from D_v, for a unit v with A(v) > 0; no_normal() when it cannot draw. The
+    // closed forms inline where they are called; the rejection routes, out of line, keep them small.
     template <class G>
     Vec3 sample(const Vec3& v, G& g) const {
         if (ggx_ > 0.0) return sample_ggx_visible_normal(ggx_, v, g);
         if (beckmann_ > 0.0) return sample_beckmann_visible_normal(beckmann_, v, g);
-        const double sin_v = std::hypot(v.x(), v.y());
+        return sample_by_rejection(v, g);
+    }
+
+    template <class G>
+    [[gnu::noinline]] Vec3 sample_by_rejection(const Vec3& v, G& g) const {
+        const double sin_v = norm_xy(v);
         if (sin_v == 0.0) return v.z() > 0.0 ? dcos_.sample(g) : no_normal();  // straight up: D_v = D cos
         const double mu = v.z() / sin_v, c = v.x() / sin_v, sn = v.y() / sin_v;
         for (int k = 0; k < 100; ++k) {
@@ -99,7 +106,7 @@ public:
 
     // A(v) = |v_xy| W(|mu|) + max(v.z, 0), Smith's convention over the whole sphere.
     double projected_area(const Vec3& v) const {
-        const double sin_v = std::hypot(v.x(), v.y());
+        const double sin_v = norm_xy(v);
         if (sin_v == 0.0) return std::max(v.z(), 0.0);
         return sin_v * W(std::abs(v.z()) / sin_v) + std::max(v.z(), 0.0);
     }
@@ -146,9 +153,10 @@ private:
         for (long tries = 0; tries < max_tries; ++tries) {
             const double u = 1.0 - uniform01(g);
             const double s = uniform01(g) < p_dcos ? dcos_.isf(u) : r_law_->isf(u);
-            const double r = std::sqrt(s), phi = 2.0 * pi * uniform01(g);
-            const double x = r * std::cos(phi);
-            if (uniform01(g) * (mu + r) < mu - x) return {x, r * std::sin(phi), s};
+            const double r = std::sqrt(s);
+            const CosSin phi = cos_sin_turn(uniform01(g));
+            const double x = r * phi.c;
+            if (uniform01(g) * (mu + r) < mu - x) return {x, r * phi.s, s};
         }
         return none();
     }

@@ -71,14 +71,16 @@ WalkSample sample_walk(const Microsurface& ms, const M& material, const Vec3& wi
         if (order + 1 > limits.max_events) return {world, 0.0, static_cast<int>(order), diffuse, false, true};
         if (limits.max_order > 0 && order + 1 > limits.max_order) return {world, 0.0, static_cast<int>(order), diffuse, false, false};
         const Vec3 v = -w;
-        const Scatter s = detail::scatter(material, v, ms.visible_normal(v, g), g, above);
+        const Vec3 m = ms.hit_normal(v, g);
+        if (std::isnan(m.z())) return {world, 0.0, static_cast<int>(order), diffuse, false, true};  // none drawn
+        const Scatter s = detail::scatter(material, v, m, g, above);
         weight *= s.weight;
         diffuse = diffuse || s.diffuse;
         if (weight == 0.0) return {world, 0.0, static_cast<int>(order + 1), diffuse, false, false};
         w = s.wo;
         if (s.transmitted) {
             w = -w;
-            h = -h;
+            h = ms.other_side(h);
             above = !above;
         }
     }
@@ -94,6 +96,12 @@ template <class Microsurface, class M, class G>
 EvalSample eval_walk(const Microsurface& ms, const M& material, const Vec3& wi, const Vec3& wo, G& g,
                      const WalkLimits& limits = {}) {
     EvalSample out;
+    // The phase functions are densities over visible normals: a microsurface whose hits draw another law
+    // (require_eval_normals, which the caller runs before any walk) gives no estimate, every walk capped.
+    if (ms.options().hit_normal != HitNormal::visible) {
+        out.capped = true;
+        return out;
+    }
     bool above = !TwoSided<M> || wi.z() > 0.0;
     Vec3 w = above ? -wi : wi;
     double h = INFINITY, weight = 1.0;
@@ -111,21 +119,28 @@ EvalSample eval_walk(const Microsurface& ms, const M& material, const Vec3& wi, 
         // this side, wo up (local) is reached by reflection and escapes this side; wo down only through the surface,
         // escaping on the other side (where it and the height are negated); one-sided phases are 0 there.
         const Vec3 wo_local = above ? wo : -wo;
-        const double e = wo_local.z() > 0.0 ? ms.escape(wo_local, h) : TwoSided<M> ? ms.escape(-wo_local, -h) : 0.0;
+        const double e = wo_local.z() > 0.0 ? ms.escape(wo_local, h)
+                         : TwoSided<M>      ? ms.escape(-wo_local, ms.other_side(h))
+                                            : 0.0;
         if (e > 0.0) {
             const Phase p = detail::phase(ms, material, v, wo_local, g, above);
             const int b = order_bin(order);
             (diffuse ? out.diffuse : out.specular)[b] += weight * e * p.specular;
             out.diffuse[b] += weight * e * p.diffuse;
         }
-        const Scatter s = detail::scatter(material, v, ms.visible_normal(v, g), g, above);
+        const Vec3 m = ms.hit_normal(v, g);
+        if (std::isnan(m.z())) {
+            out.capped = true;
+            break;
+        }
+        const Scatter s = detail::scatter(material, v, m, g, above);
         weight *= s.weight;
         diffuse = diffuse || s.diffuse;
         if (weight == 0.0) break;
         w = s.wo;
         if (s.transmitted) {
             w = -w;
-            h = -h;
+            h = ms.other_side(h);
             above = !above;
         }
     }
