@@ -459,6 +459,14 @@ TEST_CASE("trace: max_order = 1 ends every walk at its first hit -- fewer bounce
         const std::size_t at = meta.rfind("\"bounces\": ");
         return std::stoll(meta.substr(at + 11));
     };
+    // Hammon's hit normals (D cos facing the ray) instead of visible normals: another law, every walk still leaves.
+    write(d / "hammon.toml", base + "[walks]\nn = 4000\nhit_normal = \"hammon\"\n");
+    REQUIRE(run(trace_args(d / "hammon.toml", d / "hammon", 1)).rc == 0);
+    for (const auto& f : records(d / "hammon" / "albedo.csv"))
+        if (f[4] == "all" && f[5] == "all" && f[6] == "all") CHECK(f[7] == "1");
+    CHECK_THAT(slurp(d / "hammon" / "meta.json"), Catch::Contains("\"hit_normal\": \"hammon\""));
+    CHECK(slurp(d / "hammon" / "albedo.csv") != slurp(d / "all" / "albedo.csv"));
+    CHECK(run("trace --ndf 'ggx(alpha=0.5)' --hit-normal sideways --output '" + (d / "never").string() + "'").rc == 2);
     CHECK(bounces("one") <= 4000);
     CHECK(bounces("all") > 4000 + 4000 / 5);  // lambert(1) at alpha 0.8: ~1.6 hits per walk
     for (const auto& f : records(d / "one" / "albedo.csv"))
@@ -494,6 +502,7 @@ TEST_CASE("trace: the default sweep, and a malformed scene exits 2 naming the ke
                          Bad{"materials = [\"mirror\"]\n" + grid + "[[ndf]]\nspec = \"ggx(alpha=-1)\"\n", "alpha"},
                          Bad{"materials = [\"mirror\"]\n" + grid + "[[ndf]]\nspec = \"ggx(alpha=1)\"\nfamily = \"ggx\"\n", "exactly one"},
                          Bad{"materials = [\"mirror\"]\n" + grid + ndf + "[walks]\ndownward = \"up\"\n", "downward"},
+                         Bad{"materials = [\"mirror\"]\n" + grid + ndf + "[walks]\nhit_normal = \"dcos\"\n", "hit_normal"},
                          Bad{"materials = [\"mirror\"]\n" + grid + ndf + "[brdf]\ntheta_bins = 0\nphi_bins = 4\n", "theta_bins"},
                          Bad{"materials = [\"mirror\"\n", "malformed"}}) {
         write(d / "bad.toml", b.text);

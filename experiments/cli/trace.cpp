@@ -49,7 +49,7 @@ trace::TraceScene cell_scene(const TraceArgs& a) {
     require(a.walks > 0, "--walks", "> 0", static_cast<double>(a.walks));
     require(a.max_order >= 0, "--max-order", ">= 0", a.max_order);
     incident(a.theta_i, a.phi_i, "--theta-i", walk::parse_material(a.material));
-    trace::parse_downward(a.downward, "--downward");
+    trace::parse_walk_options(a.downward, a.hit_normal, "--");
     trace::TraceScene s;
     s.title = "one cell";
     s.ndfs = {a.ndf};
@@ -60,6 +60,7 @@ trace::TraceScene cell_scene(const TraceArgs& a) {
     s.seed = parse_seed(a.seed, "--seed");
     s.max_order = a.max_order;
     s.downward = a.downward;
+    s.hit_normal = a.hit_normal;
     return s;
 }
 
@@ -95,6 +96,9 @@ void add_trace(CLI::App& app, TraceArgs& a) {
         c->add_option("--walks", a.walks, "walks in the cell (> 0)")->capture_default_str(),
         c->add_option("--max-order", a.max_order, "end walks after this many hits (0: no limit)")->capture_default_str(),
         c->add_option("--downward", a.downward, "Lambda of downward rays: smith (-1 - Lambda) or hammon (-Lambda)")
+            ->capture_default_str(),
+        c->add_option("--hit-normal", a.hit_normal,
+                      "hit normal: visible (visible normals of -T) or hammon (D cos restricted to T.m < 0)")
             ->capture_default_str(),
         c->add_option("--seed", a.seed, "seed, an integer in [0, 2^64)")->capture_default_str()};
     c->add_option("--threads", a.threads, "threads (0: all cores)")->capture_default_str();
@@ -153,7 +157,7 @@ int run_brdf(const BrdfArgs& a, const NdfRegistry& registry) {
     r.seed = seed;
     r.walks = a.n;
     r.threads = static_cast<unsigned>(a.threads);
-    const walk::EvalTally t = trace::with_walk_types(ndf, material, trace::parse_downward(a.downward, "--downward"),
+    const walk::EvalTally t = trace::with_walk_types(ndf, material, trace::parse_walk_options(a.downward, "visible", "--"),
                                                      [&](const auto& ms, const auto& m) { return walk::eval_cell(ms, m, r); });
     const walk::Estimate v = t.value();
     std::printf("value %.17g\nstderr %.17g\n", v.value, v.stderr_);

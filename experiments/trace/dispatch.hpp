@@ -34,11 +34,17 @@ auto with_walk_types(const AnyNdf& ndf, const walk::Material& material, const wa
     });
 }
 
-// "smith" or "hammon", as the options and scene files name the downward Lambda.
-inline walk::MicrosurfaceOptions parse_downward(const std::string& name, const std::string& what) {
-    if (name == "smith") return {Downward::smith};
-    if (name == "hammon") return {Downward::hammon_symmetric};
-    throw input_error(what + " must be smith or hammon, got '" + name + "'");
+// The walk's options as the flags and scene files name them: the downward Lambda, "smith" (-1 - Lambda) or
+// "hammon" (-Lambda); the hit normal, "visible" (visible normals of -T) or "hammon" (Hammon's D cos facing T).
+inline walk::MicrosurfaceOptions parse_walk_options(const std::string& downward, const std::string& hit_normal,
+                                                    const std::string& where) {
+    walk::MicrosurfaceOptions o;
+    if (downward == "hammon") o.downward = Downward::hammon_symmetric;
+    else if (downward != "smith") throw input_error(where + "downward must be smith or hammon, got '" + downward + "'");
+    if (hit_normal == "hammon") o.hit_normal = walk::HitNormal::hammon_dcos;
+    else if (hit_normal != "visible")
+        throw input_error(where + "hit-normal must be visible or hammon, got '" + hit_normal + "'");
+    return o;
 }
 
 }  // namespace smithlab::trace

@@ -64,6 +64,7 @@ std::string cell_key(const TraceScene& s, const TraceCell& c, const AnyNdf& ndf,
     k << "smithlab " << SMITHLAB_VERSION << "|ndf=" << ndf.spec() << "|material=" << walk::format_material(m)
       << "|theta_i=" << format_g17(c.theta_i) << "|phi_i=" << format_g17(c.phi_i) << "|walks=" << s.walks
       << "|seed=" << s.seed << "|cell=" << c.index << "|max_order=" << s.max_order << "|downward=" << s.downward
+      << "|hit_normal=" << s.hit_normal
       << "|brdf=" << s.brdf.n_theta << "x" << s.brdf.n_phi;
     return k.str();
 }
@@ -194,7 +195,8 @@ std::string format_trace_scene(const TraceScene& s) {
     t << "title = " << toml_string(s.title) << "\nmaterials = [";
     for (std::size_t i = 0; i < s.materials.size(); ++i) t << (i ? ", " : "") << toml_string(s.materials[i]);
     t << "]\n\n[walks]\nn = " << s.walks << "\nseed = " << s.seed << "\nmax_order = " << s.max_order
-      << "\ndownward = " << toml_string(s.downward) << "\n\n[grid]\ntheta_i = " << toml_list(s.theta_i)
+      << "\ndownward = " << toml_string(s.downward) << "\nhit_normal = " << toml_string(s.hit_normal)
+      << "\n\n[grid]\ntheta_i = " << toml_list(s.theta_i)
       << "\nphi_i = " << toml_list(s.phi_i) << "\n";
     for (const std::string& n : s.ndfs) t << "\n[[ndf]]\nspec = " << toml_string(n) << "\n";
     if (!s.brdf.empty()) t << "\n[brdf]\ntheta_bins = " << s.brdf.n_theta << "\nphi_bins = " << s.brdf.n_phi << "\n";
@@ -204,7 +206,7 @@ std::string format_trace_scene(const TraceScene& s) {
 RunSummary run_scene(const TraceScene& s, const std::string& source, const NdfRegistry& registry, const fs::path& out,
                      unsigned threads) {
     const auto t0 = std::chrono::steady_clock::now();
-    const walk::MicrosurfaceOptions opts = parse_downward(s.downward, source + ": walks.downward");
+    const walk::MicrosurfaceOptions opts = parse_walk_options(s.downward, s.hit_normal, source + ": walks.");
     // Check everything first: every spec, and every microsurface once (a D-only NDF's table may refuse it).
     std::map<std::string, AnyNdf> ndfs;
     for (const std::string& spec : s.ndfs)
@@ -305,6 +307,7 @@ RunSummary run_scene(const TraceScene& s, const std::string& source, const NdfRe
                                  {"walks", s.walks},
                                  {"max_order", s.max_order},
                                  {"downward", s.downward},
+                                 {"hit_normal", s.hit_normal},
                                  {"cells", cell_list},
                                  {"cells_traced", sum.traced},
                                  {"cells_reused", sum.reused},

@@ -43,12 +43,15 @@ TraceScene parse_trace_scene(const std::string& text, const std::string& source)
     s.materials = doc.texts("materials");
     if (s.materials.empty()) doc.fail("materials", "is an empty list");
 
-    if (auto w = doc.optional_table("walks", {"n", "seed", "max_order", "downward"})) {
+    if (auto w = doc.optional_table("walks", {"n", "seed", "max_order", "downward", "hit_normal"})) {
         s.walks = w->integer("n", 1, 1'000'000'000'000, s.walks);
         s.seed = static_cast<std::uint64_t>(w->integer("seed", 0, std::numeric_limits<std::int64_t>::max(), 1));
         s.max_order = static_cast<int>(w->integer("max_order", 0, 1'000'000, 0));
         s.downward = w->text("downward", s.downward);
         if (s.downward != "smith" && s.downward != "hammon") w->fail("downward", "must be \"smith\" or \"hammon\", got \"" + s.downward + "\"");
+        s.hit_normal = w->text("hit_normal", s.hit_normal);
+        if (s.hit_normal != "visible" && s.hit_normal != "hammon")
+            w->fail("hit_normal", "must be \"visible\" or \"hammon\", got \"" + s.hit_normal + "\"");
         w->done();
     }
 

@@ -21,6 +21,7 @@ struct TraceScene {
     std::uint64_t seed = 1;
     int max_order = 0;                   // 0: no limit
     std::string downward = "smith";      // or "hammon"
+    std::string hit_normal = "visible";  // or "hammon" (Hammon's D cos facing the ray)
     walk::BrdfBins brdf;                 // empty: no brdf.csv
 };
 
