@@ -58,7 +58,7 @@ public:
     template <class G>
     Vec3 sample(G& g) const {
         const double s = isf(1.0 - uniform01(g));  // v in (0, 1]: s finite
-        return normal_from_slope(s, 2.0 * std::numbers::pi * uniform01(g));
+        return normal_from_slope(s, cos_sin_turn(uniform01(g)));
     }
 
     bool tabulated() const { return table_ != nullptr; }
@@ -87,7 +87,7 @@ Vec3 sample_hammon_normal(const DcosLaw<N>& law, const Vec3& wi, G& g) {
     if (!(S_c > 0.0)) return no_normal();
     for (long tries = 0; tries < max_tries; ++tries) {
         const double s = law.isf(S_c * (1.0 - uniform01(g)));
-        const Vec3 m = normal_from_slope(s, 2.0 * std::numbers::pi * uniform01(g));
+        const Vec3 m = normal_from_slope(s, cos_sin_turn(uniform01(g)));
         if (T.dot(m) < 0.0) return m;
         if (T.z() > 0.0) {
             const Vec3 turned(-m.x(), -m.y(), m.z());

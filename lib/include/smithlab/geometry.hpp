@@ -10,6 +10,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "smithlab/turn.hpp"
+
 namespace smithlab {
 
 using Vec3 = Eigen::Vector3d;
@@ -30,6 +32,12 @@ inline Vec3 normal_from_slope(double s, double phi) {
     if (!(s < INFINITY)) return {std::cos(phi), std::sin(phi), 0.0};
     const double c = 1.0 / std::sqrt(1.0 + s), sn = std::sqrt(s) * c;
     return {sn * std::cos(phi), sn * std::sin(phi), c};
+}
+// ... at the azimuth whose cosine and sine are given (turn.hpp: cos_sin_turn of a uniform azimuth).
+inline Vec3 normal_from_slope(double s, const CosSin& phi) {
+    if (!(s < INFINITY)) return {phi.c, phi.s, 0.0};
+    const double c = 1.0 / std::sqrt(1.0 + s), sn = std::sqrt(s) * c;
+    return {sn * phi.c, sn * phi.s, c};
 }
 
 // The direction of polar angle theta and azimuth phi (degrees; theta > 90 is below the surface, phi from the x axis

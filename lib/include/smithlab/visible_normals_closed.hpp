@@ -58,16 +58,17 @@ double beckmann_visible_slope(double mu, double u);
 
 template <class G>
 Vec3 sample_beckmann_visible_normal(double alpha, const Vec3& v, G& g) {
-    const double sin_v = std::hypot(v.x(), v.y());
+    const double sin_v = norm_xy(v);
     if (sin_v == 0.0) {
         if (!(v.z() > 0.0)) return no_normal();
         // Straight up, D_v = D cos: tan^2 = -alpha^2 ln(1 - u) (Walter 2007 eq. 28).
-        return normal_from_slope(-alpha * alpha * std::log(1.0 - uniform01(g)), 2.0 * std::numbers::pi * uniform01(g));
+        const double s = -alpha * alpha * std::log(1.0 - uniform01(g));
+        return normal_from_slope(s, cos_sin_turn(uniform01(g)));
     }
     const double mu = v.z() / (alpha * sin_v), c = v.x() / sin_v, s = v.y() / sin_v;
     for (int tries = 0; tries < 100; ++tries) {
         const double x = beckmann_visible_slope(mu, 1.0 - uniform01(g));
-        const double y = std::sqrt(-std::log(1.0 - uniform01(g))) * std::cos(2.0 * std::numbers::pi * uniform01(g));
+        const double y = std::sqrt(-std::log(1.0 - uniform01(g))) * cos_sin_turn(uniform01(g)).c;
         const double sx = alpha * (c * x - s * y), sy = alpha * (s * x + c * y);  // turned back, unstretched
         const Vec3 m = Vec3(-sx, -sy, 1.0) / std::sqrt(1.0 + sx * sx + sy * sy);  // the normal of slope (sx, sy)
         if (v.dot(m) > 0.0) return m;
