@@ -394,8 +394,8 @@ std::string trace_args(const fs::path& scene, const fs::path& out, int threads) 
 
 }  // namespace
 
-TEST_CASE("trace: a scene file -- albedo.csv and brdf.csv for every cell, the same bits for any --threads; a rerun "
-          "traces nothing; brdf.csv holds the reflected energy",
+TEST_CASE("trace: a scene file -- albedo.csv and brdf.csv for every cell, the same bits for any --threads, a rerun "
+          "traces nothing, brdf.csv holds the reflected energy",
           "[cli][walk][scene]") {
     const fs::path d = scratch() / "trace_scene";
     fs::remove_all(d);
