@@ -10,6 +10,7 @@
 #pragma once
 
 #include <array>
+#include <filesystem>
 #include <functional>
 #include <string>
 #include <string_view>
@@ -18,6 +19,7 @@
 #include "scene.hpp"
 #include "smithlab/registry.hpp"
 #include "smithlab/rng.hpp"
+#include "timing.hpp"
 
 namespace smithlab::report {
 
@@ -36,5 +38,11 @@ inline constexpr std::array<std::string_view, 3> sampling_strategies = {"cosine"
 // One row per (family, alpha, strategy), estimated with scene.sampling.samples samples each. Validates first
 // (families with a closed-form Lambda and an alpha; theta_o in [0, 90)); input_error naming the key otherwise.
 std::vector<SamplingRow> run_sampling_experiment(const Scene::Sampling& s, const NdfRegistry& ndfs);
+
+// One item per row: one sample of its estimator, from a stream of its own.
+void add_sampling_timing(std::vector<SamplingRow>& rows, const Scene::Sampling& s, std::vector<Timed>& timed);
+
+// DIR/sampling.csv and the section appended to DIR/report.md: per (family, alpha) the strategies side by side.
+void write_sampling_section(const std::vector<SamplingRow>& rows, const Scene::Sampling& s, const std::filesystem::path& dir);
 
 }  // namespace smithlab::report
