@@ -487,8 +487,8 @@ TEST_CASE("FastLambda of a direction: GGX's tan^2 and reciprocal forms equal the
             const double d2 = w.x() * w.x() + w.y() * w.y(), az = std::abs(w.z());
             const double want = ggx.Lambda(az / std::hypot(w.x(), w.y()));
             INFO("alpha " << alpha << " theta " << theta << ": Lambda " << want);
-            const double rel[] = {L.at_tan2(smithlab::tan2_theta(w)) / want - 1.0, L.inv_Lambda(d2, az) * want - 1.0,
-                                  L.inv_1p_Lambda(d2, az) * (1.0 + want) - 1.0};
+            const double rel[] = {L.at_tan2(smithlab::tan2_theta(w)) / want - 1.0, L.inv_Lambda(d2, az).value() * want - 1.0,
+                                  L.inv_1p_Lambda(d2, az).value() * (1.0 + want) - 1.0};
             for (double r : rel) worst = std::max(worst, std::abs(r));
         }
         INFO("alpha " << alpha << ": worst relative difference " << worst);

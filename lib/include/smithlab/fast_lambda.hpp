@@ -4,7 +4,7 @@
 // Read-only after construction, so any number of threads may call it; no call throws (NaN in, NaN out).
 //
 // The walk asks for Lambda of a direction, which it has as tan^2(theta) = (x^2 + y^2) / z^2 without a root:
-// at_tan2(t). For GGX (the capability ggx_alpha(), ndf.hpp) that is Walter 2007 eq. 72 in t itself,
+// at_tan2(t). For GGX (the capability ggx_alpha(), ndf.hpp) that is Heitz 2014 eq. 72 in t itself,
 //     Lambda = (sqrt(1 + alpha^2 t) - 1) / 2 = alpha^2 t / (2 (1 + sqrt(1 + alpha^2 t)))   (no cancellation),
 // one root and one division; every other NDF takes mu = 1 / sqrt(t). Its step needs 1 / Lambda (upward) and
 // 1 / (1 + Lambda) (downward, Smith's convention): for GGX, with d2 = x^2 + y^2, |z| and R = sqrt(z^2 + alpha^2 d2),
@@ -21,6 +21,12 @@
 #include "smithlab/smith.hpp"
 
 namespace smithlab {
+
+// num / den, for a caller that may compare it (x < num / den as x den < num, den >= 0) before it divides.
+struct Quotient {
+    double num, den;
+    double value() const { return num / den; }
+};
 
 template <Ndf N>
 class FastLambda {
@@ -51,17 +57,18 @@ public:
     }
 
     // 1 / Lambda and 1 / (1 + Lambda) of the direction with x^2 + y^2 = d2 and |z| = az, both > 0 and not so small
-    // that their squares lose digits (d2 > 1e-300, az > 1e-150).
-    double inv_Lambda(double d2, double az) const {
+    // that their squares lose digits (d2 > 1e-300, az > 1e-150), as quotients num / den (num > 0, den >= 0): the
+    // walk's escape test compares against them without dividing (microsurface.hpp, next_height).
+    Quotient inv_Lambda(double d2, double az) const {
         if (ggx_alpha2_ > 0.0) {
             const double z2 = az * az, a2d2 = ggx_alpha2_ * d2;
-            return 2.0 * (z2 + az * std::sqrt(z2 + a2d2)) / a2d2;  // a2d2 = 0 (underflow): inf, Lambda = 0
+            return {2.0 * (z2 + az * std::sqrt(z2 + a2d2)), a2d2};  // a2d2 = 0 (underflow): inf, Lambda = 0
         }
-        return 1.0 / at_tan2(d2 / (az * az));
+        return {1.0, at_tan2(d2 / (az * az))};
     }
-    double inv_1p_Lambda(double d2, double az) const {
-        if (ggx_alpha2_ > 0.0) return 2.0 * az / (az + std::sqrt(az * az + ggx_alpha2_ * d2));
-        return 1.0 / (1.0 + at_tan2(d2 / (az * az)));
+    Quotient inv_1p_Lambda(double d2, double az) const {
+        if (ggx_alpha2_ > 0.0) return {2.0 * az, az + std::sqrt(az * az + ggx_alpha2_ * d2)};
+        return {1.0, 1.0 + at_tan2(d2 / (az * az))};
     }
     bool tabulated() const { return table_.has_value(); }
     double error_estimate() const { return table_ ? table_->error_estimate() : 0.0; }  // relative

@@ -62,4 +62,19 @@ template <class G>
     return static_cast<double>(g() >> 11) * 0x1.0p-53;
 }
 
+// Two independent uniforms in (-1, 1) from one draw, a point of the square [-1, 1]^2: each half of the 64 bits, as
+// a signed 32-bit integer k, gives (k + 1/2) 2^-31, on a grid of step 2^-31 symmetric about 0 (a rejection sampler
+// of the unit disk draws one per try; visible_normals_closed.hpp).
+struct SquarePoint {
+    double a, b;
+};
+template <class G>
+    requires std::uniform_random_bit_generator<G> && (G::min() == 0) && (G::max() == ~std::uint64_t{0})
+[[gnu::always_inline]] inline SquarePoint uniform_square(G& g) {
+    const std::uint64_t x = g();
+    const auto hi = static_cast<std::int32_t>(static_cast<std::uint32_t>(x >> 32));
+    const auto lo = static_cast<std::int32_t>(static_cast<std::uint32_t>(x));
+    return {(static_cast<double>(hi) + 0.5) * 0x1.0p-31, (static_cast<double>(lo) + 0.5) * 0x1.0p-31};
+}
+
 }  // namespace smithlab

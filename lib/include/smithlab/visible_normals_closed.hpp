@@ -29,8 +29,12 @@ namespace smithlab {
 // since l (1 - z) = u P and l (1 + z) = Q + h.z: h.z > 0 by construction, and near the poles (the cap a sliver, or
 // the whole sphere) every digit is kept: within 5 degrees of them the normal is within 3e-14 of a long-double
 // evaluation of the same draw, where the unit-vector form (1 + vs.z, 1 - z) was 5e-13 off near straight up and 1e-3
-// within 1e-5 degrees of straight down. m is the unstretched h, normalized: two roots and a division for
-// the cap, a root and a division for m.
+// within 1e-5 degrees of straight down. The cap's u and azimuth come together from one point (a, b) uniform in the
+// unit disk (Marsaglia 1972, "Choosing a point from the surface of a sphere": a^2 + b^2 is uniform in [0, 1) and
+// independent of the angle, and sqrt(a^2 + b^2) (cos phi, sin phi) = (a, b)), so with u = a^2 + b^2
+//     h_xy = sqrt(P (Q + h.z)) (a, b) + s_xy:
+// no trigonometry, drawn by rejection from the square (acceptance pi / 4; one 64-bit draw per try, rng.hpp). m is the unstretched h, normalized: one
+// root and a division for the stretch, a root for the cap, a root and a division for m.
 template <class G>
 Vec3 sample_ggx_visible_normal(double alpha, const Vec3& v, G& g) {
     const double sx = alpha * v.x(), sy = alpha * v.y(), sz = v.z();
@@ -38,10 +42,11 @@ Vec3 sample_ggx_visible_normal(double alpha, const Vec3& v, G& g) {
     const double P = sz >= 0.0 ? l + sz : d2 / (l - sz), Q = sz >= 0.0 ? d2 / P : l - sz;
     if (!(P > 0.0)) return no_normal();  // straight down: no normal is visible
     for (int tries = 0; tries < 100; ++tries) {
-        const CosSin phi = cos_sin_turn(uniform01(g));
-        const double u = uniform01(g), hz = (1.0 - u) * P;
-        const double r = std::sqrt(u * P * (Q + hz));
-        const double mx = alpha * (r * phi.c + sx), my = alpha * (r * phi.s + sy);
+        const auto [a, b] = uniform_square(g);
+        const double u = a * a + b * b;
+        if (!(u < 1.0)) continue;
+        const double hz = (1.0 - u) * P, r = std::sqrt(P * (Q + hz));
+        const double mx = alpha * (r * a + sx), my = alpha * (r * b + sy);
         const double n = 1.0 / std::sqrt(mx * mx + my * my + hz * hz);
         const Vec3 m(mx * n, my * n, hz * n);
         if (m.z() > 0.0 && v.dot(m) > 0.0) return m;  // not, only by rounding at grazing normals

@@ -70,27 +70,33 @@ public:
     }
 
     // Moves h to the next intersection along w and returns true, or returns false when the ray escapes.
-    // S in (0, 1]. With k = -ln S / Lambda (1 / Lambda in one division: inv_Lambda), ln C1(h') = ln C1(h) + k, and
-    // an upward ray escapes when that is >= 0 (S <= C1(h)^Lambda). Lambda = +0 (k = inf) escapes, at S = 1 too (k =
-    // NaN: S <= C1^0); a NaN direction stays where it is.
+    // S in (0, 1]. With k = -ln S / Lambda, ln C1(h') = ln C1(h) + k, and an upward ray escapes when that is >= 0
+    // (S <= C1(h)^Lambda). 1 / Lambda comes as a quotient num / den (inv_Lambda: num > 0 upward, < 0 downward), so
+    // that the escape test, -ln S num >= -ln C1(h) den, needs no division; only a ray that stays divides. Lambda = +0
+    // (num / den = inf) escapes, at S = 1 too; a horizontal ray (Lambda = inf) hits at its own height; a NaN
+    // direction stays where it is.
     bool next_height(const Vec3& w, double& h, double S) const {
-        const double inv_L = inv_Lambda(w);
-        if (inv_L == 0.0) return true;  // horizontal (Lambda = inf): it hits at its own height
-        const double k = -std::log(S) * inv_L;
+        const Quotient inv_L = inv_Lambda(w);
+        if (inv_L.den == INFINITY) return true;  // horizontal (Lambda = inf): it hits at its own height
+        const double e = -std::log(S);
         if constexpr (carries_ln_C1) {
-            const double u = std::min(h, 0.0) + k;  // h = INFINITY above the surface: C1 = 1
-            if (inv_L > 0.0) {
-                if (!(u < 0.0)) return false;
+            const double u0 = std::min(h, 0.0);  // h = INFINITY above the surface: C1 = 1
+            if (inv_L.num > 0.0) {
+                if (!(e * inv_L.num < -u0 * inv_L.den)) return false;
+                const double u = u0 + e * inv_L.value();
+                if (!(u < 0.0)) return false;  // only by rounding: the same test, divided
                 h = u;
-            } else if (u <= 0.0) {
+            } else if (const double u = u0 + e * inv_L.value(); u <= 0.0) {
                 h = std::max(u, ln_smallest);  // the bottom of the law (C1 = 0), kept a number
             }  // else S = 1 with Lambda = -0 (NaN), or a NaN direction: it stays
             return true;
         } else {
+            const double k = e * inv_L.value();
             const double c0 = Heights::C1(h);
-            if (c0 < 1e-290) return next_height_ln(inv_L, h, k);
+            const bool up = inv_L.num > 0.0;
+            if (c0 < 1e-290) return next_height_ln(up, k, h);
             const double c = c0 * std::exp(k);  // over- or underflows only where the answer is the same
-            if (inv_L > 0.0) {
+            if (up) {
                 if (!(c < 1.0)) return false;
             } else if (!(c <= 1.0)) {
                 return true;
@@ -144,21 +150,27 @@ private:
     static constexpr bool carries_ln_C1 = std::is_same_v<Heights, UniformHeights>;
     static constexpr double ln_smallest = -744.44007192138126;  // ln of the smallest denormal
 
-    // 1 / Lambda(w) under the downward convention (0 horizontal, +inf straight up), by FastLambda's reciprocal forms
-    // away from the pole and the horizon, through Lambda(w) near them.
-    double inv_Lambda(const Vec3& w) const {
+    // 1 / Lambda(w) under the downward convention as a quotient (num > 0 upward, < 0 downward; den = inf
+    // horizontal, 0 straight up), by FastLambda's reciprocal forms away from the pole and the horizon, through
+    // Lambda(w) near them.
+    Quotient inv_Lambda(const Vec3& w) const {
         const double d2 = w.x() * w.x() + w.y() * w.y(), az = std::abs(w.z());
-        if (!(d2 > 1e-300 && az > 1e-150)) return 1.0 / Lambda(w);
+        if (!(d2 > 1e-300 && az > 1e-150)) [[unlikely]] {
+            const double L = Lambda(w);
+            if (std::isnan(L)) return {L, L};
+            return {std::signbit(L) ? -1.0 : 1.0, std::abs(L)};
+        }
         const FastLambda<N>& L = normals_.Lambda();
         if (w.z() > 0.0) return L.inv_Lambda(d2, az);
-        return opts_.downward == Downward::smith ? -L.inv_1p_Lambda(d2, az) : -L.inv_Lambda(d2, az);
+        const Quotient q = opts_.downward == Downward::smith ? L.inv_1p_Lambda(d2, az) : L.inv_Lambda(d2, az);
+        return {-q.num, q.den};
     }
 
     // next_height for a height near the bottom of its law (C1(h) < 1e-290, where C1 e^k could be < 1 with e^k = inf),
     // in ln C1 (Hammon 2017 appendix, "Intersection distance", as written).
-    static bool next_height_ln(double inv_L, double& h, double k) {
+    static bool next_height_ln(bool up, double k, double& h) {
         const double ln_c = ln_C1(h) + k;
-        if (inv_L > 0.0 && !(ln_c < 0.0)) return false;
+        if (up && !(ln_c < 0.0)) return false;
         if (ln_c <= 0.0) h = Heights::invC1(std::exp(ln_c));  // else S = 1 with L = -0: it stays (measure zero)
         return true;
     }
