@@ -35,6 +35,29 @@ TEST_CASE("every variant gives a non-negative Lambda, never NaN, on every exampl
     }
 }
 
+TEST_CASE("every variant carries the route it computes by", "[variants]") {
+    const NdfRegistry ndfs = builtin_registry();
+    const VariantRegistry variants = builtin_variants();
+    const AnyNdf ggx = ndfs.make("ggx(alpha=0.3)"), blinn = ndfs.make("blinn(n=20)");
+    for (const LambdaVariant& v : variants.list()) {
+        INFO(v.name);
+        const auto starts = [&](const char* prefix) { return v.name.rfind(prefix, 0) == 0; };
+        const LambdaRoute want = starts("q1d-boost-")   ? LambdaRoute::q1d_boost
+                                 : starts("q2d-boost-") ? LambdaRoute::q2d_boost
+                                 : starts("q1d-gsl-")   ? LambdaRoute::q1d_gsl
+                                 : starts("q2d-gsl-")   ? LambdaRoute::q2d_gsl
+                                 : v.name == "closed-form" ? LambdaRoute::closed
+                                 : v.name == "table"       ? LambdaRoute::table
+                                                           : LambdaRoute::other;
+        CHECK(v.route == want);
+        CHECK(is_quadrature(v.route) == (starts("q1d-") || starts("q2d-")));
+    }
+    // The table takes the exact route it is built from: the closed form where the NDF has one, else Boost 1D.
+    CHECK(route_on(variants.at("table"), ggx) == LambdaRoute::closed);
+    CHECK(route_on(variants.at("table"), blinn) == LambdaRoute::q1d_boost);
+    CHECK(route_on(variants.at("q2d-gsl-1e-6"), ggx) == LambdaRoute::q2d_gsl);
+}
+
 TEST_CASE("quadrature variants meet their relative tolerance against the closed forms", "[variants]") {
     const NdfRegistry ndfs = builtin_registry();
     const VariantRegistry variants = builtin_variants();

@@ -51,7 +51,7 @@ void add_point(G1Row& row, const AnyNdf& ndf, double mu, double got, double want
 }
 
 void measure_on(G1Row& row, const AnyNdf& ndf, const std::vector<double>& mus, ReferenceCache& cache, bool keep_errors) {
-    const Route route = route_for(*row.variant, ndf);
+    const LambdaRoute route = route_for(*row.variant, ndf);
     const auto prepared = std::make_shared<const LambdaOfMu>(prepare(*row.variant, ndf));
     for (double mu : mus) {
         row.grid.push_back({prepared, mu});

@@ -34,7 +34,7 @@ void require_g2_domain(const std::vector<AnyNdf>& ndfs, const std::vector<double
 }
 
 void measure_on(G2Row& row, const AnyNdf& ndf, const std::vector<double>& mus, ReferenceCache& cache) {
-    const Route route = ndf.has_closed_Lambda() ? Route::closed : Route::q1d_boost;
+    const LambdaRoute route = ndf.has_closed_Lambda() ? LambdaRoute::closed : LambdaRoute::q1d_boost;
     for (double mi : mus)
         for (double mo : mus) {
             const double want = 1.0 / (1.0 + cache.get(ndf, mi, route) + cache.get(ndf, mo, route));

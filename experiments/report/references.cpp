@@ -15,32 +15,28 @@ namespace smithlab::report {
 
 namespace fs = std::filesystem;
 
-const char* name_of(Route r) {
-    return r == Route::closed ? "closed" : r == Route::q1d_boost ? "q1d-boost-1e-13" : "q2d-boost-1e-12";
+const char* name_of(LambdaRoute r) {
+    return r == LambdaRoute::closed ? "closed" : r == LambdaRoute::q1d_boost ? "q1d-boost-1e-13" : "q2d-boost-1e-12";
 }
 
-Route route_for(const LambdaVariant& v, const AnyNdf& ndf) {
-    // Never the route a variant is computed by: the closed form is checked by Boost 1D; the table, built from the
-    // closed form where there is one and else from Boost 1D, by Boost 1D or the nested 2D route.
-    const bool closed = ndf.has_closed_Lambda();
-    if (v.name == "closed-form") return Route::q1d_boost;
-    if (v.name == "table") return closed ? Route::q1d_boost : Route::q2d_boost;
-    if (closed) return Route::closed;
-    return v.name.rfind("q1d-boost", 0) == 0 ? Route::q2d_boost : Route::q1d_boost;
+LambdaRoute route_for(const LambdaVariant& v, const AnyNdf& ndf) {
+    const LambdaRoute own = route_on(v, ndf);
+    for (LambdaRoute r : reference_routes)
+        if (r != own && (r != LambdaRoute::closed || ndf.has_closed_Lambda())) return r;
+    return LambdaRoute::q2d_boost;  // not reached: at most one reference route is the variant's own
 }
 
-double compute_reference(const AnyNdf& ndf, double mu, Route r) {
+double compute_reference(const AnyNdf& ndf, double mu, LambdaRoute r) {
     switch (r) {
-        case Route::closed: return ndf.Lambda(mu);
-        case Route::q1d_boost: return Lambda_1d(ndf, mu, {Backend::boost, 1e-13});
-        case Route::q2d_boost: return Lambda_2d(ndf, mu, {Backend::boost, 1e-12});
+        case LambdaRoute::closed: return ndf.Lambda(mu);
+        case LambdaRoute::q1d_boost: return Lambda_1d(ndf, mu, {Backend::boost, 1e-13});
+        case LambdaRoute::q2d_boost: return Lambda_2d(ndf, mu, {Backend::boost, 1e-12});
+        default: return NAN;  // not a reference route
     }
-    return NAN;
 }
 
 void require_row_domain(const LambdaVariant& v, const AnyNdf& ndf, double mu) {
-    const bool own = v.name.rfind("q1d-", 0) == 0 || v.name.rfind("q2d-", 0) == 0;
-    if (own || route_for(v, ndf) != Route::closed) require_quadrature_domain(ndf, mu);
+    if (is_quadrature(route_on(v, ndf)) || is_quadrature(route_for(v, ndf))) require_quadrature_domain(ndf, mu);
 }
 
 namespace {
@@ -78,7 +74,7 @@ ReferenceCache::ReferenceCache(fs::path file) : file_(std::move(file)) {
     loaded_ = values_.size();
 }
 
-double ReferenceCache::get(const AnyNdf& ndf, double mu, Route r) {
+double ReferenceCache::get(const AnyNdf& ndf, double mu, LambdaRoute r) {
     const std::string key = ndf.spec() + "|" + format_g17(mu) + "|" + name_of(r);
     if (auto it = values_.find(key); it != values_.end()) return it->second;
     ++computed_;

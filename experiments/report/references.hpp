@@ -12,15 +12,18 @@
 
 namespace smithlab::report {
 
-// A closed form where the NDF has one; otherwise a quadrature route other than the variant's own (the nested 2D
-// route for the Boost 1D variants, Boost 1D at 1e-13 for the rest); never the route the variant is computed by
-// (the closed-form row is checked by Boost 1D, the table by Boost 1D or 2D). Both agree with the test suite's 50-digit
-// references to ~1e-15; GSL's QAG can stop at ~1e-11, so it is never a reference.
-enum class Route { closed, q1d_boost, q2d_boost };
+// A reference is one of reference_routes, the first that the NDF offers and that is not the route the variant takes
+// on it (its LambdaRoute, route_on): the closed form where the NDF has one, else Boost 1D at 1e-13, else the
+// nested 2D route at 1e-12 (the closed-form row is checked by Boost 1D, the table by Boost 1D or 2D, a Boost 1D
+// variant by the closed form or the 2D route). The quadratures agree with the test suite's 50-digit references to
+// ~1e-15; GSL's QAG can stop at ~1e-11, so it is never a reference.
+inline constexpr LambdaRoute reference_routes[] = {LambdaRoute::closed, LambdaRoute::q1d_boost,
+                                                   LambdaRoute::q2d_boost};
 
-const char* name_of(Route r);
-Route route_for(const LambdaVariant& v, const AnyNdf& ndf);
-double compute_reference(const AnyNdf& ndf, double mu, Route r);
+// A reference route as the cache keys it: "closed", "q1d-boost-1e-13", "q2d-boost-1e-12".
+const char* name_of(LambdaRoute r);
+LambdaRoute route_for(const LambdaVariant& v, const AnyNdf& ndf);
+double compute_reference(const AnyNdf& ndf, double mu, LambdaRoute r);  // r one of reference_routes
 // input_error, before any work, unless every quadrature that the variant's row at (ndf, mu) runs (its reference's
 // route, the variant's own) accepts mu.
 void require_row_domain(const LambdaVariant& v, const AnyNdf& ndf, double mu);
@@ -30,7 +33,7 @@ void require_row_domain(const LambdaVariant& v, const AnyNdf& ndf, double mu);
 class ReferenceCache {
 public:
     explicit ReferenceCache(std::filesystem::path file);
-    double get(const AnyNdf& ndf, double mu, Route r);  // computes on a miss
+    double get(const AnyNdf& ndf, double mu, LambdaRoute r);  // computes on a miss
     void save() const;
     std::size_t loaded() const { return loaded_; }
     std::size_t computed() const { return computed_; }

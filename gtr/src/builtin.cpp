@@ -22,7 +22,8 @@ void register_gtr_variants(VariantRegistry& r) {
                return [a = n.param("alpha"), g = n.param("gamma")](double mu) {
                    return Lambda_of_interpolated_G1(G1_gtr_dimov_spline(a, g, mu));
                };
-           }});
+           },
+           LambdaRoute::other});
     using K = GammaInterpolant::Kind;
     using Q = GammaInterpolant::Quantity;
     const GammaInterpolant choices[] = {
@@ -34,7 +35,8 @@ void register_gtr_variants(VariantRegistry& r) {
                    return [a = n.param("alpha"), g = n.param("gamma"), how](double mu) {
                        return Lambda_gtr_interpolated(a, g, mu, how);
                    };
-               }});
+               },
+               LambdaRoute::other});
 }
 
 VariantRegistry builtin_variants() {

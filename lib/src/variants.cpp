@@ -26,6 +26,15 @@ const LambdaVariant& VariantRegistry::at(std::string_view name) const {
     throw input_error("unknown method '" + std::string(name) + "' (smithlab eval --list-methods lists them)");
 }
 
+LambdaRoute route_on(const LambdaVariant& variant, const AnyNdf& ndf) {
+    if (variant.route != LambdaRoute::table) return variant.route;
+    return ndf.has_closed_Lambda() ? LambdaRoute::closed : LambdaRoute::q1d_boost;  // tabulate_Lambda's exact route
+}
+
+bool is_quadrature(LambdaRoute r) {
+    return r == LambdaRoute::q1d_boost || r == LambdaRoute::q2d_boost || r == LambdaRoute::q1d_gsl || r == LambdaRoute::q2d_gsl;
+}
+
 LambdaOfMu prepare(const LambdaVariant& variant, const AnyNdf& ndf, Downward downward) {
     if (!variant.applies(ndf))
         throw input_error("method '" + variant.name + "' does not apply to a '" + ndf.family() + "' ndf");
@@ -79,39 +88,50 @@ std::vector<G2Variant> builtin_G2_variants() {
 }
 
 void register_core_variants(VariantRegistry& r) {
-    const std::array<std::pair<const char*, Backend>, 2> backends = {{{"boost", Backend::boost}, {"gsl", Backend::gsl}}};
+    struct Way {
+        const char* name;
+        Backend backend;
+        LambdaRoute q1d, q2d;
+    };
+    const std::array<Way, 2> backends = {{{"boost", Backend::boost, LambdaRoute::q1d_boost, LambdaRoute::q2d_boost},
+                                          {"gsl", Backend::gsl, LambdaRoute::q1d_gsl, LambdaRoute::q2d_gsl}}};
     const std::array<std::pair<const char*, double>, 5> tolerances = {
         {{"1e-4", 1e-4}, {"1e-6", 1e-6}, {"1e-8", 1e-8}, {"1e-10", 1e-10}, {"1e-12", 1e-12}}};
     auto any = [](const AnyNdf&) { return true; };
-    for (const auto& [bname, backend] : backends)
+    for (const Way& way : backends)
         for (const auto& [tname, tol] : tolerances) {
-            const QuadratureOptions q{backend, tol};
-            r.add({std::string("q1d-") + bname + "-" + tname,
-                   std::string("reduced 1D quadrature, ") + (backend == Backend::boost ? "Boost tanh-sinh" : "GSL QAG") +
+            const QuadratureOptions q{way.backend, tol};
+            r.add({std::string("q1d-") + way.name + "-" + tname,
+                   std::string("reduced 1D quadrature, ") + (way.backend == Backend::boost ? "Boost tanh-sinh" : "GSL QAG") +
                        ", relative tolerance " + tname,
-                   any, [q](const AnyNdf& n) -> LambdaOfMu { return [n, q](double mu) { return Lambda_1d(n, mu, q); }; }});
+                   any, [q](const AnyNdf& n) -> LambdaOfMu { return [n, q](double mu) { return Lambda_1d(n, mu, q); }; },
+                   way.q1d});
             if (tol < 1e-8) continue;
-            r.add({std::string("q2d-") + bname + "-" + tname,
-                   std::string("nested 2D quadrature P22 -> P2 -> Lambda, ") + bname + ", relative tolerance " + tname, any,
-                   [q](const AnyNdf& n) -> LambdaOfMu { return [n, q](double mu) { return Lambda_2d(n, mu, q); }; }});
+            r.add({std::string("q2d-") + way.name + "-" + tname,
+                   std::string("nested 2D quadrature P22 -> P2 -> Lambda, ") + way.name + ", relative tolerance " + tname, any,
+                   [q](const AnyNdf& n) -> LambdaOfMu { return [n, q](double mu) { return Lambda_2d(n, mu, q); }; }, way.q2d});
         }
     r.add({"closed-form", "the NDF's closed form (GGX, Beckmann, GTR at every integer gamma <= 31)",
            [](const AnyNdf& n) { return n.has_closed_Lambda(); },
-           [](const AnyNdf& n) -> LambdaOfMu { return [n](double mu) { return n.Lambda(mu); }; }});
+           [](const AnyNdf& n) -> LambdaOfMu { return [n](double mu) { return n.Lambda(mu); }; }, LambdaRoute::closed});
     r.add({"table",
            "cubic spline of ln(mu Lambda) in ln mu, built per NDF from the exact route (est. relative 1e-6; ms to build)",
-           any, [](const AnyNdf& n) -> LambdaOfMu {
+           any,
+           [](const AnyNdf& n) -> LambdaOfMu {
                auto t = std::make_shared<const LambdaTable>(tabulate_Lambda(n));
                return [t](double mu) { return t->Lambda(mu); };
-           }});
+           },
+           LambdaRoute::table});
     r.add({"schlick-ggx", "Hammon 2017 / Unreal Schlick-style G1 for GGX, k = alpha/2", is_ggx_like,
            [](const AnyNdf& n) -> LambdaOfMu {
                return [a = ggx_alpha(n)](double mu) { return Lambda_schlick_ggx(a, mu); };
-           }});
+           },
+           LambdaRoute::other});
     r.add({"beckmann-rational", "Walter 2007 eq. 27 rational approximation of Beckmann G1",
            is_beckmann, [](const AnyNdf& n) -> LambdaOfMu {
                return [a = beckmann_alpha(n)](double mu) { return Lambda_beckmann_rational(a, mu); };
-           }});
+           },
+           LambdaRoute::other});
 }
 
 }  // namespace smithlab

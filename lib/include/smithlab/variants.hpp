@@ -16,6 +16,17 @@ namespace smithlab {
 // Lambda of one NDF as a function of mu.
 using LambdaOfMu = std::function<double(double mu)>;
 
+// The route a variant computes Lambda by, so that a check can take another (the report's references).
+enum class LambdaRoute {
+    closed,     // the NDF's closed form
+    q1d_boost,  // the reduced 1D quadrature (Lambda_1d), Boost tanh-sinh, at any tolerance
+    q2d_boost,  // the nested 2D quadrature (Lambda_2d), Boost
+    q1d_gsl,    // Lambda_1d, GSL QAG
+    q2d_gsl,    // Lambda_2d, GSL QAG
+    table,      // tabulated from the exact route: the closed form where the NDF has one, else Boost 1D
+    other,      // an approximation or an interpolant: none of the above
+};
+
 struct LambdaVariant {
     std::string name;
     std::string description;
@@ -23,7 +34,13 @@ struct LambdaVariant {
     // The per-NDF work (reading its parameters, building a table) done once; what it returns evaluates Lambda at
     // finite mu > 0, as often as the caller likes.
     std::function<LambdaOfMu(const AnyNdf&)> prepare;
+    LambdaRoute route = LambdaRoute::other;
 };
+
+// The route variant takes on ndf: a table's is the route it was built from (closed or q1d_boost), the others' their own.
+LambdaRoute route_on(const LambdaVariant& variant, const AnyNdf& ndf);
+// Lambda_1d or Lambda_2d, by either backend.
+bool is_quadrature(LambdaRoute route);
 
 class VariantRegistry {
 public:
