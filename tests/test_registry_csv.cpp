@@ -42,6 +42,29 @@ TEST_CASE("bad specs: each message names the offending item", "[registry]") {
     CHECK_THAT(message_of("blinn(n=-3)"), Catch::Contains("n"));
 }
 
+TEST_CASE("make(family, params) builds what the spec names, and refuses what the spec would", "[registry]") {
+    const NdfRegistry r = builtin_registry();
+    const AnyNdf made = r.make("gtr", {{"gamma", 1.5}, {"alpha", 0.3}}), parsed = r.make("gtr(alpha=0.3, gamma=1.5)");
+    CHECK(made.spec() == "gtr(alpha=0.3, gamma=1.5)");
+    for (double cos_m : {1.0, 0.9, 0.5, 0.1, 1e-3}) CHECK(made.D(cos_m) == parsed.D(cos_m));
+    for (double r2 : {0.0, 0.09, 1.0, 1e6}) CHECK(made.slope_density(r2) == parsed.slope_density(r2));
+    const auto message = [&](std::string_view family, const std::vector<std::pair<std::string, double>>& params) {
+        try {
+            r.make(family, params);
+        } catch (const input_error& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    CHECK_THAT(message("phong", {{"n", 3.0}}), Catch::Contains("unknown ndf 'phong'"));
+    CHECK_THAT(message("bad name", {{"alpha", 0.5}}), Catch::Contains("'bad name(alpha=0.5)': expected a name"));
+    CHECK_THAT(message("ggx", {{"beta", 1.0}}), Catch::Contains("unknown parameter 'beta'"));
+    CHECK_THAT(message("gtr", {{"alpha", 0.3}}), Catch::Contains("missing parameter 'gamma'"));
+    CHECK_THAT(message("ggx", {{"alpha", 1.0}, {"alpha", 2.0}}), Catch::Contains("'alpha' given twice"));
+    CHECK_THAT(message("ggx", {{"alpha", -1.0}}), Catch::Contains("alpha") && Catch::Contains("-1"));
+    CHECK_THAT(message("gtr", {{"alpha", 0.3}, {"gamma", -1.0}}), Catch::Contains("gamma"));
+}
+
 TEST_CASE("registering a user NDF is one call", "[registry]") {
     struct Flat {
         double D(double) const { return 1.0 / 3.141592653589793; }

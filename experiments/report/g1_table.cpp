@@ -26,8 +26,8 @@ std::vector<AnyNdf> grid_ndfs(const Scene& scene, const NdfRegistry& ndfs) {
     for (const NdfFamily& f : scene.ndfs) {
         if (!ndfs.find(f.family)) throw input_error("scene: unknown ndf family '" + f.family + "'");
         for (double a : scene.alphas) {
-            if (f.gammas.empty()) out.push_back(ndfs.make(format_spec({f.family, {{"alpha", a}}})));
-            for (double g : f.gammas) out.push_back(ndfs.make(format_spec({f.family, {{"alpha", a}, {"gamma", g}}})));
+            if (f.gammas.empty()) out.push_back(ndfs.make(f.family, {{"alpha", a}}));
+            for (double g : f.gammas) out.push_back(ndfs.make(f.family, {{"alpha", a}, {"gamma", g}}));
         }
     }
     return out;

@@ -18,7 +18,7 @@ std::vector<AnyNdf> g2_ndfs(const Scene& scene, const NdfRegistry& ndfs) {
     std::vector<AnyNdf> out;
     if (scene.g2.include.empty()) return out;
     for (const std::string& family : scene.g2.families)
-        for (double a : scene.alphas) out.push_back(ndfs.make(format_spec({family, {{"alpha", a}}})));
+        for (double a : scene.alphas) out.push_back(ndfs.make(family, {{"alpha", a}}));
     return out;
 }
 

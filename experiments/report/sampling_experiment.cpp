@@ -42,7 +42,7 @@ std::vector<SamplingRow> run_sampling_experiment(const Scene::Sampling& s, const
         if (info->parameters != std::vector<std::string>{"alpha"})
             throw input_error("scene: sampling.families: '" + family + "' is not a family of one parameter, alpha");
         for (double a : s.alphas) {
-            AnyNdf n = ndfs.make(format_spec({family, {{"alpha", a}}}));
+            AnyNdf n = ndfs.make(family, {{"alpha", a}});
             if (!n.has_closed_Lambda())
                 throw input_error("scene: sampling.families: '" + family + "' has no closed-form Lambda for G2");
             list.push_back(std::move(n));

@@ -50,14 +50,13 @@ std::vector<WalkCell> walk_cells(const Scene::Walk& w, const NdfRegistry& regist
             for (double a : w.alphas) {
                 NdfSpec spec{f.family, {{"alpha", a}}};
                 if (!std::isnan(g)) spec.params.push_back({"gamma", g});
-                const std::string text = format_spec(spec);
                 AnyNdf ndf = [&] {
                     try {
-                        AnyNdf made = registry.make(text);
+                        AnyNdf made = registry.make(spec.name, spec.params);
                         trace::with_microsurface(made, {}, [](const auto&) { return 0; });  // its tables may refuse it
                         return made;
                     } catch (const input_error& e) {
-                        throw input_error(f.where + " '" + f.family + "' at " + text + ": " + e.what());
+                        throw input_error(f.where + " '" + f.family + "' at " + format_spec(spec) + ": " + e.what());
                     }
                 }();
                 for (const walk::Material& m : materials)

@@ -34,26 +34,33 @@ std::vector<const NdfInfo*> NdfRegistry::list() const {
 
 AnyNdf NdfRegistry::make(std::string_view text) const {
     const NdfSpec spec = parse_spec(text);
-    const auto it = std::find_if(entries_.begin(), entries_.end(), [&](const auto& e) { return e.first.name == spec.name; });
+    return make(spec.name, spec.params);
+}
+
+AnyNdf NdfRegistry::make(std::string_view family, const std::vector<std::pair<std::string, double>>& params) const {
+    const std::string name(family);
+    if (!is_spec_name(name))  // as the parser says it of the spec these would spell
+        throw input_error("ndf spec '" + format_spec({name, params}) + "': " + std::string(spec_name_rule));
+    const auto it = std::find_if(entries_.begin(), entries_.end(), [&](const auto& e) { return e.first.name == name; });
     if (it == entries_.end()) {
         std::string known;
         for (const auto& e : entries_) known += (known.empty() ? "" : ", ") + e.first.name;
-        throw input_error("unknown ndf '" + spec.name + "' (known: " + known + ")");
+        throw input_error("unknown ndf '" + name + "' (known: " + known + ")");
     }
     const NdfInfo& info = it->first;
     std::map<std::string, double> values;
     std::vector<std::pair<std::string, double>> canonical;
-    for (const auto& [key, v] : spec.params) {
+    for (const auto& [key, v] : params) {
         if (std::find(info.parameters.begin(), info.parameters.end(), key) == info.parameters.end())
-            throw input_error("ndf '" + spec.name + "': unknown parameter '" + key + "'");
-        values[key] = v;
+            throw input_error("ndf '" + name + "': unknown parameter '" + key + "'");
+        if (!values.emplace(key, v).second) throw input_error("ndf '" + name + "': parameter '" + key + "' given twice");
     }
     for (const auto& key : info.parameters) {
         const auto v = values.find(key);
-        if (v == values.end()) throw input_error("ndf '" + spec.name + "': missing parameter '" + key + "'");
+        if (v == values.end()) throw input_error("ndf '" + name + "': missing parameter '" + key + "'");
         canonical.emplace_back(key, v->second);
     }
-    return it->second(NdfParams(spec.name, std::move(values)), NdfSpec{spec.name, std::move(canonical)});
+    return it->second(NdfParams(name, std::move(values)), NdfSpec{name, std::move(canonical)});
 }
 
 void register_core_ndfs(NdfRegistry& r) {

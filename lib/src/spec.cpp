@@ -46,7 +46,7 @@ NdfSpec parse_spec(std::string_view text, std::string_view what) {
     NdfSpec spec;
     const auto open = s.find('(');
     spec.name = std::string(trim(s.substr(0, open)));
-    if (!is_spec_name(spec.name)) bad_spec(what, text, "expected a name like ggx(alpha=0.2)");
+    if (!is_spec_name(spec.name)) bad_spec(what, text, std::string(spec_name_rule));
     if (open == std::string_view::npos) return spec;
     if (s.back() != ')') bad_spec(what, text, "missing closing ')'");
     std::string_view body = trim(s.substr(open + 1, s.size() - open - 2));

@@ -47,6 +47,9 @@ public:
     }
 
     AnyNdf make(std::string_view spec) const;  // throws input_error: unknown NDF, unknown/missing parameter, bad value
+    // The same without a spec string, make("gtr", {{"alpha", 0.3}, {"gamma", 1.5}}); also input_error for a
+    // parameter given twice. A spec is text to show (AnyNdf::spec), not the way to build an NDF in code.
+    AnyNdf make(std::string_view family, const std::vector<std::pair<std::string, double>>& params) const;
     const NdfInfo* find(std::string_view name) const;
     std::vector<const NdfInfo*> list() const;  // in registration order
 

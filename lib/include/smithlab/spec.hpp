@@ -24,6 +24,8 @@ bool is_identifier(std::string_view s);
 
 // A spec's name: an identifier in which '-' may join words ("fresnel-diffuse").
 bool is_spec_name(std::string_view s);
+// What a spec whose name is not one is told: "WHAT 'TEXT': " and this.
+inline constexpr std::string_view spec_name_rule = "expected a name like ggx(alpha=0.2)";
 
 // "name(k1=v1, k2=v2)" with every value in its shortest round-trip form.
 std::string format_spec(const NdfSpec& spec);
