@@ -1,5 +1,6 @@
 // Plugging a new NDF into smithlab: write D(cos theta_m), nothing else. Here GGX by hand (Walter 2007 eq. 33),
-// so that the numerically derived Lambda can be checked against the GGX closed form (Walter 2007 eq. 72).
+// so that the numerically derived Lambda can be checked against the GGX closed form (Heitz 2014, "Understanding
+// the Masking-Shadowing Function in Microfacet-Based BRDFs", eq. 72).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

@@ -1,5 +1,6 @@
-// smithlab/checks.hpp -- the checks every NDF must pass (DESIGN.md; Walter 2007 sec. 3 and appendix A;
-// Heitz 2014 eq. 2 for the projected-area identity). Each is computed by a route independent of the one it checks.
+// smithlab/checks.hpp -- the checks every NDF must pass (README, "The math, and where it comes from"; Walter 2007
+// sec. 3 and appendix A; Heitz 2014 eq. 2 for the projected-area identity). Each is computed by a route independent
+// of the one it checks.
 #pragma once
 
 #include <algorithm>

@@ -22,7 +22,7 @@ struct Ggx {
         const double s = r2 + alpha * alpha;
         return alpha * alpha / (std::numbers::pi * s * s);
     }
-    // Walter 2007 eq. 72, rewritten: (sqrt(1 + alpha^2/mu^2) - 1)/2 = alpha^2 / (2 mu (mu + hypot(mu, alpha))).
+    // Heitz 2014 eq. 72, rewritten: (sqrt(1 + alpha^2/mu^2) - 1)/2 = alpha^2 / (2 mu (mu + hypot(mu, alpha))).
     double Lambda(double mu) const;
     // D cos sampling, Walter 2007 eq. 35-36 (the blog's arctan form), in v = 1 - u: S = alpha^2 / (alpha^2 + r^2),
     // tan^2 = alpha^2 (1 - v) / v.
