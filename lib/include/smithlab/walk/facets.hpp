@@ -23,6 +23,7 @@
 #include "smithlab/fresnel.hpp"
 #include "smithlab/geometry.hpp"
 #include "smithlab/rng.hpp"
+#include "smithlab/turn.hpp"
 
 namespace smithlab::walk {
 
@@ -53,8 +54,9 @@ double mirror_phase(const Microsurface& ms, const Vec3& wi, const Vec3& wo, Fres
 // A direction about m with cos(theta) = c and a uniform azimuth.
 template <class G>
 Vec3 about(const Vec3& m, double c, G& g) {
-    const double s = std::sqrt(std::max(0.0, (1.0 - c) * (1.0 + c))), phi = 2.0 * std::numbers::pi * uniform01(g);
-    return Frame(m).to_world(Vec3(s * std::cos(phi), s * std::sin(phi), c));
+    const double s = std::sqrt(std::max(0.0, (1.0 - c) * (1.0 + c)));
+    const CosSin phi = cos_sin_turn(uniform01(g));  // turn.hpp: 2 pi u without libm's argument reduction
+    return Frame(m).to_world(Vec3(s * phi.c, s * phi.s, c));
 }
 
 // Hammon 2017 appendix, "Transmission Direction": cos(theta) about the facet normal drawn from the lobe
