@@ -13,6 +13,7 @@ namespace smithlab {
 namespace {
 
 constexpr double y_min = -230.0, y_max = 230.0, h = 1.0 / 32.0;
+constexpr std::size_t guide_steps = 4096;
 
 // integral of g over [a, b], 8-point Gauss-Legendre (Boost.Math's nodes: 0 is not one of them for 8).
 template <class G>
@@ -62,6 +63,15 @@ RadialTable::RadialTable(const std::function<double(double s)>& w) {
         dS_[k] = -std::min({-dS_[k], 3.0 * left, 3.0 * right});
     }
     for (std::size_t k = 0; k < n; ++k) error_ = std::max(error_, std::abs(hermite(k, 0.5) - mid[k] / total_));
+    // The cell of v (isf) is the last k < n with S_k >= v; guide_[j] is that of v = (j + 1) / guide_steps, the first
+    // cell any v of step j can be in.
+    guide_.resize(guide_steps);
+    std::size_t k = 0;
+    for (std::size_t j = guide_steps; j-- > 0;) {
+        const double v = static_cast<double>(j + 1) / static_cast<double>(guide_steps);
+        while (k + 1 < n && S_[k + 1] >= v) ++k;
+        guide_[j] = static_cast<unsigned>(k);
+    }
 }
 
 double RadialTable::hermite(std::size_t k, double t) const {
@@ -80,21 +90,29 @@ double RadialTable::sf(double s) const {
 }
 
 double RadialTable::isf(double v) const {
-    // The cell whose range of S holds v (S decreases), then Newton on the cubic, kept inside the bracket [lo, hi].
-    const auto it = std::upper_bound(S_.begin(), S_.end(), v, std::greater<>());  // first knot with S < v
-    const std::size_t k = it == S_.begin() ? 0 : std::min<std::size_t>(static_cast<std::size_t>(it - S_.begin()) - 1, S_.size() - 2);
+    // The cell whose range of S holds v (S decreases), then Newton on the cubic, kept inside the bracket [lo, hi]. A
+    // step below 2^-30 leaves an error of about its square: it is taken and the solve ends.
+    const std::size_t n = S_.size() - 1;
+    const double vj = v > 0.0 ? std::min(v, 1.0) : 0.0;  // a NaN too: the index is a number
+    const auto j = std::min(guide_steps - 1, static_cast<std::size_t>(vj * static_cast<double>(guide_steps)));
+    std::size_t k = guide_[j];
+    while (k + 1 < n && S_[k + 1] >= v) ++k;
     double lo = 0.0, hi = 1.0, t = S_[k] > S_[k + 1] ? (S_[k] - v) / (S_[k] - S_[k + 1]) : 0.5;
     for (int i = 0; i < 60; ++i) {
         const double f = hermite(k, t) - v;  // decreasing in t
+        if (f == 0.0) break;
         if (f < 0.0) hi = t;
         else lo = t;
         const double t2 = t * t;
         const double d = (6 * t2 - 6 * t) * (S_[k] - S_[k + 1]) + (3 * t2 - 4 * t + 1) * dS_[k] + (3 * t2 - 2 * t) * dS_[k + 1];
         double next = d < 0.0 ? t - f / d : 0.5 * (lo + hi);
+        if (std::abs(next - t) <= 0x1p-30 && next >= 0.0 && next <= 1.0) {
+            t = next;
+            break;
+        }
         if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-        const bool done = std::abs(next - t) <= 1e-15 || hi - lo <= 1e-15;
         t = next;
-        if (done) break;
+        if (hi - lo <= 1e-15) break;
     }
     return std::exp(y_min + h * (static_cast<double>(k) + t));
 }
