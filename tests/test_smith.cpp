@@ -60,6 +60,18 @@ TEST_CASE("method selection: closed where it exists, errors where it does not", 
     CHECK_FALSE(has_closed_Lambda(gtr(0.3, 3.5)));
 }
 
+TEST_CASE("methods, backends and downward conventions by name: one table each, parsed and printed from it", "[smith]") {
+    for (const auto& m : method_names) CHECK(to_string(parse_method(m.name)) == m.name);
+    for (const auto& b : backend_names) CHECK(to_string(parse_backend(b.name)) == b.name);
+    CHECK(parse_method("auto") == Method::automatic);
+    CHECK(parse_downward("smith") == Downward::smith);
+    CHECK(parse_downward("hammon") == Downward::hammon_symmetric);
+    CHECK_THROWS_WITH(parse_method("q1d"),
+                      Catch::Contains("unknown method 'q1d' (expected auto, closed, spline, quadrature or quadrature2d)"));
+    CHECK_THROWS_WITH(parse_backend("qags"), Catch::Contains("unknown quadrature backend 'qags' (expected boost or gsl)"));
+    CHECK_THROWS_WITH(parse_downward("up"), Catch::Contains("'up' (expected smith or hammon)"));
+}
+
 TEST_CASE("the same answers through the type-erased AnyNdf", "[smith]") {
     const auto reg = builtin_registry();
     const AnyNdf any = reg.make("gtr(alpha=0.25, gamma=3)");

@@ -21,9 +21,7 @@ void add_check(CLI::App& app, CheckArgs& a) {
     c->add_option("--ndf", a.ndfs, "NDF spec (repeatable)");
     c->add_flag("--all", a.all, "check every registered NDF at its example parameters (stiff corners included)");
     c->add_flag("--no-2d", a.no_2d, "skip the nested 2D checks (milliseconds per Lambda)");
-    c->add_option("--backend", a.backend, "quadrature backend: boost | gsl")
-        ->capture_default_str()
-        ->check(CLI::IsMember({"boost", "gsl"}));
+    add_backend_option(*c, a.backend);
 }
 
 int run_check(const CheckArgs& a, const NdfRegistry& registry) {

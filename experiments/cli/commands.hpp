@@ -79,5 +79,7 @@ double parse_number(const std::string& text, const std::string& what);
 std::string read_scene_file(const std::string& path);
 // Parses a seed: decimal digits only, 0 .. 2^64 - 1; anything else is an input error naming `what`.
 unsigned long long parse_seed(const std::string& text, const std::string& what);
+// --backend, its accepted names and its help from backend_names (quadrature.hpp).
+void add_backend_option(CLI::App& command, std::string& backend);
 
 }  // namespace smithlab::cli

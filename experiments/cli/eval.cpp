@@ -21,18 +21,17 @@ namespace smithlab::cli {
 
 namespace {
 
-struct CoreMethod {
-    std::string_view name, description;
-};
-constexpr std::array<CoreMethod, 5> core_methods = {{
-    {"auto", "closed form where the NDF has one, else 1D quadrature (--backend, --tolerance)"},
-    {"closed", "the NDF's closed form (GGX, Beckmann, GTR at integer gamma <= 31)"},
-    {"spline", "the NDF's spline (GTR: Dimov's natural cubic spline of G1 in gamma)"},
-    {"quadrature", "reduced 1D quadrature (--backend, --tolerance)"},
-    {"quadrature2d", "nested 2D quadrature P22 -> P2 -> Lambda (--backend, --tolerance)"},
-}};
+// "name (description) | ...", for an option's help.
+template <class E, std::size_t N>
+std::string described(const std::array<Named<E>, N>& table) {
+    std::string out;
+    for (const Named<E>& e : table)
+        out += (out.empty() ? "" : " | ") + std::string(e.name) + " (" + std::string(e.description) + ")";
+    return out;
+}
 
-// The route --method names: one of the core methods (with --backend and --tolerance), or a registered variant.
+// The route --method names: one of the core methods (method_names, with --backend and --tolerance), or a
+// registered variant.
 struct Route {
     LambdaOptions options;
     const LambdaVariant* variant = nullptr;
@@ -53,9 +52,9 @@ Route route(const EvalArgs& a, const VariantRegistry& variants) {
     Route r;
     r.options.backend = parse_backend(a.backend);
     r.options.tolerance = a.tolerance;
-    r.options.downward = a.downward == "hammon" ? Downward::hammon_symmetric : Downward::smith;
-    if (std::any_of(core_methods.begin(), core_methods.end(), [&](const CoreMethod& m) { return m.name == a.method; }))
-        r.options.method = parse_method(a.method);
+    r.options.downward = parse_downward(a.downward);
+    if (const Named<Method>* m = find_named(method_names, a.method))
+        r.options.method = m->value;
     else
         r.variant = &variants.at(a.method);
     return r;
@@ -175,25 +174,21 @@ void add_eval(CLI::App& app, EvalArgs& a) {
     c->add_option("--output", a.output, "output CSV file (default: stdout); written only if every row succeeds")->needs(in);
     ndf->excludes(in)->needs(mu);
     mu->excludes(in)->needs(ndf);
-    c->add_option("--method", a.method,
-                  "auto | closed | spline | quadrature | quadrature2d, or a variant from --list-methods")
+    c->add_option("--method", a.method, join_names(method_names, " | ", " | ") + ", or a variant from --list-methods")
         ->capture_default_str();
     c->add_flag("--list-methods", a.list_methods, "list every method and variant with a one-line description");
-    c->add_option("--backend", a.backend, "quadrature backend: boost | gsl")
-        ->capture_default_str()
-        ->check(CLI::IsMember({"boost", "gsl"}));
+    add_backend_option(*c, a.backend);
     c->add_option("--tolerance", a.tolerance, "relative tolerance of the quadrature methods")
         ->capture_default_str()
         ->check(CLI::Range(1e-15, 0.1));
-    c->add_option("--downward", a.downward,
-                  "Lambda for mu < 0: smith (Lambda(-mu) = -1 - Lambda(mu)) | hammon (symmetric, -Lambda(mu))")
+    c->add_option("--downward", a.downward, "Lambda for mu < 0: " + described(downward_names))
         ->capture_default_str()
-        ->check(CLI::IsMember({"smith", "hammon"}));
+        ->check(CLI::IsMember(names_of(downward_names)));
 }
 
 int run_eval(const EvalArgs& a, const NdfRegistry& registry, const VariantRegistry& variants) {
     if (a.list_methods) {
-        for (const CoreMethod& m : core_methods)
+        for (const Named<Method>& m : method_names)
             std::printf("%-28s %s\n", std::string(m.name).c_str(), std::string(m.description).c_str());
         for (const LambdaVariant& v : variants.list()) std::printf("%-28s %s\n", v.name.c_str(), v.description.c_str());
         return exit_ok;

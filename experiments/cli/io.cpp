@@ -1,4 +1,4 @@
-// Parsing of option values, and reading of scene files, shared by the subcommands.
+// Parsing of option values, reading of scene files, and the options shared by the subcommands.
 #include <cerrno>
 #include <cctype>
 #include <cmath>
@@ -37,6 +37,12 @@ unsigned long long parse_seed(const std::string& text, const std::string& what) 
     if (!digits || errno == ERANGE)
         throw input_error(what + " must be an integer in [0, 18446744073709551615], got '" + text + "'");
     return v;
+}
+
+void add_backend_option(CLI::App& command, std::string& backend) {
+    command.add_option("--backend", backend, "quadrature backend: " + join_names(backend_names, " | ", " | "))
+        ->capture_default_str()
+        ->check(CLI::IsMember(names_of(backend_names)));
 }
 
 }  // namespace smithlab::cli

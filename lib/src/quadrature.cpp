@@ -16,12 +16,12 @@
 namespace smithlab {
 
 Backend parse_backend(std::string_view name) {
-    if (name == "boost") return Backend::boost;
-    if (name == "gsl") return Backend::gsl;
-    throw input_error("unknown quadrature backend '" + std::string(name) + "' (expected boost or gsl)");
+    if (const Named<Backend>* b = find_named(backend_names, name)) return b->value;
+    throw input_error("unknown quadrature backend '" + std::string(name) + "' (expected " +
+                      join_names(backend_names, ", ", " or ") + ")");
 }
 
-std::string_view to_string(Backend b) { return b == Backend::boost ? "boost" : "gsl"; }
+std::string_view to_string(Backend b) { return name_of(backend_names, b); }
 
 namespace {
 

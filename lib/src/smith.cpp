@@ -9,24 +9,16 @@
 namespace smithlab {
 
 Method parse_method(std::string_view name) {
-    if (name == "auto") return Method::automatic;
-    if (name == "closed") return Method::closed;
-    if (name == "spline") return Method::spline;
-    if (name == "quadrature") return Method::quadrature;
-    if (name == "quadrature2d") return Method::quadrature2d;
-    throw input_error("unknown method '" + std::string(name) +
-                      "' (expected auto, closed, spline, quadrature or quadrature2d)");
+    if (const Named<Method>* m = find_named(method_names, name)) return m->value;
+    throw input_error("unknown method '" + std::string(name) + "' (expected " + join_names(method_names, ", ", " or ") + ")");
 }
 
-std::string_view to_string(Method m) {
-    switch (m) {
-        case Method::automatic: return "auto";
-        case Method::closed: return "closed";
-        case Method::spline: return "spline";
-        case Method::quadrature: return "quadrature";
-        case Method::quadrature2d: return "quadrature2d";
-    }
-    return "?";
+std::string_view to_string(Method m) { return name_of(method_names, m); }
+
+Downward parse_downward(std::string_view name) {
+    if (const Named<Downward>* d = find_named(downward_names, name)) return d->value;
+    throw input_error("unknown downward convention '" + std::string(name) + "' (expected " +
+                      join_names(downward_names, ", ", " or ") + ")");
 }
 
 namespace detail {

@@ -11,14 +11,22 @@
 #pragma once
 
 #include <cmath>
+#include <array>
 #include <numbers>
 #include <string>
 #include <string_view>
 #include <type_traits>
 
+#include "smithlab/named.hpp"
+
 namespace smithlab {
 
 enum class Backend { boost, gsl };
+// The backends by name (`--backend NAME`).
+inline constexpr std::array<Named<Backend>, 2> backend_names = {{
+    {Backend::boost, "boost", "Boost.Math tanh-sinh / exp-sinh"},
+    {Backend::gsl, "gsl", "GSL QAG / QAGIU"},
+}};
 
 Backend parse_backend(std::string_view name);  // "boost" | "gsl", throws input_error otherwise
 std::string_view to_string(Backend b);

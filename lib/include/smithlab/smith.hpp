@@ -7,10 +7,12 @@
 //   G1 = 1 / (1 + Lambda),  G2 = 1 / (1 + Lambda_i + Lambda_o)             (Walter eq. 51; Hammon, appendix)
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <string_view>
 
 #include "smithlab/errors.hpp"
+#include "smithlab/named.hpp"
 #include "smithlab/ndf.hpp"
 #include "smithlab/quadrature.hpp"
 
@@ -18,12 +20,26 @@ namespace smithlab {
 
 // How Lambda is computed. `automatic` takes the closed form when the NDF has one, else 1D quadrature.
 enum class Method { automatic, closed, spline, quadrature, quadrature2d };
+// The methods by name (`smithlab eval --method NAME`) and what `--list-methods` says of each.
+inline constexpr std::array<Named<Method>, 5> method_names = {{
+    {Method::automatic, "auto", "closed form where the NDF has one, else 1D quadrature (--backend, --tolerance)"},
+    {Method::closed, "closed", "the NDF's closed form (GGX, Beckmann, GTR at integer gamma <= 31)"},
+    {Method::spline, "spline", "the NDF's spline (GTR: Dimov's natural cubic spline of G1 in gamma)"},
+    {Method::quadrature, "quadrature", "reduced 1D quadrature (--backend, --tolerance)"},
+    {Method::quadrature2d, "quadrature2d", "nested 2D quadrature P22 -> P2 -> Lambda (--backend, --tolerance)"},
+}};
 Method parse_method(std::string_view name);  // throws input_error naming the unknown method
 std::string_view to_string(Method m);
 
 // Downward directions (mu < 0). Smith's ray-tracing derivation gives Lambda(-mu) = -1 - Lambda(mu);
 // Hammon 2017 (appendix, "Path tracing with Smith masking") redefines it as -Lambda(mu) to make the BRDF symmetric.
 enum class Downward { smith, hammon_symmetric };
+// The conventions by name (`smithlab eval --downward NAME`).
+inline constexpr std::array<Named<Downward>, 2> downward_names = {{
+    {Downward::smith, "smith", "Lambda(-mu) = -1 - Lambda(mu)"},
+    {Downward::hammon_symmetric, "hammon", "symmetric, -Lambda(mu)"},
+}};
+Downward parse_downward(std::string_view name);  // throws input_error naming the unknown convention
 // Lambda(-mu) from Lambda(mu) under the convention.
 inline double downward_Lambda(double Lambda_up, Downward convention) {
     return convention == Downward::smith ? -1.0 - Lambda_up : -Lambda_up;
