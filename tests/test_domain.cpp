@@ -313,7 +313,7 @@ TEST_CASE("accepted means right: Blinn-Phong over n in [0, 1e90], every method",
 TEST_CASE("accepted means right: GTR over alpha in [1e-50, 1], gamma in [0, 1e6], every method", "[domain]") {
     run_family("gtr", 12, 4, false, 904);
 }
-TEST_CASE("accepted means right: the nested 2D routes at the corners", "[domain][2d]") {
+TEST_CASE("accepted means right: the nested 2D routes at the corners", "[domain][2d][sweep]") {
     for (const char* family : {"ggx", "beckmann", "blinn", "gtr"}) run_family(family, 1, 1, true, 905);
 }
 

@@ -87,7 +87,7 @@ TEST_CASE("1D quadrature Lambda of Blinn-Phong, Beckmann and GGX", "[quadrature]
     WARN("worst 1D Blinn/GGX relative error " << worst.err << " at " << worst.where);
 }
 
-TEST_CASE("Nested 2D route P22 -> P2 -> Lambda", "[quadrature][2d]") {
+TEST_CASE("Nested 2D route P22 -> P2 -> Lambda", "[quadrature][2d][sweep]") {
     double worst = 0.0;
     for (double g : {0.0, 1.0, 2.5, 4.0})
         for (double a : {0.01, 0.3, 1.0})
@@ -134,7 +134,7 @@ TEST_CASE("quadrature holds to the ends of its range, mu in [1e-12, 1e12], and r
     CHECK_THROWS_AS(smithlab::Lambda_1d(smithlab::ggx(0.3), 1e13), smithlab::input_error);
 }
 
-TEST_CASE("Nested 2D route holds outside its required domain too: the corners where a fixed-scale map fails", "[quadrature][2d]") {
+TEST_CASE("Nested 2D route holds outside its required domain too: the corners where a fixed-scale map fails", "[quadrature][2d][sweep]") {
     // A semi-infinite map with a fixed unit scale (GSL QAGIU as is) misses a peak of width 1e-4 and the 1e4-long
     // tail: it returned 0 for Beckmann(1e-4) at mu = 1e-4 and 7.7% low at mu = 1e4. The tan/sec maps have no scale.
     struct Case {

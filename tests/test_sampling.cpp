@@ -205,7 +205,7 @@ TEST_CASE("D cos tables: a law reaching the ends of the table's range is refused
     CHECK_NOTHROW(DcosSampler(ggx(1e-49)));  // the analytic inversion has no range
 }
 
-TEST_CASE("reflected directions: pdf_m / (4 |i.m|) integrates to 1 over the sphere of outgoing directions", "[sampling]") {
+TEST_CASE("reflected directions: pdf_m / (4 |i.m|) integrates to 1 over the sphere of outgoing directions", "[sampling][sweep]") {
     // o = reflect(i, m) and m = normalize(i + o): the Jacobian d omega_m / d omega_o = 1 / (4 |i.m|) (Walter 2007 eq. 14).
     const Vec3 wi = direction_from_theta_deg(30.0);
     const Ggx g = ggx(0.3);
