@@ -30,11 +30,13 @@ namespace smithlab {
 // the whole sphere) every digit is kept: within 5 degrees of them the normal is within 3e-14 of a long-double
 // evaluation of the same draw, where the unit-vector form (1 + vs.z, 1 - z) was 5e-13 off near straight up and 1e-3
 // within 1e-5 degrees of straight down. The cap's u and azimuth come together from one point (a, b) uniform in the
-// unit disk (Marsaglia 1972, "Choosing a point from the surface of a sphere": a^2 + b^2 is uniform in [0, 1) and
-// independent of the angle, and sqrt(a^2 + b^2) (cos phi, sin phi) = (a, b)), so with u = a^2 + b^2
+// unit disk (the fact under Marsaglia & Bray 1964's polar method, "A convenient method for generating normal
+// variables": a^2 + b^2 is uniform in [0, 1) and independent of the angle, and sqrt(a^2 + b^2) (cos phi, sin phi) =
+// (a, b)), so with u = a^2 + b^2
 //     h_xy = sqrt(P (Q + h.z)) (a, b) + s_xy:
-// no trigonometry, drawn by rejection from the square (acceptance pi / 4; one 64-bit draw per try, rng.hpp). m is the unstretched h, normalized: one
-// root and a division for the stretch, a root for the cap, a root and a division for m.
+// no trigonometry, drawn by rejection from the square (acceptance pi / 4; one 64-bit draw per try, its halves on a
+// grid of 2^-31: rng.hpp, uniform_square). m is the unstretched h, normalized: one root and a division for the
+// stretch, a root for the cap, a root and a division for m.
 template <class G>
 Vec3 sample_ggx_visible_normal(double alpha, const Vec3& v, G& g) {
     const double sx = alpha * v.x(), sy = alpha * v.y(), sz = v.z();
