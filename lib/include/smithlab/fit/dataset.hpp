@@ -1,0 +1,2 @@
+// placeholder (issue 12)
+#pragma once
