@@ -2,9 +2,9 @@
 // symmetry every BRDF owes, limits derived by hand (Lambert at zero roughness), values derived by hand from the
 // papers' formulas at convenient angles, and hemisphere integrals by a 2D Gauss-Legendre rule written here.
 #include <catch2/catch.hpp>
-
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -183,7 +183,8 @@ TEST_CASE("diffuse_models: Disney against values derived by hand", "[diffuse]") 
 
 TEST_CASE("diffuse_models: Oren-Nayar against values derived by hand", "[diffuse]") {
     // theta_i = 30, theta_o = 60 degrees, phi = 90 degrees (cos(phi) = 0): the C2 term drops, C3's factor
-    // (4 alpha' beta / pi^2)^2 = (4 (pi/3)(pi/6)/pi^2)^2 = (2/9)^2, tan((alpha' + beta)/2) = tan(pi/4) = 1, L2's bracket 1.
+    // (4 alpha' beta / pi^2)^2 = (4 (pi/3)(pi/6)/pi^2)^2 = (2/9)^2, tan((alpha' + beta)/2) = tan(pi/4) = 1, L2's
+    // bracket 1.
     const Vec3 wi = direction_from_deg(30, 10), wo = direction_from_deg(60, 100);
     for (double sigma : {0.1, 0.35, 0.7}) {
         const double s2 = sigma * sigma, rho = 0.8;
@@ -208,7 +209,8 @@ TEST_CASE("diffuse_models: Oren-Nayar against values derived by hand", "[diffuse
 
 TEST_CASE("diffuse_models: Chan 2018 against a value derived by hand", "[diffuse]") {
     // alpha = 1: a2 = 1, g = log2(1)/18 = 0, so Fd = F0 = V.H + (1 - V.H)^5 and
-    // Fb = 24.5 V.H 2^(-max(-21.2, 8.9) sqrt(N.H)). Normal incidence both ways: V.H = N.H = 1, f = albedo/pi (1 + 24.5 2^-8.9).
+    // Fb = 24.5 V.H 2^(-max(-21.2, 8.9) sqrt(N.H)). Normal incidence both ways: V.H = N.H = 1, f = albedo/pi (1 + 24.5
+    // 2^-8.9).
     const Vec3 n(0, 0, 1);
     CHECK(chan_2018(n, n, 1.0, 0.4) == Approx(0.4 / pi * (1.0 + 24.5 * std::exp2(-8.9))).epsilon(1e-14));
     CHECK(eval(find_diffuse_model("chan-2018"), n, n, 1.0, 0.4) == Approx(chan_2018(n, n, 1.0, 0.4)));
@@ -237,9 +239,8 @@ TEST_CASE("diffuse_models: Hammon 2017 against the slide", "[diffuse]") {
     CHECK(h.f(n, n, 0.0, 1.0, c) == Approx(2.1 / pi).epsilon(1e-15));
     // The normalisation k = 21/(20 pi): 2 pi int_0^1 k (1 - (1 - mu)^5) mu dmu = 1 (degree 6: exact with 4 points).
     const Rule r4 = gauss_legendre(4);
-    const double hemi = 2.0 * pi * integrate(r4, 0.0, 1.0, [](double mu) {
-                            return 1.05 / pi * (1.0 - std::pow(1.0 - mu, 5)) * mu;
-                        });
+    const double hemi =
+        2.0 * pi * integrate(r4, 0.0, 1.0, [](double mu) { return 1.05 / pi * (1.0 - std::pow(1.0 - mu, 5)) * mu; });
     CHECK(std::abs(hemi - 1.0) < 1e-12);
     // Hence the slide's f is the BRDF, not f cos: at alpha = 0 and wi = n the directional albedo of f is exactly 1.
     const Rule r = gauss_legendre(24);
@@ -255,7 +256,8 @@ TEST_CASE("diffuse_models: EON passes the white furnace and is bounded by its al
             const double mu = std::cos(theta * pi / 180.0);
             INFO("r " << r << " theta_i " << theta);
             // Albedo 1: the single- and multiple-scattering lobes together reflect everything (the paper's claim).
-            const double e1 = directional_albedo(rule, mu, [&](const Vec3& a, const Vec3& b) { return eon(a, b, r, 1.0); });
+            const double e1 =
+                directional_albedo(rule, mu, [&](const Vec3& a, const Vec3& b) { return eon(a, b, r, 1.0); });
             CHECK(std::abs(e1 - 1.0) < 1e-3);
             worst_furnace = std::max(worst_furnace, std::abs(e1 - 1.0));
             // The FON lobe alone against the paper's analytic E_F (the G(mu) the compensation lobe is built on).
@@ -266,7 +268,8 @@ TEST_CASE("diffuse_models: EON passes the white furnace and is bounded by its al
             CHECK(ef == Approx(eon_fon_albedo(mu, r)).epsilon(1e-6));
             worst_fon = std::max(worst_fon, std::abs(ef - eon_fon_albedo(mu, r)));
             // Albedo 0.5: below 0.5, and equal to the paper's E_EON.
-            const double e5 = directional_albedo(rule, mu, [&](const Vec3& a, const Vec3& b) { return eon(a, b, r, 0.5); });
+            const double e5 =
+                directional_albedo(rule, mu, [&](const Vec3& a, const Vec3& b) { return eon(a, b, r, 0.5); });
             CHECK(e5 <= 0.5 + 1e-9);
             CHECK(e5 == Approx(eon_albedo(mu, r, 0.5)).epsilon(1e-6));
         }
@@ -276,30 +279,34 @@ TEST_CASE("diffuse_models: EON passes the white furnace and is bounded by its al
                                   integrate(rule, 0.5, 1.0, [&](double mu) { return eon_fon_albedo(mu, r) * mu; }));
         CHECK(avg == Approx(eon_fon_average_albedo(r)).epsilon(1e-9));
     }
-    std::printf("EON white furnace: max |E - 1| = %.3g; FON lobe vs the analytic E_F: max |diff| = %.3g\n", worst_furnace,
-                worst_fon);
+    std::printf("EON white furnace: max |E - 1| = %.3g; FON lobe vs the analytic E_F: max |diff| = %.3g\n",
+                worst_furnace, worst_fon);
 }
 
-// A measurement, not an assertion of a number: the largest directional albedo at albedo 1, published constants,
-// alpha in {0.1, ..., 1}, theta_i in 0..89 degrees. Values above 1 mean the model is not energy-bounded there.
+// A measurement, not an assertion of a number: the largest (and smallest) directional albedo at albedo 1, published
+// constants, alpha in {0.1, ..., 1}, theta_i in 0..89 degrees. Values above 1 mean the model is not energy-bounded
+// there; below 1, the energy it loses.
 TEST_CASE("diffuse_models: maximum directional albedo at albedo 1 (measured, printed)", "[diffuse][sweep]") {
     const Rule rule = gauss_legendre(20);
-    std::printf("%-24s %12s %8s %10s %12s\n", "model", "max E", "alpha", "theta_i", "2x rule - 1x");
+    std::printf("%-24s %10s %6s %8s %13s %10s %6s %8s\n", "model", "max E", "alpha", "theta_i", "2x rule - 1x", "min E",
+                "alpha", "theta_i");
     for (const DiffuseModel& m : diffuse_models()) {
         double best = 0.0, best_alpha = 0.0, best_theta = 0.0;
+        double least = std::numeric_limits<double>::infinity(), least_alpha = 0.0, least_theta = 0.0;
         for (int ia = 1; ia <= 10; ++ia)
             for (int it = 0; it <= 89; ++it) {
                 const double alpha = 0.1 * ia, mu = std::cos(it * pi / 180.0);
-                const double e = directional_albedo(rule, mu, [&](const Vec3& a, const Vec3& b) {
-                    return eval(m, a, b, alpha, 1.0);
-                });
+                const double e = directional_albedo(
+                    rule, mu, [&](const Vec3& a, const Vec3& b) { return eval(m, a, b, alpha, 1.0); });
                 REQUIRE(std::isfinite(e));
                 if (e > best) best = e, best_alpha = alpha, best_theta = it;
+                if (e < least) least = e, least_alpha = alpha, least_theta = it;
             }
         // The same maximum by a rule twice as fine: the difference is the quadrature's error there.
-        const double finer = directional_albedo(gauss_legendre(40), std::cos(best_theta * pi / 180.0),
-                                                [&](const Vec3& a, const Vec3& b) { return eval(m, a, b, best_alpha, 1.0); });
-        std::printf("%-24s %12.6f %8.2f %10.0f %12.2g\n", std::string(m.name).c_str(), best, best_alpha, best_theta,
-                    finer - best);
+        const double finer =
+            directional_albedo(gauss_legendre(40), std::cos(best_theta * pi / 180.0),
+                               [&](const Vec3& a, const Vec3& b) { return eval(m, a, b, best_alpha, 1.0); });
+        std::printf("%-24s %10.6f %6.1f %8.0f %13.2g %10.6f %6.1f %8.0f\n", std::string(m.name).c_str(), best,
+                    best_alpha, best_theta, finer - best, least, least_alpha, least_theta);
     }
 }

@@ -68,17 +68,23 @@ double disney_diffuse(const Vec3& wi, const Vec3& wo, double perceptual_roughnes
 double oren_nayar(const Vec3& wi, const Vec3& wo, double sigma, double albedo) {
     const double s2 = sigma * sigma;
     const double ri = norm_xy(wi), ro = norm_xy(wo);
-    const double ti = std::atan2(ri, wi.z()), to = std::atan2(ro, wo.z());
-    const double a = std::max(ti, to), b = std::min(ti, to);  // alpha', beta < pi/2 for z > 0
+    // alpha' = max(theta_i, theta_o) and beta = min, by their sines and cosines (min and max keep it symmetric to the
+    // bit): sin(alpha') = the larger sine, cos(beta) = the larger cosine. tan(beta) = sin/cos and
+    // tan((alpha' + beta)/2) = (sin(alpha') + sin(beta)) / (cos(alpha') + cos(beta)) come from them directly: finite
+    // for z > 0 and exact at grazing, where tan of an angle near pi/2 would lose digits.
+    const double sin_a = std::max(ri, ro), sin_b = std::min(ri, ro);
+    const double cos_a = std::min(wi.z(), wo.z()), cos_b = std::max(wi.z(), wo.z());
+    const double a = std::atan2(sin_a, cos_a), b = std::atan2(sin_b, cos_b);
+    const double tan_b = sin_b / cos_b, tan_half_sum = (sin_a + sin_b) / (cos_a + cos_b);
     // cos(phi): either direction along the normal makes it undefined, and every term it multiplies vanishes there
     // (tan(beta) = 0, beta = 0): 0 is as good as any value.
     const double rr = ri * ro;
     const double cos_phi = rr > 0.0 ? std::clamp(tangential_dot(wi, wo) / rr, -1.0, 1.0) : 0.0;
     const double b2 = 2.0 * b / pi;  // 2 beta / pi
     const double c1 = 1.0 - 0.5 * s2 / (s2 + 0.33);
-    const double c2 = 0.45 * s2 / (s2 + 0.09) * (cos_phi >= 0.0 ? std::sin(a) : std::sin(a) - b2 * b2 * b2);
+    const double c2 = 0.45 * s2 / (s2 + 0.09) * (cos_phi >= 0.0 ? sin_a : sin_a - b2 * b2 * b2);
     const double c3_root = 4.0 * a * b / (pi * pi), c3 = 0.125 * s2 / (s2 + 0.09) * c3_root * c3_root;
-    const double l1 = c1 + cos_phi * c2 * std::tan(b) + (1.0 - std::abs(cos_phi)) * c3 * std::tan(0.5 * (a + b));
+    const double l1 = c1 + cos_phi * c2 * tan_b + (1.0 - std::abs(cos_phi)) * c3 * tan_half_sum;
     const double l2 = 0.17 * albedo * s2 / (s2 + 0.13) * (1.0 - cos_phi * b2 * b2);
     return std::max(0.0, albedo * inv_pi * (l1 + l2));
 }
@@ -121,7 +127,7 @@ double eon(const Vec3& wi, const Vec3& wo, double r, double albedo) {
 double chan_2018(const Vec3& wi, const Vec3& wo, double alpha, double albedo, double retro_weight) {
     const Vec3 sum = wi + wo;
     const double len = sum.norm();
-    const double voh = std::clamp(0.5 * len, 0.0, 1.0);           // V.H = |L + V| / 2
+    const double voh = std::clamp(0.5 * len, 0.0, 1.0);                // V.H = |L + V| / 2
     const double noh = std::clamp((wi.z() + wo.z()) / len, 0.0, 1.0);  // N.H = (N.L + N.V) / |L + V|
     const double nol = std::clamp(wi.z(), 0.0, 1.0), nov = std::clamp(wo.z(), 0.0, 1.0);
     // a2 = 2 / (1 + 2^(18 g)) inverted; 2/a2 - 1 kept positive so that alpha > sqrt(2) reads as g = 0, not NaN.
@@ -131,14 +137,15 @@ double chan_2018(const Vec3& wi, const Vec3& wo, double alpha, double albedo, do
     const double fdv = 1.0 - 0.75 * pow5(1.0 - nov), fdl = 1.0 - 0.75 * pow5(1.0 - nol);
     const double t = std::clamp(2.2 * g - 0.5, 0.0, 1.0);
     const double fd = f0 + t * (fdv * fdl - f0);
-    const double fb = ((34.5 * g - 59.0) * g + 24.5) * voh * std::exp2(-std::max(73.2 * g - 21.2, 8.9) * std::sqrt(noh));
+    const double fb =
+        ((34.5 * g - 59.0) * g + 24.5) * voh * std::exp2(-std::max(73.2 * g - 21.2, 8.9) * std::sqrt(noh));
     return albedo * inv_pi * (fd + retro_weight * fb);
 }
 
 double hammon_2017_single(const Vec3& wi, const Vec3& wo, double alpha, const HammonConstants& k) {
     const Vec3 sum = wi + wo;
     const double len2 = sum.squaredNorm();
-    const double facing = 0.25 * len2;                      // 0.5 + 0.5 L.V = |L + V|^2 / 4 (the slide's identity)
+    const double facing = 0.25 * len2;                       // 0.5 + 0.5 L.V = |L + V|^2 / 4 (the slide's identity)
     const double noh = (wi.z() + wo.z()) / std::sqrt(len2);  // N.H = (N.L + N.V) / |L + V|, > 0 for z > 0
     const double rough = facing * (k.rough_a - k.rough_b * facing) * ((k.rough_c + noh) / noh);
     const double smooth = k.smooth * ((1.0 - pow5(1.0 - wi.z())) * (1.0 - pow5(1.0 - wo.z())));
@@ -208,8 +215,8 @@ const std::vector<DiffuseModel>& diffuse_models() {
          "Fujii 2013, A tiny improvement of Oren-Nayar reflectance model; sigma = s alpha, start s = 1 (not published)",
          f_fujii},
         {"eon", {"r_scale"}, {1.0},
-         "Portsmouth, Kutz & Hill 2025, EON: A Practical Energy-Preserving Rough Diffuse BRDF, JCGT 14(1), exact E_FON; "
-         "r = clamp(c alpha, 0, 1), start c = 1 (not published)",
+         "Portsmouth, Kutz & Hill 2025, EON: A Practical Energy-Preserving Rough Diffuse BRDF, JCGT 14(1), "
+         "exact E_FON; r = clamp(c alpha, 0, 1), start c = 1 (not published)",
          f_eon},
         {"chan-2018", {}, {},
          "Chan 2018, Material Advances in Call of Duty: WWII (SIGGRAPH course), as UE5 BRDF.ush Diffuse_Chan, a2 = "

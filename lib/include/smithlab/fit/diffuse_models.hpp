@@ -35,8 +35,8 @@ double disney_diffuse(const Vec3& wi, const Vec3& wo, double perceptual_roughnes
 // C3 = 0.125 sigma^2/(sigma^2 + 0.09) (4 alpha' beta/pi^2)^2. Can dip below 0 (forward scattering, both grazing, at
 // sigma >~ 0.7): smithlab returns max(0, f).
 double oren_nayar(const Vec3& wi, const Vec3& wo, double sigma, double albedo);
-// The same paper's qualitative model (L2 dropped, C3 dropped, C2 simplified): albedo/pi (A + B max(0, cos(phi)) sin(alpha') tan(beta)),
-// A = 1 - 0.5 sigma^2/(sigma^2 + 0.33), B = 0.45 sigma^2/(sigma^2 + 0.09).
+// The same paper's qualitative model (L2 dropped, C3 dropped, C2 simplified): albedo/pi (A + B max(0, cos(phi))
+// sin(alpha') tan(beta)), A = 1 - 0.5 sigma^2/(sigma^2 + 0.33), B = 0.45 sigma^2/(sigma^2 + 0.09).
 double oren_nayar_qualitative(const Vec3& wi, const Vec3& wo, double sigma, double albedo);
 
 // Fujii 2012/2013, "A tiny improvement of Oren-Nayar reflectance model" (mimosa-pudica.net/improved-oren-nayar.html):
@@ -90,10 +90,10 @@ double hammon_2017_linear(const Vec3& wi, const Vec3& wo, double alpha, double a
 using DiffuseFn = double (*)(const Vec3& wi, const Vec3& wo, double alpha, double albedo, const double* c);
 
 struct DiffuseModel {
-    std::string_view name;                      // e.g. "hammon-2017"
+    std::string_view name;                     // e.g. "hammon-2017"
     std::vector<std::string_view> parameters;  // names of the free constants; empty for a fixed baseline
-    std::vector<double> published;              // their published values (a fit's start, the fixed baseline)
-    std::string_view source;                    // citation, one line
+    std::vector<double> published;             // their published values (a fit's start, the fixed baseline)
+    std::string_view source;                   // citation, one line
     DiffuseFn f;
 };
 
