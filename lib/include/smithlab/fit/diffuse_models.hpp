@@ -57,7 +57,7 @@ double eon(const Vec3& wi, const Vec3& wo, double r, double albedo);
 double eon_fon_albedo(double mu, double r);
 // <E_F> = 2 int_0^1 E_F(mu) mu dmu = A (1 + (2/3 - 28/(15 pi)) r).
 double eon_fon_average_albedo(double r);
-// EON's directional albedo (the paper's E_EON): rho E_F(mu) + rho_ms (1 - E_F(mu)); exactly rho = 1 -> 1.
+// EON's directional albedo (the paper's E_EON): rho E_F(mu) + rho_ms (1 - E_F(mu)); exactly 1 at rho = 1.
 double eon_albedo(double mu, double r, double albedo);
 
 // Chan 2018, "Material Advances in Call of Duty: WWII" (SIGGRAPH course, Physically Based Shading), as Unreal
