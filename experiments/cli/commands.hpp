@@ -73,6 +73,15 @@ struct BrdfArgs {
 void add_brdf(CLI::App& app, BrdfArgs& args);
 int run_brdf(const BrdfArgs& args, const NdfRegistry& registry);
 
+struct FitArgs {
+    std::string scene;  // a scene file; empty: the embedded default (GGX)
+    std::string output = "fit";
+    int threads = 0;
+    bool print_scene = false, list_models = false;
+};
+void add_fit(CLI::App& app, FitArgs& args);
+int run_fit(const FitArgs& args, const NdfRegistry& registry);
+
 // Parses a double, accepting "inf"; NaN and trailing junk are input errors naming `what`.
 double parse_number(const std::string& text, const std::string& what);
 // The text of a scene file; a directory, a missing or unreadable file is an input error naming it.

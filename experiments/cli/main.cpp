@@ -51,6 +51,8 @@ int main(int argc, char** argv) {
     cli::add_trace(app, trace_args);
     cli::BrdfArgs brdf_args;
     cli::add_brdf(app, brdf_args);
+    cli::FitArgs fit_args;
+    cli::add_fit(app, fit_args);
     CLI::App* list = app.add_subcommand("list", "List the registered NDFs, their parameters and example specs");
 
     if (unknown_subcommand(app, argc, argv)) return cli::exit_bad_input;
@@ -72,6 +74,7 @@ int main(int argc, char** argv) {
         if (app.got_subcommand("sample")) return cli::run_sample(sample_args, registry);
         if (app.got_subcommand("trace")) return cli::run_trace(trace_args, registry);
         if (app.got_subcommand("brdf")) return cli::run_brdf(brdf_args, registry);
+        if (app.got_subcommand("fit")) return cli::run_fit(fit_args, registry);
         if (list->parsed()) {
             for (const NdfInfo* info : registry.list()) {
                 std::cout << info->name << "(";

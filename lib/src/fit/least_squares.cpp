@@ -1,2 +1,90 @@
-// placeholder (issue 12)
 #include "smithlab/fit/least_squares.hpp"
+
+#include <gsl/gsl_blas.h>
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_multifit_nlinear.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+namespace smithlab::fit {
+
+namespace {
+
+struct Problem {
+    const ResidualFn* r;
+    std::vector<double> p, out;  // contiguous copies: GSL passes strided views (a Jacobian column, for one)
+};
+
+int residuals(const gsl_vector* x, void* data, gsl_vector* f) {
+    auto& pr = *static_cast<Problem*>(data);
+    for (std::size_t i = 0; i < pr.p.size(); ++i) pr.p[i] = gsl_vector_get(x, i);
+    (*pr.r)(pr.p, pr.out);
+    for (std::size_t i = 0; i < pr.out.size(); ++i) gsl_vector_set(f, i, std::isfinite(pr.out[i]) ? pr.out[i] : 1e150);
+    return GSL_SUCCESS;
+}
+
+}  // namespace
+
+LeastSquaresFit least_squares(std::size_t n, std::vector<double> start, const ResidualFn& r,
+                              const LeastSquaresOptions& options) {
+    gsl_set_error_handler_off();  // idempotent; failures come back as status codes
+    LeastSquaresFit out;
+    const std::size_t p = start.size();
+    out.params = start;
+    out.dof = static_cast<std::int64_t>(n) - static_cast<std::int64_t>(p);
+    if (p == 0 || out.dof < 1) {
+        out.reason = std::to_string(n) + " residuals for " + std::to_string(p) + " parameters (need at least " +
+                     std::to_string(p + 1) + ")";
+        return out;
+    }
+    Problem problem{&r, std::vector<double>(p), std::vector<double>(n)};
+    gsl_multifit_nlinear_fdf fdf{};
+    fdf.f = residuals;
+    fdf.df = nullptr;  // forward differences
+    fdf.fvv = nullptr;
+    fdf.n = n;
+    fdf.p = p;
+    fdf.params = &problem;
+    gsl_multifit_nlinear_parameters params = gsl_multifit_nlinear_default_parameters();
+    params.scale = gsl_multifit_nlinear_scale_more;
+    std::unique_ptr<gsl_multifit_nlinear_workspace, decltype(&gsl_multifit_nlinear_free)> w(
+        gsl_multifit_nlinear_alloc(gsl_multifit_nlinear_trust, &params, n, p), gsl_multifit_nlinear_free);
+    std::unique_ptr<gsl_vector, decltype(&gsl_vector_free)> x(gsl_vector_alloc(p), gsl_vector_free);
+    std::unique_ptr<gsl_matrix, decltype(&gsl_matrix_free)> covar(gsl_matrix_alloc(p, p), gsl_matrix_free);
+    for (std::size_t i = 0; i < p; ++i) gsl_vector_set(x.get(), i, start[i]);
+    if (int s = gsl_multifit_nlinear_init(x.get(), &fdf, w.get()); s != GSL_SUCCESS) {
+        out.reason = std::string("could not start: ") + gsl_strerror(s);
+        return out;
+    }
+    int info = 0;
+    const int status = gsl_multifit_nlinear_driver(static_cast<std::size_t>(options.max_iterations), options.xtol,
+                                                   options.gtol, 0.0, nullptr, nullptr, &info, w.get());
+    out.iterations = static_cast<int>(gsl_multifit_nlinear_niter(w.get()));
+    const gsl_vector* sol = gsl_multifit_nlinear_position(w.get());
+    for (std::size_t i = 0; i < p; ++i) out.params[i] = gsl_vector_get(sol, i);
+    const gsl_vector* f = gsl_multifit_nlinear_residual(w.get());
+    gsl_blas_ddot(f, f, &out.chi2);
+    gsl_multifit_nlinear_covar(gsl_multifit_nlinear_jac(w.get()), 0.0, covar.get());
+    out.covariance.resize(p * p);
+    out.stderr_.resize(p);
+    const double scale = std::max(1.0, out.chi2_dof());
+    bool finite = std::isfinite(out.chi2) && out.chi2 < 1e290;
+    for (std::size_t i = 0; i < p; ++i) {
+        for (std::size_t j = 0; j < p; ++j) out.covariance[i * p + j] = gsl_matrix_get(covar.get(), i, j);
+        out.stderr_[i] = std::sqrt(std::max(0.0, out.covariance[i * p + i]) * scale);
+        finite = finite && std::isfinite(out.params[i]) && std::isfinite(out.stderr_[i]);
+    }
+    if (status != GSL_SUCCESS) {
+        out.reason = status == GSL_EMAXITER ? "no convergence in " + std::to_string(options.max_iterations) + " iterations"
+                                            : std::string("stopped: ") + gsl_strerror(status);
+    } else if (!finite) {
+        out.reason = "the solution or its covariance is not finite (a parameter the data does not determine?)";
+    } else {
+        out.converged = true;
+    }
+    return out;
+}
+
+}  // namespace smithlab::fit

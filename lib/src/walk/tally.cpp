@@ -51,7 +51,7 @@ void BrdfTally::add(const WalkSample& s) {
     double phi = std::atan2(s.wo.y(), s.wo.x());
     if (phi < 0.0) phi += 2.0 * std::numbers::pi;
     const int p = std::clamp(static_cast<int>(phi / (2.0 * std::numbers::pi) * bins.n_phi), 0, bins.n_phi - 1);
-    cells[index(hemi, t, p, order_bin(s.order), s.diffuse ? 1 : 0)].add(s.weight);
+    cells[index(hemi, t, p, order_bin(s.order), s.diffuse() ? 1 : 0)].add(s.weight);
 }
 
 void BrdfTally::merge(const BrdfTally& o) {

@@ -48,7 +48,7 @@ struct AlbedoTally {
         events += s.order;
         capped += s.capped;
         if (s.weight == 0.0) return;
-        bins[index(s.wo.z() > 0.0 ? 0 : 1, order_bin(s.order), s.diffuse ? 1 : 0)].add(s.weight);
+        bins[index(s.wo.z() > 0.0 ? 0 : 1, order_bin(s.order), s.diffuse() ? 1 : 0)].add(s.weight);
     }
     void merge(const AlbedoTally& o);
     // The fraction of the incident energy leaving in the selection, with its standard error.

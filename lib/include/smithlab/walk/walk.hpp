@@ -35,13 +35,21 @@ struct WalkLimits {
     std::int64_t max_events = 1'000'000;  // a walk still inside after this many hits ends as `capped` (never a hang)
 };
 
+// Tallies by the number of diffuse events on the way: 0 .. diffuse_bins - 2, and diffuse_bins - 1 or more. Light that
+// scattered diffusely k times carries albedo^k (each diffuse event of lambert and fresnel-diffuse facets multiplies
+// by the albedo, and nothing else depends on it), so a walk traced at albedo 1 and split by k gives the result at
+// every albedo a as sum_k a^k f_k (the fitter's data: fit/dataset.hpp).
+inline constexpr int diffuse_bins = 16;
+inline int diffuse_bin(int k) { return std::min(k, diffuse_bins - 1); }
+
 struct WalkSample {
-    Vec3 wo;           // the exit direction, when escaped
-    double weight;     // what it carries out (0 when absorbed, truncated or capped)
-    int order;         // hits before it left
-    bool diffuse;      // any diffuse event on the way
+    Vec3 wo;              // the exit direction, when escaped
+    double weight;        // what it carries out (0 when absorbed, truncated or capped)
+    int order;            // hits before it left
+    int diffuse_events;   // diffuse events on the way
     bool escaped;
     bool capped;
+    bool diffuse() const { return diffuse_events > 0; }
 };
 
 namespace detail {
@@ -64,7 +72,7 @@ WalkSample sample_walk(const Microsurface& ms, const M& material, const Vec3& wi
     bool above = !TwoSided<M> || wi.z() > 0.0;
     Vec3 w = above ? -wi : wi;  // the travel direction in the frame of the ray's side
     double h = INFINITY, weight = 1.0;
-    bool diffuse = false;
+    int diffuse = 0;
     for (std::int64_t order = 0;; ++order) {
         const Vec3 world = above ? w : -w;
         if (!ms.next_height(w, h, 1.0 - uniform01(g))) return {world, weight, static_cast<int>(order), diffuse, true, false};
@@ -75,7 +83,7 @@ WalkSample sample_walk(const Microsurface& ms, const M& material, const Vec3& wi
         if (std::isnan(m.z())) return {world, 0.0, static_cast<int>(order), diffuse, false, true};  // none drawn
         const Scatter s = detail::scatter(material, v, m, g, above);
         weight *= s.weight;
-        diffuse = diffuse || s.diffuse;
+        diffuse += s.diffuse;
         if (weight == 0.0) return {world, 0.0, static_cast<int>(order + 1), diffuse, false, false};
         w = s.wo;
         if (s.transmitted) {
@@ -88,6 +96,7 @@ WalkSample sample_walk(const Microsurface& ms, const M& material, const Vec3& wi
 
 struct EvalSample {
     std::array<double, order_bins> specular{}, diffuse{};  // f |cos theta_o| by order bin and component
+    std::array<double, diffuse_bins> by_diffuse{};          // the same by diffuse events (diffuse_bin), all orders
     std::int64_t events = 0;
     bool capped = false;
 };
@@ -105,7 +114,7 @@ EvalSample eval_walk(const Microsurface& ms, const M& material, const Vec3& wi, 
     bool above = !TwoSided<M> || wi.z() > 0.0;
     Vec3 w = above ? -wi : wi;
     double h = INFINITY, weight = 1.0;
-    bool diffuse = false;
+    int diffuse = 0;  // diffuse events so far
     for (std::int64_t order = 1;; ++order) {
         if (!ms.next_height(w, h, 1.0 - uniform01(g))) break;
         if (limits.max_order > 0 && order > limits.max_order) break;
@@ -124,9 +133,12 @@ EvalSample eval_walk(const Microsurface& ms, const M& material, const Vec3& wi, 
                                             : 0.0;
         if (e > 0.0) {
             const Phase p = detail::phase(ms, material, v, wo_local, g, above);
+            // The phase's specular part adds no diffuse event to the path, its diffuse part one.
             const int b = order_bin(order);
-            (diffuse ? out.diffuse : out.specular)[b] += weight * e * p.specular;
+            (diffuse > 0 ? out.diffuse : out.specular)[b] += weight * e * p.specular;
             out.diffuse[b] += weight * e * p.diffuse;
+            out.by_diffuse[diffuse_bin(diffuse)] += weight * e * p.specular;
+            out.by_diffuse[diffuse_bin(diffuse + 1)] += weight * e * p.diffuse;
         }
         const Vec3 m = ms.hit_normal(v, g);
         if (std::isnan(m.z())) {
@@ -135,7 +147,7 @@ EvalSample eval_walk(const Microsurface& ms, const M& material, const Vec3& wi, 
         }
         const Scatter s = detail::scatter(material, v, m, g, above);
         weight *= s.weight;
-        diffuse = diffuse || s.diffuse;
+        diffuse += s.diffuse;
         if (weight == 0.0) break;
         w = s.wo;
         if (s.transmitted) {

@@ -1,0 +1,228 @@
+#include "fit_data.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+
+#include "dispatch.hpp"
+#include "output_file.hpp"
+#include "smithlab/csv.hpp"
+#include "smithlab/errors.hpp"
+#include "smithlab/rng.hpp"
+
+namespace smithlab::fitrun {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+enum Set : std::uint64_t { training_set = 0, validation_set = 1, albedo_set = 2 };
+const char* const set_name[] = {"training", "validation", "albedo"};
+
+// One alpha of one set: its points' directions, traced together on one microsurface.
+struct Group {
+    Set set;
+    std::uint64_t index;
+    double alpha;
+    std::vector<fit::Directions> dirs;
+    std::int64_t walks;
+};
+
+std::uint64_t stream(Set set, std::uint64_t ndf, std::uint64_t group, std::uint64_t point) {
+    return set << 48 | ndf << 32 | group << 16 | point;
+}
+
+// theta_i <= theta_o from the axis, every phi (one where either is 0: phi means nothing there).
+std::vector<fit::Directions> training_directions(const FitScene::Training& t) {
+    std::vector<fit::Directions> d;
+    for (std::size_t i = 0; i < t.theta.size(); ++i)
+        for (std::size_t o = i; o < t.theta.size(); ++o) {
+            if (t.theta[i] == 0.0 || t.theta[o] == 0.0) d.push_back({t.theta[i], t.theta[o], 0.0});
+            else
+                for (double phi : t.phi) d.push_back({t.theta[i], t.theta[o], phi});
+        }
+    return d;
+}
+
+// n pairs uniform in solid angle up to 85 degrees, phi in [0, 180], from the scene's seed (its own stream).
+std::vector<fit::Directions> validation_directions(std::uint64_t seed, std::uint64_t ndf, std::uint64_t group,
+                                                   std::int64_t n) {
+    const double deg = 180.0 / std::numbers::pi, c_min = std::cos(85.0 / deg);
+    WalkRng g(seed, stream(validation_set, ndf, group, 0xffff), 0);
+    auto theta = [&] { return std::acos(1.0 - uniform01(g) * (1.0 - c_min)) * deg; };
+    std::vector<fit::Directions> d;
+    for (std::int64_t k = 0; k < n; ++k) {
+        const double ti = theta(), to = theta();
+        d.push_back({ti, to, 180.0 * uniform01(g)});
+    }
+    return d;
+}
+
+std::vector<Group> groups(const FitScene& s, std::uint64_t ndf, const std::vector<double>& validation_alphas) {
+    std::vector<Group> out;
+    const std::vector<fit::Directions> train = training_directions(s.training);
+    for (std::size_t a = 0; a < s.training.alpha.size(); ++a)
+        out.push_back({training_set, a, s.training.alpha[a], train, s.training.walks});
+    for (std::size_t a = 0; a < validation_alphas.size(); ++a) {
+        out.push_back({validation_set, a, validation_alphas[a],
+                       validation_directions(s.seed, ndf, a, s.validation.points), s.validation.walks});
+        std::vector<fit::Directions> alb;
+        for (double t : s.validation.albedo_theta) alb.push_back({t, 0.0, 0.0});
+        out.push_back({albedo_set, a, validation_alphas[a], alb, s.validation.albedo_walks});
+    }
+    return out;
+}
+
+std::string directory_name(const std::string& label) {
+    std::string d = label;
+    for (char& c : d)
+        if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '=' || c == '-')) c = '_';
+    return d;
+}
+
+std::string group_key(const FitScene& s, const AnyNdf& ndf, const Group& g, std::uint64_t ndf_index) {
+    std::ostringstream k;
+    k << "smithlab " << SMITHLAB_VERSION << "|ndf=" << ndf.spec() << "|material=" << s.material
+      << "|set=" << set_name[g.set] << "|walks=" << g.walks << "|seed=" << s.seed
+      << "|stream=" << stream(g.set, ndf_index, g.index, 0) << "|points=" << g.dirs.size();
+    return k.str();
+}
+
+std::vector<std::string> direction_fields(const fit::Directions& d) {
+    return {format_g17(d.theta_i), format_g17(d.theta_o), format_g17(d.phi)};
+}
+
+// The group's moments from its cache file, if the file is whole and its key and directions are this group's.
+std::optional<std::vector<fit::SplitMoments>> read_group(const fs::path& path, const std::string& key, const Group& g) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return std::nullopt;
+    std::vector<CsvRecord> rows;
+    try {
+        rows = read_csv(in);
+    } catch (const std::exception&) {
+        return std::nullopt;
+    }
+    if (rows.size() != g.dirs.size() + 2 || rows[0].fields != std::vector<std::string>{"key", key}) return std::nullopt;
+    for (const CsvRecord& r : rows)
+        if (!r.error.empty()) return std::nullopt;
+    std::vector<fit::SplitMoments> out(g.dirs.size());
+    for (std::size_t j = 0; j < g.dirs.size(); ++j) {
+        const std::vector<std::string>& f = rows[j + 2].fields;
+        const std::vector<std::string> want = direction_fields(g.dirs[j]);
+        if (f.size() < 3 || !std::equal(want.begin(), want.end(), f.begin())) return std::nullopt;
+        if (!fit::read_moment_fields(f, 3, out[j]) || out[j].walks != g.walks) return std::nullopt;
+    }
+    return out;
+}
+
+void write_group(const fs::path& path, const std::string& key, const Group& g, const std::vector<fit::SplitMoments>& m) {
+    fs::create_directories(path.parent_path());
+    output::write_output(output::resolve_output(path.string()), [&](std::ostream& out) {
+        write_csv_record(out, {"key", key});
+        std::vector<std::string> header{"theta_i", "theta_o", "phi"};
+        for (std::string& c : fit::moment_columns()) header.push_back(std::move(c));
+        write_csv_record(out, header);
+        for (std::size_t j = 0; j < g.dirs.size(); ++j) {
+            std::vector<std::string> f = direction_fields(g.dirs[j]);
+            for (std::string& x : fit::moment_fields(m[j])) f.push_back(std::move(x));
+            write_csv_record(out, f);
+        }
+    });
+}
+
+// Traces the group's points in parallel (a point per block), in point order.
+std::vector<fit::SplitMoments> trace_group(const AnyNdf& ndf, const walk::Material& material, const FitScene& s,
+                                           const Group& g, std::uint64_t ndf_index, unsigned threads,
+                                           const std::function<void(std::uint64_t)>& done) {
+    return trace::with_walk_types(ndf, material, {}, [&](const auto& ms, const auto& m) {
+        return walk::reduce_blocks(
+            g.dirs.size(), threads, std::vector<fit::SplitMoments>{},
+            [&](std::uint64_t j) {
+                const fit::Directions& d = g.dirs[j];
+                const std::uint64_t cell = stream(g.set, ndf_index, g.index, j);
+                return std::vector<fit::SplitMoments>{
+                    g.set == albedo_set ? fit::trace_albedo_point(ms, m, d.wi(), s.seed, cell, g.walks)
+                                        : fit::trace_eval_point(ms, m, d.wi(), d.wo(), s.seed, cell, g.walks)};
+            },
+            [](std::vector<fit::SplitMoments>& all, const std::vector<fit::SplitMoments>& one) {
+                all.insert(all.end(), one.begin(), one.end());
+            },
+            done);
+    });
+}
+
+std::vector<double> midpoints(const std::vector<double>& a) {
+    if (a.size() < 2) return a;
+    std::vector<double> m;
+    for (std::size_t i = 0; i + 1 < a.size(); ++i) m.push_back(std::sqrt(a[i] * a[i + 1]));
+    return m;
+}
+
+}  // namespace
+
+AnyNdf make_ndf(const NdfRegistry& registry, const FitFamily& f, double alpha) {
+    try {
+        if (f.gamma) return registry.make(f.family, {{"alpha", alpha}, {"gamma", *f.gamma}});
+        return registry.make(f.family, {{"alpha", alpha}});
+    } catch (const input_error& e) {
+        throw input_error(f.where + ": " + e.what());
+    }
+}
+
+std::vector<NdfData> gather(const FitScene& s, const NdfRegistry& registry, const fs::path& cache, unsigned threads,
+                            const ProgressFn& progress) {
+    const walk::Material material = walk::parse_material(s.material);
+    struct Plan {
+        NdfData data;
+        std::vector<Group> groups;
+        std::vector<AnyNdf> ndfs;  // per group
+    };
+    std::vector<Plan> plans;
+    std::int64_t total = 0;
+    for (std::size_t n = 0; n < s.ndfs.size(); ++n) {
+        Plan p;
+        p.data.family = s.ndfs[n];
+        p.data.label = family_label(s.ndfs[n]);
+        p.data.validation_alphas = midpoints(s.training.alpha);
+        p.groups = groups(s, n, p.data.validation_alphas);
+        for (const Group& g : p.groups) {
+            p.ndfs.push_back(make_ndf(registry, p.data.family, g.alpha));
+            // A D-only NDF's tables are built here once, and may refuse the NDF: before anything is traced.
+            trace::with_microsurface(p.ndfs.back(), {}, [](const auto&) { return 0; });
+            total += static_cast<std::int64_t>(g.dirs.size());
+        }
+        plans.push_back(std::move(p));
+    }
+    std::vector<NdfData> out;
+    std::int64_t done = 0;
+    for (std::size_t n = 0; n < plans.size(); ++n) {
+        Plan& p = plans[n];
+        for (std::size_t i = 0; i < p.groups.size(); ++i) {
+            const Group& g = p.groups[i];
+            const std::string key = group_key(s, p.ndfs[i], g, n);
+            const fs::path file = cache / directory_name(p.data.label) /
+                                  (std::string(set_name[g.set]) + "-" + std::to_string(g.index) + ".csv");
+            std::optional<std::vector<fit::SplitMoments>> m = read_group(file, key, g);
+            if (m) {
+                p.data.reused += static_cast<std::int64_t>(g.dirs.size());
+            } else {
+                const std::int64_t before = done;
+                m = trace_group(p.ndfs[i], material, s, g, n, threads, [&](std::uint64_t k) {
+                    if (progress) progress(before + static_cast<std::int64_t>(k), total);
+                });
+                write_group(file, key, g, *m);
+                p.data.traced += static_cast<std::int64_t>(g.dirs.size());
+            }
+            done += static_cast<std::int64_t>(g.dirs.size());
+            std::vector<fit::DataPoint>& dest = g.set == training_set     ? p.data.training
+                                                : g.set == validation_set ? p.data.validation
+                                                                          : p.data.albedo;
+            for (std::size_t j = 0; j < g.dirs.size(); ++j) dest.push_back({g.alpha, g.dirs[j], (*m)[j]});
+        }
+        out.push_back(std::move(p.data));
+    }
+    return out;
+}
+
+}  // namespace smithlab::fitrun

@@ -1,0 +1,41 @@
+// The fitter's data for one NDF family: the points traced (or read back from the cache) for the training set, the
+// validation set and the directional albedos, each point split by diffuse events (smithlab/fit/dataset.hpp).
+//
+// Point j of group g (one alpha of one set) of NDF n draws its walks from WalkRng(seed, stream, k), stream =
+// set << 48 | n << 32 | g << 16 | j: the same bits for any --threads, resumed or not. Each group is written to
+// OUT/cache/NDF/SET-G.csv when traced, under a key of all that defines it (version, NDF spec, material, walks, seed,
+// stream) with its points' directions; a later run reuses a group whose key and directions match, so a killed run
+// resumes from its last finished group and refitting traces nothing.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "fit_scene.hpp"
+#include "smithlab/fit/dataset.hpp"
+#include "smithlab/registry.hpp"
+
+namespace smithlab::fitrun {
+
+struct NdfData {
+    FitFamily family;
+    std::string label;                      // "ggx", "gtr(gamma=1.5)"
+    std::vector<fit::DataPoint> training, validation, albedo;
+    std::vector<double> validation_alphas;  // the geometric midpoints of training.alpha
+    std::int64_t traced = 0, reused = 0;    // points
+};
+
+// What tracing has done so far, for progress lines: points done of points in all.
+using ProgressFn = std::function<void(std::int64_t done, std::int64_t total)>;
+
+// The points of every NDF family of the scene, in its order. Checks every NDF (the registry's refusals name
+// FILE:LINE: ndf.family) and builds each microsurface before tracing anything.
+std::vector<NdfData> gather(const FitScene& scene, const NdfRegistry& registry, const std::filesystem::path& cache,
+                            unsigned threads, const ProgressFn& progress);
+
+// The NDF of a family at one alpha.
+AnyNdf make_ndf(const NdfRegistry& registry, const FitFamily& family, double alpha);
+
+}  // namespace smithlab::fitrun

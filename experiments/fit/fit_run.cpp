@@ -1,0 +1,150 @@
+#include "fit_run.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "fit_data.hpp"
+#include "smithlab/csv.hpp"
+#include "smithlab/errors.hpp"
+#include "smithlab/fit/fit_model.hpp"
+#include "staged_directory.hpp"
+
+namespace smithlab::fitrun {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// A model as measured: its name in the outputs, the model, its constants (and their standard errors when fitted).
+struct Measured {
+    std::string name;
+    const fit::DiffuseModel* model;
+    std::vector<double> params, stderr_;
+    double chi2_dof_training = 0.0;
+    int iterations = 0;
+};
+
+std::vector<const fit::DiffuseModel*> selected_models(const FitScene& s) {
+    std::vector<const fit::DiffuseModel*> out;
+    if (s.models.empty())
+        for (const fit::DiffuseModel& m : fit::diffuse_models()) out.push_back(&m);
+    else
+        for (const std::string& name : s.models) out.push_back(&fit::find_diffuse_model(name));
+    return out;
+}
+
+// Every model at its published constants, and each one with free constants fitted.
+std::vector<Measured> fit_all(const FitScene& s, const NdfData& d) {
+    const fit::FitData training{d.training, s.albedos, s.floor};
+    std::vector<Measured> out;
+    for (const fit::DiffuseModel* m : selected_models(s)) {
+        out.push_back({std::string(m->name), m, m->published, {}});
+        if (m->parameters.empty()) continue;
+        const fit::LeastSquaresFit f = fit::fit_model(*m, training, d.label);
+        out.push_back({std::string(m->name) + "-fitted", m, f.params, f.stderr_, f.chi2_dof(), f.iterations});
+    }
+    return out;
+}
+
+ErrorRow measure(const FitScene& s, const NdfData& d, const Measured& m) {
+    const fit::FitData validation{d.validation, s.albedos, s.floor};
+    const fit::RelativeErrors rel = fit::relative_errors(*m.model, m.params, validation);
+    return {m.name, d.label, rel.rms, rel.max, fit::albedo_rms(*m.model, m.params, d.albedo, s.albedos),
+            fit::chi2_per_value(*m.model, m.params, validation)};
+}
+
+void write_constants(const fs::path& dir, const std::vector<NdfData>& data, const std::vector<std::vector<Measured>>& fits) {
+    std::ofstream csv(dir / "constants.csv", std::ios::binary);
+    write_csv_record(csv, {"model", "ndf", "parameter", "value", "stderr"});
+    nlohmann::ordered_json json = nlohmann::ordered_json::array();
+    for (std::size_t n = 0; n < data.size(); ++n)
+        for (const Measured& m : fits[n]) {
+            if (m.stderr_.empty()) continue;  // not fitted
+            nlohmann::ordered_json params = nlohmann::ordered_json::object();
+            for (std::size_t i = 0; i < m.params.size(); ++i) {
+                const std::string p(m.model->parameters[i]);
+                write_csv_record(csv, {m.name, data[n].label, p, format_g17(m.params[i]), format_g17(m.stderr_[i])});
+                params[p] = {{"value", m.params[i]}, {"stderr", m.stderr_[i]}};
+            }
+            json.push_back({{"model", m.name}, {"ndf", data[n].label}, {"parameters", params},
+                            {"chi2_dof_training", m.chi2_dof_training}, {"iterations", m.iterations}});
+        }
+    std::ofstream(dir / "constants.json") << json.dump(2) << "\n";
+}
+
+void write_errors(const fs::path& dir, const std::vector<ErrorRow>& rows) {
+    std::ofstream csv(dir / "errors.csv", std::ios::binary);
+    write_csv_record(csv, {"model", "ndf", "rms_rel", "max_rel", "albedo_rms", "chi2_dof"});
+    for (const ErrorRow& r : rows)
+        write_csv_record(csv, {r.model, r.ndf, format_g17(r.rms_rel), format_g17(r.max_rel), format_g17(r.albedo_rms),
+                               format_g17(r.chi2_dof)});
+}
+
+// The traced values of a set beside every model's, one row per point and albedo (the residual maps' data).
+void write_values(const fs::path& file, const FitScene& s, const std::vector<NdfData>& data,
+                  const std::vector<std::vector<Measured>>& fits, bool validation) {
+    std::ofstream csv(file, std::ios::binary);
+    std::vector<std::string> header{"ndf", "alpha", "theta_i", "theta_o", "phi", "albedo", "value", "stderr"};
+    for (const Measured& m : fits.front()) header.push_back(m.name);
+    write_csv_record(csv, header);
+    for (std::size_t n = 0; n < data.size(); ++n)
+        for (const fit::DataPoint& p : validation ? data[n].validation : data[n].training)
+            for (double a : s.albedos) {
+                const walk::Estimate y = fit::at_albedo(p.moments, {a});
+                std::vector<std::string> row{data[n].label,        format_g17(p.alpha), format_g17(p.dir.theta_i),
+                                             format_g17(p.dir.theta_o), format_g17(p.dir.phi), format_g17(a),
+                                             format_g17(y.value),  format_g17(y.stderr_)};
+                for (const Measured& m : fits[n]) row.push_back(format_g17(fit::model_value(*m.model, m.params, p, a)));
+                write_csv_record(csv, row);
+            }
+}
+
+struct Progress {
+    std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now(), last = start;
+    void operator()(std::int64_t done, std::int64_t total) {
+        const auto now = std::chrono::steady_clock::now();
+        const double t = std::chrono::duration<double>(now - start).count();
+        if (t < 3.0 || std::chrono::duration<double>(now - last).count() < 2.0 || done <= 0 || done >= total) return;
+        last = now;
+        const double f = static_cast<double>(done) / static_cast<double>(total);
+        std::fprintf(stderr, "fit: traced %lld of %lld points, %.0f s elapsed, ETA %.0f s\n",
+                     static_cast<long long>(done), static_cast<long long>(total), t, t * (1.0 - f) / f);
+    }
+};
+
+}  // namespace
+
+FitSummary run_fit(const FitScene& s, const std::string& source, const std::string& scene_text,
+                   const NdfRegistry& registry, const fs::path& out, unsigned threads) {
+    const auto t0 = std::chrono::steady_clock::now();
+    output::StagedDirectory stage(out, "fit");  // refuses a bad OUT before any work
+    Progress progress;
+    const std::vector<NdfData> data = gather(s, registry, out / "cache", threads, std::ref(progress));
+    FitSummary sum;
+    std::vector<std::vector<Measured>> fits;
+    for (const NdfData& d : data) {
+        sum.traced += d.traced;
+        sum.reused += d.reused;
+        fits.push_back(fit_all(s, d));
+        for (const Measured& m : fits.back()) sum.errors.push_back(measure(s, d, m));
+    }
+    sum.points = sum.traced + sum.reused;
+    write_constants(stage.path(), data, fits);
+    write_errors(stage.path(), sum.errors);
+    write_values(stage.path() / "training.csv", s, data, fits, false);
+    write_values(stage.path() / "validation.csv", s, data, fits, true);
+    sum.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const nlohmann::ordered_json meta = {
+        {"title", s.title},      {"source", source},         {"scene", scene_text},
+        {"version", SMITHLAB_VERSION}, {"seed", s.seed},      {"points_traced", sum.traced},
+        {"points_reused", sum.reused}, {"seconds", sum.seconds},
+        {"threads", threads ? threads : std::max(1u, std::thread::hardware_concurrency())}};
+    std::ofstream(stage.path() / "meta.json") << meta.dump(2) << "\n";
+    stage.publish();
+    return sum;
+}
+
+}  // namespace smithlab::fitrun

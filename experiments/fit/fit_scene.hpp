@@ -1,0 +1,54 @@
+// The diffuse fitter's scene file (TOML, read strictly: report/strict_table.hpp): the facets traced, the NDF families,
+// the training and validation sets, the albedos, models and weights of the fit, and the compensation tables.
+// experiments/scenes/fit_default.toml documents every key and is the embedded default.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace smithlab::fitrun {
+
+struct FitFamily {
+    std::string family;           // a registered NDF family with an alpha parameter
+    std::optional<double> gamma;  // GTR: one fit per gamma
+    std::string where;            // "FILE:LINE: ndf.family", for the registry's refusals
+};
+
+struct FitScene {
+    std::string title = "smithlab fit";
+    std::string material = "fresnel-diffuse(f0=0.04, albedo=1)";
+    std::vector<double> albedos{0.25, 0.5, 0.75, 1.0};
+    std::vector<std::string> models;  // empty: every model
+    double floor = 0.02;
+    std::uint64_t seed = 1;
+    std::vector<FitFamily> ndfs;      // gamma lists expanded: one entry per fitted NDF
+    struct Training {
+        std::vector<double> alpha, theta, phi;
+        std::int64_t walks = 20000;
+    } training;
+    struct Validation {
+        std::int64_t points = 40;  // random direction pairs per validation alpha
+        std::int64_t walks = 20000;
+        std::vector<double> albedo_theta{0.0, 30.0, 50.0, 65.0, 80.0};
+        std::int64_t albedo_walks = 100000;
+    } validation;
+    struct Compensation {
+        std::vector<double> alpha;
+        std::int64_t mu = 32;
+    } compensation;
+};
+
+// Refuses (input_error "SOURCE:LINE: key ...") an unknown key or section, a value of the wrong type, a material that
+// is not lambert or fresnel-diffuse at albedo 1, an albedo outside (0, 1], a model that is not known, a floor
+// outside [0, 1), alpha outside (0, 1], theta outside [0, 90), an integer out of its bounds. The NDF families are
+// checked by the registry when the run prepares them.
+FitScene parse_fit_scene(const std::string& text, const std::string& source);
+
+const std::string& default_fit_scene_text();
+
+// An NDF of the scene as text: "ggx", "gtr(gamma=1.5)".
+std::string family_label(const FitFamily& f);
+
+}  // namespace smithlab::fitrun

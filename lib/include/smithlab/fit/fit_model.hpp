@@ -1,0 +1,55 @@
+// smithlab/fit/fit_model.hpp -- a diffuse model (diffuse_models.hpp) against traced data (dataset.hpp): its fit, and
+// its errors on data it never saw.
+//
+// The data are the diffuse part (k >= 1 diffuse events) of f(wi, wo) |cos theta_o| at each albedo of a list, all
+// from one trace at albedo 1. A point's values at the albedos share their walks, so they are fitted as one block:
+// residuals W (model - y), W C^-1/2 over the directions of C with variance (the pseudo-inverse: values at several
+// albedos are sums of the same few per-event means, so C may be singular), C their covariance (exact, from the split
+// moments) plus (floor y_a)^2 on the diagonal. floor = 0 is the plain weighted fit (chi^2 / dof near 1 when the
+// model is right); a relative floor (the default: 0.02) says that a cheap model is expected to miss by about that
+// much, so the fit minimizes relative error where the model cannot reach the noise rather than chasing the points
+// traced best.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "smithlab/fit/dataset.hpp"
+#include "smithlab/fit/diffuse_models.hpp"
+#include "smithlab/fit/least_squares.hpp"
+
+namespace smithlab::fit {
+
+struct FitData {
+    std::vector<DataPoint> points;  // eval points (f |cos theta_o|)
+    std::vector<double> albedos;    // the albedos each point is fitted at
+    double floor = 0.02;            // relative error floor of the weights
+};
+
+// The model's f(wi, wo) |cos theta_o| at a point.
+double model_value(const DiffuseModel& m, const std::vector<double>& params, const DataPoint& p, double albedo);
+
+// Fits m's free constants from its published values. Throws input_error naming the model and `what` (the data's
+// name, e.g. the NDF) when the fit does not converge or the data has too few points for its parameters.
+LeastSquaresFit fit_model(const DiffuseModel& m, const FitData& data, const std::string& what);
+
+// chi^2 / (number of values) of m with these constants on data (weights as in the fit).
+double chi2_per_value(const DiffuseModel& m, const std::vector<double>& params, const FitData& data);
+
+// Relative errors of f |cos theta_o| over every point and albedo whose traced value is positive.
+struct RelativeErrors {
+    double rms = 0.0, max = 0.0;
+};
+RelativeErrors relative_errors(const DiffuseModel& m, const std::vector<double>& params, const FitData& data);
+
+// The model's directional albedo, the integral of f(wi, wo) cos theta_o over the hemisphere of wo, by a product
+// Gauss-Legendre rule (cos theta_o) x midpoint rule (phi_o, over [0, pi] twice: the models are even in phi).
+double model_albedo(const DiffuseModel& m, const std::vector<double>& params, double alpha, double theta_i,
+                    double albedo);
+
+// The RMS difference of the model's directional albedo and the traced one (albedo points: the sample estimator's
+// diffuse part, k >= 1) over the points and albedos.
+double albedo_rms(const DiffuseModel& m, const std::vector<double>& params, const std::vector<DataPoint>& albedo_points,
+                  const std::vector<double>& albedos);
+
+}  // namespace smithlab::fit

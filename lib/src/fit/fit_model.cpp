@@ -1,0 +1,157 @@
+#include "smithlab/fit/fit_model.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Dense>
+#include <boost/math/quadrature/gauss.hpp>
+#include <cmath>
+#include <numbers>
+
+#include "smithlab/errors.hpp"
+
+namespace smithlab::fit {
+
+namespace {
+
+// A point's traced values at the albedos, and the rows that whiten their residuals: C = V diag(lambda) V^T, row i
+// lambda_i^-1/2 v_i^T for every lambda_i above 1e-12 of the largest. The values at several albedos are sums of the same
+// few per-event means, so C can be singular (two events: rank 2); a direction without variance is one the data
+// fixes exactly and carries no noise to weigh, and is left out (the pseudo-inverse), so that chi^2 counts only the
+// directions there are.
+struct Block {
+    const DataPoint* point;
+    Vec3 wi, wo;
+    Eigen::VectorXd y;
+    Eigen::MatrixXd whiten;  // rank x albedos
+};
+
+std::vector<Block> blocks(const FitData& data) {
+    std::vector<Block> out;
+    const Eigen::Index na = static_cast<Eigen::Index>(data.albedos.size());
+    for (const DataPoint& p : data.points) {
+        Block b{&p, p.dir.wi(), p.dir.wo(), Eigen::VectorXd(na), {}};
+        Eigen::MatrixXd C(na, na);
+        for (Eigen::Index i = 0; i < na; ++i) {
+            const AlbedoPower ai{data.albedos[i]};
+            b.y(i) = at_albedo(p.moments, ai).value;
+            for (Eigen::Index j = 0; j <= i; ++j) C(i, j) = C(j, i) = covariance(p.moments, ai, {data.albedos[j]});
+            C(i, i) += data.floor * data.floor * b.y(i) * b.y(i);
+        }
+        const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(C);
+        const double top = eig.eigenvalues().maxCoeff();
+        if (!(top > 0.0)) continue;  // no variance at all (no walk reached wo): nothing to weigh it by
+        std::vector<Eigen::Index> kept;
+        for (Eigen::Index i = 0; i < na; ++i)
+            if (eig.eigenvalues()(i) > 1e-12 * top) kept.push_back(i);
+        b.whiten.resize(static_cast<Eigen::Index>(kept.size()), na);
+        for (std::size_t r = 0; r < kept.size(); ++r)
+            b.whiten.row(static_cast<Eigen::Index>(r)) =
+                eig.eigenvectors().col(kept[r]).transpose() / std::sqrt(eig.eigenvalues()(kept[r]));
+        out.push_back(std::move(b));
+    }
+    return out;
+}
+
+std::size_t residual_count(const std::vector<Block>& bs) {
+    std::size_t n = 0;
+    for (const Block& b : bs) n += static_cast<std::size_t>(b.whiten.rows());
+    return n;
+}
+
+double value_at(const DiffuseModel& m, const double* c, const Block& b, double albedo) {
+    return m.f(b.wi, b.wo, b.point->alpha, albedo, c) * b.wo.z();
+}
+
+// r = whiten (model - y), block by block.
+void residuals(const DiffuseModel& m, const std::vector<Block>& bs, const std::vector<double>& albedos, const double* c,
+               std::span<double> r) {
+    const std::size_t na = albedos.size();
+    Eigen::VectorXd d(static_cast<Eigen::Index>(na));
+    std::size_t at = 0;
+    for (const Block& b : bs) {
+        for (std::size_t a = 0; a < na; ++a) d(a) = value_at(m, c, b, albedos[a]) - b.y(a);
+        const Eigen::VectorXd w = b.whiten * d;
+        for (Eigen::Index i = 0; i < w.size(); ++i) r[at++] = w(i);
+    }
+}
+
+}  // namespace
+
+double model_value(const DiffuseModel& m, const std::vector<double>& params, const DataPoint& p, double albedo) {
+    const Vec3 wo = p.dir.wo();
+    return m.f(p.dir.wi(), wo, p.alpha, albedo, params.data()) * wo.z();
+}
+
+LeastSquaresFit fit_model(const DiffuseModel& m, const FitData& data, const std::string& what) {
+    const std::vector<Block> bs = blocks(data);
+    const std::size_t n = residual_count(bs);
+    LeastSquaresFit fit = least_squares(n, m.published, [&](std::span<const double> p, std::span<double> r) {
+        residuals(m, bs, data.albedos, p.data(), r);
+    });
+    if (!fit.converged)
+        throw input_error("fit of model '" + std::string(m.name) + "' on " + what + " (" + std::to_string(bs.size()) +
+                          " points x " + std::to_string(data.albedos.size()) + " albedos, " + std::to_string(n) +
+                          " independent values): " + fit.reason);
+    return fit;
+}
+
+double chi2_per_value(const DiffuseModel& m, const std::vector<double>& params, const FitData& data) {
+    const std::vector<Block> bs = blocks(data);
+    std::vector<double> r(residual_count(bs));
+    if (r.empty()) return 0.0;
+    residuals(m, bs, data.albedos, params.data(), r);
+    double chi2 = 0.0;
+    for (double v : r) chi2 += v * v;
+    return chi2 / static_cast<double>(r.size());
+}
+
+RelativeErrors relative_errors(const DiffuseModel& m, const std::vector<double>& params, const FitData& data) {
+    RelativeErrors e;
+    double sum2 = 0.0;
+    std::size_t n = 0;
+    for (const DataPoint& p : data.points)
+        for (double a : data.albedos) {
+            const double y = at_albedo(p.moments, {a}).value;
+            if (!(y > 0.0)) continue;
+            const double rel = std::abs(model_value(m, params, p, a) - y) / y;
+            sum2 += rel * rel;
+            e.max = std::max(e.max, rel);
+            ++n;
+        }
+    e.rms = n ? std::sqrt(sum2 / static_cast<double>(n)) : 0.0;
+    return e;
+}
+
+double model_albedo(const DiffuseModel& m, const std::vector<double>& params, double alpha, double theta_i,
+                    double albedo) {
+    using boost::math::quadrature::gauss;
+    const Vec3 wi = direction_from_deg(theta_i, 0.0);
+    constexpr int n_phi = 64;
+    const double* c = params.data();
+    const double integral = gauss<double, 30>::integrate(
+        [&](double mu) {
+            const double s = std::sqrt(std::max(0.0, 1.0 - mu * mu));
+            double sum = 0.0;
+            for (int j = 0; j < n_phi; ++j) {
+                const double phi = (j + 0.5) * std::numbers::pi / n_phi;
+                sum += m.f(wi, Vec3(s * std::cos(phi), s * std::sin(phi), mu), alpha, albedo, c);
+            }
+            return sum * mu;
+        },
+        0.0, 1.0);
+    return integral * 2.0 * std::numbers::pi / n_phi;  // dphi = pi / n_phi, and the half circle twice
+}
+
+double albedo_rms(const DiffuseModel& m, const std::vector<double>& params, const std::vector<DataPoint>& albedo_points,
+                  const std::vector<double>& albedos) {
+    double sum2 = 0.0;
+    std::size_t n = 0;
+    for (const DataPoint& p : albedo_points)
+        for (double a : albedos) {
+            const double d = model_albedo(m, params, p.alpha, p.dir.theta_i, a) - at_albedo(p.moments, {a}).value;
+            sum2 += d * d;
+            ++n;
+        }
+    return n ? std::sqrt(sum2 / static_cast<double>(n)) : 0.0;
+}
+
+}  // namespace smithlab::fit
