@@ -1,3 +1,274 @@
+// Energy compensation (lib/include/smithlab/fit/compensation.hpp): E(mu) against an exact value, a second quadrature
+// route over wo, the D-only route through a Lambda table, and the tracer's order-1 albedo; E_avg, the lobe, Fresnel
+// and Turquin factors; the CSV and C header writers (the header compiled as C and its lookups run). The tracer
+// cases are [slow] (left out of the sanitized run) and print what they measure.
 #include <catch2/catch.hpp>
+
+#include <boost/math/quadrature/gauss_kronrod.hpp>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <smithlab/fresnel.hpp>
+#include <smithlab/single_scattering.hpp>
+#include <smithlab/smithlab.hpp>
+#include <smithlab/walk/trace.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
 #include "smithlab/fit/compensation.hpp"
-TEST_CASE("placeholder test_compensation", "[placeholder]") { SUCCEED(); }
+
+namespace {
+
+namespace fit = smithlab::fit;
+namespace walk = smithlab::walk;
+using smithlab::Vec3;
+constexpr double pi = std::numbers::pi;
+
+Vec3 dir(double theta_deg) { return smithlab::direction_from_theta_deg(theta_deg); }
+
+// E(mu) by the other route: the hemisphere integral over wo of f_ss cos theta_o (single_scattering.hpp, Walter 2007
+// eq. 20), in (cos theta_o, phi_o), nested Gauss-Kronrod. wi at phi = 0: the specular peak sits at phi_o = pi and
+// cos theta_o = mu, both split points. Boost's adaptive rule at a fixed depth (no recursion run-away at depth 6).
+template <class N>
+double albedo_over_wo(const N& ndf, double mu) {
+    using boost::math::quadrature::gauss_kronrod;
+    const double s = std::sqrt((1.0 - mu) * (1.0 + mu));
+    const Vec3 wi(s, 0.0, mu);
+    auto one = [](double) { return 1.0; };
+    auto over_phi = [&](double co) {
+        const double so = std::sqrt(std::max(0.0, (1.0 - co) * (1.0 + co)));
+        auto f = [&](double phi) {
+            return smithlab::single_scattering_reflection(ndf, wi, Vec3(so * std::cos(phi), so * std::sin(phi), co), one);
+        };
+        return 2.0 * gauss_kronrod<double, 61>::integrate(f, 0.0, pi, 6, 1e-11);
+    };
+    return gauss_kronrod<double, 61>::integrate(over_phi, 0.0, mu, 6, 1e-11) +
+           gauss_kronrod<double, 61>::integrate(over_phi, mu, 1.0, 6, 1e-11);
+}
+
+double ms_since(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+TEST_CASE("E at normal incidence on GGX alpha = 1 is 1 - ln 2", "[compensation]") {
+    // alpha = 1: D = 1/pi, Lambda_o = (sec theta_o - 1)/2, Lambda_i = 0, theta_o = 2 theta_m, so
+    // E = 2 int_0^{pi/4} cos sin 2 cos 2t / (1 + cos 2t) dt = 2 int_0^{pi/4} tan t cos 2t dt = 2 [sin^2 t + ln cos t] = 1 - ln 2.
+    const double E = fit::directional_albedo(smithlab::ggx(1.0), 1.0);
+    CHECK(std::abs(E - (1.0 - std::numbers::ln2)) < 1e-13);
+}
+
+TEST_CASE("E against a second route: the integral over wo of the single-scattering BRDF", "[compensation]") {
+    const smithlab::NdfRegistry registry = smithlab::builtin_registry();
+    double worst = 0.0;
+    for (const char* spec : {"ggx(alpha=0.3)", "ggx(alpha=0.8)", "beckmann(alpha=0.5)", "gtr(alpha=0.6, gamma=3)"}) {
+        const smithlab::AnyNdf ndf = registry.make(spec);
+        const fit::SingleScatteringAlbedo<smithlab::AnyNdf> E(ndf);
+        for (double mu : {0.2, 0.55, 0.95}) {
+            const double got = E(mu), want = albedo_over_wo(ndf, mu);
+            INFO(spec << " mu " << mu << ": " << got << " against " << want);
+            CHECK(std::abs(got - want) < 1e-6 * want);
+            worst = std::max(worst, std::abs(got - want) / want);
+        }
+    }
+    std::printf("compensation: E by normals against E over wo, worst relative difference %.2e\n", worst);
+}
+
+TEST_CASE("E is the same through AnyNdf, and through D alone (a Lambda table), to its tolerance", "[compensation]") {
+    const smithlab::NdfRegistry registry = smithlab::builtin_registry();
+    const smithlab::Ggx ggx = smithlab::ggx(0.5);
+    const fit::SingleScatteringAlbedo<smithlab::Ggx> closed(ggx);
+    const fit::SingleScatteringAlbedo<smithlab::AnyNdf> any(registry.make("ggx(alpha=0.5)"));
+    const fit::SingleScatteringAlbedo<smithlab::DOnly<smithlab::Ggx>> d_only(smithlab::DOnly<smithlab::Ggx>{ggx});
+    double worst = 0.0;
+    for (double mu : {0.0, 0.01, 0.3, 0.7, 1.0}) {
+        CHECK(any(mu) == closed(mu));
+        worst = std::max(worst, std::abs(d_only(mu) - closed(mu)) / closed(mu));
+    }
+    std::printf("compensation: D-only GGX(0.5) against closed-form GGX, worst relative difference %.2e\n", worst);
+    CHECK(worst < 1e-8);
+}
+
+TEST_CASE("E: the grazing limit is 1, Fresnel facets, the domain", "[compensation]") {
+    const fit::SingleScatteringAlbedo E(smithlab::ggx(0.6));
+    CHECK(E(0.0) == 1.0);
+    CHECK(E(1e-7) < 1.0);
+    CHECK(E(1e-7) > 1.0 - 1e-5);
+    CHECK(E(1e-5) < E(1e-7));
+    // F = 1 written out is the mirror; a constant F scales E, at grazing incidence too.
+    const double mu = 0.4;
+    CHECK(std::abs(E(mu, [](double) { return 1.0; }) - E(mu)) < 1e-15);
+    CHECK(std::abs(E(mu, [](double) { return 0.25; }) - 0.25 * E(mu)) < 1e-15);
+    CHECK(std::abs(E(0.0, [](double) { return 0.25; }) - 0.25) < 1e-12);
+    // Conductor facets reflect less than mirrors; at grazing incidence F of the visible normals, between F0 and 1.
+    auto gold = [](double c) { return smithlab::fresnel_conductor(c, 0.2, 3.0); };
+    CHECK(E(mu, gold) < E(mu));
+    CHECK(E(0.0, gold) > smithlab::fresnel_conductor(1.0, 0.2, 3.0));
+    CHECK(E(0.0, gold) < 1.0);
+    CHECK_THROWS_AS(E(-0.1), smithlab::input_error);
+    CHECK_THROWS_AS(E(1.5), smithlab::input_error);
+}
+
+TEST_CASE("E_avg and F_avg: averages by their own quadrature", "[compensation]") {
+    // Schlick: F_avg = F0 + (1 - F0) 2 int_0^1 (1 - mu)^5 mu dmu = F0 + (1 - F0) / 21 (Kulla and Conty 2017).
+    for (double f0 : {0.04, 0.5, 0.95}) {
+        const double got = fit::average_fresnel([&](double c) { return smithlab::fresnel_schlick(f0, c); });
+        CHECK(std::abs(got - (f0 + (1.0 - f0) / 21.0)) < 1e-12);
+    }
+    // E_avg against a Gauss-Legendre sum of E over the cosines (an independent rule in mu).
+    const fit::SingleScatteringAlbedo E(smithlab::beckmann(0.7));
+    const double avg = E.average();
+    double gl = 0.0;
+    {
+        // 2 int_0^1 E mu dmu in mu = t^2 (E has a mu log mu term at 0): 4 int_0^1 E(t^2) t^3 dt, 20-point Gauss-Kronrod.
+        gl = 4.0 * boost::math::quadrature::gauss_kronrod<double, 21>::integrate(
+                       [&](double t) { return E(t * t) * t * t * t; }, 0.0, 1.0, 3, 1e-10);
+    }
+    INFO("E_avg " << avg << ", by Gauss-Kronrod in sqrt(mu) " << gl);
+    CHECK(std::abs(avg - gl) < 1e-8);
+    CHECK(avg > 0.0);
+    CHECK(avg < 1.0);
+}
+
+TEST_CASE("the table: its cosines, interpolation, the lobe and its energy, the Fresnel and Turquin factors", "[compensation]") {
+    const smithlab::Ggx ggx = smithlab::ggx(0.7);
+    const auto t0 = std::chrono::steady_clock::now();
+    const fit::CompensationTable t = fit::compensation_table(ggx, 32);
+    const double build_ms = ms_since(t0);
+    REQUIRE(t.mus.size() == 32);
+    REQUIRE(t.E.size() == 32);
+    CHECK(t.mus.front() == 0.0);
+    CHECK(t.mus.back() == 1.0);
+    CHECK(t.E.front() == 1.0);
+    CHECK(std::abs(t.mus[1] - 1.0 / 31.0) < 1e-16);
+    CHECK(std::abs(t.E_avg - fit::average_albedo(ggx)) < 1e-14);
+    const fit::SingleScatteringAlbedo E(ggx);
+    for (std::size_t j = 0; j < t.mus.size(); j += 7) {
+        CHECK(t.E[j] == E(t.mus[j]));
+        CHECK(fit::interpolate_E(t, t.mus[j]) == t.E[j]);
+    }
+    // Linear between points; within 2e-3 of E there at 32 points (E is smooth but for mu log mu at grazing).
+    const double mid = 0.5 * (t.mus[10] + t.mus[11]);
+    CHECK(std::abs(fit::interpolate_E(t, mid) - 0.5 * (t.E[10] + t.E[11])) < 1e-15);
+    CHECK(std::abs(fit::interpolate_E(t, mid) - E(mid)) < 2e-3);
+    CHECK_THROWS_AS(fit::interpolate_E(t, 1.01), smithlab::input_error);
+    CHECK_THROWS_AS(fit::compensation_mus(1), smithlab::input_error);
+
+    // The lobe: symmetric, and its albedo is what single scattering misses, 1 - E(mu_i) (the white furnace),
+    // to the table's interpolation.
+    CHECK(fit::compensation_lobe(t, 0.3, 0.8) == fit::compensation_lobe(t, 0.8, 0.3));
+    for (double mu_i : {0.1, 0.5, 1.0}) {
+        const double lobe_albedo = 2.0 * pi * boost::math::quadrature::gauss_kronrod<double, 61>::integrate(
+                                                  [&](double mu_o) { return fit::compensation_lobe(t, mu_i, mu_o) * mu_o; },
+                                                  0.0, 1.0, 8, 1e-12);
+        INFO("mu_i " << mu_i << ": E " << E(mu_i) << " + lobe " << lobe_albedo);
+        CHECK(std::abs(E(mu_i) + lobe_albedo - 1.0) < 2e-3);
+    }
+    // Fresnel: white facets keep the lobe as it is; F_ms is the geometric series of bounces 2, 3, ...
+    CHECK(std::abs(fit::fresnel_ms(1.0, t.E_avg) - 1.0) < 1e-15);
+    {
+        const double Fa = 0.8, Ea = t.E_avg;
+        double series = 0.0;
+        for (int k = 2; k < 400; ++k) series += std::pow(Fa, k) * Ea * std::pow(1.0 - Ea, k - 1);
+        CHECK(std::abs(fit::fresnel_ms(Fa, Ea) * (1.0 - Ea) - series) < 1e-14);
+    }
+    // Turquin: with F0 = 1 the scaled single scattering is a white furnace at the direction held fixed.
+    for (double mu : {0.2, 0.9}) CHECK(std::abs(E(mu) * fit::turquin_scale(E(mu), 1.0) - 1.0) < 1e-15);
+    CHECK(fit::turquin_scale(t, 1.0, 0.0) == 1.0);
+    std::printf("compensation: one 32-point table with E_avg (GGX 0.7): %.1f ms\n", build_ms);
+}
+
+TEST_CASE("CSV writers", "[compensation]") {
+    fit::CompensationTable t{{0.0, 0.5, 1.0}, {1.0, 0.75, 0.5}, 0.625};
+    std::ostringstream csv, avg;
+    fit::write_compensation_csv(csv, {{"ggx(alpha=0.5)", t}, {"gtr(alpha=0.3, gamma=1.5)", t}});
+    fit::write_compensation_avg_csv(avg, {{"ggx(alpha=0.5)", t}});
+    CHECK(csv.str().rfind("ndf,cos_theta,E\nggx(alpha=0.5),0,1\nggx(alpha=0.5),0.5,0.75\nggx(alpha=0.5),1,0.5\n", 0) == 0);
+    CHECK(csv.str().find("\"gtr(alpha=0.3, gamma=1.5)\",0.5,0.75\n") != std::string::npos);
+    CHECK(avg.str() == "ndf,E_avg\nggx(alpha=0.5),0.625\n");
+    std::istringstream in(csv.str());
+    const std::vector<smithlab::CsvRecord> rows = smithlab::read_csv(in);
+    REQUIRE(rows.size() == 7);
+    CHECK(rows[6].fields == std::vector<std::string>{"gtr(alpha=0.3, gamma=1.5)", "1", "0.5"});
+}
+
+TEST_CASE("the C header: compiles as C, and its lookups return the table and interpolate it", "[compensation]") {
+    const std::vector<double> alphas = {0.2, 0.45, 0.7, 1.0};
+    const std::vector<double> mus = fit::compensation_mus(6);
+    std::vector<std::vector<double>> E;
+    std::vector<double> avg;
+    const auto t0 = std::chrono::steady_clock::now();
+    for (double a : alphas) {
+        const fit::CompensationTable t = fit::compensation_table(smithlab::gtr(a, 1.5), 6);
+        E.push_back(t.E);
+        avg.push_back(t.E_avg);
+    }
+    std::printf("compensation: GTR(gamma = 1.5) 4 alphas x 6 cosines: %.0f ms\n", ms_since(t0));
+    CHECK(fit::compensation_header_name("gtr(gamma=1.5)") == "smithlab_gtr_gamma_1_5");
+    std::ostringstream h;
+    fit::write_compensation_header(h, "gtr(gamma=1.5)", alphas, mus, E, avg);
+    CHECK(h.str().find("#ifndef SMITHLAB_GTR_GAMMA_1_5_COMPENSATION_H") != std::string::npos);
+    CHECK_THROWS_AS(fit::write_compensation_header(h, "x", alphas, mus, E, {0.5}), smithlab::input_error);
+
+    if (std::system("gcc --version > /dev/null 2>&1") != 0) {
+        WARN("no gcc on PATH: the header is not compiled");
+        return;
+    }
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                                      ("smithlab_comp_" + std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()));
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / "comp.h") << h.str();
+    CHECK(std::system(("gcc -std=c99 -Wall -Wextra -Werror -fsyntax-only -x c " + (dir / "comp.h").string()).c_str()) == 0);
+    // A program that includes it twice (the guard) and prints lookups at the nodes and between them.
+    std::ofstream(dir / "main.c") << "#include <stdio.h>\n#include \"comp.h\"\n#include \"comp.h\"\n"
+                                     "int main(void) {\n"
+                                     "    static const float a[] = {0.2f, 0.45f, 1.0f, 0.325f, 0.05f, 2.0f};\n"
+                                     "    static const float m[] = {0.0f, 0.6f, 1.0f, 0.1f, 0.77f, -1.0f};\n"
+                                     "    int i, j;\n"
+                                     "    for (i = 0; i < 6; ++i) {\n"
+                                     "        for (j = 0; j < 6; ++j) printf(\"%.9g \", smithlab_gtr_gamma_1_5_E(a[i], m[j]));\n"
+                                     "        printf(\"%.9g\\n\", smithlab_gtr_gamma_1_5_E_avg(a[i]));\n"
+                                     "    }\n    return 0;\n}\n";
+    const std::string exe = (dir / "lookup").string(), out = (dir / "out.txt").string();
+    REQUIRE(std::system(("gcc -std=c99 -Wall -Werror -o " + exe + " " + (dir / "main.c").string()).c_str()) == 0);
+    REQUIRE(std::system((exe + " > " + out).c_str()) == 0);
+    std::ifstream in(out);
+    // The truth in double: bilinear in the double table, clamped; the header's floats within 1e-6.
+    auto bilinear = [&](double a, double m) {
+        auto cell = [](const std::vector<double>& g, double x, double& t) {
+            if (x <= g.front()) { t = 0.0; return std::size_t{0}; }
+            if (x >= g.back()) { t = 1.0; return g.size() - 2; }
+            std::size_t k = 0;
+            while (g[k + 1] <= x) ++k;
+            t = (x - g[k]) / (g[k + 1] - g[k]);
+            return k;
+        };
+        double ta, tm;
+        const std::size_t i = cell(alphas, a, ta), j = cell(mus, m, tm);
+        const double lo = E[i][j] + tm * (E[i][j + 1] - E[i][j]), hi = E[i + 1][j] + tm * (E[i + 1][j + 1] - E[i + 1][j]);
+        return lo + ta * (hi - lo);
+    };
+    const double a[] = {0.2, 0.45, 1.0, 0.325, 0.05, 2.0}, m[] = {0.0, 0.6, 1.0, 0.1, 0.77, -1.0};
+    for (int i = 0; i < 6; ++i) {
+        for (int j = 0; j < 6; ++j) {
+            double v = 0.0;
+            REQUIRE(in >> v);
+            INFO("alpha " << a[i] << " mu " << m[j]);
+            CHECK(std::abs(v - bilinear(a[i], m[j])) < 1e-6);
+        }
+        double v = 0.0;
+        REQUIRE(in >> v);
+        const double ta = std::clamp((a[i] - 0.2) / 0.25, 0.0, 1.0);
+        if (a[i] == 0.325) CHECK(std::abs(v - (avg[0] + ta * (avg[1] - avg[0]))) < 1e-6);
+        if (a[i] == 1.0) CHECK(std::abs(v - avg[3]) < 1e-7);
+    }
+    // At the nodes: the table's own values (E(alpha = 0.45, mu = 0.6) is E[1][3]).
+    CHECK(std::abs(bilinear(0.45, 0.6) - E[1][3]) < 1e-15);
+    std::filesystem::remove_all(dir);
+}

@@ -1,2 +1,307 @@
-// placeholder: filled in by the compensation work of issue 12
 #include "smithlab/fit/compensation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "smithlab/csv.hpp"
+#include "smithlab/errors.hpp"
+#include "smithlab/smith.hpp"
+
+namespace smithlab::fit {
+
+namespace {
+
+constexpr double pi = std::numbers::pi;
+constexpr int max_panels = 400;  // of one adaptive integral: a cap on the cost where round-off holds the error up
+
+// The 15-point Gauss-Kronrod rule and its 7-point Gauss rule (QUADPACK's qk15, Piessens, de Doncker-Kapenga,
+// Ueberhuber, Kahaner 1983): abscissae, Kronrod weights, and the Gauss weights of xgk[1], xgk[3], xgk[5] and 0.
+constexpr double xgk[8] = {0.991455371120812639206854697526329, 0.949107912342758524526189684047851,
+                           0.864864423359769072789712788640926, 0.741531185599394439863864773280788,
+                           0.586087235467691130294144845693013, 0.405845151377397166906606412076961,
+                           0.207784955007898467600689403773245, 0.0};
+constexpr double wgk[8] = {0.022935322010529224963732008058970, 0.063092092629978553290700663189204,
+                           0.104790010322250183839876322541518, 0.140653259715525918745189590510238,
+                           0.169004726639267902826583426598550, 0.190350578064785409913256402421014,
+                           0.204432940075298892414161999234649, 0.209482141084727828012999174891714};
+constexpr double wg[4] = {0.129484966168869693270611432679082, 0.279705391489276667901467771423780,
+                          0.381830050505118944950369775488975, 0.417959183673469387755102040816327};
+
+struct Panel {
+    double a, b, value, error;
+};
+
+// One panel by qk15, with QUADPACK's error estimate: resasc min(1, (200 |K - G| / resasc)^1.5), resasc the
+// rule's integral of |f - mean|, which credits the Kronrod result with the order it has beyond Gauss's.
+template <class F>
+Panel qk15(const F& f, double a, double b) {
+    const double c = 0.5 * (a + b), h = 0.5 * (b - a);
+    double fv[15];
+    fv[7] = f(c);
+    for (int j = 0; j < 7; ++j) {
+        fv[j] = f(c - h * xgk[j]);
+        fv[14 - j] = f(c + h * xgk[j]);
+    }
+    double resk = wgk[7] * fv[7], resg = wg[3] * fv[7];
+    for (int j = 0; j < 7; ++j) {
+        resk += wgk[j] * (fv[j] + fv[14 - j]);
+        if (j % 2 == 1) resg += wg[j / 2] * (fv[j] + fv[14 - j]);
+    }
+    const double mean = 0.5 * resk;
+    double resasc = wgk[7] * std::abs(fv[7] - mean), resabs = wgk[7] * std::abs(fv[7]);
+    for (int j = 0; j < 7; ++j) {
+        resasc += wgk[j] * (std::abs(fv[j] - mean) + std::abs(fv[14 - j] - mean));
+        resabs += wgk[j] * (std::abs(fv[j]) + std::abs(fv[14 - j]));
+    }
+    const double ah = std::abs(h);
+    double err = std::abs((resk - resg) * h);
+    resasc *= ah;
+    if (resasc != 0.0 && err != 0.0) err = resasc * std::min(1.0, std::pow(200.0 * err / resasc, 1.5));
+    err = std::max(err, 50.0 * 2.220446049250313e-16 * resabs * ah);
+    return {a, b, resk * h, err};
+}
+
+// Globally adaptive qk15 (QUADPACK's QAG strategy): the panel of largest error estimate is halved until the sum of
+// the estimates is below tolerance times |integral|, or max_panels are in use. (Boost's adaptive Gauss-Kronrod
+// halves the absolute tolerance with every level of its recursion instead, which round-off in a nested integrand
+// never meets: 2^depth panels.)
+template <class F>
+double gk(const F& f, double a, double b, double tolerance) {
+    if (!(a < b)) return 0.0;
+    std::vector<Panel> panels{qk15(f, a, b)};
+    double total = panels[0].value, error = panels[0].error;
+    while (error > tolerance * std::abs(total) && static_cast<int>(panels.size()) < max_panels) {
+        const auto worst = std::max_element(panels.begin(), panels.end(),
+                                            [](const Panel& x, const Panel& y) { return x.error < y.error; });
+        const Panel p = *worst;
+        const double mid = 0.5 * (p.a + p.b);
+        if (!(mid > p.a && mid < p.b)) break;  // no room left to halve
+        *worst = qk15(f, p.a, mid);
+        panels.push_back(qk15(f, mid, p.b));
+        total += worst->value + panels.back().value - p.value;
+        error += worst->error + panels.back().error - p.error;
+    }
+    total = 0.0;
+    for (const Panel& p : panels) total += p.value;
+    return total;
+}
+
+// The grazing limit of E_F (mu -> 0): G2 / cos_i -> 1 / E[q+], wi = x, wi.m = r cos phi / sqrt(1 + r^2), every
+// normal with cos phi > 0 reflects upward:
+//     E_F(0) = integral_{p > 0} P22 p F(wi.m) dp dq / integral_{p > 0} P22 p dp dq,
+// in r = tan t (t in [0, pi/2]) and phi in [0, pi/2] (even in phi). 1 for mirrors.
+double grazing_albedo(FunctionRef P22, const FunctionRef& F, double tolerance) {
+    auto radial = [&](double t, bool fresnel) {
+        if (t >= pi / 2) return 0.0;
+        const double r = std::tan(t), c = std::cos(t), w = r * r * P22(r * r) / (c * c);  // r^2 P22 dr/dt
+        if (!fresnel || w == 0.0) return w;
+        const double sin_m = std::sin(t);
+        return w * gk([&](double phi) { return std::cos(phi) * F(sin_m * std::cos(phi)); }, 0.0, pi / 2, 0.1 * tolerance);
+    };
+    const double num = gk([&](double t) { return radial(t, true); }, 0.0, pi / 2, tolerance);
+    const double den = gk([&](double t) { return radial(t, false); }, 0.0, pi / 2, tolerance);  // times integral of cos
+    return num / den;
+}
+
+}  // namespace
+
+namespace detail {
+
+double single_scattering_albedo(FunctionRef P22, FunctionRef Lambda, const FunctionRef* F, double mu, double tolerance) {
+    require(mu >= 0.0 && mu <= 1.0, "mu = cos(theta_i)", "in [0, 1]", mu);
+    if (mu == 0.0) return F ? grazing_albedo(P22, *F, tolerance) : 1.0;
+    const double ci = mu, si = std::sqrt((1.0 - mu) * (1.0 + mu));
+    const double Li = si > 0.0 ? Lambda(ci / si) : 0.0;
+    // The integrand at (r, phi), without the measure r P22(r^2): (cos_i + sin_i r cos phi) G2 F, 0 below the horizon.
+    auto facet = [&](double r, double cos_phi) {
+        const double a = ci + si * r * cos_phi, n2 = 1.0 + r * r;  // a = (wi . m) sqrt(n2)
+        const double woz = (ci * (1.0 - r * r) + 2.0 * si * r * cos_phi) / n2;  // wo = 2 (wi.m) m - wi
+        if (!(woz > 0.0 && a > 0.0)) return 0.0;
+        const double sin_o = std::sqrt((1.0 - woz) * (1.0 + woz));
+        const double Lo = sin_o > 0.0 ? Lambda(woz / sin_o) : 0.0;
+        const double g = a / (1.0 + Li + Lo);  // G2 height-correlated (Walter 2007 eq. 20's G2 as in smith.hpp)
+        return F ? g * (*F)(a / std::sqrt(n2)) : g;
+    };
+    const double inner_tol = 0.1 * tolerance;
+    // [0, r1] x [0, pi]: every azimuth reflects above the horizon.
+    const double r1 = ci / (1.0 + si), rmax = (1.0 + si) / ci;
+    const double full = gk([&](double r) {
+        const double w = r * P22(r * r);
+        if (w == 0.0) return 0.0;
+        return w * gk([&](double phi) { return facet(r, std::cos(phi)); }, 0.0, pi, inner_tol);
+    }, 0.0, r1, tolerance);
+    // (r1, rmax): |phi| < phi_max(r), cos phi_max = -cos_i (1 - r^2) / (2 sin_i r); r = r1 (rmax / r1)^S(u),
+    // S(u) = u^2 (3 - 2u): logarithmic in r (rmax / r1 = ((1 + sin_i) / cos_i)^2 grows without bound at grazing
+    // incidence, and the slope law's features are O(1) wide in ln r), flat at both ends (dS/du = 0 there).
+    double part = 0.0;
+    if (si > 0.0 && rmax > r1) {
+        const double L = 2.0 * std::log((1.0 + si) / ci);
+        part = gk([&](double u) {
+            const double r = r1 * std::exp(L * u * u * (3.0 - 2.0 * u)), dr = r * L * 6.0 * u * (1.0 - u);
+            const double w = r * P22(r * r) * dr;
+            if (!(w > 0.0) || !(r > 0.0)) return 0.0;
+            const double phi_max = std::acos(std::clamp(-ci * (1.0 - r * r) / (2.0 * si * r), -1.0, 1.0));
+            if (!(phi_max > 0.0)) return 0.0;
+            return w * phi_max * gk([&](double t) { return facet(r, std::cos(phi_max * t)); }, 0.0, 1.0, inner_tol);
+        }, 0.0, 1.0, tolerance);
+    }
+    return 2.0 * (full + part) / ci;
+}
+
+double cosine_average(FunctionRef e, double tolerance) {
+    return 2.0 * integrate([&](double mu) { return e(mu) * mu; }, 0.0, 1.0, {Backend::boost, tolerance});
+}
+
+}  // namespace detail
+
+std::vector<double> compensation_mus(int n) {
+    require(n >= 2, "the number of table points", ">= 2", n);
+    std::vector<double> mus(static_cast<std::size_t>(n));
+    for (int j = 0; j < n; ++j) mus[static_cast<std::size_t>(j)] = static_cast<double>(j) / (n - 1);
+    mus.back() = 1.0;
+    return mus;
+}
+
+double interpolate_E(const CompensationTable& table, double mu) {
+    const std::vector<double>& x = table.mus;
+    if (x.size() < 2 || table.E.size() != x.size()) throw input_error("compensation table: malformed (fewer than 2 points, or E and mus differ in size)");
+    require(mu >= x.front() && mu <= x.back(), "mu", "within the table's cosines", mu);
+    const std::size_t i = std::min<std::size_t>(
+        static_cast<std::size_t>(std::upper_bound(x.begin(), x.end(), mu) - x.begin()), x.size() - 1);
+    const std::size_t lo = i - 1;
+    const double t = (mu - x[lo]) / (x[i] - x[lo]);
+    return table.E[lo] + t * (table.E[i] - table.E[lo]);
+}
+
+double compensation_lobe(const CompensationTable& table, double mu_i, double mu_o) {
+    const double missing = 1.0 - table.E_avg;
+    if (!(missing > 0.0)) return 0.0;
+    return (1.0 - interpolate_E(table, mu_i)) * (1.0 - interpolate_E(table, mu_o)) / (pi * missing);
+}
+
+double fresnel_ms(double F_avg, double E_avg) {
+    return F_avg * F_avg * E_avg / (1.0 - F_avg * (1.0 - E_avg));
+}
+
+double turquin_scale(double E_view, double F0) {
+    require(E_view > 0.0, "E(mu_view)", "> 0", E_view);
+    return 1.0 + F0 * (1.0 - E_view) / E_view;
+}
+
+namespace {
+std::string g17(double x) { return format_g17(x); }
+std::string g9f(double x) {  // a float literal that round-trips the float nearest x
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.9gf", static_cast<double>(static_cast<float>(x)));
+    std::string s = buf;
+    if (s.find_first_of(".eE") == std::string::npos) s.insert(s.size() - 1, ".0");
+    return s;
+}
+}  // namespace
+
+void write_compensation_csv(std::ostream& out, const std::vector<std::pair<std::string, CompensationTable>>& tables) {
+    out << "ndf,cos_theta,E\n";
+    for (const auto& [name, t] : tables)
+        for (std::size_t j = 0; j < t.mus.size() && j < t.E.size(); ++j)
+            write_csv_record(out, {name, format_shortest(t.mus[j]), g17(t.E[j])});
+}
+
+void write_compensation_avg_csv(std::ostream& out, const std::vector<std::pair<std::string, CompensationTable>>& tables) {
+    out << "ndf,E_avg\n";
+    for (const auto& [name, t] : tables) write_csv_record(out, {name, g17(t.E_avg)});
+}
+
+std::string compensation_header_name(std::string_view family_name) {
+    std::string id = "smithlab_";
+    bool sep = false;
+    for (char c : family_name) {
+        const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9');
+        if (ok) {
+            if (sep && id.back() != '_') id += '_';
+            id += c;
+            sep = false;
+        } else {
+            sep = true;
+        }
+    }
+    while (!id.empty() && id.back() == '_') id.pop_back();
+    return id;
+}
+
+void write_compensation_header(std::ostream& out, std::string_view family_name, const std::vector<double>& alphas,
+                               const std::vector<double>& mus, const std::vector<std::vector<double>>& E,
+                               const std::vector<double>& E_avg) {
+    if (alphas.size() < 2 || mus.size() < 2 || E.size() != alphas.size() || E_avg.size() != alphas.size())
+        throw input_error("compensation header: need >= 2 alphas and mus, E[alpha][mu] and E_avg[alpha] of the grid's sizes");
+    for (const std::vector<double>& row : E)
+        if (row.size() != mus.size()) throw input_error("compensation header: a row of E differs in size from mus");
+    for (std::size_t i = 1; i < alphas.size(); ++i)
+        if (!(alphas[i] > alphas[i - 1])) throw input_error("compensation header: alphas must ascend");
+    for (std::size_t j = 1; j < mus.size(); ++j)
+        if (!(mus[j] > mus[j - 1])) throw input_error("compensation header: mus must ascend");
+    const std::string id = compensation_header_name(family_name);
+    std::string guard = id;
+    for (char& c : guard) c = static_cast<char>(c >= 'a' && c <= 'z' ? c - 'a' + 'A' : c);
+    guard += "_COMPENSATION_H";
+    std::string family(family_name);
+    for (std::size_t p; (p = family.find("*/")) != std::string::npos;) family.replace(p, 2, "* /");
+    const std::size_t na = alphas.size(), nm = mus.size();
+
+    out << "/* " << id << ": energy compensation for specular multiple scattering, NDF family " << family << ".\n"
+        << " * Generated by smithlab (fit/compensation.hpp). E(alpha, mu): the directional albedo of single\n"
+        << " * scattering off mirror facets (F = 1) with the height-correlated Smith G2 (Walter et al. 2007, eq. 20),\n"
+        << " * mu = cos(theta); E_avg(alpha) = 2 int_0^1 E mu dmu. Kulla and Conty 2017: f_ms(wi, wo) =\n"
+        << " * (1 - E(mu_i)) (1 - E(mu_o)) / (pi (1 - E_avg)), times F_avg^2 E_avg / (1 - F_avg (1 - E_avg)) for\n"
+        << " * coloured facets; Turquin 2019: f = f_ss (1 + F0 (1 - E(mu_view)) / E(mu_view)).\n"
+        << " * " << id << "_E(alpha, mu) and " << id << "_E_avg(alpha) interpolate (bi)linearly, clamped to the grid:\n"
+        << " * alpha in [" << g17(alphas.front()) << ", " << g17(alphas.back()) << "], mu in [" << g17(mus.front())
+        << ", " << g17(mus.back()) << "]. Self-contained C99 (or C++). */\n"
+        << "#ifndef " << guard << "\n#define " << guard << "\n\n";
+    auto row = [&](const std::vector<double>& v) {
+        std::string s;
+        for (std::size_t k = 0; k < v.size(); ++k) {
+            s += (k % 6 == 0 ? "\n    " : " ");
+            s += g9f(v[k]);
+            if (k + 1 < v.size()) s += ',';
+        }
+        return s;
+    };
+    out << "static const float " << id << "_alpha[" << na << "] = {" << row(alphas) << "\n};\n";
+    out << "static const float " << id << "_mu[" << nm << "] = {" << row(mus) << "\n};\n";
+    out << "static const float " << id << "_E_table[" << na << "][" << nm << "] = {";
+    for (std::size_t i = 0; i < na; ++i) out << "\n  {" << row(E[i]) << "\n  }" << (i + 1 < na ? "," : "");
+    out << "\n};\n";
+    out << "static const float " << id << "_E_avg_table[" << na << "] = {" << row(E_avg) << "\n};\n\n";
+    // The cell of x in an ascending grid g[0..n-1], clamped, and the weight of its upper end.
+    out << "static inline int " << id << "_cell(const float* g, int n, float x, float* t) {\n"
+        << "    int lo = 0, hi = n - 1;\n"
+        << "    if (!(x > g[0])) { *t = 0.0f; return 0; }\n"
+        << "    if (!(x < g[n - 1])) { *t = 1.0f; return n - 2; }\n"
+        << "    while (hi - lo > 1) { int mid = (lo + hi) / 2; if (g[mid] <= x) lo = mid; else hi = mid; }\n"
+        << "    *t = (x - g[lo]) / (g[lo + 1] - g[lo]);\n"
+        << "    return lo;\n"
+        << "}\n\n";
+    out << "/* E(alpha, mu), bilinear in (alpha, mu). */\n"
+        << "static inline float " << id << "_E(float alpha, float mu) {\n"
+        << "    float ta, tm;\n"
+        << "    int i = " << id << "_cell(" << id << "_alpha, " << na << ", alpha, &ta);\n"
+        << "    int j = " << id << "_cell(" << id << "_mu, " << nm << ", mu, &tm);\n"
+        << "    float lo = " << id << "_E_table[i][j] + tm * (" << id << "_E_table[i][j + 1] - " << id << "_E_table[i][j]);\n"
+        << "    float hi = " << id << "_E_table[i + 1][j] + tm * (" << id << "_E_table[i + 1][j + 1] - " << id
+        << "_E_table[i + 1][j]);\n"
+        << "    return lo + ta * (hi - lo);\n"
+        << "}\n\n";
+    out << "/* E_avg(alpha), linear in alpha. */\n"
+        << "static inline float " << id << "_E_avg(float alpha) {\n"
+        << "    float ta;\n"
+        << "    int i = " << id << "_cell(" << id << "_alpha, " << na << ", alpha, &ta);\n"
+        << "    return " << id << "_E_avg_table[i] + ta * (" << id << "_E_avg_table[i + 1] - " << id << "_E_avg_table[i]);\n"
+        << "}\n\n"
+        << "#endif /* " << guard << " */\n";
+}
+
+}  // namespace smithlab::fit

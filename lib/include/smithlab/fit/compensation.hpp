@@ -1,2 +1,158 @@
-// placeholder (issue 12)
+// smithlab/fit/compensation.hpp -- energy compensation of specular multiple scattering, for any NDF.
+//
+// E(mu), the directional albedo of single scattering off mirror facets (F = 1), with the height-correlated G2
+// (Walter, Marschner, Li, Torrance 2007, eq. 20; smith.hpp, G2_from_Lambdas):
+//     E(mu_i) = integral over the hemisphere of f_ss(wi, wo) cos theta_o dwo,  f_ss = D(h) G2 / (4 cos_i cos_o),
+// and its cosine-weighted average E_avg = 2 integral_0^1 E(mu) mu dmu (Kulla and Conty 2017, "Revisiting Physically
+// Based Shading at Imageworks", SIGGRAPH course slides, "Energy compensation"). From them, their compensation lobe
+//     f_ms(wi, wo) = (1 - E(mu_i)) (1 - E(mu_o)) / (pi (1 - E_avg)),
+// whose albedo is 1 - E(mu_i), so that single + compensation is a white furnace; for coloured facets it is scaled by
+//     F_ms = F_avg^2 E_avg / (1 - F_avg (1 - E_avg)),  F_avg = 2 integral_0^1 F(mu) mu dmu
+// (their "Fresnel" slide: the energy after k >= 2 bounces, F_avg^k E_avg (1 - E_avg)^(k-1), summed); and Turquin's
+// scale of the single-scattering lobe, f = f_ss (1 + F0 (1 - E(mu_v)) / E(mu_v)) (Turquin 2019, "Practical multiple
+// scattering compensation for microfacet models", Weta tech report), mu_v the direction held fixed when the albedo
+// is taken: the view direction in a renderer, wi in this library's E(mu_i).
+//
+// The quadrature (compensation.cpp): over microfacet normals in slope space, m ~ (p, q, 1) = (r cos phi, r sin phi, 1),
+// phi from wi's azimuth. With D(m) cos(theta_m) dm = P22 dp dq (Walter eq. 42) and wo = reflect(wi, m)
+// (dwo = 4 <wo.m> dm, Walter eq. 14),
+//     E(mu_i) = (1 / cos_i) integral P22(r^2) (cos_i + sin_i r cos phi) G2(wi, wo(r, phi)) F(wi.m) r dr dphi
+// over wo.z > 0, which is cos phi > -cos_i (1 - r^2) / (2 sin_i r): every phi below r1 = cos_i / (1 + sin_i)
+// (theta_m < 45 - theta_i / 2), |phi| < phi_max(r) up to r_max = (1 + sin_i) / cos_i (theta_m < 45 + theta_i / 2).
+// The horizon is the only kink of the integrand (G2 itself is analytic through wo.z = 0: mu Lambda(mu) is, for
+// a slope law analytic at 0, lambda_table.hpp), so on [0, r1] x [0, pi] and on {r1 < r < r_max, phi < phi_max}
+// in (u, t), r = r1 + (r_max - r1) u^2 (3 - 2u), phi = phi_max(r) t (which turns the (r - r1)^(3/2) and
+// (r_max - r)^(3/2) ends of the radial integrand into powers of u), adaptive Gauss-Kronrod (15 points) meets its
+// relative tolerance in a few panels. E(0) = 1 is the limit: at grazing incidence G2 / cos_i -> 1 / lim mu Lambda(mu)
+// = 1 / E[q+] and every visible normal reflects upward. Lambda is the NDF's closed form, else a LambdaTable
+// (lambda_table.hpp) of the given tolerance built once per NDF: a relative error d in Lambda moves E by less than d.
 #pragma once
+
+#include <cmath>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "smithlab/fast_lambda.hpp"
+#include "smithlab/lambda_table.hpp"
+#include "smithlab/ndf.hpp"
+#include "smithlab/quadrature.hpp"
+
+namespace smithlab::fit {
+
+struct AlbedoOptions {
+    double tolerance = 1e-10;  // relative, of each Gauss-Kronrod integral (inner ones at a tenth of it)
+    // For an NDF without a closed-form Lambda: the LambdaTable's (its estimate is ~5x pessimistic, README).
+    LambdaTableOptions lambda_table = {.tolerance = 1e-8};
+};
+
+namespace detail {
+// The quadrature above for one mu in [0, 1]; P22(r^2), Lambda(mu >= 0) and F(cos wi.m); F null: mirror facets (F = 1).
+double single_scattering_albedo(FunctionRef P22, FunctionRef Lambda, const FunctionRef* F, double mu, double tolerance);
+// 2 integral_0^1 e(mu) mu dmu, tanh-sinh (smooth or log-like behaviour at mu = 0 costs no extra panels).
+double cosine_average(FunctionRef e, double tolerance);
+}  // namespace detail
+
+// E(mu) and E_avg of one NDF: holds its Lambda (closed form or table), built once; read-only after construction.
+template <Ndf N>
+class SingleScatteringAlbedo {
+public:
+    explicit SingleScatteringAlbedo(const N& ndf, const AlbedoOptions& opts = {})
+        : ndf_(ndf), Lambda_(ndf_, opts.lambda_table), opts_(opts) {}
+
+    // E(mu), mu = cos theta_i in [0, 1] (input_error outside), mirror facets.
+    double operator()(double mu) const { return albedo(mu, nullptr); }
+    // The same with facets of Fresnel reflectance F(cos wi.m) (e.g. fresnel_conductor): the single-scattering
+    // albedo of coloured facets, E_F(mu).
+    template <class Fresnel>
+    double operator()(double mu, const Fresnel& F) const {
+        const FunctionRef f(F);
+        return albedo(mu, &f);
+    }
+    // E_avg = 2 integral_0^1 E(mu) mu dmu (Kulla and Conty 2017).
+    double average() const {
+        return detail::cosine_average([&](double mu) { return (*this)(mu); }, 100.0 * opts_.tolerance);
+    }
+
+private:
+    double albedo(double mu, const FunctionRef* F) const {
+        auto P22 = [&](double r2) { return slope_density(ndf_, r2); };
+        auto L = [&](double m) { return Lambda_(m); };
+        return detail::single_scattering_albedo(P22, L, F, mu, opts_.tolerance);
+    }
+    N ndf_;
+    FastLambda<N> Lambda_;
+    AlbedoOptions opts_;
+};
+
+// One-off conveniences (each builds the Lambda table again for an NDF without a closed form).
+template <Ndf N>
+double directional_albedo(const N& ndf, double mu, const AlbedoOptions& opts = {}) {
+    return SingleScatteringAlbedo<N>(ndf, opts)(mu);
+}
+template <Ndf N>
+double average_albedo(const N& ndf, const AlbedoOptions& opts = {}) {
+    return SingleScatteringAlbedo<N>(ndf, opts).average();
+}
+
+// F_avg = 2 integral_0^1 F(mu) mu dmu (Kulla and Conty 2017), F a callable of the cosine.
+template <class Fresnel>
+double average_fresnel(const Fresnel& F, double tolerance = 1e-10) {
+    return detail::cosine_average(F, tolerance);
+}
+
+// One NDF's table: E at the cosines mus (ascending, 0 and 1 included), and E_avg computed by its own quadrature
+// (not from the table's points).
+struct CompensationTable {
+    std::vector<double> mus, E;
+    double E_avg = 0.0;
+};
+
+// n >= 2 cosines j / (n - 1): a uniform grid with both ends, so that the piecewise-linear lookup (here and in the
+// C header) covers [0, 1] without extrapolating or clamping; E(0) = 1 exactly (the limit, above), E(1) at normal
+// incidence. Gauss-Legendre nodes would give E_avg from the table itself, but E_avg has its own quadrature here, and
+// a renderer's lookup wants the ends.
+std::vector<double> compensation_mus(int n);
+
+template <Ndf N>
+CompensationTable compensation_table(const N& ndf, int n = 32, const AlbedoOptions& opts = {}) {
+    const SingleScatteringAlbedo<N> E(ndf, opts);
+    CompensationTable t{compensation_mus(n), {}, 0.0};
+    t.E.reserve(t.mus.size());
+    for (double mu : t.mus) t.E.push_back(E(mu));
+    t.E_avg = E.average();
+    return t;
+}
+
+// E at any mu in [0, 1], linear between the table's points (input_error outside [0, 1] or for a malformed table).
+double interpolate_E(const CompensationTable& table, double mu);
+
+// Kulla and Conty 2017's lobe f_ms(wi, wo) = (1 - E(mu_i)) (1 - E(mu_o)) / (pi (1 - E_avg)), E interpolated from the
+// table (0 when E_avg = 1: no energy is missing).
+double compensation_lobe(const CompensationTable& table, double mu_i, double mu_o);
+// Its Fresnel factor F_ms = F_avg^2 E_avg / (1 - F_avg (1 - E_avg)): f_ms F_ms is the lobe of coloured facets.
+double fresnel_ms(double F_avg, double E_avg);
+// Turquin 2019's scale 1 + F0 (1 - E) / E, E = E(mu_v) of the direction held fixed (the view direction).
+double turquin_scale(double E_view, double F0);
+inline double turquin_scale(const CompensationTable& table, double mu_view, double F0) {
+    return turquin_scale(interpolate_E(table, mu_view), F0);
+}
+
+// CSV: `ndf,cos_theta,E`, one row per table point, ndf the spec string (e.g. "ggx(alpha=0.5)"); and `ndf,E_avg`.
+void write_compensation_csv(std::ostream& out, const std::vector<std::pair<std::string, CompensationTable>>& tables);
+void write_compensation_avg_csv(std::ostream& out, const std::vector<std::pair<std::string, CompensationTable>>& tables);
+
+// A self-contained C header (C99, or C++) for a renderer: static const float tables of E over (alpha, mu) and
+// E_avg over alpha for one NDF family, and lookups NAME_E(alpha, mu) and NAME_E_avg(alpha) with bilinear
+// (linear) interpolation, clamped to the grid; NAME is family_name made an identifier ("gtr(gamma=1.5)" ->
+// smithlab_gtr_gamma_1_5). alphas and mus ascending, E[alpha][mu]; input_error on mismatched sizes.
+void write_compensation_header(std::ostream& out, std::string_view family_name, const std::vector<double>& alphas,
+                               const std::vector<double>& mus, const std::vector<std::vector<double>>& E,
+                               const std::vector<double>& E_avg);
+// The identifier the header's names start with.
+std::string compensation_header_name(std::string_view family_name);
+
+}  // namespace smithlab::fit
