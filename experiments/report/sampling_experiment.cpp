@@ -1,10 +1,13 @@
 #include "sampling_experiment.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <cstdio>
 #include <fstream>
 #include <memory>
 #include <numbers>
+#include <utility>
 
 #include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
@@ -31,10 +34,8 @@ struct Conductor {
     }
 };
 
-}  // namespace
-
-std::vector<SamplingRow> run_sampling_experiment(const Scene::Sampling& s, const NdfRegistry& ndfs) {
-    require(s.theta_o >= 0.0 && s.theta_o < 90.0, "scene: sampling.theta_o", "in [0, 90) degrees", s.theta_o);
+// The scene's NDFs, checked: each family of one parameter, alpha, with a closed-form Lambda (for G2), at each alpha.
+std::vector<AnyNdf> sampling_ndfs(const Scene::Sampling& s, const NdfRegistry& ndfs) {
     std::vector<AnyNdf> list;
     for (const std::string& family : s.families) {
         const NdfInfo* info = ndfs.find(family);
@@ -48,51 +49,69 @@ std::vector<SamplingRow> run_sampling_experiment(const Scene::Sampling& s, const
             list.push_back(std::move(n));
         }
     }
+    return list;
+}
+
+// One sample of each strategy's weight (sampling_strategies' order) for ndf seen from wo.
+std::vector<std::function<double(Rng&)>> strategy_weights(const AnyNdf& ndf, const Vec3& wo,
+                                                         const std::vector<SamplerInfo>& samplers) {
+    const auto c = std::make_shared<const Conductor>(Conductor{ndf, wo, Lambda(ndf, cot_theta(wo))});
+    const BoundSampler dcos = prepare(find_sampler(samplers, "dcos"), ndf, wo);
+    // Visible normals in closed form where the NDF offers one (its capability, ndf.hpp), else by rejection.
+    const char* visible = !std::isnan(ggx_alpha(ndf))        ? "vndf-ggx"
+                          : !std::isnan(beckmann_alpha(ndf)) ? "vndf-beckmann"
+                                                             : "vndf";
+    const BoundSampler vndf = prepare(find_sampler(samplers, visible), ndf, wo);
+    const double cos_o = wo.z();
+    return {
+        [c, cos_o](Rng& g) {  // Malley: a uniform disk point lifted to the hemisphere is cosine-distributed
+            const double r = std::sqrt(uniform01(g)), phi = 2.0 * pi * uniform01(g);
+            const Vec3 wi(r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0, 1.0 - r * r)));
+            if (!(wi.z() > 0.0)) return 0.0;
+            const Vec3 h = (wi + c->wo).normalized();
+            return pi * c->G2(wi) * c->D(h) / (4.0 * cos_o * wi.z());
+        },
+        [c, cos_o, dcos](Rng& g) {
+            const NormalSample m = dcos.sample(g);
+            const double wom = c->wo.dot(m.m);
+            const Vec3 wi = reflect(c->wo, m.m);
+            if (!(wom > 0.0 && wi.z() > 0.0)) return 0.0;
+            return c->G2(wi) * wom / (cos_o * m.m.z());
+        },
+        [c, vndf](Rng& g) {
+            const Vec3 wi = reflect(c->wo, vndf.sample(g).m);
+            if (!(wi.z() > 0.0)) return 0.0;
+            return c->G2(wi) * (1.0 + c->Lambda_o);
+        },
+    };
+}
+
+// The mean and (sample) variance of n draws of weight, by Welford's running update.
+std::pair<double, double> mean_and_variance(const std::function<double(Rng&)>& weight, Rng g, std::size_t n) {
+    double mean = 0.0, m2 = 0.0;
+    for (std::size_t i = 1; i <= n; ++i) {
+        const double w = weight(g);
+        const double d = w - mean;
+        mean += d / static_cast<double>(i);
+        m2 += d * (w - mean);
+    }
+    return {mean, m2 / static_cast<double>(n - 1)};
+}
+
+}  // namespace
+
+std::vector<SamplingRow> run_sampling_experiment(const Scene::Sampling& s, const NdfRegistry& ndfs) {
+    require(s.theta_o >= 0.0 && s.theta_o < 90.0, "scene: sampling.theta_o", "in [0, 90) degrees", s.theta_o);
+    const std::vector<AnyNdf> list = sampling_ndfs(s, ndfs);
     const std::vector<SamplerInfo> samplers = builtin_samplers();
     const Vec3 wo = direction_from_theta_deg(s.theta_o);
     std::vector<SamplingRow> rows;
     for (const AnyNdf& ndf : list) {
-        const auto c = std::make_shared<const Conductor>(Conductor{ndf, wo, Lambda(ndf, cot_theta(wo))});
-        const BoundSampler dcos = prepare(find_sampler(samplers, "dcos"), ndf, wo);
-        // Visible normals in closed form where the NDF offers one (its capability, ndf.hpp), else by rejection.
-        const char* visible = !std::isnan(ggx_alpha(ndf))        ? "vndf-ggx"
-                              : !std::isnan(beckmann_alpha(ndf)) ? "vndf-beckmann"
-                                                                 : "vndf";
-        const BoundSampler vndf = prepare(find_sampler(samplers, visible), ndf, wo);
-        const double cos_o = wo.z();
-        std::vector<std::function<double(Rng&)>> weights = {
-            [c, cos_o](Rng& g) {  // Malley: a uniform disk point lifted to the hemisphere is cosine-distributed
-                const double r = std::sqrt(uniform01(g)), phi = 2.0 * pi * uniform01(g);
-                const Vec3 wi(r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0, 1.0 - r * r)));
-                if (!(wi.z() > 0.0)) return 0.0;
-                const Vec3 h = (wi + c->wo).normalized();
-                return pi * c->G2(wi) * c->D(h) / (4.0 * cos_o * wi.z());
-            },
-            [c, cos_o, dcos](Rng& g) {
-                const NormalSample m = dcos.sample(g);
-                const double wom = c->wo.dot(m.m);
-                const Vec3 wi = reflect(c->wo, m.m);
-                if (!(wom > 0.0 && wi.z() > 0.0)) return 0.0;
-                return c->G2(wi) * wom / (cos_o * m.m.z());
-            },
-            [c, vndf](Rng& g) {
-                const Vec3 wi = reflect(c->wo, vndf.sample(g).m);
-                if (!(wi.z() > 0.0)) return 0.0;
-                return c->G2(wi) * (1.0 + c->Lambda_o);
-            },
-        };
+        const std::vector<std::function<double(Rng&)>> weights = strategy_weights(ndf, wo, samplers);
         for (std::size_t k = 0; k < weights.size(); ++k) {
-            Rng g = make_rng(s.seed, rows.size());
-            // Welford's running mean and variance.
-            double mean = 0.0, m2 = 0.0;
-            for (std::size_t i = 1; i <= s.samples; ++i) {
-                const double w = weights[k](g);
-                const double d = w - mean;
-                mean += d / static_cast<double>(i);
-                m2 += d * (w - mean);
-            }
+            const auto [mean, variance] = mean_and_variance(weights[k], make_rng(s.seed, rows.size()), s.samples);
             rows.push_back({ndf.family(), std::string(sampling_strategies[k]), ndf.param("alpha"), s.samples, mean,
-                            m2 / static_cast<double>(s.samples - 1), NAN, weights[k]});
+                            variance, NAN, weights[k]});
         }
     }
     return rows;
