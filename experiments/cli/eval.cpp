@@ -35,7 +35,7 @@ std::string described(const std::array<Named<E>, N>& table) {
 struct Route {
     LambdaOptions options;
     const LambdaVariant* variant = nullptr;
-    // Lambda of ndf at mu >= 0, the variant prepared once per NDF (a table variant builds its table there).
+    // Lambda of ndf at a finite mu > 0, the variant prepared once per NDF (a table variant builds its table there).
     LambdaOfMu prepare(const AnyNdf& ndf) const {
         if (variant) return smithlab::prepare(*variant, ndf);
         return [ndf, o = options](double mu) { return smithlab::Lambda(ndf, mu, o); };
@@ -60,11 +60,12 @@ Route route(const EvalArgs& a, const VariantRegistry& variants) {
     return r;
 }
 
-// One Lambda evaluation serves both: G1 takes |mu| (Walter 2007 eq. 44), Lambda(mu < 0) follows the convention.
+// One Lambda evaluation serves both: G1 takes |mu| (Walter 2007 eq. 44), Lambda(mu < 0) follows the convention
+// (the special values of mu: smith.hpp's Lambda_of_abs and Lambda_of_sign).
 std::pair<double, double> lambda_g1(const Prepared& p, double mu, Downward downward) {
     try {
-        const double up = p.Lambda_up(std::abs(mu));
-        return {mu < 0.0 ? downward_Lambda(up, downward) : up, 1.0 / (1.0 + up)};
+        const double up = Lambda_of_abs(mu, p.Lambda_up);
+        return {Lambda_of_sign(mu, up, downward), 1.0 / (1.0 + up)};
     } catch (const input_error& e) {
         throw input_error("ndf '" + p.ndf.spec() + "': " + e.what());
     }

@@ -38,12 +38,7 @@ bool is_quadrature(LambdaRoute r) {
 LambdaOfMu prepare(const LambdaVariant& variant, const AnyNdf& ndf, Downward downward) {
     if (!variant.applies(ndf))
         throw input_error("method '" + variant.name + "' does not apply to a '" + ndf.family() + "' ndf");
-    return [up = variant.prepare(ndf), downward](double mu) {
-        if (std::isnan(mu)) throw input_error("mu is NaN");
-        const double a = std::abs(mu);
-        const double L = a == 0.0 ? INFINITY : std::isinf(a) ? 0.0 : up(a);
-        return mu < 0.0 ? downward_Lambda(L, downward) : L;
-    };
+    return [up = variant.prepare(ndf), downward](double mu) { return Lambda_at(mu, downward, up); };
 }
 
 double Lambda(const LambdaVariant& variant, const AnyNdf& ndf, double mu, Downward downward) {

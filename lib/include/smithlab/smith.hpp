@@ -45,6 +45,29 @@ inline double downward_Lambda(double Lambda_up, Downward convention) {
     return convention == Downward::smith ? -1.0 - Lambda_up : -Lambda_up;
 }
 
+// The special values of mu = cot(theta_v), in one place (Lambda, G1 and G2 below, the variants' prepare, eval).
+// mu must be a number: NaN is refused ("mu is NaN").
+inline void require_mu_number(double mu) {
+    if (std::isnan(mu)) throw input_error("mu is NaN");
+}
+// Lambda(|mu|), from Lambda_up = Lambda at a finite mu > 0: |mu| = 0 (grazing) gives +inf and |mu| = inf (normal) 0,
+// without a call to Lambda_up.
+template <class F>
+double Lambda_of_abs(double mu, const F& Lambda_up) {
+    require_mu_number(mu);
+    const double a = std::abs(mu);
+    return a == 0.0 ? INFINITY : std::isinf(a) ? 0.0 : Lambda_up(a);
+}
+// Lambda(mu) from Lambda(|mu|): a direction below (mu < 0) follows the convention.
+inline double Lambda_of_sign(double mu, double Lambda_of_abs_mu, Downward convention) {
+    return mu < 0.0 ? downward_Lambda(Lambda_of_abs_mu, convention) : Lambda_of_abs_mu;
+}
+// Lambda at any mu (both of the above).
+template <class F>
+double Lambda_at(double mu, Downward convention, const F& Lambda_up) {
+    return Lambda_of_sign(mu, Lambda_of_abs(mu, Lambda_up), convention);
+}
+
 struct LambdaOptions {
     Method method = Method::automatic;
     Backend backend = Backend::boost;
@@ -138,13 +161,10 @@ double Lambda_1d(const N& ndf, double mu, const QuadratureOptions& opts = {}) {
     }, opts);
 }
 
-// Lambda(mu) for mu = cot(theta_v): mu = +inf gives 0, mu = 0 gives +inf, mu < 0 follows opts.downward.
+namespace detail {
+// Lambda at a finite mu > 0 by opts.method.
 template <Ndf N>
-double Lambda(const N& ndf, double mu, const LambdaOptions& opts = {}) {
-    if (std::isnan(mu)) throw input_error("mu is NaN");
-    if (mu < 0.0) return downward_Lambda(Lambda(ndf, -mu, opts), opts.downward);
-    if (mu == 0.0) return INFINITY;
-    if (std::isinf(mu)) return 0.0;
+double Lambda_by_method(const N& ndf, double mu, const LambdaOptions& opts) {
     const QuadratureOptions q{opts.backend, opts.tolerance};
     switch (opts.method) {
         case Method::automatic:
@@ -166,13 +186,19 @@ double Lambda(const N& ndf, double mu, const LambdaOptions& opts = {}) {
     if constexpr (HasClosedLambda<N>) return ndf.Lambda(mu);
     throw input_error("this ndf has no closed-form Lambda");
 }
+}  // namespace detail
+
+// Lambda(mu) for mu = cot(theta_v): mu = +inf gives 0, mu = 0 gives +inf, mu < 0 follows opts.downward.
+template <Ndf N>
+double Lambda(const N& ndf, double mu, const LambdaOptions& opts = {}) {
+    return Lambda_at(mu, opts.downward, [&](double a) { return detail::Lambda_by_method(ndf, a, opts); });
+}
 
 // G1 = 1 / (1 + Lambda(mu)), Walter 2007 eq. 51 with mu = |cot theta_v| (eq. 44): a direction below the
 // macrosurface is masked as if seen from its own side, as in transmission.
 template <Ndf N>
 double G1(const N& ndf, double mu, const LambdaOptions& opts = {}) {
-    if (std::isnan(mu)) throw input_error("mu is NaN");
-    return 1.0 / (1.0 + Lambda(ndf, std::abs(mu), opts));
+    return 1.0 / (1.0 + Lambda_of_abs(mu, [&](double a) { return detail::Lambda_by_method(ndf, a, opts); }));
 }
 
 // Bidirectional shadowing-masking. Same side (reflection): height-correlated 1/(1 + Lambda_i + Lambda_o)
@@ -185,9 +211,11 @@ double G2_from_Lambdas(double Lambda_i, double Lambda_o, bool same_side, G2Form 
 template <Ndf N>
 double G2(const N& ndf, double mu_i, double mu_o, G2Form form = G2Form::height_correlated,
           const LambdaOptions& opts = {}) {
-    if (std::isnan(mu_i) || std::isnan(mu_o)) throw input_error("mu is NaN");
+    require_mu_number(mu_i);
+    require_mu_number(mu_o);
+    const auto up = [&](double a) { return detail::Lambda_by_method(ndf, a, opts); };
     const bool same_side = (mu_i >= 0.0) == (mu_o >= 0.0);
-    return G2_from_Lambdas(Lambda(ndf, std::abs(mu_i), opts), Lambda(ndf, std::abs(mu_o), opts), same_side, form);
+    return G2_from_Lambdas(Lambda_of_abs(mu_i, up), Lambda_of_abs(mu_o, up), same_side, form);
 }
 
 }  // namespace smithlab
