@@ -7,6 +7,9 @@
 #include <thread>
 
 #include "fit_data.hpp"
+#include "fit_pictures.hpp"
+#include "fit_results.hpp"
+#include "fit_shaders.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
 #include "smithlab/fit/fit_model.hpp"
@@ -17,15 +20,6 @@ namespace smithlab::fitrun {
 namespace fs = std::filesystem;
 
 namespace {
-
-// A model as measured: its name in the outputs, the model, its constants (and their standard errors when fitted).
-struct Measured {
-    std::string name;
-    const fit::DiffuseModel* model;
-    std::vector<double> params, stderr_;
-    double chi2_dof_training = 0.0;
-    int iterations = 0;
-};
 
 std::vector<const fit::DiffuseModel*> selected_models(const FitScene& s) {
     std::vector<const fit::DiffuseModel*> out;
@@ -56,13 +50,14 @@ ErrorRow measure(const FitScene& s, const NdfData& d, const Measured& m) {
             fit::chi2_per_value(*m.model, m.params, validation)};
 }
 
-void write_constants(const fs::path& dir, const std::vector<NdfData>& data, const std::vector<std::vector<Measured>>& fits) {
+void write_constants(const fs::path& dir, const Results& r) {
+    const auto& [data, fits] = r;
     std::ofstream csv(dir / "constants.csv", std::ios::binary);
     write_csv_record(csv, {"model", "ndf", "parameter", "value", "stderr"});
     nlohmann::ordered_json json = nlohmann::ordered_json::array();
     for (std::size_t n = 0; n < data.size(); ++n)
         for (const Measured& m : fits[n]) {
-            if (m.stderr_.empty()) continue;  // not fitted
+            if (!m.fitted()) continue;
             nlohmann::ordered_json params = nlohmann::ordered_json::object();
             for (std::size_t i = 0; i < m.params.size(); ++i) {
                 const std::string p(m.model->parameters[i]);
@@ -84,8 +79,8 @@ void write_errors(const fs::path& dir, const std::vector<ErrorRow>& rows) {
 }
 
 // The traced values of a set beside every model's, one row per point and albedo (the residual maps' data).
-void write_values(const fs::path& file, const FitScene& s, const std::vector<NdfData>& data,
-                  const std::vector<std::vector<Measured>>& fits, bool validation) {
+void write_values(const fs::path& file, const FitScene& s, const Results& r, bool validation) {
+    const auto& [data, fits] = r;
     std::ofstream csv(file, std::ios::binary);
     std::vector<std::string> header{"ndf", "alpha", "theta_i", "theta_o", "phi", "albedo", "value", "stderr"};
     for (const Measured& m : fits.front()) header.push_back(m.name);
@@ -122,20 +117,21 @@ FitSummary run_fit(const FitScene& s, const std::string& source, const std::stri
     const auto t0 = std::chrono::steady_clock::now();
     output::StagedDirectory stage(out, "fit");  // refuses a bad OUT before any work
     Progress progress;
-    const std::vector<NdfData> data = gather(s, registry, out / "cache", threads, std::ref(progress));
+    Results r{gather(s, registry, out / "cache", threads, std::ref(progress)), {}};
     FitSummary sum;
-    std::vector<std::vector<Measured>> fits;
-    for (const NdfData& d : data) {
+    for (const NdfData& d : r.data) {
         sum.traced += d.traced;
         sum.reused += d.reused;
-        fits.push_back(fit_all(s, d));
-        for (const Measured& m : fits.back()) sum.errors.push_back(measure(s, d, m));
+        r.fits.push_back(fit_all(s, d));
+        for (const Measured& m : r.fits.back()) sum.errors.push_back(measure(s, d, m));
     }
     sum.points = sum.traced + sum.reused;
-    write_constants(stage.path(), data, fits);
+    write_constants(stage.path(), r);
     write_errors(stage.path(), sum.errors);
-    write_values(stage.path() / "training.csv", s, data, fits, false);
-    write_values(stage.path() / "validation.csv", s, data, fits, true);
+    write_values(stage.path() / "training.csv", s, r, false);
+    write_values(stage.path() / "validation.csv", s, r, true);
+    write_shaders(stage.path(), r);
+    const std::string pictures = write_pictures(stage.path(), s, r, registry, threads);
     sum.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const nlohmann::ordered_json meta = {
         {"title", s.title},      {"source", source},         {"scene", scene_text},

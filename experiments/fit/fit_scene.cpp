@@ -56,7 +56,7 @@ FitScene parse_fit_scene(const std::string& text, const std::string& source) {
     const toml::value data = report::parse_toml(text, source);
     StrictTable doc(data, source, "",
                     {"title", "material", "albedos", "models", "floor", "seed", "ndf", "training", "validation",
-                     "compensation"});
+                     "compensation", "pictures"});
     FitScene s;
     s.title = doc.text("title", s.title);
     s.material = doc.text("material", s.material);
@@ -106,6 +106,15 @@ FitScene parse_fit_scene(const std::string& text, const std::string& source) {
         s.compensation.alpha = read_bounded(*c, "alpha", 0.0, 1.0, true, false, "(0, 1]");
         s.compensation.mu = c->integer("mu", 2, 4096, s.compensation.mu);
         c->done();
+    }
+    if (auto p = doc.optional_table("pictures", {"sphere_alpha", "pixels", "walks", "slice_alpha", "slice_n"})) {
+        s.pictures.enabled = true;
+        if (p->has("sphere_alpha")) s.pictures.sphere_alpha = read_bounded(*p, "sphere_alpha", 0.0, 1.0, true, false, "(0, 1]");
+        s.pictures.pixels = p->integer("pixels", 4, 1024, s.pictures.pixels);
+        s.pictures.walks = p->integer("walks", 100, 1'000'000'000, s.pictures.walks);
+        if (p->has("slice_alpha")) s.pictures.slice_alpha = read_bounded(*p, "slice_alpha", 0.0, 1.0, true, false, "(0, 1]");
+        s.pictures.slice_n = p->integer("slice_n", 2, 1024, s.pictures.slice_n);
+        p->done();
     }
     doc.done();
     return s;

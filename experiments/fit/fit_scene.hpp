@@ -38,6 +38,15 @@ struct FitScene {
         std::vector<double> alpha;
         std::int64_t mu = 32;
     } compensation;
+    // The pictures (fit_pictures.hpp): absent (enabled = false) unless the scene has [pictures].
+    struct Pictures {
+        bool enabled = false;
+        std::vector<double> sphere_alpha{0.001, 0.0625, 0.25, 0.5625, 1.0};  // Hammon's columns (0 drawn at 0.001)
+        std::int64_t pixels = 32;          // a sphere's diameter in pixels
+        std::int64_t walks = 2000;         // per simulated pixel or slice point
+        std::vector<double> slice_alpha{0.25, 1.0};
+        std::int64_t slice_n = 24;         // (theta_h, theta_d) points per side of a slice
+    } pictures;
 };
 
 // Refuses (input_error "SOURCE:LINE: key ...") an unknown key or section, a value of the wrong type, a material that

@@ -1,0 +1,14 @@
+// Every fitted model as code a renderer or BRDF Explorer loads: OUT/models.glsl (a GLSL function per fitted model and
+// NDF, its constants inlined) and OUT/brdf/MODEL-NDF.brdf (Disney's BRDF Explorer's analytic format, with albedo and
+// alpha as sliders).
+#pragma once
+
+#include <filesystem>
+
+#include "fit_results.hpp"
+
+namespace smithlab::fitrun {
+
+void write_shaders(const std::filesystem::path& dir, const Results& results);
+
+}  // namespace smithlab::fitrun
