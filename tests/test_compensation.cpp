@@ -122,12 +122,13 @@ TEST_CASE("E_avg and F_avg: averages by their own quadrature", "[compensation]")
         const double got = fit::average_fresnel([&](double c) { return smithlab::fresnel_schlick(f0, c); });
         CHECK(std::abs(got - (f0 + (1.0 - f0) / 21.0)) < 1e-12);
     }
-    // E_avg against a Gauss-Legendre sum of E over the cosines (an independent rule in mu).
+    // E_avg against another rule in mu (the library's is tanh-sinh in mu).
     const fit::SingleScatteringAlbedo E(smithlab::beckmann(0.7));
     const double avg = E.average();
     double gl = 0.0;
     {
-        // 2 int_0^1 E mu dmu in mu = t^2 (E has a mu log mu term at 0): 4 int_0^1 E(t^2) t^3 dt, 20-point Gauss-Kronrod.
+        // 2 int_0^1 E mu dmu in mu = t^2 (softer at mu = 0, where E is not smooth): 4 int_0^1 E(t^2) t^3 dt, Boost's
+        // 21-point Gauss-Kronrod to depth 3.
         gl = 4.0 * boost::math::quadrature::gauss_kronrod<double, 21>::integrate(
                        [&](double t) { return E(t * t) * t * t * t; }, 0.0, 1.0, 3, 1e-10);
     }
@@ -154,7 +155,7 @@ TEST_CASE("the table: its cosines, interpolation, the lobe and its energy, the F
         CHECK(t.E[j] == E(t.mus[j]));
         CHECK(fit::interpolate_E(t, t.mus[j]) == t.E[j]);
     }
-    // Linear between points; within 2e-3 of E there at 32 points (E is smooth but for mu log mu at grazing).
+    // Linear between points; within 2e-3 of E there at 32 points (away from grazing, where E has a steep dip at mu ~ alpha).
     const double mid = 0.5 * (t.mus[10] + t.mus[11]);
     CHECK(std::abs(fit::interpolate_E(t, mid) - 0.5 * (t.E[10] + t.E[11])) < 1e-15);
     CHECK(std::abs(fit::interpolate_E(t, mid) - E(mid)) < 2e-3);

@@ -75,15 +75,17 @@ double gk(const F& f, double a, double b, double tolerance) {
     std::vector<Panel> panels{qk15(f, a, b)};
     double total = panels[0].value, error = panels[0].error;
     while (error > tolerance * std::abs(total) && static_cast<int>(panels.size()) < max_panels) {
-        const auto worst = std::max_element(panels.begin(), panels.end(),
-                                            [](const Panel& x, const Panel& y) { return x.error < y.error; });
-        const Panel p = *worst;
+        const std::size_t worst = static_cast<std::size_t>(
+            std::max_element(panels.begin(), panels.end(), [](const Panel& x, const Panel& y) { return x.error < y.error; }) -
+            panels.begin());
+        const Panel p = panels[worst];
         const double mid = 0.5 * (p.a + p.b);
         if (!(mid > p.a && mid < p.b)) break;  // no room left to halve
-        *worst = qk15(f, p.a, mid);
-        panels.push_back(qk15(f, mid, p.b));
-        total += worst->value + panels.back().value - p.value;
-        error += worst->error + panels.back().error - p.error;
+        const Panel lo = qk15(f, p.a, mid), hi = qk15(f, mid, p.b);
+        panels[worst] = lo;
+        panels.push_back(hi);  // (after the write: push_back may move the panels)
+        total += lo.value + hi.value - p.value;
+        error += lo.error + hi.error - p.error;
     }
     total = 0.0;
     for (const Panel& p : panels) total += p.value;
