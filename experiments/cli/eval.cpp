@@ -21,15 +21,6 @@ namespace smithlab::cli {
 
 namespace {
 
-// "name (description) | ...", for an option's help.
-template <class E, std::size_t N>
-std::string described(const std::array<Named<E>, N>& table) {
-    std::string out;
-    for (const Named<E>& e : table)
-        out += (out.empty() ? "" : " | ") + std::string(e.name) + " (" + std::string(e.description) + ")";
-    return out;
-}
-
 // The route --method names: one of the core methods (method_names, with --backend and --tolerance), or a
 // registered variant.
 struct Route {
@@ -182,7 +173,7 @@ void add_eval(CLI::App& app, EvalArgs& a) {
     c->add_option("--tolerance", a.tolerance, "relative tolerance of the quadrature methods")
         ->capture_default_str()
         ->check(CLI::Range(1e-15, 0.1));
-    c->add_option("--downward", a.downward, "Lambda for mu < 0: " + described(downward_names))
+    c->add_option("--downward", a.downward, "Lambda for mu < 0: " + join_described(downward_names, " | ", " | "))
         ->capture_default_str()
         ->check(CLI::IsMember(names_of(downward_names)));
 }

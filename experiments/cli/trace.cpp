@@ -52,7 +52,7 @@ trace::TraceScene cell_scene(const TraceArgs& a) {
     trace::parse_walk_options(a.downward, a.hit_normal, "--");
     trace::TraceScene s;
     s.title = "one cell";
-    s.ndfs = {a.ndf};
+    s.ndfs = {{a.ndf, std::nullopt}};
     s.materials = {a.material};
     s.theta_i = {a.theta_i};
     s.phi_i = {a.phi_i};
@@ -97,8 +97,7 @@ void add_trace(CLI::App& app, TraceArgs& a) {
         c->add_option("--max-order", a.max_order, "end walks after this many hits (0: no limit)")->capture_default_str(),
         c->add_option("--downward", a.downward, "Lambda of downward rays: smith (-1 - Lambda) or hammon (-Lambda)")
             ->capture_default_str(),
-        c->add_option("--hit-normal", a.hit_normal,
-                      "hit normal: visible (visible normals of -T) or hammon (D cos restricted to T.m < 0)")
+        c->add_option("--hit-normal", a.hit_normal, "hit normal: " + join_described(trace::hit_normal_names, ", ", " or "))
             ->capture_default_str(),
         c->add_option("--seed", a.seed, "seed, an integer in [0, 2^64)")->capture_default_str()};
     c->add_option("--threads", a.threads, "threads (0: all cores)")->capture_default_str();
@@ -143,7 +142,7 @@ void add_brdf(CLI::App& app, BrdfArgs& a) {
     c->add_option("--wi", a.wi, "THETA,PHI of the light, degrees, theta in [0, 90) (dielectric: also (90, 180])")->required();
     c->add_option("--wo", a.wo, "THETA,PHI of the viewer, degrees")->required();
     c->add_option("--n", a.n, "walks (> 0)")->capture_default_str();
-    c->add_option("--downward", a.downward, "smith or hammon")->capture_default_str();
+    c->add_option("--downward", a.downward, join_names(downward_names, ", ", " or "))->capture_default_str();
     c->add_option("--seed", a.seed, "seed, an integer in [0, 2^64)")->capture_default_str();
     c->add_option("--threads", a.threads, "threads (0: all cores)")->capture_default_str();
 }

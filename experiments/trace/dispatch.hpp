@@ -11,6 +11,7 @@
 #include "smithlab/ndfs.hpp"
 #include "smithlab/walk/facets.hpp"
 #include "smithlab/walk/microsurface.hpp"
+#include "walk_options.hpp"  // parse_walk_options
 
 namespace smithlab::trace {
 
@@ -32,19 +33,6 @@ auto with_walk_types(const AnyNdf& ndf, const walk::Material& material, const wa
     return with_microsurface(ndf, opts, [&](const auto& ms) {
         return std::visit([&](const auto& m) { return f(ms, m); }, material);
     });
-}
-
-// The walk's options as the flags and scene files name them: the downward Lambda, "smith" (-1 - Lambda) or
-// "hammon" (-Lambda); the hit normal, "visible" (visible normals of -T) or "hammon" (Hammon's D cos facing T).
-inline walk::MicrosurfaceOptions parse_walk_options(const std::string& downward, const std::string& hit_normal,
-                                                    const std::string& where) {
-    walk::MicrosurfaceOptions o;
-    if (downward == "hammon") o.downward = Downward::hammon_symmetric;
-    else if (downward != "smith") throw input_error(where + "downward must be smith or hammon, got '" + downward + "'");
-    if (hit_normal == "hammon") o.hit_normal = walk::HitNormal::hammon_dcos;
-    else if (hit_normal != "visible")
-        throw input_error(where + "hit-normal must be visible or hammon, got '" + hit_normal + "'");
-    return o;
 }
 
 }  // namespace smithlab::trace

@@ -198,7 +198,7 @@ std::string format_trace_scene(const TraceScene& s) {
       << "\ndownward = " << toml_string(s.downward) << "\nhit_normal = " << toml_string(s.hit_normal)
       << "\n\n[grid]\ntheta_i = " << toml_list(s.theta_i)
       << "\nphi_i = " << toml_list(s.phi_i) << "\n";
-    for (const std::string& n : s.ndfs) t << "\n[[ndf]]\nspec = " << toml_string(n) << "\n";
+    for (const SceneNdf& n : s.ndfs) t << "\n[[ndf]]\nspec = " << toml_string(n.spec) << "\n";
     if (!s.brdf.empty()) t << "\n[brdf]\ntheta_bins = " << s.brdf.n_theta << "\nphi_bins = " << s.brdf.n_phi << "\n";
     return t.str();
 }
@@ -209,9 +209,9 @@ RunSummary run_scene(const TraceScene& s, const std::string& source, const NdfRe
     const walk::MicrosurfaceOptions opts = parse_walk_options(s.downward, s.hit_normal, source + ": walks.");
     // Check everything first: every spec, and every microsurface once (a D-only NDF's table may refuse it).
     std::map<std::string, AnyNdf> ndfs;
-    for (const std::string& spec : s.ndfs)
-        if (!ndfs.count(spec)) {
-            const AnyNdf& ndf = ndfs.emplace(spec, registry.make(spec)).first->second;
+    for (const SceneNdf& n : s.ndfs)
+        if (!ndfs.count(n.spec)) {
+            const AnyNdf& ndf = ndfs.emplace(n.spec, n.make(registry)).first->second;
             with_microsurface(ndf, opts, [](const auto&) { return 0; });
         }
     std::map<std::string, walk::Material> materials;

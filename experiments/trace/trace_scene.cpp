@@ -6,6 +6,7 @@
 #include "smithlab/csv.hpp"
 #include "smithlab/spec.hpp"
 #include "strict_table.hpp"
+#include "walk_options.hpp"
 
 namespace smithlab::trace {
 
@@ -18,14 +19,18 @@ void read_ndfs(StrictTable& doc, const std::vector<double>& alphas, TraceScene& 
         if (n.has("spec") == n.has("family")) n.fail("spec", "or family: give exactly one of them");
         if (n.has("spec")) {
             if (n.has("gamma")) n.fail("gamma", "goes with family, not with a fixed spec");
-            s.ndfs.push_back(n.text("spec"));
+            s.ndfs.push_back({n.text("spec"), std::nullopt});
         } else {
             const std::string family = n.text("family");
             if (alphas.empty()) n.fail("family", "is swept over grid.alpha, which is missing");
             const std::vector<double> gammas = n.has("gamma") ? report::read_axis(n, "gamma") : std::vector<double>{};
+            auto add = [&](NdfSpec point) {
+                std::string shown = format_spec(point);
+                s.ndfs.push_back({std::move(shown), std::move(point)});
+            };
             for (double a : alphas) {
-                if (gammas.empty()) s.ndfs.push_back(format_spec({family, {{"alpha", a}}}));
-                for (double g : gammas) s.ndfs.push_back(format_spec({family, {{"alpha", a}, {"gamma", g}}}));
+                if (gammas.empty()) add({family, {{"alpha", a}}});
+                for (double g : gammas) add({family, {{"alpha", a}, {"gamma", g}}});
             }
         }
         n.done();
@@ -48,10 +53,11 @@ TraceScene parse_trace_scene(const std::string& text, const std::string& source)
         s.seed = static_cast<std::uint64_t>(w->integer("seed", 0, std::numeric_limits<std::int64_t>::max(), 1));
         s.max_order = static_cast<int>(w->integer("max_order", 0, 1'000'000, 0));
         s.downward = w->text("downward", s.downward);
-        if (s.downward != "smith" && s.downward != "hammon") w->fail("downward", "must be \"smith\" or \"hammon\", got \"" + s.downward + "\"");
+        if (!find_named(downward_names, s.downward))
+            w->fail("downward", "must be " + quoted_names(downward_names) + ", got \"" + s.downward + "\"");
         s.hit_normal = w->text("hit_normal", s.hit_normal);
-        if (s.hit_normal != "visible" && s.hit_normal != "hammon")
-            w->fail("hit_normal", "must be \"visible\" or \"hammon\", got \"" + s.hit_normal + "\"");
+        if (!find_named(hit_normal_names, s.hit_normal))
+            w->fail("hit_normal", "must be " + quoted_names(hit_normal_names) + ", got \"" + s.hit_normal + "\"");
         w->done();
     }
 
@@ -79,10 +85,10 @@ TraceScene parse_trace_scene(const std::string& text, const std::string& source)
 
 std::vector<TraceCell> cells(const TraceScene& s) {
     std::vector<TraceCell> out;
-    for (const std::string& ndf : s.ndfs)
+    for (const SceneNdf& ndf : s.ndfs)
         for (const std::string& material : s.materials)
             for (double t : s.theta_i)
-                for (double p : s.phi_i) out.push_back({out.size(), ndf, material, t, p});
+                for (double p : s.phi_i) out.push_back({out.size(), ndf.spec, material, t, p});
     return out;
 }
 

@@ -5,16 +5,29 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "smithlab/registry.hpp"
+#include "smithlab/spec.hpp"
 #include "smithlab/walk/tally.hpp"
 
 namespace smithlab::trace {
 
+// An NDF of the scene: a spec as the scene (ndf.spec) or --ndf gives it, or a family at a point of the grid.
+struct SceneNdf {
+    std::string spec;               // as shown (the scene in meta.json, the cells): a given spec as written
+    std::optional<NdfSpec> family;  // a family's name and parameters; none: the NDF is the spec given
+    // Through the registry: a family from its parameters (no spec parsed), a given spec from its text.
+    AnyNdf make(const NdfRegistry& registry) const {
+        return family ? registry.make(family->name, family->params) : registry.make(spec);
+    }
+};
+
 struct TraceScene {
     std::string title = "smithlab trace";
-    std::vector<std::string> ndfs;       // NDF specs, the families already expanded over alpha (and gamma)
+    std::vector<SceneNdf> ndfs;          // the families already expanded over alpha (and gamma)
     std::vector<std::string> materials;  // facet material specs
     std::vector<double> theta_i, phi_i;  // degrees
     std::int64_t walks = 200'000;        // per cell

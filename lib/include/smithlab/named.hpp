@@ -23,15 +23,30 @@ constexpr const Named<E>* find_named(const std::array<Named<E>, N>& table, std::
     return nullptr;
 }
 
-// The names joined by sep, the last by last_sep: "a, b or c" with sep ", " and last_sep " or ".
-template <class E, std::size_t N>
-std::string join_names(const std::array<Named<E>, N>& table, std::string_view sep, std::string_view last_sep) {
+// show(entry) for each entry, joined by sep, the last by last_sep: "a, b or c" with sep ", " and last_sep " or ".
+template <class E, std::size_t N, class Show>
+std::string join_entries(const std::array<Named<E>, N>& table, std::string_view sep, std::string_view last_sep,
+                         const Show& show) {
     std::string out;
     for (std::size_t i = 0; i < N; ++i) {
         if (i > 0) out += i + 1 == N ? last_sep : sep;
-        out += table[i].name;
+        out += show(table[i]);
     }
     return out;
+}
+
+// The names joined by sep, the last by last_sep: "a, b or c" with sep ", " and last_sep " or ".
+template <class E, std::size_t N>
+std::string join_names(const std::array<Named<E>, N>& table, std::string_view sep, std::string_view last_sep) {
+    return join_entries(table, sep, last_sep, [](const Named<E>& e) { return std::string(e.name); });
+}
+
+// "name (description)" for each entry, joined as join_names joins the names (for a CLI option's help).
+template <class E, std::size_t N>
+std::string join_described(const std::array<Named<E>, N>& table, std::string_view sep, std::string_view last_sep) {
+    return join_entries(table, sep, last_sep, [](const Named<E>& e) {
+        return std::string(e.name) + " (" + std::string(e.description) + ")";
+    });
 }
 
 // Every name of the table, in its order (for a CLI's list of accepted values).
