@@ -1,8 +1,11 @@
 #include "fit_run.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <iomanip>
+#include <sstream>
 #include <nlohmann/json.hpp>
 #include <thread>
 
@@ -12,6 +15,7 @@
 #include "fit_shaders.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
+#include "smithlab/fit/compensation.hpp"
 #include "smithlab/fit/fit_model.hpp"
 #include "staged_directory.hpp"
 
@@ -97,6 +101,91 @@ void write_values(const fs::path& file, const FitScene& s, const Results& r, boo
             }
 }
 
+// Kulla-Conty energy compensation for each NDF family of the scene over compensation.alpha (no tracing: quadrature of
+// the single-scattering BRDF of mirror facets): compensation.csv, compensation_avg.csv and a C header per family.
+// Returns the Markdown table of E_avg.
+std::string write_compensation(const fs::path& dir, const FitScene& s, const NdfRegistry& registry) {
+    if (s.compensation.alpha.empty()) return "";
+    std::vector<std::pair<std::string, fit::CompensationTable>> all;
+    std::ostringstream md;
+    md << "\n## Energy compensation (Kulla and Conty 2017), single scattering off mirror facets\n\n"
+       << "E_avg, the cosine-weighted average of the directional albedo E(mu) (compensation.csv: E over cos theta; "
+       << "the C headers smithlab_NDF.h: E over (alpha, mu) and E_avg over alpha for a renderer):\n\n| alpha |";
+    for (const FitFamily& f : s.ndfs) md << " " << family_label(f) << " |";
+    md << "\n|---:|";
+    for (std::size_t n = 0; n < s.ndfs.size(); ++n) md << "---:|";
+    md << "\n";
+    std::vector<std::vector<double>> avg(s.ndfs.size());
+    for (std::size_t n = 0; n < s.ndfs.size(); ++n) {
+        std::vector<std::vector<double>> E;
+        for (double a : s.compensation.alpha) {
+            const AnyNdf ndf = make_ndf(registry, s.ndfs[n], a);
+            fit::CompensationTable t = fit::compensation_table(ndf, static_cast<int>(s.compensation.mu));
+            E.push_back(t.E);
+            avg[n].push_back(t.E_avg);
+            all.emplace_back(ndf.spec(), std::move(t));
+        }
+        const std::string label = family_label(s.ndfs[n]);
+        std::ofstream header(dir / (fit::compensation_header_name(label) + ".h"), std::ios::binary);
+        fit::write_compensation_header(header, label, s.compensation.alpha, all.back().second.mus, E, avg[n]);
+    }
+    for (std::size_t i = 0; i < s.compensation.alpha.size(); ++i) {
+        char a[32];
+        std::snprintf(a, sizeof a, "%.4g", s.compensation.alpha[i]);
+        md << "| " << a << " |";
+        for (std::size_t n = 0; n < s.ndfs.size(); ++n) md << " " << std::fixed << std::setprecision(4) << avg[n][i] << " |";
+        md << std::defaultfloat << "\n";
+    }
+    std::ofstream csv(dir / "compensation.csv", std::ios::binary);
+    fit::write_compensation_csv(csv, all);
+    std::ofstream avg_csv(dir / "compensation_avg.csv", std::ios::binary);
+    fit::write_compensation_avg_csv(avg_csv, all);
+    return md.str();
+}
+
+// report.md: the errors of every model on the validation set, NDF by NDF, best first; the fitted constants; then the
+// compensation and picture sections.
+void write_report(const fs::path& dir, const FitScene& s, const Results& r, const std::vector<ErrorRow>& errors,
+                  const std::string& sections) {
+    std::ofstream md(dir / "report.md", std::ios::binary);
+    md << "# " << s.title << "\n\nFacets `" << s.material << "`, traced at albedo 1 and split by diffuse events; "
+       << "fitted and measured at albedo";
+    for (double a : s.albedos) md << " " << format_shortest(a);
+    md << " (the diffuse part: paths with at least one diffuse event), weights with a relative floor of "
+       << format_shortest(s.floor) << ".\n";
+    for (const NdfData& d : r.data) {
+        std::vector<ErrorRow> rows;
+        for (const ErrorRow& e : errors)
+            if (e.ndf == d.label) rows.push_back(e);
+        std::sort(rows.begin(), rows.end(), [](const ErrorRow& a, const ErrorRow& b) { return a.rms_rel < b.rms_rel; });
+        md << "\n## " << d.label << ": errors on the validation set (" << d.validation.size() << " points, "
+           << d.albedo.size() << " directional albedos; never fitted)\n\n"
+           << "| model | RMS rel. error of f cos | max rel. error | RMS error of the directional albedo | chi^2 / value |\n"
+           << "|---|---:|---:|---:|---:|\n";
+        char line[256];
+        for (const ErrorRow& e : rows) {
+            std::snprintf(line, sizeof line, "| %s | %.4f | %.4f | %.5f | %.3g |\n", e.model.c_str(), e.rms_rel,
+                          e.max_rel, e.albedo_rms, e.chi2_dof);
+            md << line;
+        }
+    }
+    md << "\n## Fitted constants (standard errors scaled by sqrt(chi^2 / dof) where that is above 1)\n\n"
+       << "| model | ndf | constants |\n|---|---|---|\n";
+    for (std::size_t n = 0; n < r.data.size(); ++n)
+        for (const Measured& m : r.fits[n]) {
+            if (!m.fitted()) continue;
+            md << "| " << m.name << " | " << r.data[n].label << " |";
+            for (std::size_t i = 0; i < m.params.size(); ++i) {
+                char v[96];
+                std::snprintf(v, sizeof v, " %s = %.5g +- %.2g", std::string(m.model->parameters[i]).c_str(),
+                              m.params[i], m.stderr_[i]);
+                md << v << (i + 1 < m.params.size() ? "," : "");
+            }
+            md << " |\n";
+        }
+    md << sections;
+}
+
 struct Progress {
     std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now(), last = start;
     void operator()(std::int64_t done, std::int64_t total) {
@@ -131,7 +220,9 @@ FitSummary run_fit(const FitScene& s, const std::string& source, const std::stri
     write_values(stage.path() / "training.csv", s, r, false);
     write_values(stage.path() / "validation.csv", s, r, true);
     write_shaders(stage.path(), r);
+    const std::string compensation = write_compensation(stage.path(), s, registry);
     const std::string pictures = write_pictures(stage.path(), s, r, registry, threads);
+    write_report(stage.path(), s, r, sum.errors, compensation + pictures);
     sum.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const nlohmann::ordered_json meta = {
         {"title", s.title},      {"source", source},         {"scene", scene_text},

@@ -160,6 +160,13 @@ double hammon_2017_linear(const Vec3& wi, const Vec3& wo, double alpha, double a
     return albedo * (hammon_2017_single(wi, wo, alpha, k) + k.multi * alpha);
 }
 
+double smithlab_2026(const Vec3& wi, const Vec3& wo, double alpha, double albedo, const Smithlab2026Constants& k) {
+    const double t = std::pow(alpha, k.p);
+    const double facing = 0.25 * (wi + wo).squaredNorm();
+    const double multi = k.hammon.multi * std::pow(alpha, k.q) * (1.0 + k.u * (1.0 - facing));
+    return albedo * (hammon_2017_single(wi, wo, t, k.hammon) + albedo * multi);
+}
+
 // ---- the table ----------------------------------------------------------------------------------------------------
 
 namespace {
@@ -193,6 +200,9 @@ double f_hammon(const Vec3& wi, const Vec3& wo, double alpha, double albedo, con
 }
 double f_hammon_linear(const Vec3& wi, const Vec3& wo, double alpha, double albedo, const double* c) {
     return hammon_2017_linear(wi, wo, alpha, albedo, hammon_constants(c));
+}
+double f_smithlab_2026(const Vec3& wi, const Vec3& wo, double alpha, double albedo, const double* c) {
+    return smithlab_2026(wi, wo, alpha, albedo, {hammon_constants(c), c[5], c[6], c[7]});
 }
 
 }  // namespace
@@ -230,6 +240,11 @@ const std::vector<DiffuseModel>& diffuse_models() {
          "Hammon 2017, PBR Diffuse Lighting for GGX+Smith Microsurfaces (GDC), GGX Diffuse Approximation: "
          "albedo (single + multi)",
          f_hammon_linear},
+        {"smithlab-2026", {"rough_a", "rough_b", "rough_c", "smooth", "multi", "blend_power", "multi_power", "multi_forward"},
+         {0.9, 0.4, 0.5, 1.05, 0.1159, 1.0, 1.0, 0.0},
+         "smithlab 2026 (this tool's own, from the traced data): Hammon 2017's single term blended by alpha^p, "
+         "multi = m alpha^q (1 + u (1 - facing)); starts at Hammon's constants",
+         f_smithlab_2026},
     };
     return models;
 }

@@ -82,6 +82,21 @@ double hammon_2017_single(const Vec3& wi, const Vec3& wo, double alpha, const Ha
 double hammon_2017(const Vec3& wi, const Vec3& wo, double alpha, double albedo, const HammonConstants& k = {});
 double hammon_2017_linear(const Vec3& wi, const Vec3& wo, double alpha, double albedo, const HammonConstants& k = {});
 
+// smithlab's own family (designed from the traced data, `smithlab fit`): Hammon's single term with the roughness
+// blend t = alpha^p instead of alpha (the traced single-event light turns rough faster than linearly in alpha), and a
+// multiple-scattering lobe that grows as alpha^q with a term in 1 - facing, so that it can lean toward or away from
+// forward scattering (the traced k >= 2 light of GGX alpha = 1 is 1.85x brighter toward forward grazing than at
+// normal incidence, and dimmer toward grazing retro-reflection):
+//     single = (1/pi) lerp(smooth, rough, alpha^p)   (smooth, rough as Hammon's, constants a, b, c, k),
+//     multi  = m alpha^q (1 + u (1 - facing)),  facing = 0.5 + 0.5 L.V,
+//     f = albedo (single + albedo multi).
+// At (p, q, u) = (1, 1, 0) it is Hammon 2017: those are its starting constants.
+struct Smithlab2026Constants {
+    HammonConstants hammon;
+    double p = 1.0, q = 1.0, u = 0.0;
+};
+double smithlab_2026(const Vec3& wi, const Vec3& wo, double alpha, double albedo, const Smithlab2026Constants& k);
+
 // ---- the fitter's table -----------------------------------------------------------------------------------------
 
 // f(wi, wo): the BRDF (no cosine), wi toward the light, wo toward the viewer, unit vectors in the macrosurface frame
