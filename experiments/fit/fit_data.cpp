@@ -164,6 +164,9 @@ std::vector<double> midpoints(const std::vector<double>& a) {
 AnyNdf make_ndf(const NdfRegistry& registry, const FitFamily& f, double alpha) {
     try {
         if (f.gamma) return registry.make(f.family, {{"alpha", alpha}, {"gamma", *f.gamma}});
+        // Blinn-Phong has no alpha and no closed-form Lambda (it is derived from D: the fitter on a D-only NDF); its
+        // exponent at the Beckmann alpha it resembles, n = 2 / alpha^2 - 2 (Walter et al. 2007, sec. 5.2).
+        if (f.family == "blinn") return registry.make(f.family, {{"n", 2.0 / (alpha * alpha) - 2.0}});
         return registry.make(f.family, {{"alpha", alpha}});
     } catch (const input_error& e) {
         throw input_error(f.where + ": " + e.what());

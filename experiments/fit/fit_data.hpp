@@ -35,7 +35,7 @@ using ProgressFn = std::function<void(std::int64_t done, std::int64_t total)>;
 std::vector<NdfData> gather(const FitScene& scene, const NdfRegistry& registry, const std::filesystem::path& cache,
                             unsigned threads, const ProgressFn& progress);
 
-// The NDF of a family at one alpha.
+// The NDF of a family at one alpha (blinn: at n = 2 / alpha^2 - 2).
 AnyNdf make_ndf(const NdfRegistry& registry, const FitFamily& family, double alpha);
 
 }  // namespace smithlab::fitrun

@@ -9,6 +9,7 @@
 
 #include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
+#include "smithlab/quadrature.hpp"
 #include "smithlab/smith.hpp"
 
 namespace smithlab::fit {
@@ -16,80 +17,12 @@ namespace smithlab::fit {
 namespace {
 
 constexpr double pi = std::numbers::pi;
-constexpr int max_panels = 400;  // of one adaptive integral: a cap on the cost where round-off holds the error up
-
-// The 15-point Gauss-Kronrod rule and its 7-point Gauss rule (QUADPACK's qk15, Piessens, de Doncker-Kapenga,
-// Ueberhuber, Kahaner 1983): abscissae, Kronrod weights, and the Gauss weights of xgk[1], xgk[3], xgk[5] and 0.
-constexpr double xgk[8] = {0.991455371120812639206854697526329, 0.949107912342758524526189684047851,
-                           0.864864423359769072789712788640926, 0.741531185599394439863864773280788,
-                           0.586087235467691130294144845693013, 0.405845151377397166906606412076961,
-                           0.207784955007898467600689403773245, 0.0};
-constexpr double wgk[8] = {0.022935322010529224963732008058970, 0.063092092629978553290700663189204,
-                           0.104790010322250183839876322541518, 0.140653259715525918745189590510238,
-                           0.169004726639267902826583426598550, 0.190350578064785409913256402421014,
-                           0.204432940075298892414161999234649, 0.209482141084727828012999174891714};
-constexpr double wg[4] = {0.129484966168869693270611432679082, 0.279705391489276667901467771423780,
-                          0.381830050505118944950369775488975, 0.417959183673469387755102040816327};
-
-struct Panel {
-    double a, b, value, error;
-};
-
-// One panel by qk15, with QUADPACK's error estimate: resasc min(1, (200 |K - G| / resasc)^1.5), resasc the
-// rule's integral of |f - mean|, which credits the Kronrod result with the order it has beyond Gauss's.
-template <class F>
-Panel qk15(const F& f, double a, double b) {
-    const double c = 0.5 * (a + b), h = 0.5 * (b - a);
-    double fv[15];
-    fv[7] = f(c);
-    for (int j = 0; j < 7; ++j) {
-        fv[j] = f(c - h * xgk[j]);
-        fv[14 - j] = f(c + h * xgk[j]);
-    }
-    double resk = wgk[7] * fv[7], resg = wg[3] * fv[7];
-    for (int j = 0; j < 7; ++j) {
-        resk += wgk[j] * (fv[j] + fv[14 - j]);
-        if (j % 2 == 1) resg += wg[j / 2] * (fv[j] + fv[14 - j]);
-    }
-    const double mean = 0.5 * resk;
-    double resasc = wgk[7] * std::abs(fv[7] - mean), resabs = wgk[7] * std::abs(fv[7]);
-    for (int j = 0; j < 7; ++j) {
-        resasc += wgk[j] * (std::abs(fv[j] - mean) + std::abs(fv[14 - j] - mean));
-        resabs += wgk[j] * (std::abs(fv[j]) + std::abs(fv[14 - j]));
-    }
-    const double ah = std::abs(h);
-    double err = std::abs((resk - resg) * h);
-    resasc *= ah;
-    if (resasc != 0.0 && err != 0.0) err = resasc * std::min(1.0, std::pow(200.0 * err / resasc, 1.5));
-    err = std::max(err, 50.0 * 2.220446049250313e-16 * resabs * ah);
-    return {a, b, resk * h, err};
-}
-
-// Globally adaptive qk15 (QUADPACK's QAG strategy): the panel of largest error estimate is halved until the sum of
-// the estimates is below tolerance times |integral|, or max_panels are in use. (Boost's adaptive Gauss-Kronrod
-// halves the absolute tolerance with every level of its recursion instead, which round-off in a nested integrand
-// never meets: 2^depth panels.)
+// Globally adaptive Gauss-Kronrod (GSL's QAG through smithlab's integrate: each call has its own workspace, so the
+// nested integrals here are safe). Boost's adaptive Gauss-Kronrod halves the absolute tolerance with every level of
+// its recursion instead, which round-off in a nested integrand never meets: 2^depth panels.
 template <class F>
 double gk(const F& f, double a, double b, double tolerance) {
-    if (!(a < b)) return 0.0;
-    std::vector<Panel> panels{qk15(f, a, b)};
-    double total = panels[0].value, error = panels[0].error;
-    while (error > tolerance * std::abs(total) && static_cast<int>(panels.size()) < max_panels) {
-        const std::size_t worst = static_cast<std::size_t>(
-            std::max_element(panels.begin(), panels.end(), [](const Panel& x, const Panel& y) { return x.error < y.error; }) -
-            panels.begin());
-        const Panel p = panels[worst];
-        const double mid = 0.5 * (p.a + p.b);
-        if (!(mid > p.a && mid < p.b)) break;  // no room left to halve
-        const Panel lo = qk15(f, p.a, mid), hi = qk15(f, mid, p.b);
-        panels[worst] = lo;
-        panels.push_back(hi);  // (after the write: push_back may move the panels)
-        total += lo.value + hi.value - p.value;
-        error += lo.error + hi.error - p.error;
-    }
-    total = 0.0;
-    for (const Panel& p : panels) total += p.value;
-    return total;
+    return integrate(f, a, b, {Backend::gsl, tolerance});
 }
 
 // The grazing limit of E_F (mu -> 0): G2 / cos_i -> 1 / E[q+], wi = x, wi.m = r cos phi / sqrt(1 + r^2), every
