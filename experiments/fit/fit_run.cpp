@@ -50,8 +50,15 @@ std::vector<Measured> fit_all(const FitScene& s, const NdfData& d) {
 ErrorRow measure(const FitScene& s, const NdfData& d, const Measured& m) {
     const fit::FitData validation{d.validation, s.albedos, s.floor};
     const fit::RelativeErrors rel = fit::relative_errors(*m.model, m.params, validation);
-    return {m.name, d.label, rel.rms, rel.max, fit::albedo_rms(*m.model, m.params, d.albedo, s.albedos),
-            fit::chi2_per_value(*m.model, m.params, validation)};
+    const std::vector<double> thetas{0.0, 15.0, 30.0, 45.0, 60.0, 70.0, 80.0, 85.0, 89.0};
+    return {m.name,
+            d.label,
+            rel.rms,
+            rel.max,
+            fit::albedo_rms(*m.model, m.params, d.albedo, s.albedos),
+            fit::chi2_per_value(*m.model, m.params, validation),
+            fit::max_albedo(*m.model, m.params, s.training.alpha, thetas),
+            fit::max_asymmetry(*m.model, m.params, s.training.alpha)};
 }
 
 void write_constants(const fs::path& dir, const Results& r) {
@@ -160,15 +167,21 @@ void write_report(const fs::path& dir, const FitScene& s, const Results& r, cons
         std::sort(rows.begin(), rows.end(), [](const ErrorRow& a, const ErrorRow& b) { return a.rms_rel < b.rms_rel; });
         md << "\n## " << d.label << ": errors on the validation set (" << d.validation.size() << " points, "
            << d.albedo.size() << " directional albedos; never fitted)\n\n"
-           << "| model | RMS rel. error of f cos | max rel. error | RMS error of the directional albedo | chi^2 / value |\n"
-           << "|---|---:|---:|---:|---:|\n";
-        char line[256];
+           << "| model | RMS rel. error of f cos | max rel. error | RMS error of the directional albedo | chi^2 / value "
+           << "| largest albedo at albedo 1 (alpha, theta_i) | asymmetry |\n"
+           << "|---|---:|---:|---:|---:|---:|---:|\n";
+        char line[512];
         for (const ErrorRow& e : rows) {
-            std::snprintf(line, sizeof line, "| %s | %.4f | %.4f | %.5f | %.3g |\n", e.model.c_str(), e.rms_rel,
-                          e.max_rel, e.albedo_rms, e.chi2_dof);
+            std::snprintf(line, sizeof line, "| %s | %.4f | %.4f | %.5f | %.3g | %s%.4f (%.3g, %.0f) | %.1e |\n",
+                          e.model.c_str(), e.rms_rel, e.max_rel, e.albedo_rms, e.chi2_dof,
+                          e.peak.albedo > 1.0 + 1e-3 ? "**" : "", e.peak.albedo, e.peak.alpha, e.peak.theta_i,
+                          e.asymmetry);
             md << line;
         }
     }
+    md << "\nLargest albedo: the directional albedo at albedo 1, largest over the training alphas and theta_i from 0 to 89 "
+          "degrees (in bold where above 1: the model makes energy there). Asymmetry: the largest relative difference "
+          "|f(l, v) - f(v, l)| / f over the training alphas and a grid of direction pairs (0 for a reciprocal BRDF).\n";
     md << "\n## Fitted constants (standard errors scaled by sqrt(chi^2 / dof) where that is above 1)\n\n"
        << "| model | ndf | constants |\n|---|---|---|\n";
     for (std::size_t n = 0; n < r.data.size(); ++n)

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "fit_scene.hpp"
+#include "smithlab/fit/fit_model.hpp"
 #include "smithlab/registry.hpp"
 
 namespace smithlab::fitrun {
@@ -19,6 +20,8 @@ namespace smithlab::fitrun {
 struct ErrorRow {
     std::string model, ndf;
     double rms_rel, max_rel, albedo_rms, chi2_dof;
+    fit::AlbedoPeak peak;  // the largest directional albedo at albedo 1 (training alphas x theta_i 0..89)
+    double asymmetry;      // the largest relative |f(l, v) - f(v, l)|
 };
 
 struct FitSummary {

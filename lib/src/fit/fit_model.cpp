@@ -154,4 +154,27 @@ double albedo_rms(const DiffuseModel& m, const std::vector<double>& params, cons
     return n ? std::sqrt(sum2 / static_cast<double>(n)) : 0.0;
 }
 
+AlbedoPeak max_albedo(const DiffuseModel& m, const std::vector<double>& params, const std::vector<double>& alphas,
+                      const std::vector<double>& thetas) {
+    AlbedoPeak peak;
+    for (double a : alphas)
+        for (double t : thetas)
+            if (const double e = model_albedo(m, params, a, t, 1.0); e > peak.albedo) peak = {e, a, t};
+    return peak;
+}
+
+double max_asymmetry(const DiffuseModel& m, const std::vector<double>& params, const std::vector<double>& alphas) {
+    double worst = 0.0;
+    const double thetas[] = {0.0, 15.0, 30.0, 45.0, 60.0, 75.0, 85.0, 89.0};
+    for (double a : alphas)
+        for (double ti : thetas)
+            for (double to : thetas)
+                for (double phi : {0.0, 45.0, 90.0, 135.0, 180.0}) {
+                    const Vec3 wi = direction_from_deg(ti, 0.0), wo = direction_from_deg(to, phi);
+                    const double x = m.f(wi, wo, a, 0.5, params.data()), y = m.f(wo, wi, a, 0.5, params.data());
+                    if (const double big = std::max(x, y); big > 0.0) worst = std::max(worst, std::abs(x - y) / big);
+                }
+    return worst;
+}
+
 }  // namespace smithlab::fit

@@ -52,4 +52,16 @@ double model_albedo(const DiffuseModel& m, const std::vector<double>& params, do
 double albedo_rms(const DiffuseModel& m, const std::vector<double>& params, const std::vector<DataPoint>& albedo_points,
                   const std::vector<double>& albedos);
 
+// The largest directional albedo of the model at albedo 1 over alphas x theta_i (degrees), and where: above 1 the model
+// makes energy (not energy-bounded).
+struct AlbedoPeak {
+    double albedo = 0.0, alpha = 0.0, theta_i = 0.0;
+};
+AlbedoPeak max_albedo(const DiffuseModel& m, const std::vector<double>& params, const std::vector<double>& alphas,
+                      const std::vector<double>& thetas);
+
+// The largest |f(wi, wo) - f(wo, wi)| / max(f(wi, wo), f(wo, wi)) over alphas and a grid of direction pairs (theta 0 to
+// 89 degrees, phi 0 to 180): 0 for a model symmetric in L and V, as a BRDF must be (Helmholtz reciprocity).
+double max_asymmetry(const DiffuseModel& m, const std::vector<double>& params, const std::vector<double>& alphas);
+
 }  // namespace smithlab::fit
