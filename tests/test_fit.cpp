@@ -4,6 +4,7 @@
 #include <Eigen/Dense>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <numbers>
 #include <random>
 
 #include "cli_run.hpp"
@@ -294,4 +295,32 @@ TEST_CASE("fit: a bad scene is refused naming FILE:LINE and the item, with nothi
     bad("walks = 400\n[validation]", "walkz = 400\n[validation]", "walkz");
     bad("[validation]", "[validation", "malformed scene");
     fs::remove_all(d);
+}
+
+TEST_CASE("fit: a model's directional albedo by the fitter's rule against closed forms", "[fit]") {
+    // Lambert integrates to its albedo exactly (the Gauss-Legendre rule is exact for mu); EON's directional albedo has
+    // a closed form (Portsmouth et al. 2025, E_EON), which the rule meets to 1e-4 (Fujii's kink in phi at s = 0).
+    const fit::DiffuseModel& lambert = fit::find_diffuse_model("lambert");
+    for (double t : {0.0, 45.0, 89.0}) CHECK(fit::model_albedo(lambert, {}, 0.5, t, 0.7) == Approx(0.7).epsilon(1e-13));
+    const fit::DiffuseModel& eon = fit::find_diffuse_model("eon");
+    for (double alpha : {0.2, 0.7, 1.0})
+        for (double t : {0.0, 30.0, 60.0, 85.0})
+            for (double albedo : {0.5, 1.0}) {
+                const double mu = std::cos(t * std::numbers::pi / 180.0);
+                INFO("alpha " << alpha << " theta " << t << " albedo " << albedo);
+                CHECK(fit::model_albedo(eon, {1.0}, alpha, t, albedo) ==
+                      Approx(fit::eon_albedo(mu, alpha, albedo)).epsilon(1e-4));
+            }
+    // The energy peak: EON's is 1 (white furnace) and Disney's well above (Burley's retro-reflection at grazing).
+    const std::vector<double> alphas{0.25, 1.0}, thetas{0.0, 45.0, 85.0};
+    CHECK(fit::max_albedo(eon, {1.0}, alphas, thetas).albedo == Approx(1.0).epsilon(1e-4));
+    const fit::AlbedoPeak disney = fit::max_albedo(fit::find_diffuse_model("disney"), {}, alphas, thetas);
+    CHECK(disney.albedo > 1.1);
+    CHECK(disney.alpha == 1.0);
+    CHECK(disney.theta_i == 85.0);
+    // Every registered model is reciprocal.
+    for (const fit::DiffuseModel& m : fit::diffuse_models()) {
+        INFO(m.name);
+        CHECK(fit::max_asymmetry(m, m.published, alphas) < 1e-12);
+    }
 }

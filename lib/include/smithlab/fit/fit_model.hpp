@@ -43,7 +43,8 @@ struct RelativeErrors {
 RelativeErrors relative_errors(const DiffuseModel& m, const std::vector<double>& params, const FitData& data);
 
 // The model's directional albedo, the integral of f(wi, wo) cos theta_o over the hemisphere of wo, by a product
-// Gauss-Legendre rule (cos theta_o) x midpoint rule (phi_o, over [0, pi] twice: the models are even in phi).
+// Gauss-Legendre rule (cos theta_o, 20 nodes on each side of cos theta_i, where Oren-Nayar's max and min kink) x
+// midpoint rule (phi_o, 64 over [0, pi] twice: the models are even in phi). Within 1e-4 of EON's closed-form albedo.
 double model_albedo(const DiffuseModel& m, const std::vector<double>& params, double alpha, double theta_i,
                     double albedo);
 
