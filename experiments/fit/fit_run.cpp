@@ -17,6 +17,7 @@
 #include "smithlab/errors.hpp"
 #include "smithlab/fit/compensation.hpp"
 #include "smithlab/fit/fit_model.hpp"
+#include "smithlab/fit/least_squares.hpp"
 #include "staged_directory.hpp"
 
 namespace smithlab::fitrun {
@@ -150,6 +151,69 @@ std::string write_compensation(const fs::path& dir, const FitScene& s, const Ndf
     return md.str();
 }
 
+// How each fitted constant moves with GTR's gamma, when the scene fits three or more gammas: weighted least squares of
+// c(gamma) by a line and by a parabola (fit/least_squares.hpp), each with its chi^2 / dof against the constants'
+// standard errors and its largest deviation; gamma_trends.csv and a Markdown table. A form fits where chi^2 / dof is
+// near 1.
+std::string write_gamma_trends(const fs::path& dir, const Results& r) {
+    std::vector<std::size_t> gtr;
+    for (std::size_t n = 0; n < r.data.size(); ++n)
+        if (r.data[n].family.family == "gtr" && r.data[n].family.gamma) gtr.push_back(n);
+    if (gtr.size() < 3) return "";
+    std::ofstream csv(dir / "gamma_trends.csv", std::ios::binary);
+    write_csv_record(csv, {"model", "parameter", "form", "c0", "c1", "c2", "chi2_dof", "max_deviation"});
+    std::ostringstream md;
+    md << "\n## The fitted constants against GTR's gamma\n\nEach constant of each fitted model as a line and as a "
+          "parabola in gamma (weighted by the constants' standard errors; chi^2 / dof near 1 where the form fits; "
+          "gamma_trends.csv, and the plot constants_vs_gamma.png where drawn):\n\n"
+          "| model | constant | line c0 + c1 gamma | chi^2/dof | parabola c0 + c1 gamma + c2 gamma^2 | chi^2/dof |\n"
+          "|---|---|---|---:|---|---:|\n";
+    for (std::size_t k = 0; k < r.fits[gtr[0]].size(); ++k) {
+        if (!r.fits[gtr[0]][k].fitted()) continue;
+        const Measured& m0 = r.fits[gtr[0]][k];
+        for (std::size_t i = 0; i < m0.params.size(); ++i) {
+            std::vector<double> g, c, e;
+            for (std::size_t n : gtr) {
+                g.push_back(*r.data[n].family.gamma);
+                c.push_back(r.fits[n][k].params[i]);
+                e.push_back(r.fits[n][k].stderr_[i]);
+            }
+            const std::string param(m0.model->parameters[i]);
+            md << "| " << m0.name << " | " << param << " |";
+            for (int degree : {1, 2}) {
+                auto residuals = [&](std::span<const double> p, std::span<double> out) {
+                    for (std::size_t j = 0; j < g.size(); ++j) {
+                        double v = 0.0;
+                        for (int d = degree; d >= 0; --d) v = v * g[j] + p[d];
+                        out[j] = (v - c[j]) / e[j];
+                    }
+                };
+                const fit::LeastSquaresFit f =
+                    fit::least_squares(g.size(), std::vector<double>(degree + 1, 0.0), residuals);
+                std::vector<double> rs(g.size());
+                residuals(f.params, rs);
+                double dev = 0.0;
+                for (std::size_t j = 0; j < g.size(); ++j) dev = std::max(dev, std::abs(rs[j] * e[j]));
+                std::vector<std::string> row{m0.name, param, degree == 1 ? "line" : "parabola"};
+                for (int d = 0; d < 3; ++d) row.push_back(d <= degree && f.converged ? format_g17(f.params[d]) : "");
+                row.push_back(f.converged ? format_g17(f.chi2_dof()) : "");
+                row.push_back(f.converged ? format_g17(dev) : "");
+                write_csv_record(csv, row);
+                char cell[160];
+                if (!f.converged) std::snprintf(cell, sizeof cell, " (too few gammas) | |");
+                else if (degree == 1)
+                    std::snprintf(cell, sizeof cell, " %.4g %+.4g gamma | %.3g |", f.params[0], f.params[1], f.chi2_dof());
+                else
+                    std::snprintf(cell, sizeof cell, " %.4g %+.4g gamma %+.4g gamma^2 | %.3g |", f.params[0], f.params[1],
+                                  f.params[2], f.chi2_dof());
+                md << cell;
+            }
+            md << "\n";
+        }
+    }
+    return md.str();
+}
+
 // report.md: the errors of every model on the validation set, NDF by NDF, best first; the fitted constants; then the
 // compensation and picture sections.
 void write_report(const fs::path& dir, const FitScene& s, const Results& r, const std::vector<ErrorRow>& errors,
@@ -235,7 +299,8 @@ FitSummary run_fit(const FitScene& s, const std::string& source, const std::stri
     write_shaders(stage.path(), r);
     const std::string compensation = write_compensation(stage.path(), s, registry);
     const std::string pictures = write_pictures(stage.path(), s, r, registry, threads);
-    write_report(stage.path(), s, r, sum.errors, compensation + pictures);
+    const std::string trends = write_gamma_trends(stage.path(), r);
+    write_report(stage.path(), s, r, sum.errors, trends + compensation + pictures);
     sum.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const nlohmann::ordered_json meta = {
         {"title", s.title},      {"source", source},         {"scene", scene_text},
