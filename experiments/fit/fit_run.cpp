@@ -236,10 +236,10 @@ void write_report(const fs::path& dir, const FitScene& s, const Results& r, cons
            << "|---|---:|---:|---:|---:|---:|---:|\n";
         char line[512];
         for (const ErrorRow& e : rows) {
-            std::snprintf(line, sizeof line, "| %s | %.4f | %.4f | %.5f | %.3g | %s%.4f (%.3g, %.0f) | %.1e |\n",
-                          e.model.c_str(), e.rms_rel, e.max_rel, e.albedo_rms, e.chi2_dof,
-                          e.peak.albedo > 1.0 + 1e-3 ? "**" : "", e.peak.albedo, e.peak.alpha, e.peak.theta_i,
-                          e.asymmetry);
+            const char* bold = e.peak.albedo > 1.0 + 1e-3 ? "**" : "";
+            std::snprintf(line, sizeof line, "| %s | %.4f | %.4f | %.5f | %.3g | %s%.4f%s (%.3g, %.0f) | %.1e |\n",
+                          e.model.c_str(), e.rms_rel, e.max_rel, e.albedo_rms, e.chi2_dof, bold, e.peak.albedo, bold,
+                          e.peak.alpha, e.peak.theta_i, e.asymmetry);
             md << line;
         }
     }
