@@ -292,20 +292,23 @@ std::pair<double, double> missing_fraction(const fit::SplitMoments& m, double al
 }
 
 // The GTR families of the results, by gamma: their constants against gamma (constants_vs_gamma.csv), when there are
-// two gammas or more.
+// two gammas or more; GGX too where fitted, at gamma = 2 (GTR at gamma 2 is GGX: Burley 2012, appendix B.2).
 bool write_constants_vs_gamma(const fs::path& file, const Results& r) {
     std::vector<std::size_t> gtr;
     for (std::size_t n = 0; n < r.data.size(); ++n)
         if (r.data[n].family.family == "gtr" && r.data[n].family.gamma) gtr.push_back(n);
     if (gtr.size() < 2) return false;
+    for (std::size_t n = 0; n < r.data.size(); ++n)
+        if (r.data[n].family.family == "ggx") gtr.push_back(n);
     std::ofstream csv(file, std::ios::binary);
-    write_csv_record(csv, {"model", "parameter", "gamma", "value", "stderr"});
+    write_csv_record(csv, {"ndf", "model", "parameter", "gamma", "value", "stderr"});
     for (std::size_t n : gtr)
         for (const Measured& m : r.fits[n]) {
             if (!m.fitted()) continue;
             for (std::size_t i = 0; i < m.params.size(); ++i)
-                write_csv_record(csv, {m.name, std::string(m.model->parameters[i]), format_g17(*r.data[n].family.gamma),
-                                       format_g17(m.params[i]), format_g17(m.stderr_[i])});
+                write_csv_record(csv, {r.data[n].label, m.name, std::string(m.model->parameters[i]),
+                                       format_g17(r.data[n].family.gamma.value_or(2.0)), format_g17(m.params[i]),
+                                       format_g17(m.stderr_[i])});
         }
     return true;
 }
@@ -373,20 +376,30 @@ std::string markdown(const Results& r, const FitScene& s, const std::vector<Miss
           "directional albedo (sample estimator, "
        << missing_walks << " walks per incidence theta_i in {0, 30, 60, 80} degrees), at albedo 1 and 0.75.\n\n";
     for (const NdfData& d : r.data) md << "![](pictures/lambert_spheres_" << file_stem(d.label) << ".png)\n\n";
-    md << "| NDF | alpha | albedo | max missing 1 - E_1/E | +- | at theta_i | Hammon 2017 |\n"
-          "|---|---|---|---|---|---|---|\n";
-    for (const Missing& m : missing)
-        md << "| " << m.ndf << " | " << format_g17(m.alpha) << " | " << format_g17(m.albedo) << " | "
-           << fixed(m.fraction, 3) << " | " << fixed(m.stderr_, 3) << " | " << format_g17(m.theta) << " | "
-           << "up to half |\n";
+    // One row per NDF and alpha: the largest fraction over the incidences, at each albedo, where it is.
+    md << "Hammon 2017: \"up to half the light was missing\" (GGX+Smith, numerically integrated, his largest over alpha "
+          "and angles). Measured, the largest 1 - E_1/E over theta_i:\n\n| NDF | alpha |";
+    for (double a : missing_albedos) md << " albedo " << format_g17(a) << " | at theta_i |";
+    md << "\n|---|---|";
+    for (std::size_t i = 0; i < std::size(missing_albedos); ++i) md << "---|---|";
+    md << "\n";
+    for (std::size_t i = 0; i < missing.size(); i += std::size(missing_albedos)) {
+        md << "| " << missing[i].ndf << " | " << format_g17(missing[i].alpha) << " |";
+        for (std::size_t k = 0; k < std::size(missing_albedos); ++k) {
+            const Missing& m = missing[i + k];
+            md << " " << fixed(m.fraction, 3) << " +- " << fixed(m.stderr_, 3) << " | " << format_g17(m.theta) << " |";
+        }
+        md << "\n";
+    }
     double worst = 0.0;
     const Missing* w = nullptr;
     for (const Missing& m : missing)
         if (m.albedo == 1.0 && m.fraction > worst) worst = m.fraction, w = &m;
     if (w)
-        md << "\nMeasured: at most " << fixed(100.0 * w->fraction, 1) << "% of the light (albedo 1, " << w->ndf
-           << ", alpha " << format_g17(w->alpha) << ", theta_i " << format_g17(w->theta)
-           << " degrees) is missing from single scattering; Hammon 2017: \"up to half\".\n\n";
+        md << "\nMeasured: single scattering misses at most " << fixed(100.0 * w->fraction, 1) << " +- "
+           << fixed(100.0 * w->stderr_, 1) << "% of the light (albedo 1, " << w->ndf << ", alpha "
+           << format_g17(w->alpha) << ", theta_i " << format_g17(w->theta)
+           << " degrees, of the incidences traced); Hammon 2017: \"up to half\".\n\n";
     for (const NdfData& d : r.data) md << "![](pictures/missing_" << file_stem(d.label) << ".png)\n\n";
     if (gamma)
         md << "### The fitted constants against gamma (GTR)\n\nEach fitted model's constants with their standard "

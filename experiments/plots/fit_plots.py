@@ -6,7 +6,7 @@ Needs Debian's python3-matplotlib (installed by .ci/deps). experiments/fit/fit_p
   spheres.csv              ndf,source,alpha,light_deg,albedo,px,py,value: radiance f(l, v) cos theta_l per lit pixel
   slices.csv               ndf,source,alpha,theta_h,theta_d,value,stderr: the BRDF f at phi_d = 90 degrees
   missing.csv              ndf,alpha,theta,albedo,E,E1,missing,stderr: Lambertian facets, 1 - E_1/E
-  constants_vs_gamma.csv   model,parameter,gamma,value,stderr (only with two GTR gammas or more)
+  constants_vs_gamma.csv   ndf,model,parameter,gamma,value,stderr (with two GTR gammas or more; GGX at gamma 2)
 and this script draws spheres_STEM.png, lambert_spheres_STEM.png, slices_STEM.png, missing_STEM.png and
 constants_vs_gamma.png. Each figure is drawn only if its data is there.
 """
@@ -127,7 +127,7 @@ def draw_sources(path, title, sources, values, P, ncols):
             sp.set_visible(False)
         ax.set_title(s, fontsize=10, loc="left")
     fig.suptitle(title, fontsize=11)
-    fig.tight_layout(rect=(0, 0, 1, 0.97 if nrows > 2 else 0.93))
+    fig.tight_layout(rect=(0, 0, 1, 1 - 0.55 / fig.get_figheight()))  # 0.55 in for the two-line title
     fig.savefig(path, dpi=110)
     plt.close(fig)
 
@@ -168,6 +168,9 @@ def slices(d, ndf, stem, table):
     ncol = len(sources)
     fig, axes = plt.subplots(2 * len(alphas), ncol, figsize=(1.75 * ncol + 1.2, 3.7 * len(alphas) + 0.6),
                              squeeze=False)
+    # Before the colorbars, which take their room from the axes as they stand.
+    fig.subplots_adjust(top=1 - 0.7 / fig.get_figheight(), bottom=0.45 / fig.get_figheight(), left=0.06, right=0.93,
+                        wspace=0.25, hspace=0.35)
     ext = (0, 90, 90, 0)
     for ia, a in enumerate(alphas):
         grid = {s: np.array([[by[(a, s)].get((h, dd), np.nan) for h in th] for dd in td]) * math.pi / albedo
@@ -247,10 +250,16 @@ def constants_vs_gamma(d):
     for ax in axes.flat[len(keys):]:
         ax.axis("off")
     for ax, (model, param) in zip(axes.flat, keys):
-        pts = sorted((num(r["gamma"]), num(r["value"]), num(r["stderr"])) for r in table
-                     if r["model"] == model and r["parameter"] == param)
-        g, v, e = zip(*pts)
-        ax.errorbar(g, v, yerr=e, marker="o", ms=4, capsize=3)
+        mine = [r for r in table if r["model"] == model and r["parameter"] == param]
+        pts = sorted((num(r["gamma"]), num(r["value"]), num(r["stderr"])) for r in mine if r["ndf"].startswith("gtr"))
+        if pts:
+            g, v, e = zip(*pts)
+            ax.errorbar(g, v, yerr=e, marker="o", ms=4, capsize=3, label="GTR")
+        ggx = [r for r in mine if r["ndf"] == "ggx"]
+        if ggx:  # GTR at gamma 2 is GGX
+            ax.errorbar([num(ggx[0]["gamma"])], [num(ggx[0]["value"])], yerr=[num(ggx[0]["stderr"])], marker="s",
+                        ms=6, mfc="none", color="tab:red", capsize=3, ls="none", label="GGX (γ = 2)")
+            ax.legend(fontsize=6.5)
         ax.set_title(f"{model}: {param}", fontsize=8.5)
         ax.set_xlabel("GTR γ", fontsize=8)
         ax.tick_params(labelsize=7)
