@@ -1,0 +1,91 @@
+// The diffuse fitter's costs: a training point's eval walk (split by diffuse events) and its tally, one evaluation of
+// each diffuse model, a whole fit, and one alpha of an energy-compensation table.
+// Run: build/bench/bench_fit --benchmark_repetitions=5 --benchmark_report_aggregates_only
+#include <benchmark/benchmark.h>
+
+#include <smithlab/fit/compensation.hpp>
+#include <smithlab/fit/dataset.hpp>
+#include <smithlab/fit/fit_model.hpp>
+#include <smithlab/smithlab.hpp>
+#include <smithlab/walk/trace.hpp>
+#include <string>
+#include <vector>
+
+namespace {
+
+using smithlab::Vec3;
+namespace fit = smithlab::fit;
+namespace walk = smithlab::walk;
+
+// items_per_second: eval walks per second, toward wo = (60, 135) from wi = (45, 0), Hammon's facets at albedo 1.
+void eval_point(benchmark::State& state) {
+    const walk::Microsurface ms(smithlab::ggx(0.5));
+    const walk::FresnelDiffuse material{0.04, 1.0};
+    const Vec3 wi = smithlab::direction_from_deg(45.0, 0.0), wo = smithlab::direction_from_deg(60.0, 135.0);
+    fit::SplitMoments m;
+    std::uint64_t k = 0;
+    for (auto _ : state) {
+        smithlab::WalkRng g(1, 0, k++);
+        m.add(walk::eval_walk(ms, material, wi, wo, g).by_diffuse);
+    }
+    benchmark::DoNotOptimize(m.sum);
+    state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(eval_point);
+
+// items_per_second: model evaluations per second over 64 direction pairs at alpha 0.5, published constants.
+void model(benchmark::State& state, const fit::DiffuseModel* m) {
+    std::vector<std::pair<Vec3, Vec3>> pairs;
+    for (int i = 0; i < 64; ++i)
+        pairs.emplace_back(smithlab::direction_from_deg(1.3 * i, 0.0), smithlab::direction_from_deg(85.0 - 1.2 * i, 2.8 * i));
+    double sum = 0.0;
+    for (auto _ : state)
+        for (const auto& [wi, wo] : pairs) sum += m->f(wi, wo, 0.5, 0.7, m->published.data());
+    benchmark::DoNotOptimize(sum);
+    state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(pairs.size()));
+}
+
+// One fit of Hammon's five constants to 144 synthetic points x 4 albedos (its own values at perturbed constants).
+void hammon_fit(benchmark::State& state) {
+    const fit::DiffuseModel& m = fit::find_diffuse_model("hammon-2017");
+    const std::vector<double> truth{0.85, 0.45, 0.55, 1.0, 0.15};
+    fit::FitData data{{}, {0.25, 0.5, 0.75, 1.0}, 0.02};
+    for (double alpha : {0.1, 0.3, 0.6, 1.0})
+        for (double ti : {0.0, 30.0, 60.0, 80.0})
+            for (double to : {10.0, 40.0, 70.0})
+                for (double phi : {0.0, 90.0, 180.0}) {
+                    fit::DataPoint p{alpha, {ti, to, phi}, {}};
+                    const Vec3 a = p.dir.wi(), b = p.dir.wo();
+                    // f(a) = c1 a + c2 a^2 from f(1) and f(1/2); walks spread by +-2% about it.
+                    const double f1 = m.f(a, b, alpha, 1.0, truth.data()) * b.z(), fh = m.f(a, b, alpha, 0.5, truth.data()) * b.z();
+                    const double c2 = 2.0 * f1 - 4.0 * fh, c1 = f1 - c2;
+                    for (int w = 0; w < 20; ++w) {
+                        fit::Split x{};
+                        x[1] = c1 * (1.0 + 0.01 * ((w % 5) - 2));
+                        x[2] = c2 * (1.0 + 0.01 * ((w % 3) - 1));
+                        p.moments.add(x);
+                    }
+                    data.points.push_back(p);
+                }
+    for (auto _ : state) benchmark::DoNotOptimize(fit::fit_model(m, data, "bench").chi2);
+}
+BENCHMARK(hammon_fit)->Unit(benchmark::kMillisecond);
+
+// One alpha of the compensation table: E at 32 cosines and E_avg.
+void compensation(benchmark::State& state, double alpha) {
+    const smithlab::Ggx ndf = smithlab::ggx(alpha);
+    for (auto _ : state) benchmark::DoNotOptimize(fit::compensation_table(ndf, 32).E_avg);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    for (const fit::DiffuseModel& m : fit::diffuse_models())
+        benchmark::RegisterBenchmark(("model/" + std::string(m.name)).c_str(), model, &m);
+    for (double a : {0.1, 0.5, 1.0})
+        benchmark::RegisterBenchmark(("compensation/ggx(" + std::to_string(a).substr(0, 3) + ")").c_str(), compensation, a)
+            ->Unit(benchmark::kMillisecond);
+    benchmark::Initialize(&argc, argv);
+    benchmark::RunSpecifiedBenchmarks();
+    benchmark::Shutdown();
+}
