@@ -279,6 +279,18 @@ void write_slices(Files& f, const std::string& label, double alpha, int n, const
     }
 }
 
+// The check of the whole chain (pixel geometry, local frame, reciprocity, tracing): Lambertian facets on a nearly flat
+// microsurface are Lambert's law, radiance albedo/pi cos theta_l. The largest |traced / Lambert - 1| over the pixels
+// with cos theta_l >= 0.1 at albedo 1.
+double lambert_check(const SphereGroup& g, const std::vector<fit::SplitMoments>& lam) {
+    double worst = 0.0;
+    for (std::size_t i = 0; i < g.pixels.size(); ++i)
+        if (g.pixels[i].cos_light >= 0.1)
+            worst = std::max(worst, std::abs(fit::at_albedo(lam[g.source[i]], {1.0, 1}).value /
+                                                 (g.pixels[i].cos_light / pi) - 1.0));
+    return worst;
+}
+
 // 1 - E_1/E = E_{k>=2}/E_{k>=1} for Lambertian facets (every event diffuse: k is the scattering order), with its
 // standard error by the delta method (the two means share their walks: fit::covariance).
 std::pair<double, double> missing_fraction(const fit::SplitMoments& m, double albedo) {
@@ -336,7 +348,14 @@ std::string fixed(double v, int digits) {
     return b;
 }
 
-std::string markdown(const Results& r, const FitScene& s, const std::vector<Missing>& missing, bool gamma, bool drawn,
+// A check's result: the largest relative difference per NDF at the smallest sphere alpha.
+struct Check {
+    std::string ndf;
+    double alpha, worst;
+};
+
+std::string markdown(const Results& r, const FitScene& s, const std::vector<Missing>& missing,
+                     const std::vector<Check>& checks, bool gamma, bool drawn,
                      double seconds, std::int64_t walks) {
     const FitScene::Pictures& p = s.pictures;
     std::ostringstream md;
@@ -376,6 +395,10 @@ std::string markdown(const Results& r, const FitScene& s, const std::vector<Miss
           "directional albedo (sample estimator, "
        << missing_walks << " walks per incidence theta_i in {0, 30, 60, 80} degrees), at albedo 1 and 0.75.\n\n";
     for (const NdfData& d : r.data) md << "![](pictures/lambert_spheres_" << file_stem(d.label) << ".png)\n\n";
+    for (const Check& c : checks)
+        md << "Check: " << c.ndf << " at alpha " << format_g17(c.alpha) << " with Lambertian facets is Lambert's law "
+           << "(albedo/pi cos theta_l) within " << fixed(100.0 * c.worst, 2) << "% at every pixel with cos theta_l >= "
+           << "0.1 (albedo 1; " << p.walks << " walks per pixel).\n\n";
     // One row per NDF and alpha: the largest fraction over the incidences, at each albedo, where it is.
     md << "Hammon 2017: \"up to half the light was missing\" (GGX+Smith, numerically integrated, his largest over alpha "
           "and angles). Measured, the largest 1 - E_1/E over theta_i:\n\n| NDF | alpha |";
@@ -441,6 +464,7 @@ std::string write_pictures(const fs::path& dir, const FitScene& s, const Results
     std::ofstream index(out / "ndfs.csv", std::ios::binary);
     write_csv_record(index, {"ndf", "stem", "pixels"});
     std::vector<Missing> missing;
+    std::vector<Check> checks;
 
     for (std::size_t n = 0; n < r.data.size(); ++n) {
         const NdfData& d = r.data[n];
@@ -455,6 +479,7 @@ std::string write_pictures(const fs::path& dir, const FitScene& s, const Results
             const std::vector<fit::SplitMoments> lam = trace_points(
                 ndf, lambert, spheres.traced, false, s.seed, lambert_sphere_set, n, a, p.walks, threads, progress);
             write_spheres(f, d.label, alpha, spheres, sim, lam, models);
+            if (a == 0 && alpha <= 0.01) checks.push_back({d.label, alpha, lambert_check(spheres, lam)});
             const std::vector<fit::SplitMoments> alb = trace_points(
                 ndf, lambert, albedo_points, true, s.seed, lambert_albedo_set, n, a, missing_walks, threads, progress);
             for (double albedo : missing_albedos) {
@@ -487,7 +512,7 @@ std::string write_pictures(const fs::path& dir, const FitScene& s, const Results
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::fprintf(stderr, "fit: pictures: traced in %.1f s\n", seconds);
     const bool drawn = draw(out);
-    return markdown(r, s, missing, gamma, drawn, seconds, progress.total);
+    return markdown(r, s, missing, checks, gamma, drawn, seconds, progress.total);
 }
 
 }  // namespace smithlab::fitrun
