@@ -37,7 +37,8 @@ std::vector<const fit::DiffuseModel*> selected_models(const FitScene& s) {
 
 // Every model at its published constants, and each one with free constants fitted.
 std::vector<Measured> fit_all(const FitScene& s, const NdfData& d) {
-    const fit::FitData training{d.training, s.albedos, s.floor};
+    const fit::FitData training{d.training, s.albedos, s.floor,
+                                s.energy_bound ? s.training.alpha : std::vector<double>{}};
     std::vector<Measured> out;
     for (const fit::DiffuseModel* m : selected_models(s)) {
         out.push_back({std::string(m->name), m, m->published, {}});

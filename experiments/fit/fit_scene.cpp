@@ -55,7 +55,7 @@ std::string family_label(const FitFamily& f) {
 FitScene parse_fit_scene(const std::string& text, const std::string& source) {
     const toml::value data = report::parse_toml(text, source);
     StrictTable doc(data, source, "",
-                    {"title", "material", "albedos", "models", "floor", "seed", "ndf", "training", "validation",
+                    {"title", "material", "albedos", "models", "floor", "energy_bound", "seed", "ndf", "training", "validation",
                      "compensation", "pictures"});
     FitScene s;
     s.title = doc.text("title", s.title);
@@ -72,6 +72,7 @@ FitScene parse_fit_scene(const std::string& text, const std::string& source) {
     }
     s.floor = doc.real("floor", s.floor);
     if (!(s.floor >= 0.0 && s.floor < 1.0)) doc.fail("floor", "must be in [0, 1), got " + format_shortest(s.floor));
+    s.energy_bound = doc.flag("energy_bound", s.energy_bound);
     s.seed = static_cast<std::uint64_t>(doc.integer("seed", 0, std::numeric_limits<std::int64_t>::max(), 1));
 
     for (StrictTable& n : doc.tables("ndf", {"family", "gamma"})) {

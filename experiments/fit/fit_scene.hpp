@@ -22,6 +22,7 @@ struct FitScene {
     std::vector<double> albedos{0.25, 0.5, 0.75, 1.0};
     std::vector<std::string> models;  // empty: every model
     double floor = 0.02;
+    bool energy_bound = true;         // fitted models held to a directional albedo <= 1 (fit_model.hpp)
     std::uint64_t seed = 1;
     std::vector<FitFamily> ndfs;      // gamma lists expanded: one entry per fitted NDF
     struct Training {

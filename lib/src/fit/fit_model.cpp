@@ -84,9 +84,20 @@ double model_value(const DiffuseModel& m, const std::vector<double>& params, con
 LeastSquaresFit fit_model(const DiffuseModel& m, const FitData& data, const std::string& what) {
     const std::vector<Block> bs = blocks(data);
     const std::size_t n = residual_count(bs);
-    LeastSquaresFit fit = least_squares(n, m.published, [&](std::span<const double> p, std::span<double> r) {
-        residuals(m, bs, data.albedos, p.data(), r);
+    const std::size_t bounds = data.energy_alphas.size() * energy_thetas.size();
+    LeastSquaresFit fit = least_squares(n + bounds, m.published, [&](std::span<const double> p, std::span<double> r) {
+        residuals(m, bs, data.albedos, p.data(), r.first(n));
+        const std::vector<double> c(p.begin(), p.end());
+        std::size_t i = n;
+        for (double a : data.energy_alphas)
+            for (double t : energy_thetas) r[i++] = std::max(0.0, model_albedo(m, c, a, t, 1.0) - 1.0) / 1e-4;
     });
+    if (bounds && fit.converged) {  // the penalties are constraints, not data: the scale of the errors without them
+        fit.dof -= static_cast<std::int64_t>(bounds);
+        const std::size_t np = fit.params.size();
+        for (std::size_t i = 0; i < np; ++i)
+            fit.stderr_[i] = std::sqrt(std::max(0.0, fit.covariance[i * np + i]) * std::max(1.0, fit.chi2_dof()));
+    }
     if (!fit.converged)
         throw input_error("fit of model '" + std::string(m.name) + "' on " + what + " (" + std::to_string(bs.size()) +
                           " points x " + std::to_string(data.albedos.size()) + " albedos, " + std::to_string(n) +

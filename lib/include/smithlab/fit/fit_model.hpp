@@ -24,13 +24,22 @@ struct FitData {
     std::vector<DataPoint> points;  // eval points (f |cos theta_o|)
     std::vector<double> albedos;    // the albedos each point is fitted at
     double floor = 0.02;            // relative error floor of the weights
+    // Non-empty: the fit keeps the model energy-bounded, its directional albedo at albedo 1 at most 1 at these alphas
+    // x theta_i in energy_thetas (fit_model).
+    std::vector<double> energy_alphas;
 };
+
+// The incidence angles (degrees) where fit_model holds the directional albedo to 1: where the models peak (grazing).
+inline const std::vector<double> energy_thetas{0.0, 60.0, 80.0, 89.0};
 
 // The model's f(wi, wo) |cos theta_o| at a point.
 double model_value(const DiffuseModel& m, const std::vector<double>& params, const DataPoint& p, double albedo);
 
 // Fits m's free constants from its published values. Throws input_error naming the model and `what` (the data's
-// name, e.g. the NDF) when the fit does not converge or the data has too few points for its parameters.
+// name, e.g. the NDF) when the fit does not converge or the data has too few points for its parameters. With
+// data.energy_alphas, each (alpha, theta_i) adds the residual max(0, E - 1) / 1e-4, E the model's directional albedo
+// at albedo 1 (model_albedo): a penalty that holds the fitted model energy-bounded there (E(a) <= a at lower albedos
+// too for a model whose terms carry albedo^k, k >= 1); these residuals are not counted in its degrees of freedom.
 LeastSquaresFit fit_model(const DiffuseModel& m, const FitData& data, const std::string& what);
 
 // chi^2 / (number of values) of m with these constants on data (weights as in the fit).
