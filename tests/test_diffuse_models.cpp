@@ -2,15 +2,21 @@
 // symmetry every BRDF owes, limits derived by hand (Lambert at zero roughness), values derived by hand from the
 // papers' formulas at convenient angles, and hemisphere integrals by a 2D Gauss-Legendre rule written here.
 #include <catch2/catch.hpp>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <limits>
 #include <numbers>
+#include <regex>
 #include <string>
 #include <vector>
 
 #include "smithlab/errors.hpp"
 #include "smithlab/fit/diffuse_models.hpp"
+#include "smithlab/fit/glsl.hpp"
 #include "smithlab/geometry.hpp"
 
 using namespace smithlab;
@@ -92,7 +98,7 @@ std::vector<Vec3> directions() {
 
 TEST_CASE("diffuse_models: the table is well formed and every name is found", "[diffuse]") {
     const auto& models = diffuse_models();
-    REQUIRE(models.size() == 10);
+    REQUIRE(models.size() == 11);  // ten published baselines and smithlab-2026
     for (const DiffuseModel& m : models) {
         INFO(m.name);
         CHECK(m.parameters.size() == m.published.size());
@@ -309,4 +315,258 @@ TEST_CASE("diffuse_models: maximum directional albedo at albedo 1 (measured, pri
         std::printf("%-24s %10.6f %6.1f %8.0f %13.2g %10.6f %6.1f %8.0f\n", std::string(m.name).c_str(), best,
                     best_alpha, best_theta, finer - best, least, least_alpha, least_theta);
     }
+}
+
+// ---- the models as GLSL (fit/glsl.hpp) ---------------------------------------------------------------------------
+
+namespace {
+
+// What write_shaders hands over: every model at its published constants on "ggx", and the ones with free constants
+// at made-up fitted constants (published * 1.1 + 0.01, with standard errors) on "gtr(gamma=1.5)".
+struct ShaderSet {
+    std::vector<std::string> names;
+    std::vector<std::vector<double>> constants, stderrs;
+    std::vector<ShaderModel> models;
+};
+ShaderSet shader_set() {
+    ShaderSet s;
+    for (const DiffuseModel& m : diffuse_models()) {
+        s.names.emplace_back(m.name);
+        s.constants.push_back(m.published);
+        s.stderrs.emplace_back();
+        if (m.parameters.empty()) continue;
+        s.names.push_back(std::string(m.name) + "-fitted");
+        s.constants.emplace_back();
+        for (double c : m.published) s.constants.back().push_back(1.1 * c + 0.01);
+        s.stderrs.emplace_back(m.published.size(), 0.00123);
+    }
+    for (std::size_t i = 0; i < s.names.size(); ++i) {
+        const bool fitted = !s.stderrs[i].empty();
+        const std::string model = fitted ? s.names[i].substr(0, s.names[i].size() - 7) : s.names[i];
+        s.models.push_back({s.names[i], fitted ? "gtr(gamma=1.5)" : "ggx", &find_diffuse_model(model), s.constants[i],
+                            s.stderrs[i]});
+    }
+    return s;
+}
+
+std::filesystem::path scratch_dir(const char* what) {
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() /
+        (std::string("smithlab_") + what + "_" + std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()));
+    std::filesystem::create_directories(dir);
+    return dir;
+}
+
+// The shader section of a .brdf file.
+std::string brdf_shader(const std::string& file) {
+    const std::size_t begin = file.find("::begin shader\n"), end = file.find("::end shader");
+    REQUIRE(begin != std::string::npos);
+    REQUIRE(end != std::string::npos);
+    return file.substr(begin + 15, end - begin - 15);
+}
+
+// A minimal vec3 and GLSL's built-ins the models use, in float, so that models.glsl compiles as C++ (GLSL's
+// min(x, y) = y < x ? y : x, max(x, y) = x < y ? y : x, clamp = min(max(x, lo), hi)).
+constexpr const char* glsl_as_cpp_shim = R"(#include <cmath>
+#include <cstdio>
+namespace glsl {
+struct vec3 { float x, y, z; };
+vec3 operator+(vec3 a, vec3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+vec3 operator-(vec3 a, vec3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+vec3 operator*(float s, vec3 a) { return {s * a.x, s * a.y, s * a.z}; }
+vec3 operator*(vec3 a, float s) { return s * a; }
+float dot(vec3 a, vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+float length(vec3 a) { return std::sqrt(dot(a, a)); }
+float sqrt(float x) { return std::sqrt(x); }
+float acos(float x) { return std::acos(x); }
+float atan(float y, float x) { return std::atan2(y, x); }
+float log2(float x) { return std::log2(x); }
+float exp2(float x) { return std::exp2(x); }
+float abs(float x) { return std::fabs(x); }
+float pow(float x, float y) { return std::pow(x, y); }
+float min(float x, float y) { return y < x ? y : x; }
+float max(float x, float y) { return x < y ? y : x; }
+float clamp(float x, float lo, float hi) { return min(max(x, lo), hi); }
+)";
+
+}  // namespace
+
+TEST_CASE("glsl: names, literals and refusals", "[diffuse][glsl]") {
+    CHECK(glsl_identifier("gtr(gamma=1.5)") == "gtr_gamma_1p5");
+    CHECK(glsl_identifier("hammon-2017-fitted") == "hammon_2017_fitted");
+    CHECK(glsl_identifier("--GGX  ") == "ggx");
+    CHECK_THROWS_AS(glsl_identifier("()"), input_error);
+    CHECK(glsl_float(1.0) == "1.0");
+    CHECK(glsl_float(0.1159) == "0.1159");
+    CHECK(glsl_float(1.0 / 3.0) == "0.333333333");
+    CHECK(glsl_float(-2.5e-7) == "(-2.5e-07)");
+    CHECK(glsl_float(1e20) == "1e+20");
+    CHECK_THROWS_AS(glsl_float(std::numeric_limits<double>::quiet_NaN()), input_error);
+    const DiffuseModel& hammon = find_diffuse_model("hammon-2017");
+    const std::vector<double> k{0.9, 0.4, 0.5, 1.05, 0.1159}, e{0.01, 0.02, 0.03, 0.04, 0.005};
+    const ShaderModel m{"hammon-2017-fitted", "gtr(gamma=1.5)", &hammon, k, e};
+    CHECK(glsl_function_name(m) == "smithlab_hammon_2017_fitted_gtr_gamma_1p5");
+    const std::string f = glsl_function(m);
+    CHECK(f.find("float smithlab_hammon_2017_fitted_gtr_gamma_1p5(vec3 L, vec3 V, vec3 N, float alpha, float albedo)") !=
+          std::string::npos);
+    CHECK(f.find("smithlab_hammon_2017(L, V, N, alpha, albedo, 0.9, 0.4, 0.5, 1.05, 0.1159)") != std::string::npos);
+    CHECK(f.find("rough_a = 0.9 +- 0.01") != std::string::npos);
+    CHECK(f.find(std::string(hammon.source)) != std::string::npos);
+    const std::vector<double> four{0.9, 0.4, 0.5, 1.05};
+    CHECK_THROWS_AS(glsl_function({"hammon-2017", "ggx", &hammon, four, {}}), input_error);
+    const DiffuseModel unknown{"unknown-model", {}, {}, "nowhere", nullptr};
+    try {
+        (void)glsl_function({"unknown-model", "ggx", &unknown, {}, {}});
+        FAIL("no exception");
+    } catch (const input_error& ex) {
+        CHECK(std::string(ex.what()).find("unknown-model") != std::string::npos);
+    }
+    const std::string brdf = brdf_explorer_file(m);
+    CHECK(brdf.rfind("analytic\n", 0) == 0);
+    CHECK(brdf.find("::begin parameters\nfloat albedo 0 1 0.75\nfloat alpha 0.001 1 0.25\n::end parameters\n") !=
+          std::string::npos);
+    CHECK(brdf.find("::begin shader\n") < brdf.find("vec3 BRDF( vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y )"));
+    CHECK(brdf.find("vec3 BRDF( vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y )") < brdf.find("::end shader"));
+}
+
+// Every model's GLSL through the reference compiler: models.glsl in a fragment shader (#version 330 core), and each
+// .brdf's shader section as BRDF Explorer compiles it (#version 410, its template's uniforms, the parameters as
+// uniforms).
+TEST_CASE("glsl: every model compiles with glslangValidator", "[diffuse][glsl]") {
+    const std::string validator = "/usr/bin/glslangValidator";
+    if (!std::filesystem::exists(validator)) {
+        WARN("no " << validator << " (Debian: glslang-tools): the GLSL is not compiled");
+        return;
+    }
+    const ShaderSet s = shader_set();
+    const std::filesystem::path dir = scratch_dir("glsl");
+    std::string frag = "#version 330 core\n" + glsl_library(s.models) +
+                       "\nuniform vec3 L;\nuniform vec3 V;\nuniform vec3 N;\nuniform float alpha;\nuniform float albedo;\n"
+                       "out vec4 color;\n\nvoid main()\n{\n    float f = 0.0;\n";
+    for (const ShaderModel& m : s.models) frag += "    f += " + glsl_function_name(m) + "(L, V, N, alpha, albedo);\n";
+    frag += "    color = vec4(f);\n}\n";
+    std::ofstream(dir / "models.frag") << frag;
+    const std::string quiet = " > " + (dir / "log.txt").string() + " 2>&1";
+    CHECK(std::system((validator + " " + (dir / "models.frag").string() + quiet).c_str()) == 0);
+    for (std::size_t i = 0; i < s.models.size(); ++i) {
+        INFO(s.models[i].name << " on " << s.models[i].ndf);
+        const std::string path = (dir / ("brdf" + std::to_string(i) + ".frag")).string();
+        std::ofstream(path) << "#version 410\n"
+                               "uniform vec3 incidentVector;\nuniform float incidentTheta;\nuniform float incidentPhi;\n"
+                               "uniform float brightness;\nuniform float gamma;\nuniform float exposure;\n"
+                               "uniform float useNDotL;\nin vec4 worldSpaceVert;\nout vec4 fragColor;\n"
+                               "uniform float albedo;\nuniform float alpha;\n"
+                            << brdf_shader(brdf_explorer_file(s.models[i]))
+                            << "void main(void)\n{\n    vec3 n = normalize(worldSpaceVert.xyz);\n"
+                               "    vec3 t = normalize(cross(vec3(0, 1, 0), n)), b = normalize(cross(n, t));\n"
+                               "    fragColor = vec4(BRDF(incidentVector, vec3(0, 0, 1), n, t, b), 1.0);\n}\n";
+        CHECK(std::system((validator + " " + path + quiet).c_str()) == 0);
+    }
+    std::filesystem::remove_all(dir);
+}
+
+// The GLSL against the C++ model: models.glsl compiled as C++ (the shim above) and run on the directions of the other
+// cases x alpha x albedo, each input rounded to float and the C++ model given the same rounded values. Twice:
+//  - read with `float` as double and the helpers' 9-digit literals (pi, 1/pi, EON's c1 and c2, sqrt(2)) at 17
+//    digits: the transcription itself, on every direction (the pole, 1e-4 degrees from it, grazing at z = 1e-6),
+//    within 1e-12 (measured: 0 at published constants; 6e-16 where the fitted constants lost their 17th digit);
+//  - as GLSL has it, in float, to zenith angles of 89 degrees: 1e-5 to 80 degrees, 5e-5 beyond. Nearer grazing
+//    float itself is the limit, not the transcription: Oren-Nayar's tan(beta) (1e6 at z = 1e-6) multiplies
+//    sin(alpha') - (2 beta/pi)^3, which cancels to 2e-6 (0.4 relative in float, 0.03 in double with pi at 9 digits);
+//    at 89 degrees, opposite, Fujii's and EON's 1 + r s/t cancels to 3e-4.
+// Differences relative to f or, where f nearly vanishes (Oren-Nayar's and Fujii's max(0, f)), to 1e-3 albedo/pi.
+TEST_CASE("glsl: models.glsl agrees with the C++ models", "[diffuse][glsl]") {
+    if (std::system("g++ --version > /dev/null 2>&1") != 0) {
+        WARN("no g++ on PATH: the GLSL is not run");
+        return;
+    }
+    const ShaderSet s = shader_set();
+    const std::filesystem::path dir = scratch_dir("glsl_cpp");
+    std::string program = std::string(glsl_as_cpp_shim) + glsl_library(s.models) + "}  // namespace glsl\n\n" +
+                          "using Fn = float (*)(glsl::vec3, glsl::vec3, glsl::vec3, float, float);\nconst Fn fns[] = {\n";
+    for (const ShaderModel& m : s.models) program += "    glsl::" + glsl_function_name(m) + ",\n";
+    program += "};\n\nint main(int, char** argv)\n{\n"
+               "    std::FILE* in = std::fopen(argv[1], \"r\");\n    std::FILE* out = std::fopen(argv[2], \"w\");\n"
+               "    double p[8];\n"
+               "    while (std::fscanf(in, \"%lf %lf %lf %lf %lf %lf %lf %lf\", p, p + 1, p + 2, p + 3, p + 4, p + 5, "
+               "p + 6, p + 7) == 8) {\n"
+               "        glsl::vec3 l{float(p[0]), float(p[1]), float(p[2])}, v{float(p[3]), float(p[4]), float(p[5])};\n"
+               "        for (Fn f : fns) std::fprintf(out, \"%.17g \", double(f(l, v, glsl::vec3{0, 0, 1}, float(p[6]), "
+               "float(p[7]))));\n"
+               "        std::fprintf(out, \"\\n\");\n    }\n    return 0;\n}\n";
+
+    struct Point {
+        Vec3 wi, wo;
+        double alpha, albedo;
+    };
+    auto to_float = [](const Vec3& w) {
+        return Vec3(static_cast<float>(w.x()), static_cast<float>(w.y()), static_cast<float>(w.z()));
+    };
+    const std::vector<Vec3> dirs = directions();
+    const double z_89 = std::cos(89.0 * pi / 180.0) * (1.0 - 1e-9), z_80 = std::cos(80.0 * pi / 180.0) * (1.0 - 1e-9);
+    // Runs `text` on the grid (directions with z >= z_min) and compares: the largest relative difference per model,
+    // checked against tolerance(point).
+    auto compare = [&](const std::string& name, const std::string& text, double z_min, auto&& tolerance) {
+        std::vector<Point> grid;
+        for (double alpha : {1e-3, 0.25, 0.5, 1.0})
+            for (double albedo : {0.3, 1.0})
+                for (const Vec3& wi : dirs)
+                    for (const Vec3& wo : dirs)
+                        if (wi.z() >= z_min && wo.z() >= z_min)
+                            grid.push_back({to_float(wi), to_float(wo), static_cast<float>(alpha),
+                                            static_cast<float>(albedo)});
+        const std::string src = (dir / (name + ".cpp")).string(), exe = (dir / name).string(),
+                          points = (dir / (name + ".in")).string(), values = (dir / (name + ".out")).string();
+        std::ofstream(src) << text;
+        REQUIRE(std::system(("g++ -std=c++17 -O1 -o " + exe + " " + src).c_str()) == 0);
+        {
+            std::ofstream out(points);
+            char line[400];
+            for (const Point& p : grid) {
+                std::snprintf(line, sizeof line, "%.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\n", p.wi.x(), p.wi.y(),
+                              p.wi.z(), p.wo.x(), p.wo.y(), p.wo.z(), p.alpha, p.albedo);
+                out << line;
+            }
+        }
+        REQUIRE(std::system((exe + " " + points + " " + values).c_str()) == 0);
+        std::ifstream in(values);
+        std::vector<double> worst(s.models.size(), 0.0), worst_ratio(s.models.size(), 0.0);
+        std::vector<std::size_t> worst_at(s.models.size(), 0);
+        for (std::size_t i = 0; i < grid.size(); ++i)
+            for (std::size_t j = 0; j < s.models.size(); ++j) {
+                double glsl = std::numeric_limits<double>::quiet_NaN();
+                REQUIRE(in >> glsl);
+                const Point& p = grid[i];
+                const ShaderModel& m = s.models[j];
+                const double cpp = m.model->f(p.wi, p.wo, p.alpha, p.albedo, m.constants.data());
+                const double d = std::abs(glsl - cpp) / std::max(std::abs(cpp), 1e-3 * p.albedo / pi);
+                if (!(d <= worst[j])) worst[j] = d, worst_at[j] = i;
+                worst_ratio[j] = std::max(worst_ratio[j], d / tolerance(p));
+            }
+        for (std::size_t j = 0; j < s.models.size(); ++j) {
+            const Point& p = grid[worst_at[j]];
+            std::printf("glsl as %-6s vs C++ (%zu points): %-40s max rel diff %.2e (z_i %.3g, z_o %.3g, alpha %g)\n",
+                        name.c_str(), grid.size(), glsl_function_name(s.models[j]).c_str(), worst[j], p.wi.z(),
+                        p.wo.z(), p.alpha);
+            INFO(s.models[j].name << " on " << s.models[j].ndf << " read as " << name);
+            CHECK(worst_ratio[j] <= 1.0);
+        }
+    };
+    std::string as_double = std::regex_replace(program, std::regex("\\bfloat\\b"), "double");
+    auto exact = [&](const std::string& literal, double value) {
+        char digits[40];
+        std::snprintf(digits, sizeof digits, "%.17g", value);
+        const std::size_t at = as_double.find(literal);
+        REQUIRE(at != std::string::npos);
+        as_double.replace(at, literal.size(), digits);
+    };
+    exact(glsl_float(pi), pi);  // each one once, in the constant's definition
+    exact(glsl_float(1.0 / pi), 1.0 / pi);
+    exact(glsl_float(0.5 - 2.0 / (3.0 * pi)), 0.5 - 2.0 / (3.0 * pi));
+    exact(glsl_float(2.0 / 3.0 - 28.0 / (15.0 * pi)), 2.0 / 3.0 - 28.0 / (15.0 * pi));
+    as_double = std::regex_replace(as_double, std::regex("1\\.41421356\\b"), "1.4142135623730951");
+    compare("double", as_double, 0.0, [](const Point&) { return 1e-12; });
+    compare("float", program, z_89,
+            [&](const Point& p) { return p.wi.z() >= z_80 && p.wo.z() >= z_80 ? 1e-5 : 5e-5; });
+    std::filesystem::remove_all(dir);
 }
