@@ -324,3 +324,19 @@ TEST_CASE("fit: a model's directional albedo by the fitter's rule against closed
         CHECK(fit::max_asymmetry(m, m.published, alphas) < 1e-12);
     }
 }
+
+TEST_CASE("fit: energy_alphas hold a fitted model's directional albedo to 1 where its data would take it above", "[fit]") {
+    // Hammon's published constants make 1.15 at alpha = 1, theta_i = 89 (measured by the diffuse models' tests); data
+    // made by them, fitted free, keeps that; fitted with the bound, the peak is 1.
+    const fit::DiffuseModel& m = fit::find_diffuse_model("hammon-2017");
+    const std::vector<double> alphas{0.1, 0.3, 0.6, 1.0};
+    fit::FitData data{synthetic(m, m.published, 0.05, 3), {0.5, 1.0}, 0.02};
+    const fit::LeastSquaresFit free = fit::fit_model(m, data, "free");
+    CHECK(fit::max_albedo(m, free.params, alphas, fit::energy_thetas).albedo > 1.1);
+    data.energy_alphas = alphas;
+    const fit::LeastSquaresFit bound = fit::fit_model(m, data, "bound");
+    const fit::AlbedoPeak peak = fit::max_albedo(m, bound.params, alphas, {0.0, 30.0, 60.0, 75.0, 80.0, 85.0, 89.0});
+    INFO("peak " << peak.albedo << " at alpha " << peak.alpha << ", theta " << peak.theta_i);
+    CHECK(peak.albedo < 1.0 + 1e-3);
+    CHECK(bound.dof == free.dof);  // the penalties are not data
+}

@@ -61,6 +61,15 @@ double value_at(const DiffuseModel& m, const double* c, const Block& b, double a
     return m.f(b.wi, b.wo, b.point->alpha, albedo, c) * b.wo.z();
 }
 
+// The residual that holds a directional albedo E to 1: (w / s) ln(1 + e^((E - 1) / w)), a smooth hinge (softplus of
+// width w = 1e-4: a kinked max(0, E - 1) stalls Levenberg-Marquardt's finite-difference steps at the kink), steep
+// beyond it (1 / s = 1e5 per unit of E); about 0 below 1 - 5w.
+double energy_penalty(double E) {
+    constexpr double w = 1e-4, s = 1e-5;
+    const double x = (E - 1.0) / w;
+    return w / s * (x > 30.0 ? x : std::log1p(std::exp(x)));
+}
+
 // r = whiten (model - y), block by block.
 void residuals(const DiffuseModel& m, const std::vector<Block>& bs, const std::vector<double>& albedos, const double* c,
                std::span<double> r) {
@@ -90,7 +99,7 @@ LeastSquaresFit fit_model(const DiffuseModel& m, const FitData& data, const std:
         const std::vector<double> c(p.begin(), p.end());
         std::size_t i = n;
         for (double a : data.energy_alphas)
-            for (double t : energy_thetas) r[i++] = std::max(0.0, model_albedo(m, c, a, t, 1.0) - 1.0) / 1e-4;
+            for (double t : energy_thetas) r[i++] = energy_penalty(model_albedo(m, c, a, t, 1.0));
     });
     if (bounds && fit.converged) {  // the penalties are constraints, not data: the scale of the errors without them
         fit.dof -= static_cast<std::int64_t>(bounds);

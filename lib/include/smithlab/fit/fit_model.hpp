@@ -37,9 +37,10 @@ double model_value(const DiffuseModel& m, const std::vector<double>& params, con
 
 // Fits m's free constants from its published values. Throws input_error naming the model and `what` (the data's
 // name, e.g. the NDF) when the fit does not converge or the data has too few points for its parameters. With
-// data.energy_alphas, each (alpha, theta_i) adds the residual max(0, E - 1) / 1e-4, E the model's directional albedo
-// at albedo 1 (model_albedo): a penalty that holds the fitted model energy-bounded there (E(a) <= a at lower albedos
-// too for a model whose terms carry albedo^k, k >= 1); these residuals are not counted in its degrees of freedom.
+// data.energy_alphas, each (alpha, theta_i) adds a residual that is ~0 for E below 1 - 5e-4 and grows as (E - 1) 1e5
+// above 1 (a smooth hinge: fit_model.cpp), E the model's directional albedo at albedo 1 (model_albedo): a penalty that
+// holds the fitted model energy-bounded there (E(a) <= a at lower albedos too for a model whose terms carry albedo^k,
+// k >= 1); these residuals are not counted in its degrees of freedom.
 LeastSquaresFit fit_model(const DiffuseModel& m, const FitData& data, const std::string& what);
 
 // chi^2 / (number of values) of m with these constants on data (weights as in the fit).

@@ -28,8 +28,8 @@ using ResidualFn = std::function<void(std::span<const double> p, std::span<doubl
 
 struct LeastSquaresOptions {
     int max_iterations = 500;
-    double xtol = 1e-10;  // GSL's tests: the step relative to p, the gradient relative to chi^2
-    double gtol = 1e-12;
+    double xtol = 1e-8;   // GSL's tests: the step relative to p, the gradient relative to chi^2
+    double gtol = 1e-8;
 };
 
 struct LeastSquaresFit {
