@@ -350,9 +350,9 @@ ShaderSet shader_set() {
 }
 
 std::filesystem::path scratch_dir(const char* what) {
+    const auto now = std::chrono::steady_clock::now().time_since_epoch().count();
     const std::filesystem::path dir =
-        std::filesystem::temp_directory_path() /
-        (std::string("smithlab_") + what + "_" + std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()));
+        std::filesystem::temp_directory_path() / (std::string("smithlab_") + what + "_" + std::to_string(now));
     std::filesystem::create_directories(dir);
     return dir;
 }
@@ -407,8 +407,8 @@ TEST_CASE("glsl: names, literals and refusals", "[diffuse][glsl]") {
     const ShaderModel m{"hammon-2017-fitted", "gtr(gamma=1.5)", &hammon, k, e};
     CHECK(glsl_function_name(m) == "smithlab_hammon_2017_fitted_gtr_gamma_1p5");
     const std::string f = glsl_function(m);
-    CHECK(f.find("float smithlab_hammon_2017_fitted_gtr_gamma_1p5(vec3 L, vec3 V, vec3 N, float alpha, float albedo)") !=
-          std::string::npos);
+    CHECK(f.find("float smithlab_hammon_2017_fitted_gtr_gamma_1p5(vec3 L, vec3 V, vec3 N, float alpha, "
+                 "float albedo)") != std::string::npos);
     CHECK(f.find("smithlab_hammon_2017(L, V, N, alpha, albedo, 0.9, 0.4, 0.5, 1.05, 0.1159)") != std::string::npos);
     CHECK(f.find("rough_a = 0.9 +- 0.01") != std::string::npos);
     CHECK(f.find(std::string(hammon.source)) != std::string::npos);
@@ -441,7 +441,8 @@ TEST_CASE("glsl: every model compiles with glslangValidator", "[diffuse][glsl]")
     const ShaderSet s = shader_set();
     const std::filesystem::path dir = scratch_dir("glsl");
     std::string frag = "#version 330 core\n" + glsl_library(s.models) +
-                       "\nuniform vec3 L;\nuniform vec3 V;\nuniform vec3 N;\nuniform float alpha;\nuniform float albedo;\n"
+                       "\nuniform vec3 L;\nuniform vec3 V;\nuniform vec3 N;\n"
+                       "uniform float alpha;\nuniform float albedo;\n"
                        "out vec4 color;\n\nvoid main()\n{\n    float f = 0.0;\n";
     for (const ShaderModel& m : s.models) frag += "    f += " + glsl_function_name(m) + "(L, V, N, alpha, albedo);\n";
     frag += "    color = vec4(f);\n}\n";
@@ -452,7 +453,8 @@ TEST_CASE("glsl: every model compiles with glslangValidator", "[diffuse][glsl]")
         INFO(s.models[i].name << " on " << s.models[i].ndf);
         const std::string path = (dir / ("brdf" + std::to_string(i) + ".frag")).string();
         std::ofstream(path) << "#version 410\n"
-                               "uniform vec3 incidentVector;\nuniform float incidentTheta;\nuniform float incidentPhi;\n"
+                               "uniform vec3 incidentVector;\nuniform float incidentTheta;\n"
+                               "uniform float incidentPhi;\n"
                                "uniform float brightness;\nuniform float gamma;\nuniform float exposure;\n"
                                "uniform float useNDotL;\nin vec4 worldSpaceVert;\nout vec4 fragColor;\n"
                                "uniform float albedo;\nuniform float alpha;\n"
@@ -483,16 +485,17 @@ TEST_CASE("glsl: models.glsl agrees with the C++ models", "[diffuse][glsl]") {
     const ShaderSet s = shader_set();
     const std::filesystem::path dir = scratch_dir("glsl_cpp");
     std::string program = std::string(glsl_as_cpp_shim) + glsl_library(s.models) + "}  // namespace glsl\n\n" +
-                          "using Fn = float (*)(glsl::vec3, glsl::vec3, glsl::vec3, float, float);\nconst Fn fns[] = {\n";
+                          "using Fn = float (*)(glsl::vec3, glsl::vec3, glsl::vec3, float, float);\n" +
+                          "const Fn fns[] = {\n";
     for (const ShaderModel& m : s.models) program += "    glsl::" + glsl_function_name(m) + ",\n";
     program += "};\n\nint main(int, char** argv)\n{\n"
                "    std::FILE* in = std::fopen(argv[1], \"r\");\n    std::FILE* out = std::fopen(argv[2], \"w\");\n"
                "    double p[8];\n"
                "    while (std::fscanf(in, \"%lf %lf %lf %lf %lf %lf %lf %lf\", p, p + 1, p + 2, p + 3, p + 4, p + 5, "
                "p + 6, p + 7) == 8) {\n"
-               "        glsl::vec3 l{float(p[0]), float(p[1]), float(p[2])}, v{float(p[3]), float(p[4]), float(p[5])};\n"
-               "        for (Fn f : fns) std::fprintf(out, \"%.17g \", double(f(l, v, glsl::vec3{0, 0, 1}, float(p[6]), "
-               "float(p[7]))));\n"
+               "        glsl::vec3 l{float(p[0]), float(p[1]), float(p[2])};\n"
+               "        glsl::vec3 v{float(p[3]), float(p[4]), float(p[5])}, n{0, 0, 1};\n"
+               "        for (Fn f : fns) std::fprintf(out, \"%.17g \", double(f(l, v, n, float(p[6]), float(p[7]))));\n"
                "        std::fprintf(out, \"\\n\");\n    }\n    return 0;\n}\n";
 
     struct Point {
@@ -523,8 +526,8 @@ TEST_CASE("glsl: models.glsl agrees with the C++ models", "[diffuse][glsl]") {
             std::ofstream out(points);
             char line[400];
             for (const Point& p : grid) {
-                std::snprintf(line, sizeof line, "%.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\n", p.wi.x(), p.wi.y(),
-                              p.wi.z(), p.wo.x(), p.wo.y(), p.wo.z(), p.alpha, p.albedo);
+                std::snprintf(line, sizeof line, "%.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\n", p.wi.x(),
+                              p.wi.y(), p.wi.z(), p.wo.x(), p.wo.y(), p.wo.z(), p.alpha, p.albedo);
                 out << line;
             }
         }

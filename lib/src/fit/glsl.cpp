@@ -171,15 +171,16 @@ float smithlab_hammon_2017_single(vec3 L, vec3 V, vec3 N, float alpha, float rou
 float smithlab_hammon_2017(vec3 L, vec3 V, vec3 N, float alpha, float albedo, float rough_a, float rough_b,
                            float rough_c, float smooth_k, float multi)
 {
-    return albedo *
-           (smithlab_hammon_2017_single(L, V, N, alpha, rough_a, rough_b, rough_c, smooth_k) + albedo * (multi * alpha));
+    float single = smithlab_hammon_2017_single(L, V, N, alpha, rough_a, rough_b, rough_c, smooth_k);
+    return albedo * (single + albedo * (multi * alpha));
 }
 
 // Hammon 2017 read as albedo (single + multi), multi = m alpha.
 float smithlab_hammon_2017_linear(vec3 L, vec3 V, vec3 N, float alpha, float albedo, float rough_a, float rough_b,
                                   float rough_c, float smooth_k, float multi)
 {
-    return albedo * (smithlab_hammon_2017_single(L, V, N, alpha, rough_a, rough_b, rough_c, smooth_k) + multi * alpha);
+    float single = smithlab_hammon_2017_single(L, V, N, alpha, rough_a, rough_b, rough_c, smooth_k);
+    return albedo * (single + multi * alpha);
 }
 
 // smithlab 2026 (this tool's own family, from the traced data): Hammon's single term blended by t = alpha^p,
@@ -190,7 +191,8 @@ float smithlab_2026(vec3 L, vec3 V, vec3 N, float alpha, float albedo, float rou
     float t = pow(alpha, blend_power);
     float facing = 0.25 * dot(L + V, L + V);
     float multi_term = multi * pow(alpha, multi_power) * (1.0 + multi_forward * (1.0 - facing));
-    return albedo * (smithlab_hammon_2017_single(L, V, N, t, rough_a, rough_b, rough_c, smooth_k) + albedo * multi_term);
+    float single = smithlab_hammon_2017_single(L, V, N, t, rough_a, rough_b, rough_c, smooth_k);
+    return albedo * (single + albedo * multi_term);
 }
 )";
 
@@ -308,9 +310,9 @@ std::string glsl_library(std::span<const ShaderModel> models) {
         "// smithlab's diffuse models (issue 12) at the constants `smithlab fit` measured, transcribed from\n"
         "// lib/src/fit/diffuse_models.cpp. One function per model and NDF family:\n"
         "//     float smithlab_<model>_<ndf>(vec3 L, vec3 V, vec3 N, float alpha, float albedo)\n"
-        "// returns the BRDF f without the cosine; L toward the light, V toward the viewer, N the normal, unit vectors\n"
-        "// with dot(N, L) > 0 and dot(N, V) > 0 (not checked); alpha the GGX roughness (Disney's roughness squared),\n"
-        "// albedo in [0, 1]. GLSL 3.30, no extensions, no #version line.\n\n";
+        "// returns the BRDF f without the cosine; L toward the light, V toward the viewer, N the normal, unit\n"
+        "// vectors with dot(N, L) > 0 and dot(N, V) > 0 (not checked); alpha the GGX roughness (Disney's roughness\n"
+        "// squared), albedo in [0, 1]. GLSL 3.30, no extensions, no #version line.\n\n";
     out += glsl_helpers();
     for (const ShaderModel& m : models) out += "\n" + glsl_function(m);
     return out;
