@@ -49,7 +49,7 @@ void model(benchmark::State& state, const fit::DiffuseModel* m) {
 void hammon_fit(benchmark::State& state) {
     const fit::DiffuseModel& m = fit::find_diffuse_model("hammon-2017");
     const std::vector<double> truth{0.85, 0.45, 0.55, 1.0, 0.15};
-    fit::FitData data{{}, {0.25, 0.5, 0.75, 1.0}, 0.02};
+    fit::FitData data{{}, {0.25, 0.5, 0.75, 1.0}, 0.02, {}};
     for (double alpha : {0.1, 0.3, 0.6, 1.0})
         for (double ti : {0.0, 30.0, 60.0, 80.0})
             for (double to : {10.0, 40.0, 70.0})

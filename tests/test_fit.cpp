@@ -36,7 +36,9 @@ TEST_CASE("fit: one trace at albedo 1 split by diffuse events is the trace at an
     for (double a : {0.3, 0.8}) {
         {
             const fit::SplitMoments m = fit::trace_eval_point(ms, walk::Lambert{1.0}, wi, wo, 1, 0, n);
-            walk::EvalRequest r{.wi = wi, .wo = wo, .seed = 2, .walks = n};
+            walk::EvalRequest r{.wi = wi, .wo = wo};
+            r.seed = 2;
+            r.walks = n;
             const walk::EvalTally direct = walk::eval_cell(ms, walk::Lambert{a}, r);
             const walk::Estimate split = fit::at_albedo(m, {a, 0});
             INFO("lambert eval, albedo " << a << ": split " << split.value << " +- " << split.stderr_ << ", direct "
@@ -47,7 +49,10 @@ TEST_CASE("fit: one trace at albedo 1 split by diffuse events is the trace at an
         {
             const walk::FresnelDiffuse at1{0.04, 1.0}, at_a{0.04, a};
             const fit::SplitMoments m = fit::trace_albedo_point(ms, at1, wi, 3, 0, n);
-            walk::CellRequest r{.wi = wi, .seed = 4, .walks = n};
+            walk::CellRequest r;
+            r.wi = wi;
+            r.seed = 4;
+            r.walks = n;
             const walk::CellResult direct = walk::trace_cell(ms, at_a, r);
             const walk::Estimate d = direct.albedo.albedo(walk::Hemisphere::reflection, walk::all_orders,
                                                           walk::Component::diffuse);
@@ -173,7 +178,7 @@ TEST_CASE("fit: the fitter recovers known constants from the model's own noisy d
     const fit::DiffuseModel& m = fit::find_diffuse_model("hammon-2017");
     const std::vector<double> truth{0.85, 0.45, 0.55, 1.0, 0.15};
     REQUIRE(truth.size() == m.parameters.size());
-    const fit::FitData data{synthetic(m, truth, 0.2, 5), {0.25, 0.5, 0.75, 1.0}, 0.0};
+    const fit::FitData data{synthetic(m, truth, 0.2, 5), {0.25, 0.5, 0.75, 1.0}, 0.0, {}};
     const fit::LeastSquaresFit f = fit::fit_model(m, data, "synthetic");
     for (std::size_t i = 0; i < truth.size(); ++i) {
         INFO(m.parameters[i] << ": " << f.params[i] << " +- " << f.stderr_[i] << ", truth " << truth[i]);
@@ -191,7 +196,7 @@ TEST_CASE("fit: too few points for a model's constants is an error naming the mo
     const fit::DiffuseModel& m = fit::find_diffuse_model("hammon-2017");
     std::vector<fit::DataPoint> pts = synthetic(m, m.published, 0.1, 1);
     pts.resize(1);
-    const fit::FitData data{pts, {0.5, 1.0}, 0.02};
+    const fit::FitData data{pts, {0.5, 1.0}, 0.02, {}};
     try {
         fit::fit_model(m, data, "ggx at one point");
         FAIL("a fit of 5 constants to 2 values was accepted");
@@ -330,7 +335,7 @@ TEST_CASE("fit: energy_alphas hold a fitted model's directional albedo to 1 wher
     // made by them, fitted free, keeps that; fitted with the bound, the peak is 1.
     const fit::DiffuseModel& m = fit::find_diffuse_model("hammon-2017");
     const std::vector<double> alphas{0.1, 0.3, 0.6, 1.0};
-    fit::FitData data{synthetic(m, m.published, 0.05, 3), {0.5, 1.0}, 0.02};
+    fit::FitData data{synthetic(m, m.published, 0.05, 3), {0.5, 1.0}, 0.02, {}};
     const fit::LeastSquaresFit free = fit::fit_model(m, data, "free");
     CHECK(fit::max_albedo(m, free.params, alphas, fit::energy_thetas).albedo > 1.1);
     data.energy_alphas = alphas;

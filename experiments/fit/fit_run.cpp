@@ -50,7 +50,7 @@ std::vector<Measured> fit_all(const FitScene& s, const NdfData& d) {
 }
 
 ErrorRow measure(const FitScene& s, const NdfData& d, const Measured& m) {
-    const fit::FitData validation{d.validation, s.albedos, s.floor};
+    const fit::FitData validation{d.validation, s.albedos, s.floor, {}};
     const fit::RelativeErrors rel = fit::relative_errors(*m.model, m.params, validation);
     const std::vector<double> thetas{0.0, 15.0, 30.0, 45.0, 60.0, 70.0, 80.0, 85.0, 89.0};
     return {m.name,
