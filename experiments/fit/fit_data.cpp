@@ -131,27 +131,6 @@ void write_group(const fs::path& path, const std::string& key, const Group& g, c
     });
 }
 
-// Traces the group's points in parallel (a point per block), in point order.
-std::vector<fit::SplitMoments> trace_group(const AnyNdf& ndf, const walk::Material& material, const FitScene& s,
-                                           const Group& g, std::uint64_t ndf_index, unsigned threads,
-                                           const std::function<void(std::uint64_t)>& done) {
-    return trace::with_walk_types(ndf, material, {}, [&](const auto& ms, const auto& m) {
-        return walk::reduce_blocks(
-            g.dirs.size(), threads, std::vector<fit::SplitMoments>{},
-            [&](std::uint64_t j) {
-                const fit::Directions& d = g.dirs[j];
-                const std::uint64_t cell = stream(g.set, ndf_index, g.index, j);
-                return std::vector<fit::SplitMoments>{
-                    g.set == albedo_set ? fit::trace_albedo_point(ms, m, d.wi(), s.seed, cell, g.walks)
-                                        : fit::trace_eval_point(ms, m, d.wi(), d.wo(), s.seed, cell, g.walks)};
-            },
-            [](std::vector<fit::SplitMoments>& all, const std::vector<fit::SplitMoments>& one) {
-                all.insert(all.end(), one.begin(), one.end());
-            },
-            done);
-    });
-}
-
 std::vector<double> midpoints(const std::vector<double>& a) {
     if (a.size() < 2) return a;
     std::vector<double> m;
@@ -160,6 +139,28 @@ std::vector<double> midpoints(const std::vector<double>& a) {
 }
 
 }  // namespace
+
+std::vector<fit::SplitMoments> trace_points(const AnyNdf& ndf, const walk::Material& material,
+                                            const std::vector<TracePoint>& points, Estimator estimator,
+                                            std::uint64_t seed, std::int64_t walks, unsigned threads,
+                                            const std::function<void(std::uint64_t)>& done) {
+    return trace::with_walk_types(ndf, material, {}, [&](const auto& ms, const auto& m) {
+        return walk::reduce_blocks(
+            points.size(), threads, std::vector<fit::SplitMoments>{},
+            [&](std::uint64_t j) {
+                const TracePoint& p = points[j];
+                return std::vector<fit::SplitMoments>{
+                    estimator == Estimator::albedo ? fit::trace_albedo_point(ms, m, p.wi, seed, p.stream, walks)
+                                                   : fit::trace_eval_point(ms, m, p.wi, p.wo, seed, p.stream, walks)};
+            },
+            [](std::vector<fit::SplitMoments>& all, const std::vector<fit::SplitMoments>& one) {
+                all.insert(all.end(), one.begin(), one.end());
+            },
+            [&](std::uint64_t k) {
+                if (done) done(k);
+            });
+    });
+}
 
 AnyNdf make_ndf(const NdfRegistry& registry, const FitFamily& f, double alpha) {
     try {
@@ -211,9 +212,13 @@ std::vector<NdfData> gather(const FitScene& s, const NdfRegistry& registry, cons
                 p.data.reused += static_cast<std::int64_t>(g.dirs.size());
             } else {
                 const std::int64_t before = done;
-                m = trace_group(p.ndfs[i], material, s, g, n, threads, [&](std::uint64_t k) {
-                    if (progress) progress(before + static_cast<std::int64_t>(k), total);
-                });
+                std::vector<TracePoint> points;
+                for (std::size_t j = 0; j < g.dirs.size(); ++j)
+                    points.push_back({g.dirs[j].wi(), g.dirs[j].wo(), stream(g.set, n, g.index, j)});
+                m = trace_points(p.ndfs[i], material, points, g.set == albedo_set ? Estimator::albedo : Estimator::eval,
+                                 s.seed, g.walks, threads, [&](std::uint64_t k) {
+                                     if (progress) progress(before + static_cast<std::int64_t>(k), total);
+                                 });
                 write_group(file, key, g, *m);
                 p.data.traced += static_cast<std::int64_t>(g.dirs.size());
             }

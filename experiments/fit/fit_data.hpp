@@ -16,6 +16,7 @@
 #include "fit_scene.hpp"
 #include "smithlab/fit/dataset.hpp"
 #include "smithlab/registry.hpp"
+#include "smithlab/walk/facets.hpp"
 
 namespace smithlab::fitrun {
 
@@ -34,6 +35,21 @@ using ProgressFn = std::function<void(std::int64_t done, std::int64_t total)>;
 // FILE:LINE: ndf.family) and builds each microsurface before tracing anything.
 std::vector<NdfData> gather(const FitScene& scene, const NdfRegistry& registry, const std::filesystem::path& cache,
                             unsigned threads, const ProgressFn& progress);
+
+// A point to trace: its directions (the albedo estimator reads wi only) and its random stream.
+struct TracePoint {
+    Vec3 wi, wo;
+    std::uint64_t stream;
+};
+enum class Estimator { eval, albedo };
+
+// The points' split moments on one microsurface (fit/dataset.hpp: trace_eval_point, trace_albedo_point), in parallel
+// (a point per block, merged in point order: the same bits for any --threads), point j from
+// WalkRng(seed, points[j].stream, walk); done(k) once the first k points are merged.
+std::vector<fit::SplitMoments> trace_points(const AnyNdf& ndf, const walk::Material& material,
+                                            const std::vector<TracePoint>& points, Estimator estimator,
+                                            std::uint64_t seed, std::int64_t walks, unsigned threads,
+                                            const std::function<void(std::uint64_t)>& done);
 
 // The NDF of a family at one alpha (blinn: at n = 2 / alpha^2 - 2).
 AnyNdf make_ndf(const NdfRegistry& registry, const FitFamily& family, double alpha);

@@ -1,11 +1,8 @@
 #include "fit_pictures.hpp"
 
-#include <sys/wait.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -14,10 +11,10 @@
 
 #include "dispatch.hpp"
 #include "fit_data.hpp"
-#include "signal_cleanup.hpp"
+#include "plot_script.hpp"
+#include "progress.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
-#include "smithlab/walk/parallel.hpp"
 
 namespace smithlab::fitrun {
 
@@ -126,45 +123,30 @@ SphereGroup sphere_group(int P) {
     return g;
 }
 
-// Prints "fit: pictures: ..." every few seconds while tracing (a run with a large scene is long).
+// Walks traced of walks to trace, for the progress line.
 struct Progress {
-    std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now(), last = start;
+    output::ProgressLine line;
     std::int64_t done = 0, total = 0;
     void report(std::int64_t now_done) {
-        const auto now = std::chrono::steady_clock::now();
-        const double t = std::chrono::duration<double>(now - start).count();
-        if (t < 3.0 || std::chrono::duration<double>(now - last).count() < 2.0 || now_done <= 0 || now_done >= total)
-            return;
-        last = now;
-        const double f = static_cast<double>(now_done) / static_cast<double>(total);
-        std::fprintf(stderr, "fit: pictures: traced %lld of %lld walks (millions), %.0f s elapsed, ETA %.0f s\n",
-                     static_cast<long long>(now_done / 1000000), static_cast<long long>(total / 1000000), t,
-                     t * (1.0 - f) / f);
+        line(static_cast<double>(now_done) / static_cast<double>(total), [&] {
+            return "fit: pictures: traced " + std::to_string(now_done / 1000000) + " of " +
+                   std::to_string(total / 1000000) + " walks (millions)";
+        });
     }
 };
 
-// Traces the points in parallel (a point per block, merged in point order: the same bits for any --threads), each
-// from WalkRng(seed, stream(set, ndf, group, j), walk): the eval estimator, or the directional albedo (sample
-// estimator) of wi when `albedo`.
+// Traces the points (fit_data.hpp, trace_points), point j from stream(set, ndf, group, j).
 std::vector<fit::SplitMoments> trace_points(const AnyNdf& ndf, const walk::Material& material,
                                             const std::vector<Pair>& points, bool albedo, std::uint64_t seed,
                                             PictureSet set, std::uint64_t ndf_index, std::uint64_t group,
                                             std::int64_t walks, unsigned threads, Progress& progress) {
+    std::vector<TracePoint> traced;
+    for (std::size_t j = 0; j < points.size(); ++j)
+        traced.push_back({points[j].wi, points[j].wo, stream(set, ndf_index, group, j)});
     const std::int64_t before = progress.done;
-    std::vector<fit::SplitMoments> out = trace::with_walk_types(ndf, material, {}, [&](const auto& ms, const auto& m) {
-        return walk::reduce_blocks(
-            points.size(), threads, std::vector<fit::SplitMoments>{},
-            [&](std::uint64_t j) {
-                const std::uint64_t cell = stream(set, ndf_index, group, j);
-                return std::vector<fit::SplitMoments>{
-                    albedo ? fit::trace_albedo_point(ms, m, points[j].wi, seed, cell, walks)
-                           : fit::trace_eval_point(ms, m, points[j].wi, points[j].wo, seed, cell, walks)};
-            },
-            [](std::vector<fit::SplitMoments>& all, const std::vector<fit::SplitMoments>& one) {
-                all.insert(all.end(), one.begin(), one.end());
-            },
-            [&](std::uint64_t k) { progress.report(before + static_cast<std::int64_t>(k) * walks); });
-    });
+    std::vector<fit::SplitMoments> out =
+        fitrun::trace_points(ndf, material, traced, albedo ? Estimator::albedo : Estimator::eval, seed, walks, threads,
+                             [&](std::uint64_t k) { progress.report(before + static_cast<std::int64_t>(k) * walks); });
     progress.done += static_cast<std::int64_t>(points.size()) * walks;
     return out;
 }
@@ -323,23 +305,6 @@ bool write_constants_vs_gamma(const fs::path& file, const Results& r) {
                                        format_g17(m.stderr_[i])});
         }
     return true;
-}
-
-// Runs fit_plots.py on dir (figures.cpp's way): next to an installed binary, or SMITHLAB_FIT_PLOT_SCRIPT in the source
-// tree of this build. False (with a warning) when it fails.
-bool draw(const fs::path& dir) {
-    const fs::path exe = fs::canonical("/proc/self/exe");
-    fs::path script = exe.parent_path().parent_path() / "share" / "smithlab" / "fit_plots.py";
-    if (!fs::exists(script)) script = SMITHLAB_FIT_PLOT_SCRIPT;
-    const std::string cmd = "/usr/bin/python3 '" + script.string() + "' '" + dir.string() + "'";
-    std::fprintf(stderr, "fit: pictures: drawing (%s)\n", cmd.c_str());
-    const int status = std::system(cmd.c_str());
-    if (WIFSIGNALED(status) && (WTERMSIG(status) == SIGINT || WTERMSIG(status) == SIGTERM))
-        output::end_as_signalled(WTERMSIG(status));  // the user's Ctrl-C reached the plot script too
-    if (status == 0) return true;
-    std::fprintf(stderr, "fit: pictures: warning: the pictures were not drawn; their data is in %s (needs Debian's "
-                         "python3-matplotlib, see .ci/deps)\n", dir.string().c_str());
-    return false;
 }
 
 std::string fixed(double v, int digits) {
@@ -511,7 +476,7 @@ std::string write_pictures(const fs::path& dir, const FitScene& s, const Results
     const bool gamma = write_constants_vs_gamma(out / "constants_vs_gamma.csv", r);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::fprintf(stderr, "fit: pictures: traced in %.1f s\n", seconds);
-    const bool drawn = draw(out);
+    const bool drawn = output::run_plot_script("fit_plots.py", SMITHLAB_FIT_PLOT_SCRIPT, out, "fit: pictures");
     return markdown(r, s, missing, checks, gamma, drawn, seconds, progress.total);
 }
 

@@ -13,6 +13,7 @@
 #include "fit_pictures.hpp"
 #include "fit_results.hpp"
 #include "fit_shaders.hpp"
+#include "progress.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
 #include "smithlab/fit/compensation.hpp"
@@ -152,6 +153,27 @@ std::string write_compensation(const fs::path& dir, const FitScene& s, const Ndf
     return md.str();
 }
 
+// c(gamma) = sum_d p_d gamma^d by weighted least squares (errors e), and its largest deviation from the c.
+struct Trend {
+    fit::LeastSquaresFit fit;
+    double deviation = 0.0;
+};
+Trend polynomial_trend(const std::vector<double>& g, const std::vector<double>& c, const std::vector<double>& e,
+                       int degree) {
+    auto residuals = [&](std::span<const double> p, std::span<double> out) {
+        for (std::size_t j = 0; j < g.size(); ++j) {
+            double v = 0.0;
+            for (int d = degree; d >= 0; --d) v = v * g[j] + p[d];
+            out[j] = (v - c[j]) / e[j];
+        }
+    };
+    Trend t{fit::least_squares(g.size(), std::vector<double>(degree + 1, 0.0), residuals), 0.0};
+    std::vector<double> r(g.size());
+    residuals(t.fit.params, r);
+    for (std::size_t j = 0; j < g.size(); ++j) t.deviation = std::max(t.deviation, std::abs(r[j] * e[j]));
+    return t;
+}
+
 // How each fitted constant moves with GTR's gamma, when the scene fits three or more gammas: weighted least squares of
 // c(gamma) by a line and by a parabola (fit/least_squares.hpp), each with its chi^2 / dof against the constants'
 // standard errors and its largest deviation; gamma_trends.csv and a Markdown table. A form fits where chi^2 / dof is
@@ -182,31 +204,19 @@ std::string write_gamma_trends(const fs::path& dir, const Results& r) {
             const std::string param(m0.model->parameters[i]);
             md << "| " << m0.name << " | " << param << " |";
             for (int degree : {1, 2}) {
-                auto residuals = [&](std::span<const double> p, std::span<double> out) {
-                    for (std::size_t j = 0; j < g.size(); ++j) {
-                        double v = 0.0;
-                        for (int d = degree; d >= 0; --d) v = v * g[j] + p[d];
-                        out[j] = (v - c[j]) / e[j];
-                    }
-                };
-                const fit::LeastSquaresFit f =
-                    fit::least_squares(g.size(), std::vector<double>(degree + 1, 0.0), residuals);
-                std::vector<double> rs(g.size());
-                residuals(f.params, rs);
-                double dev = 0.0;
-                for (std::size_t j = 0; j < g.size(); ++j) dev = std::max(dev, std::abs(rs[j] * e[j]));
+                const Trend t = polynomial_trend(g, c, e, degree);
                 std::vector<std::string> row{m0.name, param, degree == 1 ? "line" : "parabola"};
-                for (int d = 0; d < 3; ++d) row.push_back(d <= degree && f.converged ? format_g17(f.params[d]) : "");
-                row.push_back(f.converged ? format_g17(f.chi2_dof()) : "");
-                row.push_back(f.converged ? format_g17(dev) : "");
+                for (int d = 0; d < 3; ++d) row.push_back(d <= degree && t.fit.converged ? format_g17(t.fit.params[d]) : "");
+                row.push_back(t.fit.converged ? format_g17(t.fit.chi2_dof()) : "");
+                row.push_back(t.fit.converged ? format_g17(t.deviation) : "");
                 write_csv_record(csv, row);
                 char cell[160];
-                if (!f.converged) std::snprintf(cell, sizeof cell, " (too few gammas) | |");
-                else if (degree == 1)
-                    std::snprintf(cell, sizeof cell, " %.4g %+.4g gamma | %.3g |", f.params[0], f.params[1], f.chi2_dof());
+                const std::vector<double>& q = t.fit.params;
+                if (!t.fit.converged) std::snprintf(cell, sizeof cell, " (too few gammas) | |");
+                else if (degree == 1) std::snprintf(cell, sizeof cell, " %.4g %+.4g gamma | %.3g |", q[0], q[1], t.fit.chi2_dof());
                 else
-                    std::snprintf(cell, sizeof cell, " %.4g %+.4g gamma %+.4g gamma^2 | %.3g |", f.params[0], f.params[1],
-                                  f.params[2], f.chi2_dof());
+                    std::snprintf(cell, sizeof cell, " %.4g %+.4g gamma %+.4g gamma^2 | %.3g |", q[0], q[1], q[2],
+                                  t.fit.chi2_dof());
                 md << cell;
             }
             md << "\n";
@@ -264,27 +274,18 @@ void write_report(const fs::path& dir, const FitScene& s, const Results& r, cons
     md << sections;
 }
 
-struct Progress {
-    std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now(), last = start;
-    void operator()(std::int64_t done, std::int64_t total) {
-        const auto now = std::chrono::steady_clock::now();
-        const double t = std::chrono::duration<double>(now - start).count();
-        if (t < 3.0 || std::chrono::duration<double>(now - last).count() < 2.0 || done <= 0 || done >= total) return;
-        last = now;
-        const double f = static_cast<double>(done) / static_cast<double>(total);
-        std::fprintf(stderr, "fit: traced %lld of %lld points, %.0f s elapsed, ETA %.0f s\n",
-                     static_cast<long long>(done), static_cast<long long>(total), t, t * (1.0 - f) / f);
-    }
-};
-
 }  // namespace
 
 FitSummary run_fit(const FitScene& s, const std::string& source, const std::string& scene_text,
                    const NdfRegistry& registry, const fs::path& out, unsigned threads) {
     const auto t0 = std::chrono::steady_clock::now();
     output::StagedDirectory stage(out, "fit");  // refuses a bad OUT before any work
-    Progress progress;
-    Results r{gather(s, registry, out / "cache", threads, std::ref(progress)), {}};
+    output::ProgressLine line;
+    auto progress = [&](std::int64_t done, std::int64_t total) {
+        line(static_cast<double>(done) / static_cast<double>(total),
+             [&] { return "fit: traced " + std::to_string(done) + " of " + std::to_string(total) + " points"; });
+    };
+    Results r{gather(s, registry, out / "cache", threads, progress), {}};
     FitSummary sum;
     for (const NdfData& d : r.data) {
         sum.traced += d.traced;

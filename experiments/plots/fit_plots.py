@@ -10,7 +10,6 @@ Needs Debian's python3-matplotlib (installed by .ci/deps). experiments/fit/fit_p
 and this script draws spheres_STEM.png, lambert_spheres_STEM.png, slices_STEM.png, missing_STEM.png and
 constants_vs_gamma.png. Each figure is drawn only if its data is there.
 """
-import csv
 import math
 import os
 import sys
@@ -23,6 +22,9 @@ import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.colors import PowerNorm  # noqa: E402
 import numpy as np  # noqa: E402
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from plot_common import num, rows  # noqa: E402
+
 # Hammon 2017's layout (slides "Direct only" ... "Approximate diffuse only"): rows the light at 0, 90, 135 degrees
 # from the viewer, each row three spheres at albedo 0.75, 0.5, 0.25; columns alpha.
 LIGHTS = (0.0, 90.0, 135.0)
@@ -32,15 +34,6 @@ LAMBERT_SOURCES = ("lambert facets: direct only", "lambert facets: direct plus i
                    "lambert facets: indirect only")
 BACKGROUND = (0.16, 0.17, 0.22)  # unlit parts of a sphere are black: the background is not
 GAP_SPHERE, GAP_CELL = 2, 10     # pixels between the three spheres of a cell, and between cells
-
-
-def rows(path):
-    with open(path, newline="") as f:
-        return list(csv.DictReader(f))
-
-
-def num(s):
-    return float(s) if s not in ("", None) else math.nan
 
 
 def tone(v):

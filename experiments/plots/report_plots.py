@@ -4,7 +4,6 @@
 Needs Debian's python3-matplotlib (installed by .ci/deps). Each figure is drawn only if its data is there, i.e. only
 if the scene asked for it.
 """
-import csv
 import math
 import os
 import sys
@@ -17,14 +16,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.colors import LogNorm  # noqa: E402
 import numpy as np  # noqa: E402
 
-
-def rows(path):
-    with open(path, newline="") as f:
-        return list(csv.DictReader(f))
-
-
-def num(s):
-    return float(s) if s not in ("", None) else math.nan
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from plot_common import num, rows  # noqa: E402
 
 
 def pareto(d):

@@ -8,11 +8,9 @@
 #include <string>
 #include <vector>
 
-#include <sys/wait.h>
 
-#include <csignal>
 
-#include "signal_cleanup.hpp"
+#include "plot_script.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/gtr/gtr.hpp"
 #include "smithlab/smith.hpp"
@@ -93,18 +91,7 @@ void write_figures(const Scene& scene, const fs::path& dir) {
           !scene.sampling.families.empty() || !scene.walk.ndfs.empty()))
         return;
 
-    // The plot script: next to an installed binary, or in the source tree of this build.
-    const fs::path exe = fs::canonical("/proc/self/exe");
-    fs::path script = exe.parent_path().parent_path() / "share" / "smithlab" / "report_plots.py";
-    if (!fs::exists(script)) script = SMITHLAB_PLOT_SCRIPT;
-    const std::string cmd = "/usr/bin/python3 '" + script.string() + "' '" + dir.string() + "'";
-    std::fprintf(stderr, "report: drawing the figures (%s)\n", cmd.c_str());
-    const int status = std::system(cmd.c_str());
-    if (WIFSIGNALED(status) && (WTERMSIG(status) == SIGINT || WTERMSIG(status) == SIGTERM))
-        output::end_as_signalled(WTERMSIG(status));  // the user's Ctrl-C reached the plot script too
-    if (status != 0) {
-        std::fprintf(stderr, "report: warning: the figures were not drawn; their data is in %s (needs Debian's "
-                             "python3-matplotlib, see .ci/deps)\n", dir.string().c_str());
+    if (!output::run_plot_script("report_plots.py", SMITHLAB_PLOT_SCRIPT, dir, "report")) {
         std::ofstream(dir / "report.md", std::ios::app) << "\n**The figures were not drawn** (python3-matplotlib missing?); "
                                                             "their data is beside this file.\n";
     }

@@ -17,6 +17,7 @@
 
 #include "dispatch.hpp"
 #include "output_file.hpp"
+#include "progress.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/walk/trace.hpp"
 #include "staged_directory.hpp"
@@ -166,20 +167,6 @@ std::optional<CellRows> read_cell(const fs::path& path, const Prepared& p, const
     return rows;
 }
 
-// Progress with an ETA on stderr, at most every 2 s, for runs past a few seconds.
-struct Progress {
-    std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now(), last = start;
-    void operator()(double done, std::int64_t cell, std::int64_t cells) {
-        const auto now = std::chrono::steady_clock::now();
-        const double t = std::chrono::duration<double>(now - start).count();
-        if (t < 3.0 || std::chrono::duration<double>(now - last).count() < 2.0 || done <= 0.0 || done >= 1.0) return;
-        last = now;
-        std::fprintf(stderr, "trace: cell %lld of %lld, %.0f%% of the walks done, %.0f s elapsed, ETA %.0f s\n",
-                     static_cast<long long>(cell + 1), static_cast<long long>(cells), 100.0 * done, t,
-                     t * (1.0 - done) / done);
-    }
-};
-
 std::string toml_string(const std::string& s) { return toml::format(toml::value(s)); }
 
 std::string toml_list(const std::vector<double>& v) {
@@ -247,7 +234,7 @@ RunSummary run_scene(const TraceScene& s, const std::string& source, const NdfRe
     r.limits.max_order = s.max_order;
     r.brdf = s.brdf;
     r.threads = threads;
-    Progress progress;
+    output::ProgressLine progress;
     // Cells run NDF by NDF (the scene's order): each microsurface is built once, and only when a cell needs it.
     for (std::size_t first = 0; first < prepared.size();) {
         std::size_t last = first;
@@ -261,7 +248,15 @@ RunSummary run_scene(const TraceScene& s, const std::string& source, const NdfRe
                     r.cell = p.cell.index;
                     r.brdf.transmission = walk::transmits(p.material);
                     const std::int64_t before = sum.traced;
-                    auto report = [&](double f) { progress((before + f) / to_trace, before, to_trace); };
+                    auto report = [&](double f) {
+                        progress((before + f) / to_trace, [&] {
+                            char line[96];
+                            std::snprintf(line, sizeof line, "trace: cell %lld of %lld, %.0f%% of the walks done",
+                                          static_cast<long long>(before + 1), static_cast<long long>(to_trace),
+                                          100.0 * (before + f) / to_trace);
+                            return std::string(line);
+                        });
+                    };
                     const walk::CellResult result = std::visit(
                         [&](const auto& m) { return walk::trace_cell(ms, m, r, std::cref(report)); }, p.material);
                     done[i] = rows_of(p, s, result);

@@ -1,0 +1,30 @@
+#include "plot_script.hpp"
+
+#include <sys/wait.h>
+
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+
+#include "signal_cleanup.hpp"
+
+namespace smithlab::output {
+
+namespace fs = std::filesystem;
+
+bool run_plot_script(const std::string& name, const fs::path& fallback, const fs::path& dir, const std::string& who) {
+    const fs::path exe = fs::canonical("/proc/self/exe");
+    fs::path script = exe.parent_path().parent_path() / "share" / "smithlab" / name;
+    if (!fs::exists(script)) script = fallback;
+    const std::string cmd = "/usr/bin/python3 '" + script.string() + "' '" + dir.string() + "'";
+    std::fprintf(stderr, "%s: drawing the figures (%s)\n", who.c_str(), cmd.c_str());
+    const int status = std::system(cmd.c_str());
+    if (WIFSIGNALED(status) && (WTERMSIG(status) == SIGINT || WTERMSIG(status) == SIGTERM))
+        end_as_signalled(WTERMSIG(status));  // the user's Ctrl-C reached the plot script too
+    if (status == 0) return true;
+    std::fprintf(stderr, "%s: warning: the figures were not drawn; their data is in %s (needs Debian's "
+                         "python3-matplotlib, see .ci/deps)\n", who.c_str(), dir.string().c_str());
+    return false;
+}
+
+}  // namespace smithlab::output
