@@ -190,6 +190,17 @@ TEST_CASE("fit: the fitter recovers known constants from the model's own noisy d
     CHECK(f.chi2_dof() < 1.25);
     // The published constants are far from the truth here: the fit moved.
     CHECK(fit::chi2_per_value(m, m.published, data) > 10.0 * f.chi2_dof());
+    // With a relative floor the weights are not the data's inverse covariance; the sandwich errors still cover the
+    // truth (and chi^2 / dof, counted with the floored weights, falls below 1).
+    fit::FitData floored = data;
+    floored.floor = 0.02;
+    const fit::LeastSquaresFit g = fit::fit_model(m, floored, "synthetic, floor 0.02");
+    for (std::size_t i = 0; i < truth.size(); ++i) {
+        INFO(m.parameters[i] << ": " << g.params[i] << " +- " << g.stderr_[i] << ", truth " << truth[i]);
+        CHECK(std::abs(g.params[i] - truth[i]) < 4.0 * g.stderr_[i]);
+        CHECK(g.stderr_[i] < 0.1 * std::abs(truth[i]));
+    }
+    CHECK(g.chi2_dof() < f.chi2_dof());
 }
 
 TEST_CASE("fit: too few points for a model's constants is an error naming the model and the data", "[fit]") {
@@ -299,6 +310,8 @@ TEST_CASE("fit: a bad scene is refused naming FILE:LINE and the item, with nothi
     bad("theta = [0.0, 40.0, 70.0]", "theta = [0.0, 40.0, 90.0]", "training.theta");
     bad("walks = 400\n[validation]", "walkz = 400\n[validation]", "walkz");
     bad("[validation]", "[validation", "malformed scene");
+    bad("points = 6", "points = 0", "validation.points");
+    bad("phi = [0.0, 180.0]", "phi = {lin = [0.0, 180.0], n = 30000}", "90003 direction pairs per alpha");
     fs::remove_all(d);
 }
 
@@ -323,11 +336,18 @@ TEST_CASE("fit: a model's directional albedo by the fitter's rule against closed
     CHECK(disney.albedo > 1.1);
     CHECK(disney.alpha == 1.0);
     CHECK(disney.theta_i == 85.0);
-    // Every registered model is reciprocal.
+    // Every registered model is reciprocal and non-negative at its published constants; a negative multiple-scattering
+    // constant is seen.
     for (const fit::DiffuseModel& m : fit::diffuse_models()) {
         INFO(m.name);
-        CHECK(fit::max_asymmetry(m, m.published, alphas) < 1e-12);
+        const fit::GridCheck g = fit::check_on_grid(m, m.published, alphas);
+        CHECK(g.asymmetry < 1e-12);
+        CHECK(g.min_f >= 0.0);
     }
+    const fit::DiffuseModel& linear = fit::find_diffuse_model("hammon-2017-linear");
+    std::vector<double> negative = linear.published;
+    negative[4] = -0.2;
+    CHECK(fit::check_on_grid(linear, negative, alphas).min_f < 0.0);
 }
 
 TEST_CASE("fit: energy_alphas hold a fitted model's directional albedo to 1 where its data would take it above", "[fit]") {

@@ -23,10 +23,13 @@ void add_fit(CLI::App& app, FitArgs& a) {
         "  smithlab fit --print-scene > gtr.toml   # edit: [[ndf]] family = \"gtr\", gamma = [1, 1.5, 2, 3, 4]\n"
         "  smithlab fit gtr.toml --output gtr-fit/ --threads 8\n"
         "Writes into DIR (default fit/): constants.csv (model,ndf,parameter,value,stderr) and constants.json;\n"
-        "errors.csv (model,ndf,rms_rel,max_rel,albedo_rms,chi2_dof: on the validation set; '<model>' at its published\n"
-        "constants, '<model>-fitted' refitted); training.csv and validation.csv (the traced values beside every\n"
-        "model's); meta.json; all only when complete. Traced points are cached in DIR/cache/ as they finish: a killed\n"
-        "run resumes, and refitting the same data (other models, albedos, floor) traces nothing.");
+        "errors.csv (model,ndf,rms_rel,max_rel,albedo_rms,chi2_dof: on the validation set, chi2_dof per value with the\n"
+        "fit's weights; '<model>' at its published constants, '<model>-fitted' refitted); training.csv and\n"
+        "validation.csv (the traced values beside every model's); with [compensation] compensation.csv,\n"
+        "compensation_avg.csv and a C header per NDF family; models.glsl and brdf/*.brdf (BRDF Explorer); with three\n"
+        "or more GTR gammas gamma_trends.csv; with [pictures] pictures/ (PNG and CSV); report.md; meta.json; all only\n"
+        "when complete. Traced points are cached in DIR/cache/ as they finish: a killed run resumes, and refitting the\n"
+        "same data (other models, albedos, floor) traces nothing.");
     c->add_option("scene", a.scene, "scene file (TOML); none: the embedded default");
     c->add_option("--output", a.output, "output directory")->capture_default_str();
     c->add_option("--threads", a.threads, "threads (0: all cores)")->capture_default_str();

@@ -13,6 +13,7 @@
 #include "fit_data.hpp"
 #include "plot_script.hpp"
 #include "progress.hpp"
+#include "staged_directory.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
 
@@ -304,6 +305,7 @@ bool write_constants_vs_gamma(const fs::path& file, const Results& r) {
                                        format_g17(r.data[n].family.gamma.value_or(2.0)), format_g17(m.params[i]),
                                        format_g17(m.stderr_[i])});
         }
+    output::finish(csv, file);
     return true;
 }
 
@@ -469,10 +471,10 @@ std::string write_pictures(const fs::path& dir, const FitScene& s, const Results
             write_slices(f, d.label, alpha, n_slice, slices, sim, models);
         }
     }
-    f.spheres.close();
-    f.slices.close();
-    f.missing.close();
-    index.close();
+    output::finish(f.spheres, out / "spheres.csv");
+    output::finish(f.slices, out / "slices.csv");
+    output::finish(f.missing, out / "missing.csv");
+    output::finish(index, out / "ndfs.csv");
     const bool gamma = write_constants_vs_gamma(out / "constants_vs_gamma.csv", r);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::fprintf(stderr, "fit: pictures: traced in %.1f s\n", seconds);

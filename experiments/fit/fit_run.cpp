@@ -13,12 +13,12 @@
 #include "fit_pictures.hpp"
 #include "fit_results.hpp"
 #include "fit_shaders.hpp"
+#include "fit_trends.hpp"
 #include "progress.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
 #include "smithlab/fit/compensation.hpp"
 #include "smithlab/fit/fit_model.hpp"
-#include "smithlab/fit/least_squares.hpp"
 #include "staged_directory.hpp"
 
 namespace smithlab::fitrun {
@@ -61,7 +61,7 @@ ErrorRow measure(const FitScene& s, const NdfData& d, const Measured& m) {
             fit::albedo_rms(*m.model, m.params, d.albedo, s.albedos),
             fit::chi2_per_value(*m.model, m.params, validation),
             fit::max_albedo(*m.model, m.params, s.training.alpha, thetas),
-            fit::max_asymmetry(*m.model, m.params, s.training.alpha)};
+            fit::check_on_grid(*m.model, m.params, s.training.alpha)};
 }
 
 void write_constants(const fs::path& dir, const Results& r) {
@@ -81,7 +81,8 @@ void write_constants(const fs::path& dir, const Results& r) {
             json.push_back({{"model", m.name}, {"ndf", data[n].label}, {"parameters", params},
                             {"chi2_dof_training", m.chi2_dof_training}, {"iterations", m.iterations}});
         }
-    std::ofstream(dir / "constants.json") << json.dump(2) << "\n";
+    output::finish(csv, dir / "constants.csv");
+    output::write_file(dir / "constants.json", json.dump(2) + "\n");
 }
 
 void write_errors(const fs::path& dir, const std::vector<ErrorRow>& rows) {
@@ -90,6 +91,7 @@ void write_errors(const fs::path& dir, const std::vector<ErrorRow>& rows) {
     for (const ErrorRow& r : rows)
         write_csv_record(csv, {r.model, r.ndf, format_g17(r.rms_rel), format_g17(r.max_rel), format_g17(r.albedo_rms),
                                format_g17(r.chi2_dof)});
+    output::finish(csv, dir / "errors.csv");
 }
 
 // The traced values of a set beside every model's, one row per point and albedo (the residual maps' data).
@@ -109,6 +111,7 @@ void write_values(const fs::path& file, const FitScene& s, const Results& r, boo
                 for (const Measured& m : fits[n]) row.push_back(format_g17(fit::model_value(*m.model, m.params, p, a)));
                 write_csv_record(csv, row);
             }
+    output::finish(csv, file);
 }
 
 // Kulla-Conty energy compensation for each NDF family of the scene over compensation.alpha (no tracing: quadrature of
@@ -136,8 +139,10 @@ std::string write_compensation(const fs::path& dir, const FitScene& s, const Ndf
             all.emplace_back(ndf.spec(), std::move(t));
         }
         const std::string label = family_label(s.ndfs[n]);
-        std::ofstream header(dir / (fit::compensation_header_name(label) + ".h"), std::ios::binary);
+        const fs::path header_path = dir / (fit::compensation_header_name(label) + ".h");
+        std::ofstream header(header_path, std::ios::binary);
         fit::write_compensation_header(header, label, s.compensation.alpha, all.back().second.mus, E, avg[n]);
+        output::finish(header, header_path);
     }
     for (std::size_t i = 0; i < s.compensation.alpha.size(); ++i) {
         char a[32];
@@ -148,81 +153,41 @@ std::string write_compensation(const fs::path& dir, const FitScene& s, const Ndf
     }
     std::ofstream csv(dir / "compensation.csv", std::ios::binary);
     fit::write_compensation_csv(csv, all);
+    output::finish(csv, dir / "compensation.csv");
     std::ofstream avg_csv(dir / "compensation_avg.csv", std::ios::binary);
     fit::write_compensation_avg_csv(avg_csv, all);
+    output::finish(avg_csv, dir / "compensation_avg.csv");
     return md.str();
 }
 
-// c(gamma) = sum_d p_d gamma^d by weighted least squares (errors e), and its largest deviation from the c.
-struct Trend {
-    fit::LeastSquaresFit fit;
-    double deviation = 0.0;
-};
-Trend polynomial_trend(const std::vector<double>& g, const std::vector<double>& c, const std::vector<double>& e,
-                       int degree) {
-    auto residuals = [&](std::span<const double> p, std::span<double> out) {
-        for (std::size_t j = 0; j < g.size(); ++j) {
-            double v = 0.0;
-            for (int d = degree; d >= 0; --d) v = v * g[j] + p[d];
-            out[j] = (v - c[j]) / e[j];
-        }
-    };
-    Trend t{fit::least_squares(g.size(), std::vector<double>(degree + 1, 0.0), residuals), 0.0};
-    std::vector<double> r(g.size());
-    residuals(t.fit.params, r);
-    for (std::size_t j = 0; j < g.size(); ++j) t.deviation = std::max(t.deviation, std::abs(r[j] * e[j]));
-    return t;
-}
-
-// How each fitted constant moves with GTR's gamma, when the scene fits three or more gammas: weighted least squares of
-// c(gamma) by a line and by a parabola (fit/least_squares.hpp), each with its chi^2 / dof against the constants'
-// standard errors and its largest deviation; gamma_trends.csv and a Markdown table. A form fits where chi^2 / dof is
-// near 1.
-std::string write_gamma_trends(const fs::path& dir, const Results& r) {
-    std::vector<std::size_t> gtr;
-    for (std::size_t n = 0; n < r.data.size(); ++n)
-        if (r.data[n].family.family == "gtr" && r.data[n].family.gamma) gtr.push_back(n);
-    if (gtr.size() < 3) return "";
-    std::ofstream csv(dir / "gamma_trends.csv", std::ios::binary);
-    write_csv_record(csv, {"model", "parameter", "form", "c0", "c1", "c2", "chi2_dof", "max_deviation"});
-    std::ostringstream md;
-    md << "\n## The fitted constants against GTR's gamma\n\nEach constant of each fitted model as a line and as a "
-          "parabola in gamma (weighted by the constants' standard errors; chi^2 / dof near 1 where the form fits; "
-          "gamma_trends.csv, and the plot constants_vs_gamma.png where drawn):\n\n"
-          "| model | constant | line c0 + c1 gamma | chi^2/dof | parabola c0 + c1 gamma + c2 gamma^2 | chi^2/dof |\n"
-          "|---|---|---|---:|---|---:|\n";
-    for (std::size_t k = 0; k < r.fits[gtr[0]].size(); ++k) {
-        if (!r.fits[gtr[0]][k].fitted()) continue;
-        const Measured& m0 = r.fits[gtr[0]][k];
-        for (std::size_t i = 0; i < m0.params.size(); ++i) {
-            std::vector<double> g, c, e;
-            for (std::size_t n : gtr) {
-                g.push_back(*r.data[n].family.gamma);
-                c.push_back(r.fits[n][k].params[i]);
-                e.push_back(r.fits[n][k].stderr_[i]);
-            }
-            const std::string param(m0.model->parameters[i]);
-            md << "| " << m0.name << " | " << param << " |";
-            for (int degree : {1, 2}) {
-                const Trend t = polynomial_trend(g, c, e, degree);
-                std::vector<std::string> row{m0.name, param, degree == 1 ? "line" : "parabola"};
-                for (int d = 0; d < 3; ++d) row.push_back(d <= degree && t.fit.converged ? format_g17(t.fit.params[d]) : "");
-                row.push_back(t.fit.converged ? format_g17(t.fit.chi2_dof()) : "");
-                row.push_back(t.fit.converged ? format_g17(t.deviation) : "");
-                write_csv_record(csv, row);
-                char cell[160];
-                const std::vector<double>& q = t.fit.params;
-                if (!t.fit.converged) std::snprintf(cell, sizeof cell, " (too few gammas) | |");
-                else if (degree == 1) std::snprintf(cell, sizeof cell, " %.4g %+.4g gamma | %.3g |", q[0], q[1], t.fit.chi2_dof());
-                else
-                    std::snprintf(cell, sizeof cell, " %.4g %+.4g gamma %+.4g gamma^2 | %.3g |", q[0], q[1], q[2],
-                                  t.fit.chi2_dof());
-                md << cell;
-            }
-            md << "\n";
-        }
+// One NDF's table of errors on the validation set, best first, and the bound of the split's last bin.
+void write_errors_table(std::ostream& md, const FitScene& s, const NdfData& d, const std::vector<ErrorRow>& errors) {
+    std::vector<ErrorRow> rows;
+    for (const ErrorRow& e : errors)
+        if (e.ndf == d.label) rows.push_back(e);
+    std::sort(rows.begin(), rows.end(), [](const ErrorRow& a, const ErrorRow& b) { return a.rms_rel < b.rms_rel; });
+    double tail = 0.0;  // the last diffuse-event bin's bound, as a share of the value (fit/dataset.hpp)
+    for (const fit::DataPoint& p : d.training)
+        for (double a : s.albedos)
+            if (const double y = fit::at_albedo(p.moments, {a}).value; y > 0.0)
+                tail = std::max(tail, fit::tail_bound(p.moments, {a}) / y);
+    md << "\n## " << d.label << ": errors on the validation set (" << d.validation.size() << " points, "
+       << d.albedo.size() << " directional albedos; never fitted)\n\n";
+    md << "(The split's last bin, k >= " << fit::diffuse_bins - 1 << " diffuse events, weighted albedo^"
+       << fit::diffuse_bins - 1 << ": at most " << tail << " of any training value at these albedos.)\n\n";
+    md << "| model | RMS rel. error of f cos | max rel. error | RMS error of the directional albedo | chi^2 / value "
+       << "| largest albedo at albedo 1 (alpha, theta_i) | asymmetry | smallest f |\n"
+       << "|---|---:|---:|---:|---:|---:|---:|---:|\n";
+    char line[512];
+    for (const ErrorRow& e : rows) {
+        const char* bold = e.peak.albedo > 1.0 + 1e-3 ? "**" : "";
+        const char* negative = e.grid.min_f < 0.0 ? "**" : "";
+        std::snprintf(line, sizeof line,
+                      "| %s | %.4f | %.4f | %.5f | %.3g | %s%.4f%s (%.3g, %.0f) | %.1e | %s%.3g%s |\n",
+                      e.model.c_str(), e.rms_rel, e.max_rel, e.albedo_rms, e.chi2_dof, bold, e.peak.albedo, bold,
+                      e.peak.alpha, e.peak.theta_i, e.grid.asymmetry, negative, e.grid.min_f, negative);
+        md << line;
     }
-    return md.str();
 }
 
 // report.md: the errors of every model on the validation set, NDF by NDF, best first; the fitted constants; then the
@@ -235,28 +200,13 @@ void write_report(const fs::path& dir, const FitScene& s, const Results& r, cons
     for (double a : s.albedos) md << " " << format_shortest(a);
     md << " (the diffuse part: paths with at least one diffuse event), weights with a relative floor of "
        << format_shortest(s.floor) << ".\n";
-    for (const NdfData& d : r.data) {
-        std::vector<ErrorRow> rows;
-        for (const ErrorRow& e : errors)
-            if (e.ndf == d.label) rows.push_back(e);
-        std::sort(rows.begin(), rows.end(), [](const ErrorRow& a, const ErrorRow& b) { return a.rms_rel < b.rms_rel; });
-        md << "\n## " << d.label << ": errors on the validation set (" << d.validation.size() << " points, "
-           << d.albedo.size() << " directional albedos; never fitted)\n\n"
-           << "| model | RMS rel. error of f cos | max rel. error | RMS error of the directional albedo | chi^2 / value "
-           << "| largest albedo at albedo 1 (alpha, theta_i) | asymmetry |\n"
-           << "|---|---:|---:|---:|---:|---:|---:|\n";
-        char line[512];
-        for (const ErrorRow& e : rows) {
-            const char* bold = e.peak.albedo > 1.0 + 1e-3 ? "**" : "";
-            std::snprintf(line, sizeof line, "| %s | %.4f | %.4f | %.5f | %.3g | %s%.4f%s (%.3g, %.0f) | %.1e |\n",
-                          e.model.c_str(), e.rms_rel, e.max_rel, e.albedo_rms, e.chi2_dof, bold, e.peak.albedo, bold,
-                          e.peak.alpha, e.peak.theta_i, e.asymmetry);
-            md << line;
-        }
-    }
+    for (const NdfData& d : r.data) write_errors_table(md, s, d, errors);
     md << "\nLargest albedo: the directional albedo at albedo 1, largest over the training alphas and theta_i from 0 to 89 "
           "degrees (in bold where above 1: the model makes energy there). Asymmetry: the largest relative difference "
-          "|f(l, v) - f(v, l)| / f over the training alphas and a grid of direction pairs (0 for a reciprocal BRDF).\n";
+          "|f(l, v) - f(v, l)| / f over the training alphas and a grid of direction pairs (0 for a reciprocal BRDF). "
+          "Smallest f: the least BRDF value on that grid at albedo 0.5 and 1 (bold where negative: not a BRDF there). "
+          "chi^2 / value: on the validation set, with the fit's weights (the relative floor included, so a model "
+          "within the floor scores below 1).\n";
     md << "\n## Fitted constants (standard errors scaled by sqrt(chi^2 / dof) where that is above 1)\n\n"
        << "| model | ndf | constants |\n|---|---|---|\n";
     for (std::size_t n = 0; n < r.data.size(); ++n)
@@ -272,6 +222,7 @@ void write_report(const fs::path& dir, const FitScene& s, const Results& r, cons
             md << " |\n";
         }
     md << sections;
+    output::finish(md, dir / "report.md");
 }
 
 }  // namespace
@@ -309,7 +260,7 @@ FitSummary run_fit(const FitScene& s, const std::string& source, const std::stri
         {"version", SMITHLAB_VERSION}, {"seed", s.seed},      {"points_traced", sum.traced},
         {"points_reused", sum.reused}, {"seconds", sum.seconds},
         {"threads", threads ? threads : std::max(1u, std::thread::hardware_concurrency())}};
-    std::ofstream(stage.path() / "meta.json") << meta.dump(2) << "\n";
+    output::write_file(stage.path() / "meta.json", meta.dump(2) + "\n");
     stage.publish();
     return sum;
 }

@@ -21,7 +21,7 @@ struct ErrorRow {
     std::string model, ndf;
     double rms_rel, max_rel, albedo_rms, chi2_dof;
     fit::AlbedoPeak peak;  // the largest directional albedo at albedo 1 (training alphas x theta_i 0..89)
-    double asymmetry;      // the largest relative |f(l, v) - f(v, l)|
+    fit::GridCheck grid;   // the largest relative |f(l, v) - f(v, l)|, the smallest f
 };
 
 struct FitSummary {

@@ -16,6 +16,8 @@ namespace {
 
 using report::StrictTable;
 
+constexpr std::size_t max_points = 65535;  // per group: fit_data.hpp's streams give a point 16 bits
+
 // lambert(albedo=1) or fresnel-diffuse(f0=, albedo=1): the facets whose albedo enters only through the diffuse
 // events, traced at albedo 1 (the split by events then gives every albedo).
 void check_material(StrictTable& doc, const std::string& spec) {
@@ -93,10 +95,19 @@ FitScene parse_fit_scene(const std::string& text, const std::string& source) {
     s.training.theta = read_bounded(t, "theta", 0.0, 90.0, false, true, "[0, 90) degrees");
     s.training.phi = read_bounded(t, "phi", 0.0, 180.0, false, false, "[0, 180] degrees");
     s.training.walks = t.integer("walks", 100, 1'000'000'000, s.training.walks);
+    // A point's random stream holds its index in 16 bits (fit_data.hpp).
+    std::size_t pairs = 0;
+    for (std::size_t i = 0; i < s.training.theta.size(); ++i)
+        for (std::size_t o = i; o < s.training.theta.size(); ++o)
+            pairs += s.training.theta[i] == 0.0 || s.training.theta[o] == 0.0 ? 1 : s.training.phi.size();
+    if (pairs > max_points)
+        t.fail("theta", "and phi make " + std::to_string(pairs) + " direction pairs per alpha; at most " +
+                            std::to_string(max_points) + " (each point's random stream holds its index in 16 bits)");
+    if (s.training.alpha.size() > max_points) t.fail("alpha", "has more than " + std::to_string(max_points) + " values");
     t.done();
 
     if (auto v = doc.optional_table("validation", {"points", "walks", "albedo_theta", "albedo_walks"})) {
-        s.validation.points = v->integer("points", 0, 1'000'000, s.validation.points);
+        s.validation.points = v->integer("points", 1, max_points - 1, s.validation.points);
         s.validation.walks = v->integer("walks", 100, 1'000'000'000, s.validation.walks);
         if (v->has("albedo_theta"))
             s.validation.albedo_theta = read_bounded(*v, "albedo_theta", 0.0, 90.0, false, true, "[0, 90) degrees");

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "smithlab/errors.hpp"
+#include "staged_directory.hpp"
 #include "smithlab/fit/glsl.hpp"
 
 namespace smithlab::fitrun {
@@ -24,12 +25,11 @@ void write_shaders(const std::filesystem::path& dir, const Results& results) {
             !names.insert(name).second || helpers.find(" " + name + "(") != std::string::npos)
             throw input_error("model '" + std::string(m.name) + "' on '" + std::string(m.ndf) +
                               "' has the GLSL name of another (" + fit::glsl_function_name(m) + ")");
-    std::ofstream(dir / "models.glsl", std::ios::binary) << fit::glsl_library(models);
+    output::write_file(dir / "models.glsl", fit::glsl_library(models));
     std::filesystem::create_directories(dir / "brdf");
     for (const fit::ShaderModel& m : models)
-        std::ofstream(dir / "brdf" / (fit::glsl_identifier(m.name) + "-" + fit::glsl_identifier(m.ndf) + ".brdf"),
-                      std::ios::binary)
-            << fit::brdf_explorer_file(m);
+        output::write_file(dir / "brdf" / (fit::glsl_identifier(m.name) + "-" + fit::glsl_identifier(m.ndf) + ".brdf"),
+                           fit::brdf_explorer_file(m));
 }
 
 }  // namespace smithlab::fitrun

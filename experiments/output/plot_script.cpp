@@ -12,11 +12,22 @@ namespace smithlab::output {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// text as one word of the shell: in single quotes, each quote in it as '\'' (a path may hold any character).
+std::string shell_quoted(const std::string& text) {
+    std::string q = "'";
+    for (char c : text) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return q + "'";
+}
+
+}  // namespace
+
 bool run_plot_script(const std::string& name, const fs::path& fallback, const fs::path& dir, const std::string& who) {
     const fs::path exe = fs::canonical("/proc/self/exe");
     fs::path script = exe.parent_path().parent_path() / "share" / "smithlab" / name;
     if (!fs::exists(script)) script = fallback;
-    const std::string cmd = "/usr/bin/python3 '" + script.string() + "' '" + dir.string() + "'";
+    const std::string cmd = "/usr/bin/python3 " + shell_quoted(script.string()) + " " + shell_quoted(dir.string());
     std::fprintf(stderr, "%s: drawing the figures (%s)\n", who.c_str(), cmd.c_str());
     const int status = std::system(cmd.c_str());
     if (WIFSIGNALED(status) && (WTERMSIG(status) == SIGINT || WTERMSIG(status) == SIGTERM))

@@ -1,5 +1,7 @@
 #include "staged_directory.hpp"
 
+#include <stdexcept>
+
 #include "output_file.hpp"
 #include "smithlab/errors.hpp"
 
@@ -49,6 +51,17 @@ void StagedDirectory::publish() {
     std::error_code ignored;
     fs::remove_all(stage, ignored);
     stage_.reset();
+}
+
+void finish(std::ofstream& out, const std::filesystem::path& path) {
+    out.close();
+    if (!out) throw std::runtime_error("could not write " + path.string() + " (disk full?)");
+}
+
+void write_file(const std::filesystem::path& path, const std::string& text) {
+    std::ofstream out(path, std::ios::binary);
+    out << text;
+    finish(out, path);
 }
 
 }  // namespace smithlab::output

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <filesystem>
+#include <fstream>
 #include <optional>
 #include <string>
 #include <vector>
@@ -31,6 +32,12 @@ private:
     std::optional<Temporary> stage_;
     std::vector<std::filesystem::path> created_;  // out and the parents it had to create, innermost first
 };
+
+// Closes a file written into the stage and refuses to go on when any write to it failed (a full disk): the stage is
+// then never published. Throws std::runtime_error naming the file.
+void finish(std::ofstream& out, const std::filesystem::path& path);
+// Writes `text` to a new file of the stage, checked as finish() does.
+void write_file(const std::filesystem::path& path, const std::string& text);
 
 // `out` as a directory to write into: absent (then its parent must exist or be creatable) or a directory.
 void require_output_directory(const std::filesystem::path& out);

@@ -22,20 +22,23 @@ struct Block {
     Vec3 wi, wo;
     Eigen::VectorXd y;
     Eigen::MatrixXd whiten;  // rank x albedos
+    Eigen::MatrixXd noise;   // the covariance of the whitened residuals from the data alone: whiten C whiten^T
 };
 
 std::vector<Block> blocks(const FitData& data) {
     std::vector<Block> out;
     const Eigen::Index na = static_cast<Eigen::Index>(data.albedos.size());
     for (const DataPoint& p : data.points) {
-        Block b{&p, p.dir.wi(), p.dir.wo(), Eigen::VectorXd(na), {}};
-        Eigen::MatrixXd C(na, na);
+        Block b{&p, p.dir.wi(), p.dir.wo(), Eigen::VectorXd(na), {}, {}};
+        Eigen::MatrixXd noise(na, na);
         for (Eigen::Index i = 0; i < na; ++i) {
             const AlbedoPower ai{data.albedos[i]};
             b.y(i) = at_albedo(p.moments, ai).value;
-            for (Eigen::Index j = 0; j <= i; ++j) C(i, j) = C(j, i) = covariance(p.moments, ai, {data.albedos[j]});
-            C(i, i) += data.floor * data.floor * b.y(i) * b.y(i);
+            for (Eigen::Index j = 0; j <= i; ++j)
+                noise(i, j) = noise(j, i) = covariance(p.moments, ai, {data.albedos[j]});
         }
+        Eigen::MatrixXd C = noise;
+        for (Eigen::Index i = 0; i < na; ++i) C(i, i) += data.floor * data.floor * b.y(i) * b.y(i);
         const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(C);
         const double top = eig.eigenvalues().maxCoeff();
         if (!(top > 0.0)) continue;  // no variance at all (no walk reached wo): nothing to weigh it by
@@ -46,6 +49,7 @@ std::vector<Block> blocks(const FitData& data) {
         for (std::size_t r = 0; r < kept.size(); ++r)
             b.whiten.row(static_cast<Eigen::Index>(r)) =
                 eig.eigenvectors().col(kept[r]).transpose() / std::sqrt(eig.eigenvalues()(kept[r]));
+        b.noise = b.whiten * noise * b.whiten.transpose();
         out.push_back(std::move(b));
     }
     return out;
@@ -83,6 +87,34 @@ void residuals(const DiffuseModel& m, const std::vector<Block>& bs, const std::v
     }
 }
 
+// chi^2, dof and the constants' covariance from the n data rows alone (the penalty rows after them are constraints,
+// not data). The weights are not the data's inverse covariance where the floor adds to it, so the covariance is the
+// sandwich (J^T J)^-1 J^T N J (J^T J)^-1, N the data's own covariance of the whitened residuals (Block::noise): the
+// spread of the fitted constants over independent traces of the same scene. With floor 0, N = 1 and it is
+// (J^T J)^-1.
+void data_statistics(LeastSquaresFit& fit, const std::vector<Block>& bs, std::size_t n) {
+    const Eigen::Index np = static_cast<Eigen::Index>(fit.params.size());
+    const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> J(
+        fit.jacobian.data(), static_cast<Eigen::Index>(fit.residuals.size()), np);
+    fit.chi2 = 0.0;
+    for (std::size_t i = 0; i < n; ++i) fit.chi2 += fit.residuals[i] * fit.residuals[i];
+    fit.dof = static_cast<std::int64_t>(n) - np;
+    const Eigen::MatrixXd Jd = J.topRows(static_cast<Eigen::Index>(n));
+    const Eigen::MatrixXd bread = (Jd.transpose() * Jd).inverse();
+    Eigen::MatrixXd meat = Eigen::MatrixXd::Zero(np, np);
+    Eigen::Index row = 0;
+    for (const Block& b : bs) {
+        const Eigen::MatrixXd Jb = Jd.middleRows(row, b.whiten.rows());
+        meat += Jb.transpose() * b.noise * Jb;
+        row += b.whiten.rows();
+    }
+    const Eigen::MatrixXd cov = bread * meat * bread;
+    for (Eigen::Index i = 0; i < np; ++i) {
+        for (Eigen::Index j = 0; j < np; ++j) fit.covariance[static_cast<std::size_t>(i * np + j)] = cov(i, j);
+        fit.stderr_[static_cast<std::size_t>(i)] = std::sqrt(std::max(0.0, cov(i, i)));
+    }
+}
+
 }  // namespace
 
 double model_value(const DiffuseModel& m, const std::vector<double>& params, const DataPoint& p, double albedo) {
@@ -101,12 +133,7 @@ LeastSquaresFit fit_model(const DiffuseModel& m, const FitData& data, const std:
         for (double a : data.energy_alphas)
             for (double t : energy_thetas) r[i++] = energy_penalty(model_albedo(m, c, a, t, 1.0));
     });
-    if (bounds && fit.converged) {  // the penalties are constraints, not data: the scale of the errors without them
-        fit.dof -= static_cast<std::int64_t>(bounds);
-        const std::size_t np = fit.params.size();
-        for (std::size_t i = 0; i < np; ++i)
-            fit.stderr_[i] = std::sqrt(std::max(0.0, fit.covariance[i * np + i]) * std::max(1.0, fit.chi2_dof()));
-    }
+    if (fit.converged) data_statistics(fit, bs, n);
     if (!fit.converged)
         throw input_error("fit of model '" + std::string(m.name) + "' on " + what + " (" + std::to_string(bs.size()) +
                           " points x " + std::to_string(data.albedos.size()) + " albedos, " + std::to_string(n) +
@@ -184,18 +211,21 @@ AlbedoPeak max_albedo(const DiffuseModel& m, const std::vector<double>& params, 
     return peak;
 }
 
-double max_asymmetry(const DiffuseModel& m, const std::vector<double>& params, const std::vector<double>& alphas) {
-    double worst = 0.0;
+GridCheck check_on_grid(const DiffuseModel& m, const std::vector<double>& params, const std::vector<double>& alphas) {
+    GridCheck out;
     const double thetas[] = {0.0, 15.0, 30.0, 45.0, 60.0, 75.0, 85.0, 89.0};
     for (double a : alphas)
         for (double ti : thetas)
             for (double to : thetas)
-                for (double phi : {0.0, 45.0, 90.0, 135.0, 180.0}) {
-                    const Vec3 wi = direction_from_deg(ti, 0.0), wo = direction_from_deg(to, phi);
-                    const double x = m.f(wi, wo, a, 0.5, params.data()), y = m.f(wo, wi, a, 0.5, params.data());
-                    if (const double big = std::max(x, y); big > 0.0) worst = std::max(worst, std::abs(x - y) / big);
-                }
-    return worst;
+                for (double phi : {0.0, 45.0, 90.0, 135.0, 180.0})
+                    for (double albedo : {0.5, 1.0}) {
+                        const Vec3 wi = direction_from_deg(ti, 0.0), wo = direction_from_deg(to, phi);
+                        const double x = m.f(wi, wo, a, albedo, params.data()), y = m.f(wo, wi, a, albedo, params.data());
+                        out.min_f = std::min({out.min_f, x, y});
+                        if (const double big = std::max(x, y); big > 0.0)
+                            out.asymmetry = std::max(out.asymmetry, std::abs(x - y) / big);
+                    }
+    return out;
 }
 
 }  // namespace smithlab::fit

@@ -66,7 +66,14 @@ LeastSquaresFit least_squares(std::size_t n, std::vector<double> start, const Re
     for (std::size_t i = 0; i < p; ++i) out.params[i] = gsl_vector_get(sol, i);
     const gsl_vector* f = gsl_multifit_nlinear_residual(w.get());
     gsl_blas_ddot(f, f, &out.chi2);
-    gsl_multifit_nlinear_covar(gsl_multifit_nlinear_jac(w.get()), 0.0, covar.get());
+    const gsl_matrix* J = gsl_multifit_nlinear_jac(w.get());
+    gsl_multifit_nlinear_covar(J, 0.0, covar.get());
+    out.jacobian.resize(n * p);
+    out.residuals.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        out.residuals[i] = gsl_vector_get(f, i);
+        for (std::size_t j = 0; j < p; ++j) out.jacobian[i * p + j] = gsl_matrix_get(J, i, j);
+    }
     out.covariance.resize(p * p);
     out.stderr_.resize(p);
     const double scale = std::max(1.0, out.chi2_dof());

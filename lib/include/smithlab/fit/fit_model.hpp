@@ -11,6 +11,7 @@
 // traced best.
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -39,8 +40,10 @@ double model_value(const DiffuseModel& m, const std::vector<double>& params, con
 // name, e.g. the NDF) when the fit does not converge or the data has too few points for its parameters. With
 // data.energy_alphas, each (alpha, theta_i) adds a residual that is ~0 for E below 1 - 5e-4 and grows as (E - 1) 1e5
 // above 1 (a smooth hinge: fit_model.cpp), E the model's directional albedo at albedo 1 (model_albedo): a penalty that
-// holds the fitted model energy-bounded there (E(a) <= a at lower albedos too for a model whose terms carry albedo^k,
-// k >= 1); these residuals are not counted in its degrees of freedom.
+// holds the fitted model energy-bounded there (and at lower albedos where each of its albedo^k terms is >= 0). chi^2,
+// dof and the covariance count the data alone: the covariance is the sandwich estimate from the data's exact
+// covariance, the spread of the constants over independent traces (with a floor the weights are not the data's
+// inverse covariance), not how far the model is from the data.
 LeastSquaresFit fit_model(const DiffuseModel& m, const FitData& data, const std::string& what);
 
 // chi^2 / (number of values) of m with these constants on data (weights as in the fit).
@@ -71,8 +74,12 @@ struct AlbedoPeak {
 AlbedoPeak max_albedo(const DiffuseModel& m, const std::vector<double>& params, const std::vector<double>& alphas,
                       const std::vector<double>& thetas);
 
-// The largest |f(wi, wo) - f(wo, wi)| / max(f(wi, wo), f(wo, wi)) over alphas and a grid of direction pairs (theta 0 to
-// 89 degrees, phi 0 to 180): 0 for a model symmetric in L and V, as a BRDF must be (Helmholtz reciprocity).
-double max_asymmetry(const DiffuseModel& m, const std::vector<double>& params, const std::vector<double>& alphas);
+// Over alphas and a grid of direction pairs (theta 0 to 89 degrees, phi 0 to 180), at albedo 0.5 and 1: the largest
+// |f(wi, wo) - f(wo, wi)| / max(f(wi, wo), f(wo, wi)) (0 for a model symmetric in L and V, as a BRDF must be: Helmholtz
+// reciprocity), and the smallest f (negative: the model is not a BRDF there).
+struct GridCheck {
+    double asymmetry = 0.0, min_f = INFINITY;
+};
+GridCheck check_on_grid(const DiffuseModel& m, const std::vector<double>& params, const std::vector<double>& alphas);
 
 }  // namespace smithlab::fit
