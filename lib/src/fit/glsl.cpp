@@ -314,7 +314,10 @@ std::string glsl_library(std::span<const ShaderModel> models) {
         "// vectors with dot(N, L) > 0 and dot(N, V) > 0 (not checked); alpha the GGX roughness (Disney's roughness\n"
         "// squared), albedo in [0, 1]. GLSL 3.30, no extensions, no #version line.\n\n";
     out += glsl_helpers();
-    for (const ShaderModel& m : models) out += "\n" + glsl_function(m);
+    for (const ShaderModel& m : models) {
+        out += '\n';
+        out += glsl_function(m);
+    }
     return out;
 }
 
