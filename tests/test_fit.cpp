@@ -283,6 +283,35 @@ TEST_CASE("fit: smithlab fit writes its outputs, reuses its cache, and the same 
     fs::remove_all(d);
 }
 
+TEST_CASE("fit: a pictures section traces and draws the spheres, slices and missing light, and checks itself", "[fit][cli]") {
+    using namespace smithlab_test;
+    const fs::path d = scratch() / "fitpics";
+    fs::remove_all(d);
+    fs::create_directories(d);
+    write(d / "s.toml", tiny_scene + "[pictures]\nsphere_alpha = [0.001, 1.0]\npixels = 8\nwalks = 200\n"
+                                     "slice_alpha = [1.0]\nslice_n = 4\n");
+    const Run r = run("fit '" + (d / "s.toml").string() + "' --output '" + (d / "out").string() + "' --threads 2");
+    INFO(r.err);
+    REQUIRE(r.rc == 0);
+    const fs::path p = d / "out" / "pictures";
+    CHECK(slurp(p / "spheres.csv").rfind("ndf,source,alpha,light_deg,albedo,px,py,value\n", 0) == 0);
+    CHECK(slurp(p / "slices.csv").rfind("ndf,source,alpha,theta_h,theta_d,value,stderr\n", 0) == 0);
+    CHECK(slurp(p / "missing.csv").rfind("ndf,alpha,theta,albedo,E,E1,missing,stderr\n", 0) == 0);
+    const std::string report = slurp(d / "out" / "report.md");
+    CHECK_THAT(report, Contains("## Pictures") && Contains("pictures/spheres_ggx.png"));
+    // Lambertian facets on a nearly flat surface are Lambert's law, albedo/pi cos theta_l, pixel by pixel: the whole
+    // chain (pixel geometry, local frames, reciprocity, the split) against the analytic law.
+    const auto at = report.find("is Lambert's law (albedo/pi cos theta_l) within ");
+    REQUIRE(at != std::string::npos);
+    const double worst_percent = std::stod(report.substr(at + 48));
+    CHECK(worst_percent < 1.0);
+    for (const char* png : {"spheres_ggx.png", "slices_ggx.png", "lambert_spheres_ggx.png", "missing_ggx.png"}) {
+        INFO(png);
+        CHECK(fs::exists(p / png));
+    }
+    fs::remove_all(d);
+}
+
 TEST_CASE("fit: a bad scene is refused naming FILE:LINE and the item, with nothing written", "[fit][cli]") {
     using namespace smithlab_test;
     const fs::path d = scratch() / "fitbad";
