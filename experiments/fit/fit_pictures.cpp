@@ -194,8 +194,24 @@ struct Missing {
     double alpha, albedo, fraction, stderr_, theta;
 };
 
+// The pictures' CSV files, opened with their headers, checked when finished.
 struct Files {
-    std::ofstream spheres, slices, missing;
+    fs::path dir;
+    std::ofstream spheres, slices, missing, index;
+    explicit Files(const fs::path& d)
+        : dir(d), spheres(d / "spheres.csv", std::ios::binary), slices(d / "slices.csv", std::ios::binary),
+          missing(d / "missing.csv", std::ios::binary), index(d / "ndfs.csv", std::ios::binary) {
+        write_csv_record(spheres, {"ndf", "source", "alpha", "light_deg", "albedo", "px", "py", "value"});
+        write_csv_record(slices, {"ndf", "source", "alpha", "theta_h", "theta_d", "value", "stderr"});
+        write_csv_record(missing, {"ndf", "alpha", "theta", "albedo", "E", "E1", "missing", "stderr"});
+        write_csv_record(index, {"ndf", "stem", "pixels"});
+    }
+    void finish() {
+        output::finish(spheres, dir / "spheres.csv");
+        output::finish(slices, dir / "slices.csv");
+        output::finish(missing, dir / "missing.csv");
+        output::finish(index, dir / "ndfs.csv");
+    }
 };
 
 void write_spheres(Files& f, const std::string& label, double alpha, const SphereGroup& g,
@@ -284,6 +300,22 @@ std::pair<double, double> missing_fraction(const fit::SplitMoments& m, double al
     const double var = (em.stderr_ * em.stderr_ - 2.0 * r * fit::covariance(m, all, multi) +
                         r * r * e.stderr_ * e.stderr_) / (e.value * e.value);
     return {r, std::sqrt(std::max(0.0, var))};
+}
+
+// missing.csv's rows of one NDF and alpha (each incidence, each albedo), and the largest fraction per albedo.
+void record_missing(Files& f, std::vector<Missing>& missing, const std::string& label, double alpha,
+                    const std::vector<fit::SplitMoments>& alb) {
+    for (double albedo : missing_albedos) {
+        Missing worst{label, alpha, albedo, -1.0, 0.0, 0.0};
+        for (std::size_t t = 0; t < alb.size(); ++t) {
+            const auto [frac, se] = missing_fraction(alb[t], albedo);
+            const double e = fit::at_albedo(alb[t], {albedo, 1}).value;
+            write_csv_record(f.missing, {label, format_g17(alpha), format_g17(missing_theta[t]), format_g17(albedo),
+                                         format_g17(e), format_g17(e * (1.0 - frac)), format_g17(frac), format_g17(se)});
+            if (frac > worst.fraction) worst = {label, alpha, albedo, frac, se, missing_theta[t]};
+        }
+        missing.push_back(worst);
+    }
 }
 
 // The GTR families of the results, by gamma: their constants against gamma (constants_vs_gamma.csv), when there are
@@ -421,21 +453,13 @@ std::string write_pictures(const fs::path& dir, const FitScene& s, const Results
         static_cast<std::int64_t>(p.slice_alpha.size()) * static_cast<std::int64_t>(slices.size()) * p.walks;
     progress.total = per_ndf * static_cast<std::int64_t>(r.data.size());
 
-    Files f;
-    f.spheres.open(out / "spheres.csv", std::ios::binary);
-    f.slices.open(out / "slices.csv", std::ios::binary);
-    f.missing.open(out / "missing.csv", std::ios::binary);
-    write_csv_record(f.spheres, {"ndf", "source", "alpha", "light_deg", "albedo", "px", "py", "value"});
-    write_csv_record(f.slices, {"ndf", "source", "alpha", "theta_h", "theta_d", "value", "stderr"});
-    write_csv_record(f.missing, {"ndf", "alpha", "theta", "albedo", "E", "E1", "missing", "stderr"});
-    std::ofstream index(out / "ndfs.csv", std::ios::binary);
-    write_csv_record(index, {"ndf", "stem", "pixels"});
+    Files f(out);
     std::vector<Missing> missing;
     std::vector<Check> checks;
 
     for (std::size_t n = 0; n < r.data.size(); ++n) {
         const NdfData& d = r.data[n];
-        write_csv_record(index, {d.label, file_stem(d.label), std::to_string(P)});
+        write_csv_record(f.index, {d.label, file_stem(d.label), std::to_string(P)});
         const std::vector<const Measured*> models = drawn_models(r.fits[n]);
         for (std::size_t a = 0; a < p.sphere_alpha.size(); ++a) {
             const double alpha = p.sphere_alpha[a];
@@ -449,18 +473,7 @@ std::string write_pictures(const fs::path& dir, const FitScene& s, const Results
             if (a == 0 && alpha <= 0.01) checks.push_back({d.label, alpha, lambert_check(spheres, lam)});
             const std::vector<fit::SplitMoments> alb = trace_points(
                 ndf, lambert, albedo_points, true, s.seed, lambert_albedo_set, n, a, missing_walks, threads, progress);
-            for (double albedo : missing_albedos) {
-                Missing worst{d.label, alpha, albedo, -1.0, 0.0, 0.0};
-                for (std::size_t t = 0; t < alb.size(); ++t) {
-                    const auto [frac, se] = missing_fraction(alb[t], albedo);
-                    const double e = fit::at_albedo(alb[t], {albedo, 1}).value;
-                    write_csv_record(f.missing, {d.label, format_g17(alpha), format_g17(missing_theta[t]),
-                                                 format_g17(albedo), format_g17(e), format_g17(e * (1.0 - frac)),
-                                                 format_g17(frac), format_g17(se)});
-                    if (frac > worst.fraction) worst = {d.label, alpha, albedo, frac, se, missing_theta[t]};
-                }
-                missing.push_back(worst);
-            }
+            record_missing(f, missing, d.label, alpha, alb);
         }
         for (std::size_t a = 0; a < p.slice_alpha.size(); ++a) {
             const double alpha = p.slice_alpha[a];
@@ -471,10 +484,7 @@ std::string write_pictures(const fs::path& dir, const FitScene& s, const Results
             write_slices(f, d.label, alpha, n_slice, slices, sim, models);
         }
     }
-    output::finish(f.spheres, out / "spheres.csv");
-    output::finish(f.slices, out / "slices.csv");
-    output::finish(f.missing, out / "missing.csv");
-    output::finish(index, out / "ndfs.csv");
+    f.finish();
     const bool gamma = write_constants_vs_gamma(out / "constants_vs_gamma.csv", r);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::fprintf(stderr, "fit: pictures: traced in %.1f s\n", seconds);
