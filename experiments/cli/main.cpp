@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "mpi_world.hpp"
 #include "signal_cleanup.hpp"
 #include "smithlab/errors.hpp"
 #include "smithlab/gtr/registry.hpp"
@@ -28,6 +29,11 @@ bool unknown_subcommand(CLI::App& app, int argc, char** argv) {
 int main(int argc, char** argv) {
     using namespace smithlab;
     output::install_signal_cleanup();  // before any thread: outputs a signal interrupts leave no temporary
+    // Under mpirun (and only there: a plain start never touches MPI), MPI_Init now and MPI_Finalize on the way out.
+    mpi::init(argc, argv);
+    struct Finalize {
+        ~Finalize() { mpi::finalize(); }
+    } finalize;
     const NdfRegistry registry = builtin_registry();
     const VariantRegistry variants = builtin_variants();
 
@@ -67,7 +73,18 @@ int main(int argc, char** argv) {
         return cli::exit_bad_input;
     }
 
+    // An error on one rank after the ranks started talking would leave the others waiting: it ends the whole job.
+    auto fail = [](const char* what, const std::exception& e, int code) {
+        if (mpi::size() > 1 && mpi::talking()) {
+            std::cerr << "smithlab: " << what << " (rank " << mpi::rank() << " of " << mpi::size() << "): " << e.what() << "\n";
+            mpi::abort(code);
+        }
+        if (mpi::rank() == 0) std::cerr << "smithlab: " << what << ": " << e.what() << "\n";  // every rank's alike
+        return code;
+    };
     try {
+        if (mpi::size() > 1 && !app.got_subcommand("trace"))
+            throw input_error("only `trace` runs on several MPI ranks so far (issue 13); run the others without mpirun");
         if (app.got_subcommand("eval")) return cli::run_eval(eval_args, registry, variants);
         if (app.got_subcommand("check")) return cli::run_check(check_args, registry);
         if (app.got_subcommand("report")) return cli::run_report(report_args, registry, variants);
@@ -86,14 +103,11 @@ int main(int argc, char** argv) {
             return cli::exit_ok;
         }
     } catch (const input_error& e) {
-        std::cerr << "smithlab: error: " << e.what() << "\n";
-        return cli::exit_bad_input;
+        return fail("error", e, cli::exit_bad_input);
     } catch (const std::filesystem::filesystem_error& e) {  // a path the user gave that cannot be used
-        std::cerr << "smithlab: error: " << e.what() << "\n";
-        return cli::exit_bad_input;
+        return fail("error", e, cli::exit_bad_input);
     } catch (const std::exception& e) {
-        std::cerr << "smithlab: internal error (please report it, with the command): " << e.what() << "\n";
-        return cli::exit_internal;
+        return fail("internal error (please report it, with the command)", e, cli::exit_internal);
     }
     return cli::exit_ok;
 }

@@ -8,6 +8,7 @@
 
 #include "commands.hpp"
 #include "dispatch.hpp"
+#include "mpi_world.hpp"
 #include "smithlab/errors.hpp"
 #include "smithlab/single_scattering.hpp"
 #include "smithlab/walk/trace.hpp"
@@ -120,6 +121,7 @@ int run_trace(const TraceArgs& a, const NdfRegistry& registry) {
                                                                                : read_scene_file(a.scene),
                                                                source);
     const trace::RunSummary sum = trace::run_scene(scene, source, registry, a.output, static_cast<unsigned>(a.threads));
+    if (mpi::rank() != 0) return exit_ok;  // a worker of rank 0's run (mpirun): rank 0 reports
     if (sum.total.size() == 1) std::printf("albedo %.17g\nstderr %.17g\n", sum.total[0].value, sum.total[0].stderr_);
     std::printf("cells %lld\ntraced %lld\nreused %lld\nwalks %lld\nbounces %lld\nseconds %.3g\noutput %s\n",
                 static_cast<long long>(sum.cells), static_cast<long long>(sum.traced),

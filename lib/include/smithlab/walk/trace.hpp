@@ -2,6 +2,7 @@
 // tallied (tally.hpp) over threads in fixed blocks (parallel.hpp). Walk k of a cell draws from WalkRng(seed, cell, k).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -32,35 +33,48 @@ inline std::uint64_t block_count(std::int64_t walks, std::int64_t block) {
     return static_cast<std::uint64_t>((walks + block - 1) / block);
 }
 
+// What one block of a cell's walks leaves, and the cell's total: the partials merged in block order.
+struct CellPartial {
+    AlbedoTally albedo;
+    std::optional<BrdfTally> brdf;
+};
+
+// The total before any block: zero, with the directional tally allocated when the request asks for one.
+inline CellPartial empty_partial(const CellRequest& r) {
+    CellPartial p;
+    if (!r.brdf.empty()) p.brdf.emplace(r.brdf);
+    return p;
+}
+
+inline void merge_partial(CellPartial& total, const CellPartial& p) {
+    total.albedo.merge(p.albedo);
+    if (total.brdf) total.brdf->merge(*p.brdf);
+}
+
+// Block b of the cell: walks [b * block, min(walks, (b + 1) * block)) in order, a pure function of (seed, cell, b).
+// trace_cell runs it over threads; a distributed run (experiments/, under MPI) runs it on other processes and merges
+// the partials in the same order: the same bits either way.
+template <class Microsurface, class M>
+CellPartial trace_block(const Microsurface& ms, const M& material, const CellRequest& r, std::uint64_t b) {
+    CellPartial p = empty_partial(r);
+    const std::int64_t first = static_cast<std::int64_t>(b) * r.block, last = std::min(r.walks, first + r.block);
+    for (std::int64_t k = first; k < last; ++k) {
+        WalkRng g(r.seed, r.cell, static_cast<std::uint64_t>(k));
+        const WalkSample s = sample_walk(ms, material, r.wi, g, r.limits);
+        p.albedo.add(s);
+        if (p.brdf) p.brdf->add(s);
+    }
+    return p;
+}
+
 // progress(fraction done) is called from a worker after each merged block (outside any walk).
 template <class Microsurface, class M>
 CellResult trace_cell(const Microsurface& ms, const M& material, const CellRequest& r,
                       const std::function<void(double)>& progress = {}) {
-    struct Partial {
-        AlbedoTally albedo;
-        std::optional<BrdfTally> brdf;
-    };
     const std::uint64_t blocks = block_count(r.walks, r.block);
-    Partial init;
-    if (!r.brdf.empty()) init.brdf.emplace(r.brdf);
-    Partial total = reduce_blocks(
-        blocks, r.threads, std::move(init),
-        [&](std::uint64_t b) {
-            Partial p;
-            if (!r.brdf.empty()) p.brdf.emplace(r.brdf);
-            const std::int64_t first = static_cast<std::int64_t>(b) * r.block, last = std::min(r.walks, first + r.block);
-            for (std::int64_t k = first; k < last; ++k) {
-                WalkRng g(r.seed, r.cell, static_cast<std::uint64_t>(k));
-                const WalkSample s = sample_walk(ms, material, r.wi, g, r.limits);
-                p.albedo.add(s);
-                if (p.brdf) p.brdf->add(s);
-            }
-            return p;
-        },
-        [](Partial& t, const Partial& p) {
-            t.albedo.merge(p.albedo);
-            if (t.brdf) t.brdf->merge(*p.brdf);
-        },
+    CellPartial total = reduce_blocks(
+        blocks, r.threads, empty_partial(r), [&](std::uint64_t b) { return trace_block(ms, material, r, b); },
+        merge_partial,
         [&](std::uint64_t merged) {
             if (progress) progress(static_cast<double>(merged) / static_cast<double>(blocks));
         });
