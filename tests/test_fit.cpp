@@ -236,13 +236,19 @@ albedo_theta = [0.0, 60.0]
 albedo_walks = 400
 )TOML";
 
+// An empty scratch directory of the CLI tests.
+fs::path fresh_directory(const std::string& name) {
+    const fs::path d = smithlab_test::scratch() / name;
+    fs::remove_all(d);
+    fs::create_directories(d);
+    return d;
+}
+
 }  // namespace
 
 TEST_CASE("fit: smithlab fit writes its outputs, reuses its cache, and the same scene gives the same bits", "[fit][cli]") {
     using namespace smithlab_test;
-    const fs::path d = scratch() / "fit";
-    fs::remove_all(d);
-    fs::create_directories(d);
+    const fs::path d = fresh_directory("fit");
     write(d / "s.toml", tiny_scene);
     const Run r = run("fit '" + (d / "s.toml").string() + "' --output '" + (d / "out").string() + "' --threads 2");
     INFO(r.err);
@@ -285,9 +291,7 @@ TEST_CASE("fit: smithlab fit writes its outputs, reuses its cache, and the same 
 
 TEST_CASE("fit: a pictures section traces and draws the spheres, slices and missing light, and checks itself", "[fit][cli]") {
     using namespace smithlab_test;
-    const fs::path d = scratch() / "fitpics";
-    fs::remove_all(d);
-    fs::create_directories(d);
+    const fs::path d = fresh_directory("fitpics");
     write(d / "s.toml", tiny_scene + "[pictures]\nsphere_alpha = [0.001, 1.0]\npixels = 8\nwalks = 200\n"
                                      "slice_alpha = [1.0]\nslice_n = 4\n");
     const Run r = run("fit '" + (d / "s.toml").string() + "' --output '" + (d / "out").string() + "' --threads 2");
@@ -314,9 +318,7 @@ TEST_CASE("fit: a pictures section traces and draws the spheres, slices and miss
 
 TEST_CASE("fit: a bad scene is refused naming FILE:LINE and the item, with nothing written", "[fit][cli]") {
     using namespace smithlab_test;
-    const fs::path d = scratch() / "fitbad";
-    fs::remove_all(d);
-    fs::create_directories(d);
+    const fs::path d = fresh_directory("fitbad");
     auto bad = [&](const std::string& from, const std::string& to, const std::string& expected) {
         std::string text = tiny_scene;
         const auto at = text.find(from);
