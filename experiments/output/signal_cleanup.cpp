@@ -4,7 +4,10 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cstdio>
 #include <mutex>
+#include <vector>
 #include <set>
 #include <system_error>
 #include <thread>
@@ -18,6 +21,9 @@ namespace {
 struct Registry {
     std::mutex mutex;
     std::multiset<fs::path> paths;
+    // Apart from the paths' mutex: a note locks what it reads, and that owner may register a temporary meanwhile.
+    std::mutex notes_mutex;
+    std::vector<const std::function<std::string()>*> notes;
 };
 
 Registry& registry() {
@@ -40,8 +46,15 @@ void install_signal_cleanup() {
     std::thread([set] {
         int sig = SIGTERM;
         sigwait(&set, &sig);
+        Registry& r = registry();
         {
-            Registry& r = registry();
+            const std::lock_guard lock(r.notes_mutex);
+            for (const auto* note : r.notes) {
+                const std::string text = (*note)();
+                if (!text.empty()) std::fprintf(stderr, "%s\n", text.c_str());
+            }
+        }
+        {
             const std::lock_guard lock(r.mutex);  // held until the end: no temporary is renamed meanwhile
             for (const fs::path& p : r.paths) {
                 std::error_code ignored;
@@ -58,6 +71,18 @@ void install_signal_cleanup() {
 void end_as_signalled(int sig) {
     kill(getpid(), sig);  // to the process: the waiting thread takes it, cleans up and ends the process
     for (;;) pause();
+}
+
+SignalNote::SignalNote(std::function<std::string()> note) : note_(std::move(note)) {
+    Registry& r = registry();
+    const std::lock_guard lock(r.notes_mutex);
+    r.notes.push_back(&note_);
+}
+
+SignalNote::~SignalNote() {
+    Registry& r = registry();
+    const std::lock_guard lock(r.notes_mutex);
+    r.notes.erase(std::find(r.notes.begin(), r.notes.end(), &note_));
 }
 
 Temporary::Temporary(fs::path path) : path_(std::move(path)) {

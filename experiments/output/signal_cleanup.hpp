@@ -10,6 +10,8 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
+#include <string>
 
 namespace smithlab::output {
 
@@ -27,6 +29,20 @@ public:
 
 private:
     std::filesystem::path path_;
+};
+
+// While it lives, note() is printed to stderr when a signal ends the process, before the cleanup: what the run held
+// when it was stopped (a distributed run's rank 0 says which rank held which work when mpirun ends the job because
+// a rank died). note() runs on the signal thread: it locks what it reads.
+class SignalNote {
+public:
+    explicit SignalNote(std::function<std::string()> note);
+    ~SignalNote();
+    SignalNote(const SignalNote&) = delete;
+    SignalNote& operator=(const SignalNote&) = delete;
+
+private:
+    std::function<std::string()> note_;
 };
 
 // Ends the process as `signal` would, after the cleanup: for a child process that a signal stopped (the user's

@@ -15,7 +15,7 @@
 #include <thread>
 #include <toml.hpp>
 
-#include "dispatch.hpp"
+#include "cell_jobs.hpp"
 #include "mpi_world.hpp"
 #include "output_file.hpp"
 #include "progress.hpp"
@@ -177,187 +177,6 @@ walk::CellRequest request_for(const walk::CellRequest& base, const Prepared& p) 
     return r;
 }
 
-// ---- under MPI (issue 13): rank 0 hands out blocks of walks, the other ranks trace them -------------------------
-//
-// The unit is block b of cell c (walks [b * block, (b + 1) * block) of the cell: walk::trace_block, a pure function
-// of (seed, c, b)). A worker asks rank 0 for work with its thread count T (tag_result, no results the first time);
-// rank 0 answers (cell, first block, count <= T), all of one cell, or count 0: done (tag_work). The worker traces the
-// blocks, one per thread, and sends their partial tallies back (raw doubles and int64s), which is its next request:
-// one outstanding request per worker, blocks handed out in the scene's order as workers free up. Rank 0 merges each
-// cell's partials in block order from the empty tally, as reduce_blocks does, so the cell's tally, its file and the
-// outputs are the bits of the single-process run for any number of ranks and threads.
-constexpr int tag_result = 1, tag_work = 2;
-
-void put_partial(std::vector<char>& out, const walk::CellPartial& p) {
-    for (const walk::Moments& m : p.albedo.bins) {
-        mpi::put(out, m.sum);
-        mpi::put(out, m.sum2);
-    }
-    mpi::put(out, p.albedo.walks);
-    mpi::put(out, p.albedo.events);
-    mpi::put(out, p.albedo.capped);
-    mpi::put(out, static_cast<std::int64_t>(p.brdf ? p.brdf->cells.size() : 0));
-    if (!p.brdf) return;
-    for (const walk::Moments& m : p.brdf->cells) {
-        mpi::put(out, m.sum);
-        mpi::put(out, m.sum2);
-    }
-    mpi::put(out, p.brdf->walks);
-}
-
-// Reads a partial into p, which empty_partial made for the same request (its directional tally sized alike).
-void get_partial(mpi::Reader& in, walk::CellPartial& p) {
-    for (walk::Moments& m : p.albedo.bins) {
-        m.sum = in.get<double>();
-        m.sum2 = in.get<double>();
-    }
-    p.albedo.walks = in.get<std::int64_t>();
-    p.albedo.events = in.get<std::int64_t>();
-    p.albedo.capped = in.get<std::int64_t>();
-    const auto n = in.get<std::int64_t>();
-    if (n != static_cast<std::int64_t>(p.brdf ? p.brdf->cells.size() : 0))
-        throw std::runtime_error("trace: a worker's partial tally does not match its cell's bins");
-    if (!p.brdf) return;
-    for (walk::Moments& m : p.brdf->cells) {
-        m.sum = in.get<double>();
-        m.sum2 = in.get<double>();
-    }
-    p.brdf->walks = in.get<std::int64_t>();
-}
-
-struct Assignment {
-    std::int64_t cell = 0;  // index into prepared
-    std::uint64_t first = 0;
-    std::int64_t count = 0;  // 0: no more work
-};
-
-Assignment exchange(const std::vector<char>& results) {
-    mpi::send(0, tag_result, results);
-    const std::vector<char> bytes = mpi::recv(0, tag_work);
-    mpi::Reader in(bytes);
-    Assignment a;
-    a.cell = in.get<std::int64_t>();
-    a.first = in.get<std::uint64_t>();
-    a.count = in.get<std::int64_t>();
-    return a;
-}
-
-// A rank other than 0: asks for blocks and traces them until rank 0 says done. Each microsurface is built when the
-// blocks handed out move to another NDF (the cells come in the scene's order, NDF by NDF).
-void work(const std::vector<Prepared>& prepared, const walk::MicrosurfaceOptions& opts, const walk::CellRequest& base,
-          unsigned threads) {
-    const auto capacity = static_cast<std::int64_t>(threads ? threads : std::max(1u, std::thread::hardware_concurrency()));
-    std::vector<char> msg;
-    mpi::put(msg, capacity);
-    mpi::put(msg, std::int64_t{0});
-    Assignment a = exchange(msg);
-    while (a.count > 0) {
-        const std::string spec = prepared.at(static_cast<std::size_t>(a.cell)).cell.ndf;
-        with_microsurface(prepared[static_cast<std::size_t>(a.cell)].ndf, opts, [&](const auto& ms) {
-            do {
-                const Prepared& p = prepared.at(static_cast<std::size_t>(a.cell));
-                const walk::CellRequest r = request_for(base, p);
-                std::vector<walk::CellPartial> parts(static_cast<std::size_t>(a.count));
-                walk::reduce_blocks(
-                    parts.size(), threads, 0,
-                    [&](std::uint64_t j) {
-                        parts[j] = std::visit([&](const auto& m) { return walk::trace_block(ms, m, r, a.first + j); },
-                                              p.material);
-                        return 0;
-                    },
-                    [](int&, int) {}, [](std::uint64_t) {});
-                msg.clear();
-                mpi::put(msg, capacity);
-                mpi::put(msg, a.count);
-                for (std::size_t j = 0; j < parts.size(); ++j) {
-                    mpi::put(msg, a.cell);
-                    mpi::put(msg, a.first + j);
-                    put_partial(msg, parts[j]);
-                }
-                a = exchange(msg);
-            } while (a.count > 0 && prepared.at(static_cast<std::size_t>(a.cell)).cell.ndf == spec);
-            return 0;
-        });
-    }
-}
-
-// Rank 0: hands out the blocks of the cells not done, merges what comes back, and writes each cell's file as soon
-// as its last block is merged.
-void dispatch(const std::vector<Prepared>& prepared, const TraceScene& s, const walk::CellRequest& base,
-              std::vector<std::optional<CellRows>>& done, const fs::path& out, RunSummary& sum) {
-    struct Open {
-        walk::CellPartial total;
-        std::uint64_t merged = 0;
-        std::map<std::uint64_t, walk::CellPartial> pending;
-    };
-    const std::uint64_t blocks = walk::block_count(s.walks, base.block);
-    std::vector<std::size_t> queue;
-    for (std::size_t i = 0; i < prepared.size(); ++i)
-        if (!done[i]) queue.push_back(i);
-    const std::uint64_t all_blocks = blocks * queue.size();
-    std::uint64_t merged_all = 0;
-    std::size_t next_cell = 0;  // into queue
-    std::uint64_t next_block = 0;
-    std::map<std::size_t, Open> open;
-    output::ProgressLine progress;
-    for (int active = mpi::size() - 1; active > 0;) {
-        const mpi::Message m = mpi::recv_any();
-        if (m.tag != tag_result) throw std::runtime_error("trace: an unexpected message from rank " + std::to_string(m.from));
-        mpi::Reader in(m.bytes);
-        const auto capacity = in.get<std::int64_t>(), results = in.get<std::int64_t>();
-        for (std::int64_t k = 0; k < results; ++k) {
-            const auto i = static_cast<std::size_t>(in.get<std::int64_t>());
-            const auto b = in.get<std::uint64_t>();
-            Open& o = open.at(i);
-            const walk::CellRequest r = request_for(base, prepared[i]);
-            walk::CellPartial p = walk::empty_partial(r);
-            get_partial(in, p);
-            o.pending.emplace(b, std::move(p));
-            for (auto it = o.pending.begin(); it != o.pending.end() && it->first == o.merged; it = o.pending.erase(it)) {
-                walk::merge_partial(o.total, it->second);
-                ++o.merged;
-                ++merged_all;
-            }
-            if (o.merged == blocks) {
-                done[i] = rows_of(prepared[i], s, walk::CellResult{std::move(o.total.albedo), std::move(o.total.brdf)});
-                write_cell(cell_path(out, prepared[i].cell.index), prepared[i], *done[i]);
-                ++sum.traced;
-                open.erase(i);
-            }
-        }
-        if (!in.done()) throw std::runtime_error("trace: a longer message than its contents from rank " + std::to_string(m.from));
-        progress(static_cast<double>(merged_all) / static_cast<double>(all_blocks), [&] {
-            char line[96];
-            std::snprintf(line, sizeof line, "trace: %lld of %lld cells done on %d ranks, %.0f%% of the walks",
-                          static_cast<long long>(sum.traced), static_cast<long long>(queue.size()), mpi::size(),
-                          100.0 * static_cast<double>(merged_all) / static_cast<double>(all_blocks));
-            return std::string(line);
-        });
-        std::vector<char> reply;
-        if (next_cell < queue.size()) {
-            const std::size_t i = queue[next_cell];
-            if (next_block == 0) open[i].total = walk::empty_partial(request_for(base, prepared[i]));
-            const auto count = std::min<std::uint64_t>(static_cast<std::uint64_t>(std::max<std::int64_t>(capacity, 1)),
-                                                       blocks - next_block);
-            mpi::put(reply, static_cast<std::int64_t>(i));
-            mpi::put(reply, next_block);
-            mpi::put(reply, static_cast<std::int64_t>(count));
-            next_block += count;
-            if (next_block == blocks) {
-                ++next_cell;
-                next_block = 0;
-            }
-        } else {
-            mpi::put(reply, std::int64_t{0});
-            mpi::put(reply, std::uint64_t{0});
-            mpi::put(reply, std::int64_t{0});
-            --active;
-        }
-        mpi::send(m.from, tag_work, reply);
-    }
-    if (!open.empty()) throw std::runtime_error("trace: the workers finished with cells still open");
-}
-
 std::string toml_string(const std::string& s) { return toml::format(toml::value(s)); }
 
 std::string toml_list(const std::vector<double>& v) {
@@ -409,72 +228,57 @@ RunSummary run_scene(const TraceScene& s, const std::string& source, const NdfRe
     r.walks = s.walks;
     r.limits.max_order = s.max_order;
     r.brdf = s.brdf;
-    r.threads = threads;
-    // Under MPI with more than one rank, every rank has checked the scene alike; from here rank 0 alone owns OUT.
+    std::vector<CellJob> jobs;
+    for (const Prepared& p : prepared)
+        jobs.push_back({p.ndf, p.material, request_for(r, p),
+                        "cell " + std::to_string(p.cell.index) + " (" + p.ndf.spec() + ", " +
+                            walk::format_material(p.material) + ", theta_i " + format_shortest(p.cell.theta_i) +
+                            ", phi_i " + format_shortest(p.cell.phi_i) + ")"});
+    // Under MPI with more than one rank, every rank has checked the scene alike; from here rank 0 alone owns OUT and
+    // the others trace what it hands out (cluster/block_jobs.hpp).
     const bool distributed = mpi::size() > 1;
     if (distributed) mpi::set_talking();
-    if (distributed && mpi::rank() != 0) {
-        work(prepared, opts, r, threads);
-        RunSummary sum;
-        sum.cells = static_cast<std::int64_t>(prepared.size());
-        return sum;
-    }
-
-    output::StagedDirectory stage(out, "trace");  // refuses a bad OUT before any work
-    fs::create_directories(out / "cells");
     RunSummary sum;
     sum.cells = static_cast<std::int64_t>(prepared.size());
     std::vector<std::optional<CellRows>> done(prepared.size());
-    std::int64_t to_trace = 0;
-    for (std::size_t i = 0; i < prepared.size(); ++i) {
-        done[i] = read_cell(cell_path(out, prepared[i].cell.index), prepared[i], s);
-        if (done[i]) ++sum.reused;
-        else ++to_trace;
-    }
-    if (sum.reused)
-        std::fprintf(stderr, "trace: %lld of %lld cells reused from %s\n", static_cast<long long>(sum.reused),
-                     static_cast<long long>(sum.cells), (out / "cells").string().c_str());
-
-    if (distributed) dispatch(prepared, s, r, done, out, sum);
-    output::ProgressLine progress;
-    // Cells run NDF by NDF (the scene's order): each microsurface is built once, and only when a cell needs it.
-    for (std::size_t first = 0; first < prepared.size();) {
-        std::size_t last = first;
-        while (last < prepared.size() && prepared[last].cell.ndf == prepared[first].cell.ndf) ++last;
-        if (std::any_of(done.begin() + first, done.begin() + last, [](const auto& d) { return !d; })) {
-            with_microsurface(prepared[first].ndf, opts, [&](const auto& ms) {
-                for (std::size_t i = first; i < last; ++i) {
-                    if (done[i]) continue;
-                    const Prepared& p = prepared[i];
-                    const walk::CellRequest cr = request_for(r, p);
-                    const std::int64_t before = sum.traced;
-                    auto report = [&](double f) {
-                        progress((before + f) / to_trace, [&] {
-                            char line[96];
-                            std::snprintf(line, sizeof line, "trace: cell %lld of %lld, %.0f%% of the walks done",
-                                          static_cast<long long>(before + 1), static_cast<long long>(to_trace),
-                                          100.0 * (before + f) / to_trace);
-                            return std::string(line);
-                        });
-                    };
-                    const walk::CellResult result = std::visit(
-                        [&](const auto& m) { return walk::trace_cell(ms, m, cr, std::cref(report)); }, p.material);
-                    done[i] = rows_of(p, s, result);
-                    write_cell(cell_path(out, p.cell.index), p, *done[i]);
-                    ++sum.traced;
-                }
-                return 0;
-            });
+    std::optional<output::StagedDirectory> stage;
+    if (mpi::rank() == 0) {
+        stage.emplace(out, "trace");  // refuses a bad OUT before any work
+        fs::create_directories(out / "cells");
+        for (std::size_t i = 0; i < prepared.size(); ++i) {
+            done[i] = read_cell(cell_path(out, prepared[i].cell.index), prepared[i], s);
+            jobs[i].needed = !done[i];
+            if (done[i]) ++sum.reused;
         }
-        first = last;
+        if (sum.reused)
+            std::fprintf(stderr, "trace: %lld of %lld cells reused from %s\n", static_cast<long long>(sum.reused),
+                         static_cast<long long>(sum.cells), (out / "cells").string().c_str());
     }
+    const std::int64_t to_trace = sum.cells - sum.reused;
+    CellJobs plan(std::move(jobs), opts, [&](std::size_t i, walk::CellPartial&& total) {
+        done[i] = rows_of(prepared[i], s, walk::CellResult{std::move(total.albedo), std::move(total.brdf)});
+        write_cell(cell_path(out, prepared[i].cell.index), prepared[i], *done[i]);
+        ++sum.traced;
+    });
+    output::ProgressLine progress;
+    const cluster::Traffic traffic = cluster::run_jobs(plan, threads, [&](std::uint64_t merged, std::uint64_t all) {
+        progress(static_cast<double>(merged) / static_cast<double>(all), [&] {
+            char line[128];
+            std::snprintf(line, sizeof line, "trace: %lld of %lld cells done%s, %.0f%% of the walks",
+                          static_cast<long long>(sum.traced), static_cast<long long>(to_trace),
+                          distributed ? (" on " + std::to_string(mpi::size()) + " ranks").c_str() : "",
+                          100.0 * static_cast<double>(merged) / static_cast<double>(all));
+            return std::string(line);
+        });
+    });
+    if (mpi::rank() != 0) return sum;
 
     nlohmann::ordered_json cell_list = nlohmann::ordered_json::array();
     {
-        std::ofstream albedo(stage.path() / "albedo.csv", std::ios::binary);
+        std::ofstream albedo(stage->path() / "albedo.csv", std::ios::binary);
         albedo << albedo_header << "\n";
         std::optional<std::ofstream> brdf;
-        if (!s.brdf.empty()) brdf.emplace(stage.path() / "brdf.csv", std::ios::binary) << brdf_header << "\n";
+        if (!s.brdf.empty()) brdf.emplace(stage->path() / "brdf.csv", std::ios::binary) << brdf_header << "\n";
         for (std::size_t i = 0; i < prepared.size(); ++i) {
             const CellRows& rows = *done[i];
             for (const std::string& a : rows.albedo) albedo << a << "\n";
@@ -509,9 +313,14 @@ RunSummary run_scene(const TraceScene& s, const std::string& source, const NdfRe
                                  {"bounces", sum.bounces},
                                  {"seconds", sum.seconds},
                                  {"threads", threads ? threads : std::max(1u, std::thread::hardware_concurrency())}};
-    if (distributed) meta["ranks"] = mpi::size();  // and threads is per rank
-    std::ofstream(stage.path() / "meta.json") << meta.dump(2) << "\n";
-    stage.publish();
+    if (distributed)  // threads is then per rank; what rank 0 sent and received, for `bench_mpi`
+        meta["mpi"] = {{"ranks", mpi::size()},
+                       {"messages", traffic.messages},
+                       {"bytes", traffic.bytes},
+                       {"blocks_rank0", traffic.blocks_here},
+                       {"blocks_other_ranks", traffic.blocks_elsewhere}};
+    std::ofstream(stage->path() / "meta.json") << meta.dump(2) << "\n";
+    stage->publish();
     return sum;
 }
 

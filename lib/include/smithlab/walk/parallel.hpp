@@ -16,6 +16,33 @@
 
 namespace smithlab::walk {
 
+// Partials numbered 0, 1, 2, ... that arrive in any order, merged into a total in number order: a partial waits
+// only until every one before it is merged. Not thread-safe (its users lock). Also the distributed runs'
+// (experiments/cluster/block_jobs.hpp), which merge what other processes traced in the same order: the same bits.
+template <class Partial>
+class InOrder {
+public:
+    explicit InOrder(Partial total) : total_(std::move(total)) {}
+    // Adds partial b; merge(total, partial) for each that is next in order. Returns how many were merged.
+    template <class Merge>
+    std::uint64_t add(std::uint64_t b, Partial p, Merge&& merge) {
+        pending_.emplace(b, std::move(p));
+        const std::uint64_t before = merged_;
+        for (auto it = pending_.begin(); it != pending_.end() && it->first == merged_; it = pending_.erase(it)) {
+            merge(total_, it->second);
+            ++merged_;
+        }
+        return merged_ - before;
+    }
+    std::uint64_t merged() const { return merged_; }
+    Partial& total() { return total_; }
+
+private:
+    Partial total_;
+    std::map<std::uint64_t, Partial> pending_;
+    std::uint64_t merged_ = 0;
+};
+
 // run(b) -> Partial for b in [0, blocks), on `threads` threads (0: all cores); merge(total, partial) in block order;
 // progress(merged_blocks) after each merge. The first exception a block throws is rethrown here.
 template <class Partial, class Run, class Merge, class Progress>
@@ -25,19 +52,14 @@ Partial reduce_blocks(std::uint64_t blocks, unsigned threads, Partial total, Run
     std::atomic<std::uint64_t> next{0};
     std::atomic<bool> failed{false};
     std::mutex lock;
-    std::map<std::uint64_t, Partial> pending;
-    std::uint64_t merged = 0;
+    InOrder<Partial> sum(std::move(total));
     std::exception_ptr error;
     auto worker = [&] {
         try {
             for (std::uint64_t b; !failed && (b = next.fetch_add(1)) < blocks;) {
                 Partial p = run(b);
                 const std::lock_guard guard(lock);
-                pending.emplace(b, std::move(p));
-                for (auto it = pending.begin(); it != pending.end() && it->first == merged; it = pending.erase(it)) {
-                    merge(total, it->second);
-                    progress(++merged);
-                }
+                for (std::uint64_t k = sum.add(b, std::move(p), merge); k > 0; --k) progress(sum.merged() - k + 1);
             }
         } catch (...) {
             const std::lock_guard guard(lock);
@@ -51,7 +73,7 @@ Partial reduce_blocks(std::uint64_t blocks, unsigned threads, Partial total, Run
         worker();
     }
     if (error) std::rethrow_exception(error);
-    return total;
+    return std::move(sum.total());
 }
 
 }  // namespace smithlab::walk

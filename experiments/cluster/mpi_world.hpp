@@ -1,4 +1,4 @@
-// output/mpi_world.hpp -- the executable's only view of MPI (issue 13): lib/ stays MPI-free, and without SMITHLAB_MPI
+// cluster/mpi_world.hpp -- the executable's only view of MPI (issue 13): lib/ stays MPI-free, and without SMITHLAB_MPI
 // (or when not started by a launcher such as mpirun) the world is one rank and nothing here talks to anyone.
 //
 // Only the thread that called init() calls MPI (MPI_THREAD_FUNNELED): a rank's worker threads trace, its main thread
@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,13 +31,15 @@ bool talking();
 // wait forever. Returns only without MPI.
 void abort(int code);
 
-// Blocking point-to-point messages of bytes with a tag; recv_any takes the next message from any rank.
+// Point-to-point messages of bytes with a tag. send blocks until the bytes are handed over; recv waits for the
+// message (polling every few tens of microseconds, not spinning a core: a waiting rank leaves its cores to the
+// others); try_recv_any takes a message from any rank if one has arrived.
 void send(int to, int tag, const std::vector<char>& bytes);
 struct Message {
     int from = 0, tag = 0;
     std::vector<char> bytes;
 };
-Message recv_any();
+std::optional<Message> try_recv_any();
 std::vector<char> recv(int from, int tag);
 
 // The bytes of trivially copyable values, appended and read back in order.

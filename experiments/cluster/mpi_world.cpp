@@ -1,6 +1,8 @@
 #include "mpi_world.hpp"
 
+#include <chrono>
 #include <cstdlib>
+#include <thread>
 #include <stdexcept>
 
 #ifdef SMITHLAB_MPI
@@ -72,20 +74,26 @@ std::vector<char> receive(MPI_Status& st) {
 }
 }  // namespace
 
-Message recv_any() {
+std::optional<Message> try_recv_any() {
     if (!started) no_mpi();
     MPI_Status st;
-    MPI_Probe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &st);
+    int arrived = 0;
+    MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &arrived, &st);
+    if (!arrived) return std::nullopt;
     Message m{st.MPI_SOURCE, st.MPI_TAG, {}};
     m.bytes = receive(st);
     return m;
 }
 
+// MPI_Probe would spin a core while it waits (Open MPI polls); a rank that waits sleeps between probes instead.
 std::vector<char> recv(int from, int tag) {
     if (!started) no_mpi();
     MPI_Status st;
-    MPI_Probe(from, tag, MPI_COMM_WORLD, &st);
-    return receive(st);
+    for (int arrived = 0;;) {
+        MPI_Iprobe(from, tag, MPI_COMM_WORLD, &arrived, &st);
+        if (arrived) return receive(st);
+        std::this_thread::sleep_for(std::chrono::microseconds(20));
+    }
 }
 
 #else
@@ -94,7 +102,7 @@ void init(int&, char**&) {}
 void finalize() {}
 void abort(int) {}
 void send(int, int, const std::vector<char>&) { no_mpi(); }
-Message recv_any() { no_mpi(); }
+std::optional<Message> try_recv_any() { no_mpi(); }
 std::vector<char> recv(int, int) { no_mpi(); }
 
 #endif

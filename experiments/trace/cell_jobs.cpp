@@ -1,0 +1,44 @@
+#include "cell_jobs.hpp"
+
+#include <stdexcept>
+
+namespace smithlab::trace {
+
+void CellJobs::put(std::vector<char>& out, const Partial& p) const {
+    for (const walk::Moments& m : p.albedo.bins) {
+        mpi::put(out, m.sum);
+        mpi::put(out, m.sum2);
+    }
+    mpi::put(out, p.albedo.walks);
+    mpi::put(out, p.albedo.events);
+    mpi::put(out, p.albedo.capped);
+    mpi::put(out, static_cast<std::int64_t>(p.brdf ? p.brdf->cells.size() : 0));
+    if (!p.brdf) return;
+    for (const walk::Moments& m : p.brdf->cells) {
+        mpi::put(out, m.sum);
+        mpi::put(out, m.sum2);
+    }
+    mpi::put(out, p.brdf->walks);
+}
+
+CellJobs::Partial CellJobs::get(mpi::Reader& in, std::size_t j) const {
+    Partial p = empty(j);
+    for (walk::Moments& m : p.albedo.bins) {
+        m.sum = in.get<double>();
+        m.sum2 = in.get<double>();
+    }
+    p.albedo.walks = in.get<std::int64_t>();
+    p.albedo.events = in.get<std::int64_t>();
+    p.albedo.capped = in.get<std::int64_t>();
+    if (in.get<std::int64_t>() != static_cast<std::int64_t>(p.brdf ? p.brdf->cells.size() : 0))
+        throw std::runtime_error("trace: a partial tally from another rank does not match " + name(j) + "'s bins");
+    if (!p.brdf) return p;
+    for (walk::Moments& m : p.brdf->cells) {
+        m.sum = in.get<double>();
+        m.sum2 = in.get<double>();
+    }
+    p.brdf->walks = in.get<std::int64_t>();
+    return p;
+}
+
+}  // namespace smithlab::trace
