@@ -5,6 +5,7 @@
 #include "commands.hpp"
 #include "fit_run.hpp"
 #include "fit_scene.hpp"
+#include "mpi_world.hpp"
 #include "smithlab/errors.hpp"
 #include "smithlab/fit/diffuse_models.hpp"
 
@@ -57,6 +58,7 @@ int run_fit(const FitArgs& a, const NdfRegistry& registry) {
     const std::string text = a.scene.empty() ? fitrun::default_fit_scene_text() : read_scene_file(a.scene);
     const fitrun::FitScene scene = fitrun::parse_fit_scene(text, source);
     const fitrun::FitSummary sum = fitrun::run_fit(scene, source, text, registry, a.output, static_cast<unsigned>(a.threads));
+    if (mpi::rank() != 0) return exit_ok;  // a rank of a run under mpirun: rank 0 reports
     std::printf("%-28s %-16s %10s %10s %10s %10s\n", "model", "ndf", "rms_rel", "max_rel", "albedo_rms", "chi2_dof");
     for (const fitrun::ErrorRow& r : sum.errors)
         std::printf("%-28s %-16s %10.4f %10.4f %10.5f %10.3g\n", r.model.c_str(), r.ndf.c_str(), r.rms_rel, r.max_rel,

@@ -83,8 +83,8 @@ int main(int argc, char** argv) {
         return code;
     };
     try {
-        if (mpi::size() > 1 && !app.got_subcommand("trace"))
-            throw input_error("only `trace` runs on several MPI ranks so far (issue 13); run the others without mpirun");
+        if (mpi::size() > 1 && !app.got_subcommand("trace") && !app.got_subcommand("fit") && !app.got_subcommand("report"))
+            throw input_error("only trace, fit and report run on several MPI ranks (they trace); run the others without mpirun");
         if (app.got_subcommand("eval")) return cli::run_eval(eval_args, registry, variants);
         if (app.got_subcommand("check")) return cli::run_check(check_args, registry);
         if (app.got_subcommand("report")) return cli::run_report(report_args, registry, variants);

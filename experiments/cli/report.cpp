@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "mpi_world.hpp"
 #include "report.hpp"
 #include "scene.hpp"
 #include "smithlab/errors.hpp"
@@ -52,8 +53,8 @@ int run_report(const ReportArgs& a, const NdfRegistry& registry, const VariantRe
     const report::Scene scene = report::parse_scene(a.scene.empty() ? report::default_scene_text() : read_scene_file(a.scene), source);
     const report::Work work = report::estimate_work(scene, variants);
     report::check_work(work, a.max_work, source);
-    std::fprintf(stderr, "report: work estimated at %s (limit --max-work %g)\n", report::describe(work).c_str(), a.max_work);
-    return report::run_report(scene, a.out, registry, variants);
+    if (mpi::rank() == 0) std::fprintf(stderr, "report: work estimated at %s (limit --max-work %g)\n", report::describe(work).c_str(), a.max_work);
+    return report::run_report(scene, a.out, registry, variants);  // under mpirun, every rank (rank 0 reports)
 }
 
 }  // namespace smithlab::cli

@@ -91,6 +91,11 @@ private:
     std::shared_ptr<const R> runner_;
 };
 
+inline std::string block_range(const Chunk& c) {
+    return c.count == 1 ? "block " + std::to_string(c.first)
+                        : "blocks " + std::to_string(c.first) + "-" + std::to_string(c.first + c.count - 1);
+}
+
 inline std::uint64_t thread_count(unsigned threads) { return threads ? threads : std::max(1u, std::thread::hardware_concurrency()); }
 
 // A rank other than 0: asks rank 0 for chunks, traces each on its threads, and sends the partials back with its next
@@ -119,9 +124,8 @@ void serve(const Plan& plan, unsigned threads) {
                 },
                 [](int&, int) {}, [](std::uint64_t) {});
         } catch (const std::exception& e) {
-            std::fprintf(stderr, "smithlab: rank %d failed while tracing %s, blocks %llu-%llu\n", mpi::rank(),
-                         plan.name(c.job).c_str(), static_cast<unsigned long long>(c.first),
-                         static_cast<unsigned long long>(c.first + c.count - 1));
+            std::fprintf(stderr, "smithlab: rank %d failed while tracing %s, %s\n", mpi::rank(), plan.name(c.job).c_str(),
+                         block_range(c).c_str());
             throw;
         }
         msg.clear();
@@ -219,8 +223,8 @@ Traffic run_jobs(Plan& plan, unsigned threads, Progress&& progress) {
             std::string text = "smithlab: stopped by a signal (mpirun sends one when a rank dies, and names it)";
             for (std::size_t r = 1; r < held.size(); ++r)
                 if (held[r].count > 0)
-                    text += "\n  rank " + std::to_string(r) + " was tracing " + plan.name(held[r].job) + ", blocks " +
-                            std::to_string(held[r].first) + "-" + std::to_string(held[r].first + held[r].count - 1);
+                    text += "\n  rank " + std::to_string(r) + " was tracing " + plan.name(held[r].job) + ", " +
+                            detail::block_range(held[r]);
             return text + "\n  the jobs finished so far are kept: the same command resumes from them";
         });
         std::vector<std::jthread> pool;

@@ -2,10 +2,16 @@
 
 #include <cmath>
 #include <fstream>
+#include <memory>
+#include <optional>
+#include <type_traits>
+#include <variant>
 #include <numbers>
 #include <sstream>
 
+#include "block_jobs.hpp"
 #include "dispatch.hpp"
+#include "mpi_world.hpp"
 #include "output_file.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
@@ -138,6 +144,69 @@ std::vector<double> midpoints(const std::vector<double>& a) {
     return m;
 }
 
+// The groups to trace as block jobs (cluster/block_jobs.hpp), for one process or MPI ranks: group j's blocks are its
+// points, each traced whole (fit::trace_eval_point, trace_albedo_point) from its own stream, and a group's total is
+// its points' moments in order: the same bits for any number of ranks and threads.
+struct GroupJob {
+    const AnyNdf* ndf;
+    const Group* group;
+    std::uint64_t ndf_index;
+    std::string name;    // "ggx, training alpha 0.25 (group 3)", for messages
+    bool needed = true;  // rank 0: false for a group read back from the cache
+};
+
+class GroupJobs {
+public:
+    using Partial = std::vector<fit::SplitMoments>;
+    using Finish = std::function<void(std::size_t, Partial&&)>;
+    GroupJobs(std::vector<GroupJob> jobs, const walk::Material& material, std::uint64_t seed, Finish finish)
+        : jobs_(std::move(jobs)), material_(material), seed_(seed), finish_(std::move(finish)) {}
+
+    std::size_t jobs() const { return jobs_.size(); }
+    std::uint64_t blocks(std::size_t j) const { return jobs_[j].needed ? jobs_[j].group->dirs.size() : 0; }
+    Partial empty(std::size_t) const { return {}; }
+    void merge(Partial& all, const Partial& one) const { all.insert(all.end(), one.begin(), one.end()); }
+    std::size_t kind(std::size_t j) const { return j; }  // a group is one alpha: its own microsurface
+    std::string name(std::size_t j) const { return jobs_[j].name; }
+    void finish(std::size_t j, Partial&& total) { finish_(j, std::move(total)); }
+
+    cluster::Runner<Partial> runner(std::size_t j) const {
+        return trace::with_microsurface(*jobs_[j].ndf, {}, [&](const auto& ms) -> cluster::Runner<Partial> {
+            auto surface = std::make_shared<const std::decay_t<decltype(ms)>>(ms);
+            return [surface, this](std::size_t job, std::uint64_t k) {
+                const Group& g = *jobs_[job].group;
+                const std::uint64_t cell = stream(g.set, jobs_[job].ndf_index, g.index, k);
+                const fit::Directions& d = g.dirs[k];
+                return std::visit(
+                    [&](const auto& m) {
+                        return Partial{g.set == albedo_set
+                                           ? fit::trace_albedo_point(*surface, m, d.wi(), seed_, cell, g.walks)
+                                           : fit::trace_eval_point(*surface, m, d.wi(), d.wo(), seed_, cell, g.walks)};
+                    },
+                    material_);
+            };
+        });
+    }
+
+    static_assert(std::is_trivially_copyable_v<fit::SplitMoments>);
+    void put(std::vector<char>& out, const Partial& p) const {
+        mpi::put(out, static_cast<std::int64_t>(p.size()));
+        for (const fit::SplitMoments& m : p) mpi::put(out, m);
+    }
+    Partial get(mpi::Reader& in, std::size_t j) const {
+        Partial p(static_cast<std::size_t>(in.get<std::int64_t>()));
+        if (p.size() != 1) throw std::runtime_error("fit: another rank sent " + std::to_string(p.size()) + " points for one of " + name(j));
+        for (fit::SplitMoments& m : p) m = in.get<fit::SplitMoments>();
+        return p;
+    }
+
+private:
+    std::vector<GroupJob> jobs_;
+    walk::Material material_;
+    std::uint64_t seed_;
+    Finish finish_;
+};
+
 }  // namespace
 
 std::vector<fit::SplitMoments> trace_points(const AnyNdf& ndf, const walk::Material& material,
@@ -175,7 +244,7 @@ AnyNdf make_ndf(const NdfRegistry& registry, const FitFamily& f, double alpha) {
 }
 
 std::vector<NdfData> gather(const FitScene& s, const NdfRegistry& registry, const fs::path& cache, unsigned threads,
-                            const ProgressFn& progress) {
+                            const ProgressFn& progress, const std::function<void()>& checked) {
     const walk::Material material = walk::parse_material(s.material);
     struct Plan {
         NdfData data;
@@ -183,7 +252,6 @@ std::vector<NdfData> gather(const FitScene& s, const NdfRegistry& registry, cons
         std::vector<AnyNdf> ndfs;  // per group
     };
     std::vector<Plan> plans;
-    std::int64_t total = 0;
     for (std::size_t n = 0; n < s.ndfs.size(); ++n) {
         Plan p;
         p.data.family = s.ndfs[n];
@@ -194,42 +262,55 @@ std::vector<NdfData> gather(const FitScene& s, const NdfRegistry& registry, cons
             p.ndfs.push_back(make_ndf(registry, p.data.family, g.alpha));
             // A D-only NDF's tables are built here once, and may refuse the NDF: before anything is traced.
             trace::with_microsurface(p.ndfs.back(), {}, [](const auto&) { return 0; });
-            total += static_cast<std::int64_t>(g.dirs.size());
         }
         plans.push_back(std::move(p));
     }
-    std::vector<NdfData> out;
-    std::int64_t done = 0;
-    for (std::size_t n = 0; n < plans.size(); ++n) {
-        Plan& p = plans[n];
-        for (std::size_t i = 0; i < p.groups.size(); ++i) {
-            const Group& g = p.groups[i];
-            const std::string key = group_key(s, p.ndfs[i], g, n);
-            const fs::path file = cache / directory_name(p.data.label) /
+    if (checked) checked();
+
+    // Every group of every NDF, in order; rank 0 reads back what the cache holds and writes each group traced.
+    struct Place {
+        std::size_t n, i;
+        std::string key;
+        fs::path file;
+    };
+    std::vector<Place> places;
+    std::vector<GroupJob> jobs;
+    std::vector<std::optional<std::vector<fit::SplitMoments>>> moments;
+    for (std::size_t n = 0; n < plans.size(); ++n)
+        for (std::size_t i = 0; i < plans[n].groups.size(); ++i) {
+            const Group& g = plans[n].groups[i];
+            const std::string key = group_key(s, plans[n].ndfs[i], g, n);
+            const fs::path file = cache / directory_name(plans[n].data.label) /
                                   (std::string(set_name[g.set]) + "-" + std::to_string(g.index) + ".csv");
-            std::optional<std::vector<fit::SplitMoments>> m = read_group(file, key, g);
-            if (m) {
-                p.data.reused += static_cast<std::int64_t>(g.dirs.size());
-            } else {
-                const std::int64_t before = done;
-                std::vector<TracePoint> points;
-                for (std::size_t j = 0; j < g.dirs.size(); ++j)
-                    points.push_back({g.dirs[j].wi(), g.dirs[j].wo(), stream(g.set, n, g.index, j)});
-                m = trace_points(p.ndfs[i], material, points, g.set == albedo_set ? Estimator::albedo : Estimator::eval,
-                                 s.seed, g.walks, threads, [&](std::uint64_t k) {
-                                     if (progress) progress(before + static_cast<std::int64_t>(k), total);
-                                 });
-                write_group(file, key, g, *m);
-                p.data.traced += static_cast<std::int64_t>(g.dirs.size());
-            }
-            done += static_cast<std::int64_t>(g.dirs.size());
-            std::vector<fit::DataPoint>& dest = g.set == training_set     ? p.data.training
-                                                : g.set == validation_set ? p.data.validation
-                                                                          : p.data.albedo;
-            for (std::size_t j = 0; j < g.dirs.size(); ++j) dest.push_back({g.alpha, g.dirs[j], (*m)[j]});
+            moments.push_back(mpi::rank() == 0 ? read_group(file, key, g) : std::nullopt);
+            jobs.push_back({&plans[n].ndfs[i], &g, n,
+                            plans[n].data.label + ", " + set_name[g.set] + " alpha " + format_shortest(g.alpha) +
+                                " (group " + std::to_string(g.index) + ")",
+                            mpi::rank() == 0 && !moments.back()});
+            places.push_back({n, i, key, file});
         }
-        out.push_back(std::move(p.data));
+    GroupJobs plan(std::move(jobs), material, s.seed, [&](std::size_t j, std::vector<fit::SplitMoments>&& total) {
+        const Place& at = places[j];
+        write_group(at.file, at.key, plans[at.n].groups[at.i], total);
+        plans[at.n].data.traced += static_cast<std::int64_t>(total.size());
+        moments[j] = std::move(total);
+    });
+    cluster::run_jobs(plan, threads, [&](std::uint64_t merged, std::uint64_t all) {
+        if (progress) progress(static_cast<std::int64_t>(merged), static_cast<std::int64_t>(all));
+    });
+    if (mpi::rank() != 0) return {};
+
+    for (std::size_t j = 0; j < places.size(); ++j) {
+        Plan& p = plans[places[j].n];
+        const Group& g = p.groups[places[j].i];
+        if (plan.blocks(j) == 0) p.data.reused += static_cast<std::int64_t>(g.dirs.size());
+        std::vector<fit::DataPoint>& dest = g.set == training_set     ? p.data.training
+                                            : g.set == validation_set ? p.data.validation
+                                                                      : p.data.albedo;
+        for (std::size_t k = 0; k < g.dirs.size(); ++k) dest.push_back({g.alpha, g.dirs[k], (*moments[j])[k]});
     }
+    std::vector<NdfData> out;
+    for (Plan& p : plans) out.push_back(std::move(p.data));
     return out;
 }
 

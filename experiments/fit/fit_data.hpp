@@ -28,13 +28,15 @@ struct NdfData {
     std::int64_t traced = 0, reused = 0;    // points
 };
 
-// What tracing has done so far, for progress lines: points done of points in all.
+// What tracing has done so far, for progress lines: points traced of points to trace.
 using ProgressFn = std::function<void(std::int64_t done, std::int64_t total)>;
 
 // The points of every NDF family of the scene, in its order. Checks every NDF (the registry's refusals name
-// FILE:LINE: ndf.family) and builds each microsurface before tracing anything.
+// FILE:LINE: ndf.family) and builds each microsurface, then calls checked(), then reads the cache and traces what it
+// lacks. Under MPI every rank calls it and traces (cluster/block_jobs.hpp); rank 0 reads and writes the cache and
+// gets the data, the other ranks nothing. progress(points traced, points to trace).
 std::vector<NdfData> gather(const FitScene& scene, const NdfRegistry& registry, const std::filesystem::path& cache,
-                            unsigned threads, const ProgressFn& progress);
+                            unsigned threads, const ProgressFn& progress, const std::function<void()>& checked = {});
 
 // A point to trace: its directions (the albedo estimator reads wi only) and its random stream.
 struct TracePoint {

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iomanip>
+#include <optional>
 #include <sstream>
 #include <nlohmann/json.hpp>
 #include <thread>
@@ -14,6 +15,7 @@
 #include "fit_results.hpp"
 #include "fit_shaders.hpp"
 #include "fit_trends.hpp"
+#include "mpi_world.hpp"
 #include "progress.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
@@ -230,13 +232,21 @@ void write_report(const fs::path& dir, const FitScene& s, const Results& r, cons
 FitSummary run_fit(const FitScene& s, const std::string& source, const std::string& scene_text,
                    const NdfRegistry& registry, const fs::path& out, unsigned threads) {
     const auto t0 = std::chrono::steady_clock::now();
-    output::StagedDirectory stage(out, "fit");  // refuses a bad OUT before any work
+    std::optional<output::StagedDirectory> stage;
     output::ProgressLine line;
     auto progress = [&](std::int64_t done, std::int64_t total) {
         line(static_cast<double>(done) / static_cast<double>(total),
              [&] { return "fit: traced " + std::to_string(done) + " of " + std::to_string(total) + " points"; });
     };
-    Results r{gather(s, registry, out / "cache", threads, progress), {}};
+    // Under MPI every rank checks the scene's NDFs alike, then the ranks trace together; rank 0 alone owns OUT, and
+    // fits, measures and draws (the pictures' few traces on its threads) while the others are done.
+    Results r{gather(s, registry, out / "cache", threads, progress,
+                     [&] {
+                         if (mpi::size() > 1) mpi::set_talking();
+                         if (mpi::rank() == 0) stage.emplace(out, "fit");  // refuses a bad OUT before any work
+                     }),
+              {}};
+    if (mpi::rank() != 0) return {};
     FitSummary sum;
     for (const NdfData& d : r.data) {
         sum.traced += d.traced;
@@ -245,23 +255,24 @@ FitSummary run_fit(const FitScene& s, const std::string& source, const std::stri
         for (const Measured& m : r.fits.back()) sum.errors.push_back(measure(s, d, m));
     }
     sum.points = sum.traced + sum.reused;
-    write_constants(stage.path(), r);
-    write_errors(stage.path(), sum.errors);
-    write_values(stage.path() / "training.csv", s, r, false);
-    write_values(stage.path() / "validation.csv", s, r, true);
-    write_shaders(stage.path(), r);
-    const std::string compensation = write_compensation(stage.path(), s, registry);
-    const std::string pictures = write_pictures(stage.path(), s, r, registry, threads);
-    const std::string trends = write_gamma_trends(stage.path(), r);
-    write_report(stage.path(), s, r, sum.errors, trends + compensation + pictures);
+    write_constants(stage->path(), r);
+    write_errors(stage->path(), sum.errors);
+    write_values(stage->path() / "training.csv", s, r, false);
+    write_values(stage->path() / "validation.csv", s, r, true);
+    write_shaders(stage->path(), r);
+    const std::string compensation = write_compensation(stage->path(), s, registry);
+    const std::string pictures = write_pictures(stage->path(), s, r, registry, threads);
+    const std::string trends = write_gamma_trends(stage->path(), r);
+    write_report(stage->path(), s, r, sum.errors, trends + compensation + pictures);
     sum.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    const nlohmann::ordered_json meta = {
+    nlohmann::ordered_json meta = {
         {"title", s.title},      {"source", source},         {"scene", scene_text},
         {"version", SMITHLAB_VERSION}, {"seed", s.seed},      {"points_traced", sum.traced},
         {"points_reused", sum.reused}, {"seconds", sum.seconds},
         {"threads", threads ? threads : std::max(1u, std::thread::hardware_concurrency())}};
-    output::write_file(stage.path() / "meta.json", meta.dump(2) + "\n");
-    stage.publish();
+    if (mpi::size() > 1) meta["mpi"] = {{"ranks", mpi::size()}};  // and threads is per rank
+    output::write_file(stage->path() / "meta.json", meta.dump(2) + "\n");
+    stage->publish();
     return sum;
 }
 

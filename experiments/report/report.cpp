@@ -15,6 +15,7 @@
 #include "smithlab/errors.hpp"
 #include "staged_directory.hpp"
 #include "timing.hpp"
+#include "mpi_world.hpp"
 #include "walk_section.hpp"
 
 namespace smithlab::report {
@@ -70,7 +71,7 @@ struct Walks {
 
 Walks traced_walks(const std::vector<WalkCell>& cells, const Scene::Walk& walk) {
     if (cells.empty()) return {};
-    std::fprintf(stderr, "report: walk section, %zu cells of %lld walks\n", cells.size(), static_cast<long long>(walk.walks));
+    if (mpi::rank() == 0) std::fprintf(stderr, "report: walk section, %zu cells of %lld walks\n", cells.size(), static_cast<long long>(walk.walks));
     const auto t0 = std::chrono::steady_clock::now();
     Walks w{.results = trace_walk_cells(cells, walk)};
     w.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -114,8 +115,12 @@ int run_report(const Scene& scene, const std::string& out_dir, const NdfRegistry
     // Validate everything before computing or writing anything.
     output::require_output_directory(out_dir);
     Checked sections = checked_sections(scene, ndfs, variants);
-    std::vector<SamplingRow> sampling = sampling_rows(scene, ndfs);
+    // Under MPI every rank has checked the scene alike; the ranks trace the walk section together, rank 0 alone does
+    // the rest (the other ranks wait meanwhile, asleep).
+    if (mpi::size() > 1) mpi::set_talking();
+    std::vector<SamplingRow> sampling = mpi::rank() == 0 ? sampling_rows(scene, ndfs) : std::vector<SamplingRow>{};
     const Walks walks = traced_walks(sections.walk, scene.walk);
+    if (mpi::rank() != 0) return 0;
 
     // Everything but the cache is written to a stage and moved into out_dir when complete (staged_directory.hpp).
     output::StagedDirectory staged(out_dir, "report");

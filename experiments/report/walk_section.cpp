@@ -1,12 +1,14 @@
 #include "walk_section.hpp"
 
 #include <cmath>
+#include <optional>
 #include <cstdio>
 #include <fstream>
 #include <thread>
 #include <variant>
 
-#include "dispatch.hpp"
+#include "cell_jobs.hpp"
+#include "progress.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
 #include "smithlab/spec.hpp"
@@ -67,26 +69,30 @@ std::vector<WalkCell> walk_cells(const Scene::Walk& w, const NdfRegistry& regist
 }
 
 std::vector<WalkResult> trace_walk_cells(const std::vector<WalkCell>& cells, const Scene::Walk& w) {
-    std::vector<WalkResult> out;
-    walk::CellRequest r;
-    r.seed = w.seed;
-    r.walks = w.walks;
-    // Cells of one NDF are consecutive (walk_cells): each microsurface is built once.
-    for (std::size_t first = 0; first < cells.size();) {
-        std::size_t last = first;
-        while (last < cells.size() && cells[last].ndf.spec() == cells[first].ndf.spec()) ++last;
-        std::fprintf(stderr, "report: walk [%zu/%zu cells] %s\n", last, cells.size(), cells[first].ndf.spec().c_str());
-        trace::with_microsurface(cells[first].ndf, {}, [&](const auto& ms) {
-            for (std::size_t i = first; i < last; ++i) {
-                r.wi = direction_from_deg(cells[i].theta_i, 0.0);
-                r.cell = cells[i].index;
-                const walk::CellResult c = std::visit([&](const auto& m) { return walk::trace_cell(ms, m, r); }, cells[i].material);
-                out.push_back({cells[i], by_order(c.albedo), c.albedo.events, c.albedo.capped});
-            }
-            return 0;
-        });
-        first = last;
+    std::vector<trace::CellJob> jobs;
+    for (const WalkCell& c : cells) {
+        walk::CellRequest r;
+        r.seed = w.seed;
+        r.walks = w.walks;
+        r.wi = direction_from_deg(c.theta_i, 0.0);
+        r.cell = c.index;
+        jobs.push_back({c.ndf, c.material, r,
+                        "walk cell " + std::to_string(c.index) + " (" + c.ndf.spec() + ", " +
+                            walk::format_material(c.material) + ", theta_i " + format_shortest(c.theta_i) + ")"});
     }
+    std::vector<std::optional<WalkResult>> done(cells.size());
+    trace::CellJobs plan(std::move(jobs), {}, [&](std::size_t i, walk::CellPartial&& total) {
+        done[i] = WalkResult{cells[i], by_order(total.albedo), total.albedo.events, total.albedo.capped};
+    });
+    output::ProgressLine progress;
+    cluster::run_jobs(plan, 0, [&](std::uint64_t merged, std::uint64_t all) {
+        progress(static_cast<double>(merged) / static_cast<double>(all), [&] {
+            return "report: walk section, " + std::to_string(merged * 100 / all) + "% of the walks";
+        });
+    });
+    std::vector<WalkResult> out;  // rank 0's; none on the others
+    for (std::optional<WalkResult>& r : done)
+        if (r) out.push_back(std::move(*r));
     return out;
 }
 
@@ -105,6 +111,8 @@ void write_walk_section(const std::vector<WalkResult>& results, const Scene::Wal
     }
 
     std::ofstream md(dir / "report.md", std::ios::app);
+    const std::string threads = std::to_string(std::max(1u, std::thread::hardware_concurrency())) + " threads",
+                      where = mpi::size() > 1 ? std::to_string(mpi::size()) + " MPI ranks x " + threads : threads;
     char head[1200];
     std::snprintf(head, sizeof head,
                   "\n## Multiple scattering: albedo by scattering order (path-traced)\n\nThe Smith microsurface traced "
@@ -113,11 +121,10 @@ void write_walk_section(const std::vector<WalkResult>& results, const Scene::Wal
                   "energy that leaves after exactly 1, 2, 3 and 4 or more facet events, %lld walks per cell (seed %llu), "
                   "+- one standard error. **lost** = orders 2+: the energy a single-scattering BRDF drops, 1 - order 1 "
                   "where the facets absorb nothing (mirror, lambert(albedo=1)), what a multiple-scattering model must "
-                  "restore. %zu cells, %.3g walks, %.3g events (%lld walks capped), %.1f s on %u threads.\n\n"
+                  "restore. %zu cells, %.3g walks, %.3g events (%lld walks capped), %.1f s on %s.\n\n"
                   "![](walk_albedo.png)\n\n",
                   static_cast<long long>(w.walks), w.seed, results.size(), static_cast<double>(results.size()) * w.walks,
-                  static_cast<double>(events), static_cast<long long>(capped), seconds,
-                  std::max(1u, std::thread::hardware_concurrency()));
+                  static_cast<double>(events), static_cast<long long>(capped), seconds, where.c_str());
     md << head << "| ndf | material | alpha | theta_i | order 1 | order 2 | order 3 | order 4+ | lost (2+) | all |\n"
        << "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const WalkResult& r : results) {

@@ -45,7 +45,8 @@ struct WalkResult {
 // table may refuse it): an input_error "FILE:LINE: walk.ndf.family ..." naming the NDF. Nothing is traced.
 std::vector<WalkCell> walk_cells(const Scene::Walk& walk, const NdfRegistry& ndfs);
 
-// Traces every cell (walk.walks walks each, on all cores; the same bits for any number of threads).
+// Traces every cell (walk.walks walks each, on all cores; the same bits for any number of threads), under MPI on
+// every rank (cluster/block_jobs.hpp): rank 0 gets the results, the other ranks none.
 std::vector<WalkResult> trace_walk_cells(const std::vector<WalkCell>& cells, const Scene::Walk& walk);
 
 // DIR/walk_albedo.csv (ndf,family,gamma,alpha,material,theta_i,order,albedo,stderr,walks; order as walk_orders)
