@@ -37,7 +37,7 @@ wait $launched
 rc=$?
 [ $rc -ne 0 ] || fail "the run exited 0 after rank 2 was killed"
 grep -q "stopped by a signal" killed.log || fail "rank 0 said nothing when mpirun stopped it"
-grep -q "rank 2 was tracing cell [0-9]* (ggx(alpha=" killed.log || fail "rank 0 did not name the cell rank 2 held"
+grep -q "rank 2 held cell [0-9]* (ggx(alpha=" killed.log || fail "rank 0 did not name the cell rank 2 held"
 [ $openmpi = 0 ] || grep -q "process rank 2" killed.log || fail "mpirun did not name rank 2"
 kept=$(cells out)
 [ "$kept" -ge 3 ] && [ "$kept" -lt 24 ] || fail "$kept of 24 cell files kept (want some, not all)"

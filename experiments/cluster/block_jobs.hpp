@@ -14,9 +14,9 @@
 //   void finish(std::size_t j, Partial&& total);        rank 0: job j's total, all its blocks merged (jobs in any order)
 //   std::string name(std::size_t j) const;              "cell 12 (ggx(alpha=0.3), mirror, theta_i 45)", for messages
 //
-// Rank 0's threads trace blocks one at a time; its main thread serves the other ranks. Another rank asks for as many
-// blocks of one job as it has threads, traces them, and sends their partials back with its next request (one
-// request outstanding per rank, a few hundred bytes to a few hundred kB each way per chunk). Blocks go out in
+// Rank 0's threads trace blocks one at a time; its main thread serves the other ranks. Another rank asks for a chunk
+// (blocks of one job, a whole number per thread, about 20 ms of its work), traces it on its threads, and sends the
+// partials back with its next request (two requests out per rank, so the next chunk is there when one is done). Blocks go out in
 // (job, block) order as threads and ranks free up, so cells that differ in cost by orders of magnitude balance
 // themselves, and rank 0 merges each job's partials in block order whoever traced them. Without MPI, or on one
 // rank, this is the threads of one process.
@@ -51,10 +51,13 @@ namespace smithlab::cluster {
 template <class Partial>
 using Runner = std::function<Partial(std::size_t job, std::uint64_t block)>;
 
-// What rank 0 saw: its messages and bytes both ways, and the blocks traced here and by the other ranks.
+// What rank 0 saw: its messages and bytes both ways, the blocks traced here and by the other ranks, the time its
+// main thread spent serving messages (reading, merging, answering: the dispatcher's cost), and the time finishing
+// jobs took (the plan's finish: writing cell files and caches), on whichever of its threads.
 struct Traffic {
     std::int64_t messages = 0, bytes = 0;
     std::uint64_t blocks_here = 0, blocks_elsewhere = 0;
+    double serving_seconds = 0.0, finishing_seconds = 0.0;
 };
 
 namespace detail {
@@ -98,8 +101,24 @@ inline std::string block_range(const Chunk& c) {
 
 inline std::uint64_t thread_count(unsigned threads) { return threads ? threads : std::max(1u, std::thread::hardware_concurrency()); }
 
-// A rank other than 0: asks rank 0 for chunks, traces each on its threads, and sends the partials back with its next
-// request, until rank 0 answers with an empty chunk.
+// Requests each other rank keeps out: while it traces one chunk, the answer to its next request is on its way, so it
+// never waits for rank 0 between chunks.
+constexpr int depth = 2;
+
+// A chunk is a whole number of rounds (one block per thread of the rank), as many as fill about `chunk_seconds` at the
+// pace of the rank's last chunk, at most max_rounds: rank 0 answers a message per chunk, not per block (a cheap
+// cell's block of 4096 walks takes ~0.2 ms, a message ~5 us of rank 0's time), and the run's tail stays short.
+constexpr double chunk_seconds = 0.02;
+constexpr std::uint64_t max_rounds = 64;
+
+inline std::uint64_t rounds_for(double seconds, std::uint64_t rounds) {
+    if (!(seconds > 0.0)) return max_rounds;
+    const double pace = seconds / static_cast<double>(rounds);
+    return std::clamp<std::uint64_t>(static_cast<std::uint64_t>(chunk_seconds / pace), 1, max_rounds);
+}
+
+// A rank other than 0: asks rank 0 for chunks, traces each on its threads, and sends the partials back as its next
+// request, until rank 0 has answered each of its `depth` request chains with an empty chunk.
 template <class Plan>
 void serve(const Plan& plan, unsigned threads) {
     RunnerCache<Plan> cache(plan);
@@ -107,13 +126,17 @@ void serve(const Plan& plan, unsigned threads) {
     std::vector<char> msg;
     mpi::put(msg, capacity);
     mpi::put(msg, std::int64_t{0});
-    for (;;) {
-        mpi::send(0, tag_result, msg);
+    for (int k = 0; k < depth; ++k) mpi::send(0, tag_result, msg);
+    for (int ended = 0; ended < depth;) {
         const std::vector<char> bytes = mpi::recv(0, tag_work);
         mpi::Reader in(bytes);
         const Chunk c{static_cast<std::size_t>(in.get<std::int64_t>()), in.get<std::uint64_t>(), in.get<std::uint64_t>()};
-        if (c.count == 0) return;
+        if (c.count == 0) {
+            ++ended;
+            continue;
+        }
         std::vector<typename Plan::Partial> parts(c.count);
+        const auto t0 = std::chrono::steady_clock::now();
         try {
             const auto run = cache.get(c.job);
             walk::reduce_blocks(
@@ -131,9 +154,11 @@ void serve(const Plan& plan, unsigned threads) {
         msg.clear();
         mpi::put(msg, capacity);
         mpi::put(msg, static_cast<std::int64_t>(c.count));
+        mpi::put(msg, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
         mpi::put(msg, static_cast<std::int64_t>(c.job));
         mpi::put(msg, c.first);
         for (const auto& p : parts) plan.put(msg, p);
+        mpi::send(0, tag_result, msg);
     }
 }
 
@@ -154,7 +179,8 @@ Traffic run_jobs(Plan& plan, unsigned threads, Progress&& progress) {
     std::uint64_t all = 0;
     for (std::size_t j = 0; j < n; ++j) all += blocks[j] = plan.blocks(j);
 
-    std::mutex lock;  // everything below, and the plan's finish
+    std::mutex lock;         // everything below but the plan's finish
+    std::mutex finish_lock;  // the plan's finish (writing a cell file): one at a time, not holding up the hand-out
     std::size_t job = 0;
     std::uint64_t next = 0, merged = 0;
     std::map<std::size_t, walk::InOrder<Partial>> open;
@@ -172,15 +198,24 @@ Traffic run_jobs(Plan& plan, unsigned threads, Progress&& progress) {
         next += c.count;
         return c;
     };
-    auto deliver = [&](std::size_t j, std::uint64_t b, Partial&& p) {  // under lock
+    // Under lock; a job whose last block this was goes to `done`, for finish() once the lock is released.
+    auto deliver = [&](std::size_t j, std::uint64_t b, Partial&& p, std::vector<std::pair<std::size_t, Partial>>& done) {
         const auto it = open.find(j);
         if (it == open.end() || b >= blocks[j]) throw std::runtime_error("cluster: a block that was not handed out came back");
         merged += it->second.add(b, std::move(p), [&](Partial& t, const Partial& q) { plan.merge(t, q); });
         if (it->second.merged() == blocks[j]) {
-            plan.finish(j, std::move(it->second.total()));
+            done.emplace_back(j, std::move(it->second.total()));
             open.erase(it);
         }
         progress(merged, all);
+    };
+    auto finish = [&](std::vector<std::pair<std::size_t, Partial>>& done) {  // not under lock
+        if (done.empty()) return;
+        const std::lock_guard guard(finish_lock);
+        const auto t0 = std::chrono::steady_clock::now();
+        for (auto& [j, total] : done) plan.finish(j, std::move(total));
+        done.clear();
+        traffic.finishing_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     };
     auto fail = [&] {
         const std::lock_guard guard(lock);
@@ -200,9 +235,13 @@ Traffic run_jobs(Plan& plan, unsigned threads, Progress&& progress) {
                 }
                 if (c.count == 0) return;
                 Partial p = (*cache.get(c.job))(c.job, c.first);
-                const std::lock_guard guard(lock);
-                deliver(c.job, c.first, std::move(p));
-                ++traffic.blocks_here;
+                std::vector<std::pair<std::size_t, Partial>> done;
+                {
+                    const std::lock_guard guard(lock);
+                    deliver(c.job, c.first, std::move(p), done);
+                    ++traffic.blocks_here;
+                }
+                finish(done);
             }
         } catch (...) {
             fail();
@@ -217,30 +256,33 @@ Traffic run_jobs(Plan& plan, unsigned threads, Progress&& progress) {
     } else {
         // What each rank holds, for the note a signal prints (mpirun's SIGTERM when a rank died).
         std::mutex ledger_lock;
-        std::vector<detail::Chunk> held(static_cast<std::size_t>(mpi::size()), detail::Chunk{n, 0, 0});
+        std::vector<std::vector<detail::Chunk>> held(static_cast<std::size_t>(mpi::size()));
         const output::SignalNote note([&] {
             const std::lock_guard guard(ledger_lock);
             std::string text = "smithlab: stopped by a signal (mpirun sends one when a rank dies, and names it)";
             for (std::size_t r = 1; r < held.size(); ++r)
-                if (held[r].count > 0)
-                    text += "\n  rank " + std::to_string(r) + " was tracing " + plan.name(held[r].job) + ", " +
-                            detail::block_range(held[r]);
+                for (const detail::Chunk& c : held[r])
+                    text += "\n  rank " + std::to_string(r) + " held " + plan.name(c.job) + ", " + detail::block_range(c);
             return text + "\n  the jobs finished so far are kept: the same command resumes from them";
         });
+        std::vector<std::uint64_t> rounds(static_cast<std::size_t>(mpi::size()), 1);  // per rank, its next chunk's
+        std::vector<std::pair<std::size_t, Partial>> finished;
         std::vector<std::jthread> pool;
         for (std::uint64_t t = 0; t < detail::thread_count(threads); ++t) pool.emplace_back(trace_here);
         try {
-            for (int active = mpi::size() - 1; active > 0 && !failed;) {
+            for (int active = detail::depth * (mpi::size() - 1); active > 0 && !failed;) {
                 std::optional<mpi::Message> m = mpi::try_recv_any();
                 if (!m) {
-                    std::this_thread::sleep_for(std::chrono::microseconds(50));
+                    std::this_thread::sleep_for(std::chrono::microseconds(100));
                     continue;
                 }
+                const auto served_from = std::chrono::steady_clock::now();
                 if (m->tag != detail::tag_result) throw std::runtime_error("cluster: an unexpected message from rank " + std::to_string(m->from));
                 mpi::Reader in(m->bytes);
                 const auto capacity = in.get<std::int64_t>(), count = in.get<std::int64_t>();
                 std::vector<char> reply;
                 {
+                    const double seconds = count > 0 ? in.get<double>() : 0.0;
                     const std::size_t j = count > 0 ? static_cast<std::size_t>(in.get<std::int64_t>()) : 0;
                     const std::uint64_t first = count > 0 ? in.get<std::uint64_t>() : 0;
                     if (count > 0 && j >= n) throw std::runtime_error("cluster: a job out of range from rank " + std::to_string(m->from));
@@ -248,19 +290,27 @@ Traffic run_jobs(Plan& plan, unsigned threads, Progress&& progress) {
                     for (std::int64_t k = 0; k < count; ++k) parts.push_back(plan.get(in, j));
                     if (!in.done()) throw std::runtime_error("cluster: a longer message than its contents from rank " + std::to_string(m->from));
                     const std::lock_guard guard(lock);
-                    for (std::int64_t k = 0; k < count; ++k) deliver(j, first + static_cast<std::uint64_t>(k), std::move(parts[static_cast<std::size_t>(k)]));
+                    for (std::int64_t k = 0; k < count; ++k)
+                        deliver(j, first + static_cast<std::uint64_t>(k), std::move(parts[static_cast<std::size_t>(k)]), finished);
                     traffic.blocks_elsewhere += static_cast<std::uint64_t>(count);
-                    const detail::Chunk c = take(static_cast<std::uint64_t>(std::max<std::int64_t>(capacity, 1)));
+                    const auto threads_there = static_cast<std::uint64_t>(std::max<std::int64_t>(capacity, 1));
+                    std::uint64_t& r = rounds[static_cast<std::size_t>(m->from)];
+                    if (count > 0) r = detail::rounds_for(seconds, (static_cast<std::uint64_t>(count) + threads_there - 1) / threads_there);
+                    const detail::Chunk c = take(r * threads_there);
                     mpi::put(reply, static_cast<std::int64_t>(c.job));
                     mpi::put(reply, c.first);
                     mpi::put(reply, c.count);
                     if (c.count == 0) --active;
                     const std::lock_guard ledger(ledger_lock);
-                    held[static_cast<std::size_t>(m->from)] = c;
+                    std::vector<detail::Chunk>& h = held[static_cast<std::size_t>(m->from)];
+                    if (count > 0) std::erase_if(h, [&](const detail::Chunk& d) { return d.job == j && d.first == first; });
+                    if (c.count > 0) h.push_back(c);
                 }
-                mpi::send(m->from, detail::tag_work, reply);
+                mpi::send(m->from, detail::tag_work, reply);  // before finishing jobs: the rank goes on at once
                 traffic.messages += 2;
                 traffic.bytes += static_cast<std::int64_t>(m->bytes.size() + reply.size());
+                traffic.serving_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - served_from).count();
+                finish(finished);
             }
         } catch (...) {
             fail();

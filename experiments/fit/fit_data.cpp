@@ -244,7 +244,8 @@ AnyNdf make_ndf(const NdfRegistry& registry, const FitFamily& f, double alpha) {
 }
 
 std::vector<NdfData> gather(const FitScene& s, const NdfRegistry& registry, const fs::path& cache, unsigned threads,
-                            const ProgressFn& progress, const std::function<void()>& checked) {
+                            const ProgressFn& progress, const std::function<void()>& checked,
+                            cluster::Traffic* traffic) {
     const walk::Material material = walk::parse_material(s.material);
     struct Plan {
         NdfData data;
@@ -293,11 +294,13 @@ std::vector<NdfData> gather(const FitScene& s, const NdfRegistry& registry, cons
         const Place& at = places[j];
         write_group(at.file, at.key, plans[at.n].groups[at.i], total);
         plans[at.n].data.traced += static_cast<std::int64_t>(total.size());
+        plans[at.n].data.walks_traced += static_cast<std::int64_t>(total.size()) * plans[at.n].groups[at.i].walks;
         moments[j] = std::move(total);
     });
-    cluster::run_jobs(plan, threads, [&](std::uint64_t merged, std::uint64_t all) {
+    const cluster::Traffic t = cluster::run_jobs(plan, threads, [&](std::uint64_t merged, std::uint64_t all) {
         if (progress) progress(static_cast<std::int64_t>(merged), static_cast<std::int64_t>(all));
     });
+    if (traffic) *traffic = t;
     if (mpi::rank() != 0) return {};
 
     for (std::size_t j = 0; j < places.size(); ++j) {

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "block_jobs.hpp"
 #include "fit_scene.hpp"
 #include "smithlab/fit/dataset.hpp"
 #include "smithlab/registry.hpp"
@@ -26,6 +27,7 @@ struct NdfData {
     std::vector<fit::DataPoint> training, validation, albedo;
     std::vector<double> validation_alphas;  // the geometric midpoints of training.alpha
     std::int64_t traced = 0, reused = 0;    // points
+    std::int64_t walks_traced = 0;
 };
 
 // What tracing has done so far, for progress lines: points traced of points to trace.
@@ -35,8 +37,10 @@ using ProgressFn = std::function<void(std::int64_t done, std::int64_t total)>;
 // FILE:LINE: ndf.family) and builds each microsurface, then calls checked(), then reads the cache and traces what it
 // lacks. Under MPI every rank calls it and traces (cluster/block_jobs.hpp); rank 0 reads and writes the cache and
 // gets the data, the other ranks nothing. progress(points traced, points to trace).
+// traffic: what rank 0 communicated, when given.
 std::vector<NdfData> gather(const FitScene& scene, const NdfRegistry& registry, const std::filesystem::path& cache,
-                            unsigned threads, const ProgressFn& progress, const std::function<void()>& checked = {});
+                            unsigned threads, const ProgressFn& progress, const std::function<void()>& checked = {},
+                            cluster::Traffic* traffic = nullptr);
 
 // A point to trace: its directions (the albedo estimator reads wi only) and its random stream.
 struct TracePoint {

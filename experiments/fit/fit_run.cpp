@@ -16,6 +16,7 @@
 #include "fit_shaders.hpp"
 #include "fit_trends.hpp"
 #include "mpi_world.hpp"
+#include "traffic_json.hpp"
 #include "progress.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
@@ -240,21 +241,32 @@ FitSummary run_fit(const FitScene& s, const std::string& source, const std::stri
     };
     // Under MPI every rank checks the scene's NDFs alike, then the ranks trace together; rank 0 alone owns OUT, and
     // fits, measures and draws (the pictures' few traces on its threads) while the others are done.
-    Results r{gather(s, registry, out / "cache", threads, progress,
-                     [&] {
-                         if (mpi::size() > 1) mpi::set_talking();
-                         if (mpi::rank() == 0) stage.emplace(out, "fit");  // refuses a bad OUT before any work
-                     }),
+    cluster::Traffic traffic;
+    Results r{gather(
+                  s, registry, out / "cache", threads, progress,
+                  [&] {
+                      if (mpi::size() > 1) mpi::set_talking();
+                      if (mpi::rank() == 0) stage.emplace(out, "fit");  // refuses a bad OUT before any work
+                  },
+                  &traffic),
               {}};
     if (mpi::rank() != 0) return {};
+    const double trace_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     FitSummary sum;
+    std::int64_t walks = 0;
     for (const NdfData& d : r.data) {
+        walks += d.walks_traced;
         sum.traced += d.traced;
         sum.reused += d.reused;
         r.fits.push_back(fit_all(s, d));
         for (const Measured& m : r.fits.back()) sum.errors.push_back(measure(s, d, m));
     }
     sum.points = sum.traced + sum.reused;
+    if (sum.traced)
+        std::fprintf(stderr, "fit: traced %lld points, %.4g walks, in %.1f s (%.0f ns a walk on %u threads x %d ranks)\n",
+                     static_cast<long long>(sum.traced), static_cast<double>(walks), trace_seconds,
+                     trace_seconds / static_cast<double>(walks) * 1e9,
+                     threads ? threads : std::max(1u, std::thread::hardware_concurrency()), mpi::size());
     write_constants(stage->path(), r);
     write_errors(stage->path(), sum.errors);
     write_values(stage->path() / "training.csv", s, r, false);
@@ -268,9 +280,9 @@ FitSummary run_fit(const FitScene& s, const std::string& source, const std::stri
     nlohmann::ordered_json meta = {
         {"title", s.title},      {"source", source},         {"scene", scene_text},
         {"version", SMITHLAB_VERSION}, {"seed", s.seed},      {"points_traced", sum.traced},
-        {"points_reused", sum.reused}, {"seconds", sum.seconds},
+        {"points_reused", sum.reused}, {"walks_traced", walks}, {"seconds", sum.seconds}, {"trace_seconds", trace_seconds},
         {"threads", threads ? threads : std::max(1u, std::thread::hardware_concurrency())}};
-    if (mpi::size() > 1) meta["mpi"] = {{"ranks", mpi::size()}};  // and threads is per rank
+    if (mpi::size() > 1) meta["mpi"] = cluster::traffic_json(traffic);  // and threads is per rank
     output::write_file(stage->path() / "meta.json", meta.dump(2) + "\n");
     stage->publish();
     return sum;

@@ -17,6 +17,7 @@
 
 #include "cell_jobs.hpp"
 #include "mpi_world.hpp"
+#include "traffic_json.hpp"
 #include "output_file.hpp"
 #include "progress.hpp"
 #include "smithlab/csv.hpp"
@@ -313,12 +314,7 @@ RunSummary run_scene(const TraceScene& s, const std::string& source, const NdfRe
                                  {"bounces", sum.bounces},
                                  {"seconds", sum.seconds},
                                  {"threads", threads ? threads : std::max(1u, std::thread::hardware_concurrency())}};
-    if (distributed)  // threads is then per rank; what rank 0 sent and received, for `bench_mpi`
-        meta["mpi"] = {{"ranks", mpi::size()},
-                       {"messages", traffic.messages},
-                       {"bytes", traffic.bytes},
-                       {"blocks_rank0", traffic.blocks_here},
-                       {"blocks_other_ranks", traffic.blocks_elsewhere}};
+    if (distributed) meta["mpi"] = cluster::traffic_json(traffic);  // threads is then per rank
     std::ofstream(stage->path() / "meta.json") << meta.dump(2) << "\n";
     stage->publish();
     return sum;
