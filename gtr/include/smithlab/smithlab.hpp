@@ -16,6 +16,7 @@
 #include "smithlab/sampling.hpp"
 #include "smithlab/smith.hpp"
 #include "smithlab/spec.hpp"
+#include "smithlab/student_t.hpp"
 #include "smithlab/variants.hpp"
 #include "smithlab/gtr/closed_forms.hpp"
 #include "smithlab/gtr/gtr.hpp"

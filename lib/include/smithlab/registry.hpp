@@ -58,7 +58,7 @@ private:
     std::vector<std::pair<NdfInfo, Factory>> entries_;
 };
 
-// ggx, beckmann, blinn.
+// ggx, beckmann, blinn, student.
 void register_core_ndfs(NdfRegistry& registry);
 
 }  // namespace smithlab
