@@ -4,7 +4,8 @@
 //
 // scaling/np1_vs_np2: each iteration runs the scene at np = 1 and then at np = 2 (--threads 1 per rank, on this
 // 2-core machine), so the ratio comes from one run on one machine; its time is np = 2's wall time. Counters:
-//   speedup (np1 / np2 wall time), efficiency (speedup / 2), np1_s, np2_s,
+//   speedup (np1 / np2 wall time, mpirun's start and MPI_Init included: ~0.3 s each), efficiency (speedup / 2), np1_s,
+//   np2_s, speedup_in_run (the ratio of the runs' own seconds, meta.json: the division of work alone),
 //   bytes_per_cell, messages_per_cell (rank 0's, both ways, from meta.json), rank0_serving_us (rank 0's main thread,
 //   per message: reading, merging, writing finished cells, answering), rank0_share (the blocks rank 0's own thread
 //   traced, of all).
@@ -50,12 +51,19 @@ double trace_scene(int np, const fs::path& out) {
 }
 
 void scaling(benchmark::State& state) {
-    double np1 = 0.0, np2 = 0.0, bytes = 0.0, messages = 0.0, serving = 0.0, rank0 = 0.0, cells = 0.0;
+    double np1 = 0.0, np2 = 0.0, traced1 = 0.0, traced2 = 0.0, bytes = 0.0, messages = 0.0, serving = 0.0, rank0 = 0.0,
+           cells = 0.0;
+    auto seconds_of = [](const fs::path& dir) {
+        std::ifstream in(dir / "meta.json");
+        return nlohmann::json::parse(in).at("seconds").get<double>();
+    };
     for (auto _ : state) {
         const double t1 = trace_scene(1, work / "np1"), t2 = trace_scene(2, work / "np2");
         state.SetIterationTime(t2);
         np1 += t1;
         np2 += t2;
+        traced1 += seconds_of(work / "np1");
+        traced2 += seconds_of(work / "np2");
         std::ifstream in(work / "np2" / "meta.json");
         const nlohmann::json meta = nlohmann::json::parse(in);
         const nlohmann::json& mpi = meta.at("mpi");
@@ -71,6 +79,7 @@ void scaling(benchmark::State& state) {
     state.counters["efficiency"] = np1 / np2 / 2.0;
     state.counters["np1_s"] = np1 / n;
     state.counters["np2_s"] = np2 / n;
+    state.counters["speedup_in_run"] = traced1 / traced2;
     state.counters["bytes_per_cell"] = bytes / n / cells;
     state.counters["messages_per_cell"] = messages / n / cells;
     state.counters["rank0_serving_us"] = serving / n * 1e6;

@@ -16,10 +16,10 @@
 //
 // Rank 0's threads trace blocks one at a time; its main thread serves the other ranks. Another rank asks for a chunk
 // (blocks of one job, a whole number per thread, about 20 ms of its work), traces it on its threads, and sends the
-// partials back with its next request (two requests out per rank, so the next chunk is there when one is done). Blocks go out in
-// (job, block) order as threads and ranks free up, so cells that differ in cost by orders of magnitude balance
-// themselves, and rank 0 merges each job's partials in block order whoever traced them. Without MPI, or on one
-// rank, this is the threads of one process.
+// partials back with its next request (two requests out per rank, so the next chunk is there when one is done).
+// Blocks go out in (job, block) order as threads and ranks free up, so cells that differ in cost by orders of
+// magnitude balance themselves, and rank 0 merges each job's partials in block order whoever traced them. Without
+// MPI, or on one rank, this is the threads of one process.
 //
 // When mpirun ends the job because a rank died, it sends rank 0 SIGTERM: rank 0 prints which rank held which job
 // (output::SignalNote) before it ends; mpirun's own message names the rank that died. A block that throws on
@@ -270,12 +270,18 @@ Traffic run_jobs(Plan& plan, unsigned threads, Progress&& progress) {
         std::vector<std::jthread> pool;
         for (std::uint64_t t = 0; t < detail::thread_count(threads); ++t) pool.emplace_back(trace_here);
         try {
+            // Polls, sleeping between probes: 20 us after a message, doubling to 1 ms while none comes (the other
+            // ranks hold their next chunk already, so an answer 1 ms late costs them nothing, and rank 0's own
+            // threads keep the cores).
+            std::chrono::microseconds nap{20};
             for (int active = detail::depth * (mpi::size() - 1); active > 0 && !failed;) {
                 std::optional<mpi::Message> m = mpi::try_recv_any();
                 if (!m) {
-                    std::this_thread::sleep_for(std::chrono::microseconds(100));
+                    std::this_thread::sleep_for(nap);
+                    nap = std::min(2 * nap, std::chrono::microseconds(1000));
                     continue;
                 }
+                nap = std::chrono::microseconds(20);
                 const auto served_from = std::chrono::steady_clock::now();
                 if (m->tag != detail::tag_result) throw std::runtime_error("cluster: an unexpected message from rank " + std::to_string(m->from));
                 mpi::Reader in(m->bytes);

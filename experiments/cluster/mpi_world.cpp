@@ -1,5 +1,6 @@
 #include "mpi_world.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <thread>
@@ -89,10 +90,12 @@ std::optional<Message> try_recv_any() {
 std::vector<char> recv(int from, int tag) {
     if (!started) no_mpi();
     MPI_Status st;
+    std::chrono::microseconds nap{10};  // doubling to 1 ms: prompt when the message is near, idle when it is not
     for (int arrived = 0;;) {
         MPI_Iprobe(from, tag, MPI_COMM_WORLD, &arrived, &st);
         if (arrived) return receive(st);
-        std::this_thread::sleep_for(std::chrono::microseconds(20));
+        std::this_thread::sleep_for(nap);
+        nap = std::min(2 * nap, std::chrono::microseconds(1000));
     }
 }
 

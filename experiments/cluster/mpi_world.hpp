@@ -32,8 +32,8 @@ bool talking();
 void abort(int code);
 
 // Point-to-point messages of bytes with a tag. send blocks until the bytes are handed over; recv waits for the
-// message (polling every few tens of microseconds, not spinning a core: a waiting rank leaves its cores to the
-// others); try_recv_any takes a message from any rank if one has arrived.
+// message (polling, with sleeps from 10 us doubling to 1 ms, not spinning a core: a waiting rank leaves its cores
+// to the others); try_recv_any takes a message from any rank if one has arrived.
 void send(int to, int tag, const std::vector<char>& bytes);
 struct Message {
     int from = 0, tag = 0;
