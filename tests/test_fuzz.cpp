@@ -457,7 +457,7 @@ namespace {
 
 const std::vector<std::string>& method_names() {
     static const std::vector<std::string> names = [] {
-        std::vector<std::string> v = {"auto", "closed", "spline", "quadrature", "quadrature2d"};
+        std::vector<std::string> v = {"auto", "closed", "spline", "quadrature", "quadrature2d", "fixed"};
         const smithlab::VariantRegistry variants = smithlab::builtin_variants();
         for (const auto& variant : variants.list()) v.push_back(variant.name);
         return v;

@@ -7,7 +7,7 @@ using namespace smithlab;
 
 TEST_CASE("limits mu = 0 and mu = inf, for every method", "[smith]") {
     const auto ndf = gtr(0.3, 1.5);
-    for (Method m : {Method::automatic, Method::spline, Method::quadrature, Method::quadrature2d}) {
+    for (Method m : {Method::automatic, Method::spline, Method::quadrature, Method::quadrature2d, Method::fixed}) {
         const LambdaOptions o{.method = m};
         CHECK(Lambda(ndf, 0.0, o) == INFINITY);
         CHECK(G1(ndf, 0.0, o) == 0.0);

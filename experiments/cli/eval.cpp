@@ -196,7 +196,8 @@ int run_eval(const EvalArgs& a, const NdfRegistry& registry, const VariantRegist
               << "mu      " << format_g17(mu) << "\n"
               << "method  " << a.method;
     const Method m = o.options.method;
-    if (!o.variant && (m == Method::quadrature || m == Method::quadrature2d || (m == Method::automatic && !ndf.has_closed_Lambda())))
+    if (!o.variant && (m == Method::quadrature || m == Method::quadrature2d || m == Method::fixed ||
+                       (m == Method::automatic && !ndf.has_closed_Lambda())))
         std::cout << " (" << a.backend << ", relative tolerance " << a.tolerance << ")";
     std::cout << "\nlambda  " << format_g17(lambda) << "\ng1      " << format_g17(g1) << "\n";
     return exit_ok;

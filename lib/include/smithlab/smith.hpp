@@ -12,6 +12,7 @@
 #include <string_view>
 
 #include "smithlab/errors.hpp"
+#include "smithlab/lambda_fixed.hpp"
 #include "smithlab/named.hpp"
 #include "smithlab/ndf.hpp"
 #include "smithlab/quadrature.hpp"
@@ -19,14 +20,19 @@
 namespace smithlab {
 
 // How Lambda is computed. `automatic` takes the closed form when the NDF has one, else 1D quadrature.
-enum class Method { automatic, closed, spline, quadrature, quadrature2d };
+// `fixed` is the reduced 1D integral by fixed Gauss-Kronrod panels on precomputed nodes (lambda_fixed.hpp), the
+// adaptive route (--backend) where its error estimate misses the tolerance.
+enum class Method { automatic, closed, spline, quadrature, quadrature2d, fixed };
 // The methods by name (`smithlab eval --method NAME`) and what `--list-methods` says of each.
-inline constexpr std::array<Named<Method>, 5> method_names = {{
+inline constexpr std::array<Named<Method>, 6> method_names = {{
     {Method::automatic, "auto", "closed form where the NDF has one, else 1D quadrature (--backend, --tolerance)"},
     {Method::closed, "closed", "the NDF's closed form (GGX, Beckmann, GTR at integer gamma <= 31)"},
     {Method::spline, "spline", "the NDF's spline (GTR: Dimov's natural cubic spline of G1 in gamma)"},
     {Method::quadrature, "quadrature", "reduced 1D quadrature (--backend, --tolerance)"},
     {Method::quadrature2d, "quadrature2d", "nested 2D quadrature P22 -> P2 -> Lambda (--backend, --tolerance)"},
+    {Method::fixed, "fixed",
+     "reduced 1D quadrature by fixed Gauss-Kronrod panels (precomputed nodes), the --backend route where its error "
+     "estimate misses --tolerance"},
 }};
 Method parse_method(std::string_view name);  // throws input_error naming the unknown method
 std::string_view to_string(Method m);
@@ -161,6 +167,17 @@ double Lambda_1d(const N& ndf, double mu, const QuadratureOptions& opts = {}) {
     }, opts);
 }
 
+// The same integral by the fixed rule of lambda_fixed.hpp (Gauss-Kronrod 10-21 panels in u = acosh(r/mu) on
+// precomputed nodes, with QUADPACK's error estimate): where that estimate meets opts.tolerance its value, else
+// Lambda_1d's by opts.backend. Same domain as Lambda_1d.
+template <Ndf N>
+double Lambda_fixed(const N& ndf, double mu, const QuadratureOptions& opts = {}) {
+    require_quadrature_domain(ndf, mu, "fixed");
+    require(opts.tolerance > 0.0 && opts.tolerance < 1.0, "quadrature tolerance", "in (0, 1)", opts.tolerance);
+    const FixedLambda r = Lambda_fixed_rule(ndf, mu, opts.tolerance);
+    return r.converged ? r.Lambda : Lambda_1d(ndf, mu, opts);
+}
+
 namespace detail {
 // Lambda at a finite mu > 0 by opts.method.
 template <Ndf N>
@@ -182,6 +199,8 @@ double Lambda_by_method(const N& ndf, double mu, const LambdaOptions& opts) {
             return Lambda_1d(ndf, mu, q);
         case Method::quadrature2d:
             return Lambda_2d(ndf, mu, q);
+        case Method::fixed:
+            return Lambda_fixed(ndf, mu, q);
     }
     if constexpr (HasClosedLambda<N>) return ndf.Lambda(mu);
     throw input_error("this ndf has no closed-form Lambda");

@@ -1,0 +1,215 @@
+// smithlab/lambda_fixed.hpp -- the reduced 1D Lambda by fixed Gauss-Kronrod panels with precomputed nodes.
+//
+// The integral (smith.hpp, Lambda_1d; README, "The math, and where it comes from")
+//   Lambda(mu) = (2/mu) integral_mu^inf f(r^2) r (sqrt(r^2 - mu^2) - mu acos(mu/r)) dr,   f(r^2) = P22,
+// in u = acosh(r/mu) (r = mu cosh u, sqrt(r^2 - mu^2) = mu sinh u, acos(mu/r) = gd u = atan(sinh u)):
+//   Lambda(mu) = 2 integral_0^inf f(r^2) r^2 H(u) du,   H(u) = sinh u (sinh u - gd u) / cosh u.
+// (This is the t-form of smith.hpp with sec t = cosh u, t = gd u.) Two facts make a fixed rule work:
+//  - every geometric factor depends on u alone, not on mu: on fixed nodes u_k, r_k^2 = mu^2 cosh^2 u_k, and
+//    Lambda = 2 sum_k w_k H(u_k) r_k^2 f(r_k^2) is a dot product with precomputed coefficients, one f per node;
+//  - u ~ ln(2 r/mu) for large u: a feature of f at a slope scale r_f (the core r0 = 1/sqrt(pi P22(0)), a GTR tail
+//    bending at r ~ 1) sits at u ~ ln(2 r_f/mu) and is O(1) wide there, whatever mu is; the singularities of the
+//    integrand nearest to the real u-axis (GGX's pole r^2 = -alpha^2, GTR's branch point r^2 = -1, gd's at
+//    u = i pi/2) are pi/2 away from it. The integrand is even in u (sinh u - gd u is odd), zero like u^4 at u = 0.
+// Rule: Gauss-Kronrod 10-21 (Kronrod 1965; the nodes and weights are Boost.Math's gauss_kronrod<double, 21>) on
+// panels [2j, 2j + 2] of u, j < J, then the tail u >= 2J in s = pi/2 - t = atan(1/sinh u) in [0, s_J] (the t-form
+// of smith.hpp, where a power tail of f is smooth: f ~ r^-4 makes the integrand tend to a constant as s -> 0),
+// with J the first panel edge beyond ln(2 max(r0, 1)/mu) + 1, at least 1. Panels of width 2 put the nearest
+// singularity at Bernstein ellipse parameter rho = 3.4: 10-point Gauss ~ rho^-20 = 2e-11, 21-point Kronrod
+// ~ rho^-32 = 1e-17 of a panel's size (Trefethen 2008, "Is Gauss quadrature better than Clenshaw-Curtis?", thm 4.5).
+// Error estimate per piece: QUADPACK's QK21 (Piessens, de Doncker-Kapenga, Ueberhuber, Kahaner 1983, sec. 3.2),
+//   E = resasc min(1, (200 |K - G| / resasc)^1.5), at least 50 eps resabs;
+// accepted when the sum of E over the pieces is <= tolerance x |Lambda| (tests/test_quadrature.cpp checks that E
+// bounds the error). Otherwise the worst piece is bisected (nodes computed on the fly), up to max_pieces pieces;
+// if that does not converge either, the answer is the adaptive route Lambda_1d (opts.backend) -- the stiff corners
+// (Beckmann at mu/alpha >~ 5, heavy Student-t tails) take that path.
+// No allocation, no exceptions, no virtual call in the loop: it is a template on the concrete NDF.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <numbers>
+
+#include "smithlab/ndf.hpp"
+#include "smithlab/quadrature.hpp"
+
+namespace smithlab {
+
+namespace detail {
+double tan_minus_x(double t, double tan_t);  // smith.cpp
+}
+
+namespace fixed_rule {
+
+inline constexpr int nodes = 31;           // Gauss-Kronrod 15-31
+inline constexpr double panel_width = 2.0;  // in u
+inline constexpr int max_panels = 32;      // u up to 64: mu down to ~1e-27 max(r0, 1)
+inline constexpr int max_pieces = 64;      // the bisection's limit before the adaptive route takes over
+
+// One piece of the integral on fixed nodes: r_k^2 = mu^2 S[k]; the piece is sum_k W[k] r_k^2 f(r_k^2) (Kronrod) and
+// sum_k V[k] r_k^2 f(r_k^2) (Gauss, V = 0 on the Kronrod-only nodes); W and V include the node's H and the
+// piece's half-width.
+struct Piece {
+    std::array<double, nodes> S, W, V;
+};
+
+struct Tables {
+    std::array<Piece, max_panels> panel;    // u in [2j, 2j + 2]
+    std::array<Piece, max_panels + 1> tail;  // u >= 2J, in s = atan(1 / sinh(2J)) .. 0
+    std::array<double, max_panels + 1> s_edge;  // s at u = 2J
+};
+
+// Built once, at the first call (a function-local static: thread-safe, C++11 [stmt.dcl]/4), ~20 us.
+const Tables& tables();
+
+// The Gauss-Kronrod 10-21 nodes on [-1, 1] (all 21), Kronrod weights and Gauss weights (0 on Kronrod-only nodes).
+struct Rule {
+    std::array<double, nodes> x, wk, wg;
+};
+const Rule& rule();
+
+// H for a node given in u, or in s (the tail): the integrand's geometric factor times its Jacobian, and r^2/mu^2.
+struct Geometry {
+    double S, H;
+};
+inline Geometry at_u(double u) {
+    const double sh = std::sinh(u), ch = std::cosh(u);
+    return {ch * ch, sh * detail::tan_minus_x(std::atan(sh), sh) / ch};
+}
+inline Geometry at_s(double s) {
+    // t = pi/2 - s: sec^2 t = 1/sin^2 s, tan t = cos s / sin s; the t-form's sec^2 t carries r^2 = mu^2 sec^2 t.
+    const double sn = std::sin(s), tn = std::cos(s) / sn;
+    return {1.0 / (sn * sn), tn * detail::tan_minus_x(std::numbers::pi / 2 - s, tn)};
+}
+
+// The result of one piece: Kronrod value, QUADPACK error estimate.
+struct PieceResult {
+    double K, E;
+};
+
+// QUADPACK QK21's error estimate from the Kronrod and Gauss sums, resabs = sum w|g| and resasc = sum w|g - K/len|.
+inline double quadpack_error(double K, double G, double resabs, double resasc) {
+    constexpr double eps = 2.220446049250313e-16;
+    double e = std::abs(K - G);
+    if (resasc != 0.0 && e != 0.0) e = resasc * std::fmin(1.0, std::pow(200.0 * e / resasc, 1.5));
+    return std::fmax(e, 50.0 * eps * resabs);
+}
+
+// A piece from its 21 integrand values g_k = r_k^2 f(r_k^2), the Kronrod and Gauss weights (with H and the
+// half-width) and the half-width h.
+inline PieceResult combine(const std::array<double, nodes>& g, const std::array<double, nodes>& W,
+                           const std::array<double, nodes>& V, double h) {
+    double K = 0.0, G = 0.0, resabs = 0.0;
+    for (int k = 0; k < nodes; ++k) {
+        K += W[k] * g[k];
+        G += V[k] * g[k];
+        resabs += W[k] * std::abs(g[k]);
+    }
+    // QUADPACK's resasc: integral of |F - mean F| by the Kronrod rule, F = W g / wk the integrand itself.
+    const Rule& R = rule();
+    const double mean = K / (2.0 * h);
+    double resasc = 0.0;
+    for (int k = 0; k < nodes; ++k) resasc += std::abs(W[k] * g[k] - R.wk[k] * h * mean);
+    return {K, quadpack_error(K, G, resabs, resasc)};
+}
+
+template <Ndf N>
+PieceResult eval_piece(const N& ndf, double mu2, const Piece& p, double h) {
+    std::array<double, nodes> g;
+    for (int k = 0; k < nodes; ++k) {
+        const double r2 = mu2 * p.S[k];
+        const double f = slope_density(ndf, r2);
+        g[k] = f == 0.0 ? 0.0 : f * r2;
+    }
+    return combine(g, p.W, p.V, h);
+}
+
+// A piece [a, b] of u (in_s false) or of s (in_s true), nodes computed here (the bisection).
+template <Ndf N>
+PieceResult eval_interval(const N& ndf, double mu2, double a, double b, bool in_s) {
+    const Rule& R = rule();
+    const double c = 0.5 * (a + b), h = 0.5 * (b - a);
+    std::array<double, nodes> g, W, V;
+    for (int k = 0; k < nodes; ++k) {
+        const double x = c + h * R.x[k];
+        const Geometry geo = in_s ? at_s(x) : at_u(x);
+        const double r2 = mu2 * geo.S;
+        const double f = r2 < INFINITY ? slope_density(ndf, r2) : 0.0;
+        g[k] = f == 0.0 ? 0.0 : f * r2;
+        W[k] = R.wk[k] * h * geo.H;
+        V[k] = R.wg[k] * h * geo.H;
+    }
+    return combine(g, W, V, h);
+}
+
+}  // namespace fixed_rule
+
+// Lambda / 2 with its error estimate, as the fixed rule found it, and how: the number of slope-density evaluations
+// and whether the estimate met the tolerance (else Lambda_fixed returns the adaptive route's value).
+struct FixedLambda {
+    double Lambda = 0.0;     // the fixed rule's value (also when it did not converge)
+    double error = 0.0;      // its estimated absolute error (sum of QUADPACK's per-piece estimates)
+    int evaluations = 0;     // slope-density evaluations
+    bool converged = false;  // error <= tolerance x Lambda
+};
+
+// The fixed rule alone (no fallback), for mu in (0, inf) with the scale r0 = 1/sqrt(pi P22(0)) (1 if P22(0) is 0
+// or not finite). Lambda_fixed() below validates the domain and falls back; this is the core, for tests and benches.
+template <Ndf N>
+FixedLambda Lambda_fixed_rule(const N& ndf, double mu, double tolerance = 1e-12) {
+    using namespace fixed_rule;
+    const Tables& T = tables();
+    const double P22_0 = slope_density(ndf, 0.0);
+    const double r0 = P22_0 > 0.0 && P22_0 < INFINITY ? 1.0 / std::sqrt(std::numbers::pi * P22_0) : 1.0;
+    const double u_end = std::log(2.0 * std::fmax(r0, 1.0) / mu) + 1.0;
+    FixedLambda out;
+    out.evaluations = 1;
+    if (!(u_end <= max_panels * panel_width)) return out;  // beyond the tables: not converged
+    const int J = u_end <= panel_width ? 1 : static_cast<int>(std::ceil(u_end / panel_width));
+    const double mu2 = mu * mu, h_u = 0.5 * panel_width;
+
+    // The pieces: J panels and the tail, then the bisection's halves. a, b in u (or s for the tail).
+    struct Open {
+        double a, b, K, E;
+        bool in_s;
+    };
+    std::array<Open, max_pieces> pieces;
+    int n = 0;
+    double K = 0.0, E = 0.0;
+    for (int j = 0; j < J; ++j) {
+        const PieceResult r = eval_piece(ndf, mu2, T.panel[j], h_u);
+        pieces[n++] = {j * panel_width, (j + 1) * panel_width, r.K, r.E, false};
+        K += r.K;
+        E += r.E;
+    }
+    {
+        const PieceResult r = eval_piece(ndf, mu2, T.tail[J], 0.5 * T.s_edge[J]);
+        pieces[n++] = {0.0, T.s_edge[J], r.K, r.E, true};
+        K += r.K;
+        E += r.E;
+    }
+    out.evaluations += nodes * n;
+    // Bisect the worst piece until the estimate meets the tolerance or the pieces run out.
+    while (!(E <= tolerance * std::abs(K)) && n < max_pieces) {
+        int worst = 0;
+        for (int i = 1; i < n; ++i)
+            if (pieces[i].E > pieces[worst].E) worst = i;
+        const Open p = pieces[worst];
+        const double m = 0.5 * (p.a + p.b);
+        const PieceResult left = eval_interval(ndf, mu2, p.a, m, p.in_s);
+        const PieceResult right = eval_interval(ndf, mu2, m, p.b, p.in_s);
+        out.evaluations += 2 * nodes;
+        pieces[worst] = {p.a, m, left.K, left.E, p.in_s};
+        pieces[n++] = {m, p.b, right.K, right.E, p.in_s};
+        // Re-summed, not updated, so that round-off does not accumulate over the bisections.
+        K = 0.0;
+        E = 0.0;
+        for (int i = 0; i < n; ++i) K += pieces[i].K, E += pieces[i].E;
+    }
+    out.Lambda = 2.0 * K;
+    out.error = 2.0 * E;
+    out.converged = E <= tolerance * std::abs(K) && std::isfinite(K);
+    return out;
+}
+
+}  // namespace smithlab
