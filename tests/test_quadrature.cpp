@@ -193,3 +193,127 @@ TEST_CASE("GSL integrations in four threads at once: the results of one thread, 
     for (std::thread& t : threads) t.join();
     CHECK(differ == 0);
 }
+
+// ---- the fixed rule (lambda_fixed.hpp, method `fixed`) -------------------------------------------------------------
+// Gauss-Kronrod 15-31 panels on precomputed nodes. What is checked: (1) its relative error in Lambda against
+// independent references -- the closed forms (GGX, Beckmann, GTR at integer gamma, each checked at 50 digits
+// elsewhere) and the 50-digit r-form reference (GTR at real gamma, Blinn-Phong); (2) that its error estimate is a
+// bound: |error| <= E + the rounding floor of the integrand, 4 eps (1 + (mu/alpha)^2 for Beckmann, whose
+// exp(-r^2/alpha^2) carries a relative error ~(r/alpha)^2 eps at the integrand's bulk, r ~ mu); (3) that
+// Lambda_fixed (the rule, or the adaptive route where E misses the tolerance) is within 1e-12 everywhere, stiff
+// corners included.
+namespace {
+
+struct FixedWorst {
+    double err = 0.0, bound_ratio = 0.0;
+    std::string where;
+    int not_converged = 0, evaluations_max = 0;
+};
+
+// One point: the rule alone (error, estimate, convergence) and the public route.
+template <class N>
+void check_fixed(const N& ndf, double mu, double want, double floor, const std::string& what, FixedWorst& w,
+                 bool must_converge = true) {
+    const smithlab::FixedLambda r = smithlab::Lambda_fixed_rule(ndf, mu, 1e-12);
+    const double got = smithlab::Lambda_fixed(ndf, mu, {Backend::gsl, 1e-12});
+    INFO(what << " mu=" << mu << " want=" << want << " rule=" << r.Lambda << " E=" << r.error
+              << " converged=" << r.converged << " evaluations=" << r.evaluations << " Lambda_fixed=" << got);
+    if (!(want >= DBL_MIN)) return;  // underflowed: nothing relative to check
+    const double err = std::abs(got - want) / want;
+    CHECK(err <= 1e-12);
+    if (must_converge) CHECK(r.converged);
+    if (!r.converged) {
+        ++w.not_converged;
+        return;
+    }
+    const double rule_err = std::abs(r.Lambda - want) / want, bound = r.error / want + floor;
+    CHECK(rule_err <= bound);
+    w.evaluations_max = std::max(w.evaluations_max, r.evaluations);
+    w.bound_ratio = std::max(w.bound_ratio, rule_err / bound);
+    if (rule_err > w.err) w.err = rule_err, w.where = what + " mu=" + std::to_string(mu);
+}
+
+constexpr double eps4 = 4.0 * DBL_EPSILON;
+
+}  // namespace
+
+TEST_CASE("fixed rule: Lambda of GGX, Beckmann and GTR at integer gamma against their closed forms", "[quadrature][fixed]") {
+    FixedWorst w;
+    const std::vector<double> mus = {1e-12, 1e-8, 1e-6, 1e-4, 1e-3, 0.01, 0.05, 0.1, 0.3, 0.7, 1.0, 2.0,
+                                     5.0, 10.0, 100.0, 1e4, 1e8, 1e12};
+    for (double a : {1e-4, 1e-3, 0.01, 0.1, 0.3, 0.5, 0.999999, 1.0})
+        for (double mu : mus) {
+            const auto g = smithlab::ggx(a);
+            check_fixed(g, mu, g.Lambda(mu), eps4, "ggx(" + std::to_string(a) + ")", w);
+            const auto b = smithlab::beckmann(a);
+            // Beckmann's Lambda ~ exp(-(mu/alpha)^2) underflows past mu/alpha ~ 27.
+            if (mu / a <= 25.0)
+                check_fixed(b, mu, b.Lambda(mu), eps4 * (1.0 + (mu / a) * (mu / a)), "beckmann(" + std::to_string(a) + ")", w);
+        }
+    for (int gamma : {0, 1, 3, 4, 7, 12})
+        for (double a : {1e-4, 0.01, 0.3, 1.0})
+            for (double mu : mus) {
+                const auto n = smithlab::gtr(a, gamma);
+                check_fixed(n, mu, smithlab::Lambda(n, mu, {.method = smithlab::Method::closed}), eps4,
+                            "gtr(" + std::to_string(a) + ", " + std::to_string(gamma) + ")", w);
+            }
+    WARN("fixed rule against closed forms: worst relative error " << w.err << " at " << w.where << "; worst error / bound "
+         << w.bound_ratio << "; most evaluations " << w.evaluations_max);
+}
+
+TEST_CASE("fixed rule: GTR at real gamma and Blinn-Phong against the 50-digit reference", "[quadrature][fixed]") {
+    FixedWorst w;
+    for (double gamma : {0.0, 0.5, 1.0 - 1e-9, 1.0 + 1e-9, 1.5, 2.5, 10.0})
+        for (double a : {1e-4, 0.05, 1.0})
+            for (double mu : {1e-8, 1e-4, 0.03, 1.0, 30.0, 1e4})
+                check_fixed(smithlab::gtr(a, gamma), mu, static_cast<double>(ref::Lambda(ref::gtr(a, gamma), mu)), eps4,
+                            "gtr(" + std::to_string(a) + ", " + std::to_string(gamma) + ")", w);
+    for (double n : {1.0, 20.0, 1000.0})
+        for (double mu : {1e-4, 0.03, 1.0, 30.0, 1e4})
+            check_fixed(smithlab::blinn(n), mu, static_cast<double>(ref::Lambda(ref::blinn(n), mu)), eps4,
+                        "blinn(" + std::to_string(n) + ")", w);
+    WARN("fixed rule against the 50-digit reference: worst relative error " << w.err << " at " << w.where
+         << "; worst error / bound " << w.bound_ratio << "; most evaluations " << w.evaluations_max);
+}
+
+TEST_CASE("fixed rule: the stiff corners, where the estimate sends it to bisection or to the adaptive route",
+          "[quadrature][fixed]") {
+    FixedWorst w;
+    // Blinn-Phong n -> 0: a slope tail r^-(4 + n), whose s^n at the tail's end point no polynomial rule follows.
+    for (double n : {0.01, 0.1, 0.5})
+        for (double mu : {1e-4, 1.0, 1e4})
+            check_fixed(smithlab::blinn(n), mu, static_cast<double>(ref::Lambda(ref::blinn(n), mu)), eps4,
+                        "blinn(" + std::to_string(n) + ")", w, false);
+    // Beckmann far from the pole (mu/alpha up to 25: a Gaussian in u of width alpha/mu at u = 0); GGX and Beckmann
+    // with mu ~ alpha at alpha = 1e-4; D-only NDFs (slopes through cos theta_m).
+    for (double ratio : {5.0, 12.0, 25.0}) {
+        const auto b = smithlab::beckmann(1e-4);
+        check_fixed(b, ratio * 1e-4, b.Lambda(ratio * 1e-4), eps4 * (1.0 + ratio * ratio), "beckmann(1e-4)", w, false);
+    }
+    for (double mu : {1e-5, 1e-4, 2e-4}) {
+        const auto g = smithlab::ggx(1e-4);
+        check_fixed(g, mu, g.Lambda(mu), eps4, "ggx(1e-4)", w);
+    }
+    for (double mu : {1e-3, 1.0, 1e3}) {
+        const smithlab::DOnly<smithlab::Ggx> d{smithlab::ggx(0.2)};
+        check_fixed(d, mu, smithlab::ggx(0.2).Lambda(mu), 1e-14, "D-only ggx(0.2)", w);
+    }
+    WARN("fixed rule at the stiff corners: worst relative error of the converged rule " << w.err << " at " << w.where
+         << "; not converged (adaptive route) " << w.not_converged);
+}
+
+TEST_CASE("fixed rule: method 'fixed' through Lambda/G1, and the domain of the quadrature methods", "[quadrature][fixed]") {
+    const auto n = smithlab::gtr(0.3, 1.5);
+    const smithlab::LambdaOptions fixed{.method = smithlab::Method::fixed};
+    const double q = smithlab::Lambda(n, 0.7, {.method = smithlab::Method::quadrature, .tolerance = 1e-13});
+    CHECK(std::abs(smithlab::Lambda(n, 0.7, fixed) - q) <= 1e-12 * q);
+    CHECK(smithlab::Lambda(n, -0.7, fixed) == -1.0 - smithlab::Lambda(n, 0.7, fixed));
+    CHECK(smithlab::Lambda(n, 0.0, fixed) == INFINITY);
+    CHECK(smithlab::G1(n, INFINITY, fixed) == 1.0);
+    CHECK_THROWS_AS(smithlab::Lambda_fixed(n, 1e-13), smithlab::input_error);
+    CHECK_THROWS_AS(smithlab::Lambda_fixed(n, 1e13), smithlab::input_error);
+    CHECK_THROWS_AS(smithlab::Lambda_fixed(n, 1.0, {Backend::gsl, 0.0}), smithlab::input_error);
+    // Type-erased NDFs take the same rule.
+    const smithlab::AnyNdf any = smithlab::builtin_registry().make("gtr(alpha=0.3, gamma=1.5)");
+    CHECK(std::abs(smithlab::Lambda_fixed(any, 0.7) - q) <= 1e-12 * q);
+}

@@ -11,12 +11,15 @@
 //    bending at r ~ 1) sits at u ~ ln(2 r_f/mu) and is O(1) wide there, whatever mu is; the singularities of the
 //    integrand nearest to the real u-axis (GGX's pole r^2 = -alpha^2, GTR's branch point r^2 = -1, gd's at
 //    u = i pi/2) are pi/2 away from it. The integrand is even in u (sinh u - gd u is odd), zero like u^4 at u = 0.
-// Rule: Gauss-Kronrod 10-21 (Kronrod 1965; the nodes and weights are Boost.Math's gauss_kronrod<double, 21>) on
+// Rule: Gauss-Kronrod 15-31 (Kronrod 1965; the nodes and weights are Boost.Math's gauss_kronrod<double, 31>) on
 // panels [2j, 2j + 2] of u, j < J, then the tail u >= 2J in s = pi/2 - t = atan(1/sinh u) in [0, s_J] (the t-form
 // of smith.hpp, where a power tail of f is smooth: f ~ r^-4 makes the integrand tend to a constant as s -> 0),
-// with J the first panel edge beyond ln(2 max(r0, 1)/mu) + 1, at least 1. Panels of width 2 put the nearest
-// singularity at Bernstein ellipse parameter rho = 3.4: 10-point Gauss ~ rho^-20 = 2e-11, 21-point Kronrod
-// ~ rho^-32 = 1e-17 of a panel's size (Trefethen 2008, "Is Gauss quadrature better than Clenshaw-Curtis?", thm 4.5).
+// with J the first panel edge beyond ln(2 max(r0, 1)/mu) + 1, at least 1 (the tail then starts past every feature,
+// and its nearest singularity, at s ~ i mu/r_f, is >= 2.7 tail lengths from its end point). A panel of width 2 puts a
+// singularity pi/2 off its middle at Bernstein ellipse parameter rho = 3.4 (Trefethen 2008, "Is Gauss quadrature
+// better than Clenshaw-Curtis?", thm 4.5: error ~ rho^-2n): 15-point Gauss ~ 1e-16, 31-point Kronrod far below, of
+// the panel's size. (Gauss-Kronrod 10-21 on these panels stopped ~1e-9 short of QUADPACK's test at u ~ 0, where the
+// triple pole of 1/cosh^3 sits, and bisected there.)
 // Error estimate per piece: QUADPACK's QK21 (Piessens, de Doncker-Kapenga, Ueberhuber, Kahaner 1983, sec. 3.2),
 //   E = resasc min(1, (200 |K - G| / resasc)^1.5), at least 50 eps resabs;
 // accepted when the sum of E over the pieces is <= tolerance x |Lambda| (tests/test_quadrature.cpp checks that E
@@ -144,7 +147,7 @@ PieceResult eval_interval(const N& ndf, double mu2, double a, double b, bool in_
 
 }  // namespace fixed_rule
 
-// Lambda / 2 with its error estimate, as the fixed rule found it, and how: the number of slope-density evaluations
+// Lambda with its error estimate, as the fixed rule found it, and how: the number of slope-density evaluations
 // and whether the estimate met the tolerance (else Lambda_fixed returns the adaptive route's value).
 struct FixedLambda {
     double Lambda = 0.0;     // the fixed rule's value (also when it did not converge)
