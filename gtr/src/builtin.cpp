@@ -1,3 +1,4 @@
+#include "smithlab/gtr/family.hpp"
 #include "smithlab/gtr/gtr.hpp"
 #include "smithlab/gtr/interpolants.hpp"
 #include "smithlab/gtr/registry.hpp"
@@ -22,6 +23,19 @@ void register_gtr_variants(VariantRegistry& r) {
                return [a = n.param("alpha"), g = n.param("gamma")](double mu) {
                    return Lambda_of_interpolated_G1(G1_gtr_dimov_spline(a, g, mu));
                };
+           },
+           LambdaRoute::other});
+    // One table for the whole family (family.hpp): no per-NDF work, alpha in [1e-4, 1], gamma in [0, 20].
+    r.add({"family", "one table over (alpha, gamma, mu) for every GTR, built once; the exact route where a cell misses 2e-6 (family.hpp)",
+           [](const AnyNdf& n) {
+               if (n.family() != "gtr") return false;
+               const double a = n.param("alpha"), g = n.param("gamma");
+               return a >= GtrFamily::alpha_min && a <= 1.0 && g >= 0.0 && g <= GtrFamily::gamma_max;
+           },
+           [](const AnyNdf& n) -> LambdaOfMu {
+               const double a = n.param("alpha"), g = n.param("gamma");
+               require_gtr_family_domain(a, g);
+               return [&t = GtrFamily::get(), a, g](double mu) { return t.Lambda_up(a, g, mu); };
            },
            LambdaRoute::other});
     using K = GammaInterpolant::Kind;

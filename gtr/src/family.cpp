@@ -1,0 +1,212 @@
+// The GTR family table (family.hpp): its grid, its knots from the exact routes, and its per-cell error estimates.
+#include "smithlab/gtr/family.hpp"
+
+#include <chrono>
+#include <thread>
+
+#include "smithlab/errors.hpp"
+#include "smithlab/gtr/closed_forms.hpp"
+#include "smithlab/gtr/gtr.hpp"
+
+namespace smithlab {
+
+namespace {
+
+// The grid. a = ln alpha: 32 uniform knots on [ln 1e-4, 0]. xi = ln(mu/alpha): uniform on [-9, 19], step 0.14; below,
+// R(mu_lo) / (mu_lo Lambda) ~ (mu_lo / alpha)^2 gamma < 1e-6; above, mu >= 1.8e4 alpha, past every GTR's second slope
+// scale (1 and sqrt(gamma), gtr.hpp), where Lambda ~ C mu^-2.
+constexpr int n_a = 32;
+constexpr double xi_lo = -9.0, xi_hi = 19.0, h_xi = 0.14;
+
+std::vector<double> gamma_knots() {
+    std::vector<double> g;
+    for (int i = 0; i < 8; ++i) g.push_back(0.1 * i);           // 0 .. 0.7
+    for (int i = 0; i <= 28; ++i) g.push_back(0.8 + 0.05 * i);  // 0.8 .. 2.2: the regime changes at 1 and 1.5
+    for (int i = 1; i <= 18; ++i) g.push_back(2.2 + 0.1 * i);   // 2.3 .. 4
+    for (double x = 4.0 * 1.1; x < GtrFamily::gamma_max * 0.97; x *= 1.1) g.push_back(x);
+    g.push_back(GtrFamily::gamma_max);
+    for (double& x : g) x = std::round(x * 1e12) / 1e12;  // 0.1 * 3 is 0.30000000000000004: keep integers exact
+    return g;
+}
+
+// max over v in [c, c+1] of |prod_m (v - x_m)| for the window's 4 knots x_m (sampled: the estimate's constant).
+double nodal_max(const double* x, double lo, double hi) {
+    double m = 0.0;
+    for (int k = 0; k <= 32; ++k) {
+        const double v = lo + (hi - lo) * k / 32.0;
+        m = std::max(m, std::abs((v - x[0]) * (v - x[1]) * (v - x[2]) * (v - x[3])));
+    }
+    return m;
+}
+
+// |f[x0..x4]|, the fourth divided difference (= f''''/24 at some point of [x0, x4]).
+double divided4(const double* x, const double* f) {
+    double d[5];
+    for (int i = 0; i < 5; ++i) d[i] = f[i];
+    for (int k = 1; k <= 4; ++k)
+        for (int i = 0; i + k <= 4; ++i) d[i] = (d[i + 1] - d[i]) / (x[i + k] - x[i]);
+    return std::abs(d[0]);
+}
+
+}  // namespace
+
+double GtrFamily::exact_f(double alpha, double gamma, double xi) {
+    const double mu = alpha * std::exp(xi);
+    const Gtr n = gtr(alpha, gamma);
+    const double L = gtr_has_closed_form(gamma) ? n.Lambda(mu) : Lambda_1d(n, mu, {Backend::gsl, 1e-11});
+    return std::log(mu * L);
+}
+
+const GtrFamily& GtrFamily::get() {
+    static const GtrFamily table;
+    return table;
+}
+
+GtrFamily::GtrFamily() {
+    const auto t0 = std::chrono::steady_clock::now();
+    g_ = gamma_knots();
+    na_ = n_a;
+    ng_ = static_cast<int>(g_.size());
+    nx_ = static_cast<int>(std::lround((xi_hi - xi_lo) / h_xi)) + 1;
+    a0_ = std::log(alpha_min);
+    const double h_a = -a0_ / (na_ - 1);
+    inv_ha_ = 1.0 / h_a;
+    xi_lo_ = xi_lo;
+    xi_hi_ = xi_lo + h_xi * (nx_ - 1);
+    inv_hx_ = 1.0 / h_xi;
+    mu_lo_rel_ = std::exp(xi_lo_);
+    for (int s = 0; s + 3 < ng_; ++s) {
+        std::array<double, 4> c{};
+        for (int k = 0; k < 4; ++k) {
+            double den = 1.0;
+            for (int m = 0; m < 4; ++m)
+                if (m != k) den *= g_[s + k] - g_[s + m];
+            c[k] = 1.0 / den;
+        }
+        g_inv_den_.push_back(c);
+    }
+    for (int k = 0; k <= 100 * static_cast<int>(gamma_max); ++k) {
+        const double gm = k / 100.0;
+        int j = 0;
+        while (j < ng_ - 2 && g_[j + 1] <= gm) ++j;
+        gamma_lut_.push_back(static_cast<std::uint16_t>(j));
+    }
+
+    // The knots, by the exact routes, on every core.
+    auto alpha_of = [&](int i) { return i == na_ - 1 ? 1.0 : std::exp(a0_ + h_a * i); };
+    f_.assign(static_cast<std::size_t>(na_) * ng_ * nx_, 0.0);
+    const int rows = na_ * ng_;
+    const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+    std::vector<std::thread> pool;
+    for (unsigned t = 0; t < threads; ++t)
+        pool.emplace_back([&, t] {
+            for (int r = static_cast<int>(t); r < rows; r += static_cast<int>(threads)) {
+                const int i = r / ng_, j = r % ng_;
+                double* row = &f_[static_cast<std::size_t>(r) * nx_];
+                for (int k = 0; k < nx_; ++k) row[k] = exact_f(alpha_of(i), g_[j], xi_lo_ + h_xi * k);
+            }
+        });
+    for (std::thread& th : pool) th.join();
+
+    // Per-axis fourth divided differences at every 5-knot window, then each cell's estimate.
+    auto at = [&](int i, int j, int k) { return f_[(static_cast<std::size_t>(i) * ng_ + j) * nx_ + k]; };
+    std::vector<double> ua(na_), ux(nx_);
+    for (int i = 0; i < na_; ++i) ua[i] = i;
+    for (int k = 0; k < nx_; ++k) ux[k] = k;
+    auto index = [](int s, int j, int k, int nj, int nk) { return (static_cast<std::size_t>(s) * nj + j) * nk + k; };
+    std::vector<double> Da((na_ - 4) * static_cast<std::size_t>(ng_) * nx_), Dg((ng_ - 4) * static_cast<std::size_t>(na_) * nx_),
+        Dx((nx_ - 4) * static_cast<std::size_t>(na_) * ng_);
+    for (int i = 0; i < na_; ++i)
+        for (int j = 0; j < ng_; ++j)
+            for (int k = 0; k < nx_; ++k) {
+                double v[5];
+                if (i + 4 < na_) {
+                    for (int m = 0; m < 5; ++m) v[m] = at(i + m, j, k);
+                    Da[index(i, j, k, ng_, nx_)] = divided4(&ua[i], v);
+                }
+                if (j + 4 < ng_) {
+                    for (int m = 0; m < 5; ++m) v[m] = at(i, j + m, k);
+                    Dg[index(j, i, k, na_, nx_)] = divided4(&g_[j], v);
+                }
+                if (k + 4 < nx_) {
+                    for (int m = 0; m < 5; ++m) v[m] = at(i, j, k + m);
+                    Dx[index(k, i, j, na_, ng_)] = divided4(&ux[k], v);
+                }
+            }
+    auto window = [](int c, int n) { return std::clamp(c - 1, 0, n - 4); };
+    // the windows of 5 that hold the cell's 4-knot stencil s..s+3, or overlap it by 4
+    auto windows5 = [](int s, int n, int& lo, int& hi) {
+        lo = std::max(s - 1, 0);
+        hi = std::min(s, n - 5);
+    };
+    std::vector<double> Pa(na_ - 1), Pg(ng_ - 1), Px(nx_ - 1);
+    for (int c = 0; c < na_ - 1; ++c) Pa[c] = nodal_max(&ua[window(c, na_)], c, c + 1);
+    for (int c = 0; c < ng_ - 1; ++c) Pg[c] = nodal_max(&g_[window(c, ng_)], g_[c], g_[c + 1]);
+    for (int c = 0; c < nx_ - 1; ++c) Px[c] = nodal_max(&ux[window(c, nx_)], c, c + 1);
+    const std::size_t cells = static_cast<std::size_t>(na_ - 1) * (ng_ - 1) * (nx_ - 1);
+    ok_.assign((cells + 63) / 64, 0);
+    std::size_t n_ok = 0;
+    double worst_ok = 0.0;
+    for (int ca = 0; ca < na_ - 1; ++ca)
+        for (int cg = 0; cg < ng_ - 1; ++cg)
+            for (int cx = 0; cx < nx_ - 1; ++cx) {
+                const int sa = window(ca, na_), sg = window(cg, ng_), sx = window(cx, nx_);
+                int lo, hi;
+                double ea = 0.0, eg = 0.0, ex = 0.0;
+                windows5(sa, na_, lo, hi);
+                for (int s = lo; s <= hi; ++s)
+                    for (int j = sg; j < sg + 4; ++j)
+                        for (int k = sx; k < sx + 4; ++k) ea = std::max(ea, Da[index(s, j, k, ng_, nx_)]);
+                windows5(sg, ng_, lo, hi);
+                for (int s = lo; s <= hi; ++s)
+                    for (int i = sa; i < sa + 4; ++i)
+                        for (int k = sx; k < sx + 4; ++k) eg = std::max(eg, Dg[index(s, i, k, na_, nx_)]);
+                windows5(sx, nx_, lo, hi);
+                for (int s = lo; s <= hi; ++s)
+                    for (int i = sa; i < sa + 4; ++i)
+                        for (int j = sg; j < sg + 4; ++j) ex = std::max(ex, Dx[index(s, i, j, na_, ng_)]);
+                // error of 4-point Lagrange: |prod (v - x_m)| |f''''| / 24 = |prod| |f[x0..x4]| (divided difference);
+                // tensor product: the Lebesgue constants of the other axes (<= 1.6) and the estimate's own slack: x2
+                const double est = 2.0 * (Pa[ca] * ea + Pg[cg] * eg + Px[cx] * ex);
+                const std::size_t cell = (static_cast<std::size_t>(ca) * (ng_ - 1) + cg) * (nx_ - 1) + cx;
+                if (est <= tolerance) {
+                    ok_[cell >> 6] |= std::uint64_t{1} << (cell & 63);
+                    ++n_ok;
+                    worst_ok = std::max(worst_ok, est);
+                }
+            }
+    coverage_ = static_cast<double>(n_ok) / static_cast<double>(cells);
+
+    // The asymptotes' bounds. Below: R(mu_lo) <= (g(mu_1) - g(mu_lo)) / (mu_1/mu_lo - 1), g = mu Lambda + mu/2
+    // (lambda_table.hpp), relative to mu Lambda. Above: the secant slope of the last interval against -1.
+    double lo_bound = 0.0, hi_bound = 0.0;
+    for (int i = 0; i < na_; ++i)
+        for (int j = 0; j < ng_; ++j) {
+            const double al = alpha_of(i), m0 = al * std::exp(xi_lo_), m1 = al * std::exp(xi_lo_ + h_xi);
+            const double g0 = std::exp(at(i, j, 0)) + 0.5 * m0, g1 = std::exp(at(i, j, 1)) + 0.5 * m1;
+            lo_bound = std::max(lo_bound, std::max(0.0, g1 - g0) / std::expm1(h_xi) / std::exp(at(i, j, 0)));
+            const double s = (at(i, j, nx_ - 1) - at(i, j, nx_ - 2)) / h_xi;
+            hi_bound = std::max(hi_bound, std::abs(s + 1.0));
+        }
+    error_bound_ = std::max({worst_ok, 1e-10}) + std::max(lo_bound, hi_bound);
+    build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void require_gtr_family_domain(double alpha, double gamma) {
+    require(alpha >= GtrFamily::alpha_min && alpha <= 1.0, "family: alpha", "in [1e-4, 1]", alpha);
+    require(gamma >= 0.0 && gamma <= GtrFamily::gamma_max, "family: gamma", "in [0, 20]", gamma);
+}
+
+double Lambda_gtr_family(double alpha, double gamma, double mu, Downward downward) {
+    require_gtr_family_domain(alpha, gamma);
+    const GtrFamily& t = GtrFamily::get();
+    return Lambda_at(mu, downward, [&](double m) { return t.Lambda_up(alpha, gamma, m); });
+}
+
+double G1_gtr_family(double alpha, double gamma, double mu) {
+    require_gtr_family_domain(alpha, gamma);
+    const GtrFamily& t = GtrFamily::get();
+    return 1.0 / (1.0 + Lambda_of_abs(mu, [&](double m) { return t.Lambda_up(alpha, gamma, m); }));
+}
+
+}  // namespace smithlab
