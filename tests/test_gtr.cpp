@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 #include <smithlab/smithlab.hpp>
 
+#include "../bench/closed_forms_before.hpp"  // the spline as it was before issue 14
 #include "reference.hpp"
 
 TEST_CASE("GTR D matches Burley/Dimov's printed D at 50 digits, gamma -> 1 and alpha -> 1 included", "[gtr]") {
@@ -66,4 +67,29 @@ TEST_CASE("Dimov's spline is a baseline, not the truth: its error away from the 
         }
     CHECK(max_off > 1e-6);
     WARN("Dimov spline max |dG1| on the test points: " << max_off);
+}
+
+TEST_CASE("Dimov's spline, made fast (issue 14), gives the values it gave before to a few ulp", "[gtr][spline]") {
+    // Against the previous implementation kept verbatim (bench/closed_forms_before.hpp), at random (alpha, gamma, mu)
+    // over alpha in [1e-4, 1], gamma in [0, 6] (the clamp above 4 included), mu in [1e-6, 1e6], and at the stiff
+    // corners: mu at 1e-300, 1e-100, 1e50 .. 1e300 (the asymptotes), alpha = 1e-4 and 1, the knots themselves.
+    // G1 is compared in absolute terms (it lies in about [-0.1, 1.1]), in units of 2^-53.
+    std::mt19937_64 rng(14);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    std::vector<std::array<double, 3>> points;
+    for (int i = 0; i < 20000; ++i)
+        points.push_back({std::pow(10.0, -4.0 * u(rng)), 6.0 * u(rng), std::pow(10.0, 12.0 * u(rng) - 6.0)});
+    for (double a : {1e-4, 0.3, 0.999999, 1.0})
+        for (double g : {0.0, 0.5, 1.0, 1.5, 2.0, 2.5, 3.0, 3.5, 4.0, 9.0})
+            for (double mu : {1e-300, 1e-100, 1e-50, 1e-8, 1e-4, 1.0, 1e4, 1e8, 1e50, 1e60, 1e100, 1e200, 1e300})
+                points.push_back({a, g, mu});
+    double worst = 0.0;
+    for (const auto& [a, g, mu] : points) {
+        const double now = smithlab::G1_gtr_dimov_spline(a, g, mu), before = smithlab_before::G1_gtr_dimov_spline(a, g, mu);
+        INFO("alpha=" << a << " gamma=" << g << " mu=" << mu << " now " << now << " before " << before);
+        const double ulps = std::abs(now - before) / 0x1p-53;
+        CHECK(ulps <= 16.0);
+        worst = std::max(worst, ulps);
+    }
+    WARN("Dimov's spline, largest change in G1: " << worst << " x 2^-53");
 }

@@ -2,7 +2,6 @@
 
 #include <array>
 #include <boost/math/quadrature/gauss.hpp>
-#include <boost/math/special_functions/log1p.hpp>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -14,41 +13,7 @@
 
 namespace smithlab {
 
-bool gtr_has_closed_form(double gamma) {
-    return gamma >= 0.0 && gamma <= gtr_max_closed_gamma && gamma == std::floor(gamma);
-}
-
 namespace {
-
-double lambda0(double mu) { return 1.0 / (2.0 * mu * (mu + std::hypot(mu, 1.0))); }
-
-double lambda1(double alpha, double mu) {
-    const double A = std::hypot(mu, alpha), B = std::hypot(mu, 1.0);
-    const double one_minus_a2 = (1.0 - alpha) * (1.0 + alpha);
-    // h = (1 - alpha^2) / (-2 ln alpha) -> 1 as alpha -> 1 (uniform D, where gamma = 1 meets gamma = 0).
-    const double h = alpha == 1.0 ? 1.0 : one_minus_a2 / (-2.0 * std::log(alpha));
-    const double x = one_minus_a2 / ((A + B) * (mu + A));  // (mu + B)/(mu + A) - 1
-    // log1pmx(x) = log1p(x) - x ~ -x^2/2: no cancellation, and log1pmx(x)/x -> 0 as x -> 0.
-    const double lx = x == 0.0 ? 0.0 : boost::math::log1pmx(x) / x;
-    return h / ((A + B) * (mu + A)) * (A / mu - lx);
-}
-
-double lambda2(double alpha, double mu) { return alpha * alpha / (mu + std::hypot(mu, alpha)) / (2.0 * mu); }
-
-double lambda3(double alpha, double mu) {
-    const double a2 = alpha * alpha, A = std::hypot(mu, alpha);
-    const double w = a2 / (mu + A);
-    return w * w / (1.0 + a2) * ((mu + A) / A + (1.0 + 3.0 * a2) / (4.0 * mu * A));
-}
-
-double lambda4(double alpha, double mu) {
-    const double a2 = alpha * alpha, a4 = a2 * a2, A = std::hypot(mu, alpha);
-    const double s = mu + A, v = a2 / A, p = mu / s;
-    const double c = a4 + a2 + 1.0;
-    const double tail = (3.0 * A + mu + 2.0 * a2 * (3.0 * A + 5.0 * mu) + a4 * (15.0 * A + 37.0 * mu)) / (mu * s * s * s);
-    const double bracket = 48.0 * mu * p * p + 12.0 * p * p / mu * (1.0 + a2 * (5.0 * A + 7.0 * mu) / s) + tail;
-    return v * v * v / (16.0 * c) * bracket;
-}
 
 // Sum over the 30-node Gauss-Legendre rule on [0, 1] (Boost's tabulated nodes, exact to degree 59):
 // visit(z, weight) for each node.
@@ -71,6 +36,13 @@ void for_each_gauss30_node(Visit visit) {
 //                b_k = 1/((2k+1)(2k+2)) + integral_0^1 sigma^(2k+1) x/(1 + sqrt(1 - x)) dsigma,
 //                x = s^2 (1 - sigma^2)/(1 - s^2 sigma^2): every term positive; the integrand is analytic out to
 //                sigma = 1/s >= sqrt(2), so Gauss-Legendre converges far below rounding.
+// 1 / (2k + 1), k = 0..29.
+constexpr std::array<double, 30> inv_odd = [] {
+    std::array<double, 30> r{};
+    for (int k = 0; k < 30; ++k) r[k] = 1.0 / (2 * k + 1);
+    return r;
+}();
+
 std::array<double, 30> brackets(int n, double alpha, double mu, double A) {
     std::array<double, 30> b{};
     if (mu < alpha) {
@@ -82,15 +54,18 @@ std::array<double, 30> brackets(int n, double alpha, double mu, double A) {
             double uk = weight;
             for (int k = 0; k <= n; ++k, uk *= u) G[k] += uk;
         });
-        for (int k = 0; k <= n; ++k) b[k] = 1.0 / (2 * k + 1) - p * std::pow(one_minus_p, k) * G[k];
+        double pk = p;  // p (1 - p)^k, by running products (k <= 29: within 15 ulp of pow's)
+        for (int k = 0; k <= n; ++k, pk *= one_minus_p) b[k] = inv_odd[k] - pk * G[k];
     } else {
-        const double s2 = (alpha / A) * (alpha / A);
+        const double s2 = (alpha / A) * (alpha / A), m = mu / A;  // sin^2(beta), and cos(beta) = sqrt(1 - s2)
         for_each_gauss30_node([&](double sigma, double weight) {
-            const double x = s2 * (1.0 - sigma) * (1.0 + sigma) / (1.0 - s2 * sigma * sigma);
-            double term = weight * sigma * x / (1.0 + std::sqrt(1.0 - x));
+            // x / (1 + sqrt(1 - x)) with 1 - x = m^2 / q, q = 1 - s2 sigma^2 >= 1/2 (s2 <= 1/2 here), is
+            // s2 (1 - sigma^2) / (sqrt(q) (sqrt(q) + m)): one root and one division per node instead of two divisions.
+            const double q = 1.0 - s2 * sigma * sigma, rq = std::sqrt(q);
+            double term = weight * sigma * (s2 * (1.0 - sigma) * (1.0 + sigma)) / (rq * (rq + m));
             for (int k = 0; k <= n; ++k, term *= sigma * sigma) b[k] += term;
         });
-        for (int k = 0; k <= n; ++k) b[k] += 1.0 / ((2.0 * k + 1) * (2.0 * k + 2));
+        for (int k = 0; k <= n; ++k) b[k] += inv_odd[k] / (2.0 * k + 2);
     }
     return b;
 }
@@ -102,51 +77,39 @@ double Lambda_gtr_integer_sum(double alpha, int gamma, double mu) {
         throw input_error("gtr: the generated closed form needs an integer gamma in [2, " +
                           std::to_string(gtr_max_closed_gamma) + "], got " + std::to_string(gamma));
     const int n = gamma - 2;
-    const double one_minus_a2 = (1.0 - alpha) * (1.0 + alpha);
-    const double A = std::hypot(mu, alpha);
-    const double ratio = alpha / A;
+    const double a2 = alpha * alpha, one_minus_a2 = (1.0 - alpha) * (1.0 + alpha);
+    const double A2 = mu * mu + a2, A = std::sqrt(A2);  // mu in [1e-100, 1e100]: no overflow (hypot not needed)
     const std::array<double, 30> b = brackets(n, alpha, mu, A);
-    // alpha^(2(n-k)+3) (alpha/A)^(2k+1) reaches 1e-2900 at alpha = 1e-50, gamma = 31 while K / mu is 1e146 and Lambda
-    // 1e-251: each power is carried as a mantissa (frexp: in [0.5, 1), so fa^63 >= 1e-19) and a binary exponent, the
-    // terms summed relative to the largest exponent, and the exponent put back last (ldexp rounds once, gradually).
-    int ea = 0, er = 0;
-    const double fa = std::frexp(alpha, &ea), fr = std::frexp(ratio, &er);
-    std::array<double, 30> mant{};
-    std::array<int, 30> ex{};
-    int emax = std::numeric_limits<int>::min();
+    // The coefficients c_k = C(n, k) B(1/2, k + 3/2) b_k, and the polynomial in rho = (1 - alpha^2)/A^2 (header).
+    std::array<double, 30> coef{};
     double cb = std::numbers::pi / 2;  // C(n, k) B(1/2, k + 3/2), starting from B(1/2, 3/2) = pi/2
     for (int k = 0; k <= n; ++k) {
-        const int pa = 2 * (n - k) + 3, pr = 2 * k + 1;
-        mant[k] = cb * std::pow(one_minus_a2, k) * std::pow(fa, pa) * std::pow(fr, pr) * b[k];
-        ex[k] = ea * pa + er * pr;
-        if (mant[k] > 0.0) emax = std::max(emax, ex[k]);
+        coef[k] = cb * b[k];
         cb *= (n - k) / (k + 1.0) * (k + 1.5) / (k + 2.0);  // C(n,k+1)/C(n,k) and B(1/2,k+5/2)/B(1/2,k+3/2)
     }
-    if (emax == std::numeric_limits<int>::min()) return 0.0;
-    double sum = 0.0;
-    for (int k = 0; k <= n; ++k)
-        if (mant[k] > 0.0) sum += std::ldexp(mant[k], std::max(ex[k] - emax, -2000));
-    return std::ldexp(gtr_K(alpha, gamma) / mu * sum, emax);
+    double sum = 0.0, power = 0.0;
+    if (one_minus_a2 <= A2) {  // rho <= 1: sum_k c_k rho^k, times alpha^(2n)
+        const double rho = one_minus_a2 / A2;
+        for (int k = n; k >= 0; --k) sum = sum * rho + coef[k];
+        power = std::pow(a2, n);
+    } else {  // rho > 1: sum_k c_k rho^(k - n), times (alpha^2 rho)^n, alpha^2 rho <= 1
+        const double inv_rho = A2 / one_minus_a2;
+        for (int k = 0; k <= n; ++k) sum = sum * inv_rho + coef[k];
+        power = std::pow(a2 * (one_minus_a2 / A2), n);
+    }
+    // K alpha^2 <= (gamma - 1)/pi and alpha^2 / (mu A) are in range on the domain; the power underflows only where
+    // Lambda does (rho <= 1 needs A^2 >= 1 - alpha^2; alpha^2 rho < 1e-11 needs mu > 1e5 alpha).
+    return gtr_K(alpha, gamma) * a2 * (a2 / (mu * A)) * (power * sum);
 }
 
-double Lambda_gtr_closed(double alpha, int gamma, double mu) {
-    // Far from the scales alpha and 1, Lambda is its asymptote to every digit: mu^2 Lambda = C (1 + O((1 + alpha^2)
-    // / mu^2)) above mu = 1e100 (every GTR tail is r^-4), and mu Lambda = E[q+] - mu/2 + O(mu / alpha) below 1e-100;
-    // the forms below would overflow their intermediate products there (mu^3 at mu = 1e103, 1/mu at 1e-309).
-    constexpr double big = 1e100, small = 1e-100;
+double detail::Lambda_gtr_closed_far(double alpha, int gamma, double mu) {
+    constexpr double big = gtr_closed::mu_big, small = gtr_closed::mu_small;
     if (mu > big) {
         const double r = big / mu;
         return Lambda_gtr_closed(alpha, gamma, big) * r * r;
     }
     if (mu < small) return Lambda_gtr_closed(alpha, gamma, small) * (small / mu);
-    switch (gamma) {
-        case 0: return lambda0(mu);
-        case 1: return lambda1(alpha, mu);
-        case 2: return lambda2(alpha, mu);
-        case 3: return lambda3(alpha, mu);
-        case 4: return lambda4(alpha, mu);
-        default: return Lambda_gtr_integer_sum(alpha, gamma, mu);
-    }
+    return mu;  // NaN
 }
 
 }  // namespace smithlab

@@ -8,6 +8,7 @@
 #include "smithlab/errors.hpp"
 #include "smithlab/gtr/closed_forms.hpp"
 #include "smithlab/gtr/spline.hpp"
+#include "smithlab/smith.hpp"
 
 namespace smithlab {
 
@@ -97,11 +98,15 @@ double Gtr::Dcos_r2(double v) const {
 
 double Gtr::ggx_alpha() const { return gamma == 2.0 ? alpha : std::numeric_limits<double>::quiet_NaN(); }
 
-bool Gtr::has_closed_Lambda() const { return gtr_has_closed_form(gamma); }
+void Gtr::no_closed_Lambda() const {
+    require(false, "gtr: gamma for a closed-form Lambda", "an integer in [0, 31]", gamma);
+    throw input_error("gtr: no closed-form Lambda");  // not reached: require(false, ...) throws
+}
 
-double Gtr::Lambda(double mu) const {
-    require(has_closed_Lambda(), "gtr: gamma for a closed-form Lambda", "an integer in [0, 31]", gamma);
-    return Lambda_gtr_closed(alpha, static_cast<int>(gamma), mu);
+double Lambda_from_cos_slow(const Gtr& ndf, double c) {
+    if (std::isnan(c)) return c;  // as the forms in c: NaN in, NaN out (the mu route would throw input_error)
+    if (c > 1.0) c = 1.0;
+    return smithlab::Lambda(ndf, c / std::sqrt((1.0 - c) * (1.0 + c)));
 }
 
 double Gtr::Lambda_spline(double mu) const {

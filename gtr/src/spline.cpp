@@ -8,8 +8,34 @@
 
 namespace smithlab {
 
+namespace {
+
+// G1 at the knots gamma = 0..4 for mu in [1e-100, 1e100]: G1 = 1 / (1 + Lambda_gtr_closed(alpha, k, mu)) to a few ulp,
+// by the forms of closed_forms.hpp sharing their roots A = sqrt(mu^2 + alpha^2), B = sqrt(mu^2 + 1) (two roots for
+// the five knots, one division per G1 and one more where a form needs it; issue 14: 151 ns -> the cost of the forms).
+// gamma = 0 and 2 as 2 mu / (mu + B), 2 mu / (mu + A) (Walter 2007 eq. 34 times mu / mu; B^2 = mu^2 + 1 makes
+// 1 + 1 / (2 mu (mu + B)) = (mu + B)^2 / (2 mu (mu + B))). Beyond mu_big = 1e50 (where G1 = 1 to 1e-100) the forms'
+// own asymptote, through Lambda_gtr_closed.
+std::array<double, 5> knot_G1(double alpha, double mu) {
+    std::array<double, 5> y;
+    if (mu > gtr_closed::mu_big) {
+        for (int k = 0; k < 5; ++k) y[k] = 1.0 / (1.0 + Lambda_gtr_closed(alpha, k, mu));
+        return y;
+    }
+    const double a2 = alpha * alpha;
+    const double A = gtr_closed::root_sum_squares(mu, a2), B = gtr_closed::root_sum_squares(mu, 1.0);
+    y[0] = 2.0 * mu / (mu + B);
+    y[1] = gtr_closed::ratio1(alpha, mu, A, B).G1();
+    y[2] = 2.0 * mu / (mu + A);
+    y[3] = gtr_closed::ratio3(a2, mu, A).G1();
+    y[4] = gtr_closed::ratio4(a2, mu, A).G1();
+    return y;
+}
+
+}  // namespace
+
 double G1_gtr_dimov_spline(double alpha, double gamma, double mu) {
-    // Beyond mu in [1e-100, 1e100] the knots' Lambda is its asymptote (closed_forms.cpp), C/mu^2 or E[q+]/mu: the
+    // Beyond mu in [1e-100, 1e100] the knots' Lambda is its asymptote (closed_forms.hpp), C/mu^2 or E[q+]/mu: the
     // spline's Lambda at the end of the range is carried out the same way, so that no 1 - G1 of a G1 within 1e-300
     // of 0 or 1 turns into NaN (mu = 1e307).
     constexpr double big = 1e100, small = 1e-100;
@@ -19,20 +45,21 @@ double G1_gtr_dimov_spline(double alpha, double gamma, double mu) {
         const double scale = mu > big ? (big / mu) * (big / mu) : small / mu;
         return 1.0 / (1.0 + (1.0 - g) / g * scale);
     }
-    std::array<double, 5> y;
-    for (int k = 0; k < 5; ++k) y[k] = 1.0 / (1.0 + Lambda_gtr_closed(alpha, k, mu));
+    const std::array<double, 5> y = knot_G1(alpha, mu);
     // Natural cubic spline on unit-spaced knots: M0 = M4 = 0 and, for the second derivatives M1..M3,
     //   M_{i-1} + 4 M_i + M_{i+1} = 6 (y_{i-1} - 2 y_i + y_{i+1}).
-    // The 3x3 system has the fixed inverse (1/56) [[15,-4,1],[-4,16,-4],[1,-4,15]].
-    const double d1 = 6.0 * (y[0] - 2.0 * y[1] + y[2]);
-    const double d2 = 6.0 * (y[1] - 2.0 * y[2] + y[3]);
-    const double d3 = 6.0 * (y[2] - 2.0 * y[3] + y[4]);
-    const std::array<double, 5> M = {0.0, (15.0 * d1 - 4.0 * d2 + d3) / 56.0, (-4.0 * d1 + 16.0 * d2 - 4.0 * d3) / 56.0,
-                                     (d1 - 4.0 * d2 + 15.0 * d3) / 56.0, 0.0};
+    // The 3x3 system has the fixed inverse (1/56) [[15,-4,1],[-4,16,-4],[1,-4,15]]. Carried as m = M / 6 (the spline
+    // uses only M / 6), with 1/56 as a multiplication: divisions cost more than the rest of the spline together.
+    constexpr double inv56 = 1.0 / 56.0;
+    const double e1 = y[0] - 2.0 * y[1] + y[2];
+    const double e2 = y[1] - 2.0 * y[2] + y[3];
+    const double e3 = y[2] - 2.0 * y[3] + y[4];
+    const std::array<double, 5> m = {0.0, (15.0 * e1 - 4.0 * e2 + e3) * inv56, (-4.0 * e1 + 16.0 * e2 - 4.0 * e3) * inv56,
+                                     (e1 - 4.0 * e2 + 15.0 * e3) * inv56, 0.0};
     const double g = std::min(gamma, 4.0);
     const int i = std::min(static_cast<int>(g), 3);
     const double b = g - i, a = 1.0 - b;  // distances to the right and left knots
-    return M[i] * a * a * a / 6.0 + M[i + 1] * b * b * b / 6.0 + (y[i] - M[i] / 6.0) * a + (y[i + 1] - M[i + 1] / 6.0) * b;
+    return m[i] * a * a * a + m[i + 1] * b * b * b + (y[i] - m[i]) * a + (y[i + 1] - m[i + 1]) * b;
 }
 
 double Lambda_of_interpolated_G1(double g1) { return g1 >= 1.0 ? 0.0 : g1 <= 0.0 ? INFINITY : (1.0 - g1) / g1; }

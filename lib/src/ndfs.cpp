@@ -30,10 +30,6 @@ BlinnPhong blinn(double n) {
     return {n};
 }
 
-// As (alpha / (mu + A)) (alpha / (2 mu)): each factor stays in range where alpha^2 / (2 mu (mu + A)) would not
-// (alpha = 1e-50 at mu = 1e-308: the denominator underflows; the true Lambda is 2e257).
-double Ggx::Lambda(double mu) const { return alpha / (mu + std::hypot(mu, alpha)) * (alpha / (2.0 * mu)); }
-
 double Beckmann::D(double c) const {
     if (c <= 0.0) return 0.0;
     const double c2 = c * c;

@@ -22,8 +22,23 @@ struct Ggx {
         const double s = r2 + alpha * alpha;
         return alpha * alpha / (std::numbers::pi * s * s);
     }
-    // Heitz 2014 eq. 72, rewritten: (sqrt(1 + alpha^2/mu^2) - 1)/2 = alpha^2 / (2 mu (mu + hypot(mu, alpha))).
-    double Lambda(double mu) const;
+    // Heitz 2014 eq. 72, rewritten: (sqrt(1 + alpha^2/mu^2) - 1)/2 = alpha^2 / (2 mu (mu + A)), A = sqrt(mu^2 + alpha^2),
+    // as (alpha / (mu + A)) (alpha / (2 mu)): each factor stays in range where alpha^2 / (2 mu (mu + A)) would not
+    // (alpha = 1e-50 at mu = 1e-308: the denominator underflows; the true Lambda is 2e257). A by sqrt, within 1.25 ulp
+    // as hypot's is: mu^2 underflowing is harmless (A = alpha then); past mu = 1e150, where mu^2 would overflow
+    // (a predictable branch), by hypot.
+    // Between mu = 1e-100 and 1e150 (a predictable branch) as one quotient: 2 mu (mu + A) lies in [2e-150, 8e300].
+    double Lambda(double mu) const {
+        if (mu >= 1e-100 && mu < 1e150) return alpha * alpha / (2.0 * mu * (mu + std::sqrt(mu * mu + alpha * alpha)));
+        return alpha / (mu + A_of(mu)) * (alpha / (2.0 * mu));
+    }
+    // G1 = 1 / (1 + Lambda) = 2 mu / (mu + A), Walter 2007 eq. 34 (2 / (1 + sqrt(1 + alpha^2 tan^2))) times mu / mu:
+    // one root and one division. mu > 0; mu = inf gives 1.
+    double G1(double mu) const {
+        if (!(mu < 1e150)) return 1.0 / (1.0 + Lambda(mu));
+        return 2.0 * mu / (mu + A_of(mu));
+    }
+    double A_of(double mu) const { return mu < 1e150 ? std::sqrt(mu * mu + alpha * alpha) : std::hypot(mu, alpha); }
     // D cos sampling, Walter 2007 eq. 35-36 (the blog's arctan form), in v = 1 - u: S = alpha^2 / (alpha^2 + r^2),
     // tan^2 = alpha^2 (1 - v) / v.
     double Dcos_sf(double r2) const { return alpha * alpha / (alpha * alpha + r2); }
@@ -64,6 +79,26 @@ namespace detail {
 double erfc_scaled_asymptotic(double a);
 double ierfc_scaled_asymptotic(double a);
 }  // namespace detail
+
+// G1 and Lambda from c = cos(theta_v) (a renderer holds the cosine), Walter 2007 eq. 34 and Heitz 2014 eq. 72 with
+// tan^2 = s2 / c^2, s2 = sin^2 = (1 - c)(1 + c) (exact near c = 1, where 1 - c^2 is not), Ac = sqrt(c^2 + alpha^2 s2):
+//     G1 = 2 c / (c + Ac),   Lambda = alpha^2 s2 / (2 c (c + Ac)),
+// no cancellation from grazing (c -> 0: G1 = 2c / (c + alpha)) to normal (c = 1: s2 = 0, Lambda = 0, G1 = 1).
+// c > 1 (rounding) is read as 1. G1 takes |c| (Walter 2007 eq. 44); Lambda below the surface (c < 0) is Smith's
+// -1 - Lambda(|c|), as smithlab::Lambda(ndf, mu) gives; NaN gives NaN. Generic NDFs: smith.hpp's templates of the
+// same names.
+inline double G1_from_cos(const Ggx& ndf, double c) {
+    const double a = std::abs(c) > 1.0 ? 1.0 : std::abs(c), a2 = ndf.alpha * ndf.alpha;  // NaN stays NaN
+    return 2.0 * a / (a + std::sqrt(a * a + a2 * ((1.0 - a) * (1.0 + a))));
+}
+inline double Lambda_from_cos(const Ggx& ndf, double c) {
+    if (c >= 1e-100) {  // and not NaN. Below, mu = c to double precision: den = 2 c (c + Ac) could underflow.
+        c = c > 1.0 ? 1.0 : c;
+        const double a2 = ndf.alpha * ndf.alpha, s2 = (1.0 - c) * (1.0 + c);
+        return a2 * s2 / (2.0 * c * (c + std::sqrt(c * c + a2 * s2)));
+    }
+    return c < 0.0 ? -1.0 - Lambda_from_cos(ndf, -c) : ndf.Lambda(c);  // c = 0: inf
+}
 
 Ggx ggx(double alpha);            // alpha in [1e-50, 1e50]
 Beckmann beckmann(double alpha);  // alpha in [1e-50, 1e50]

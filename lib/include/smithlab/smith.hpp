@@ -220,6 +220,25 @@ double G1(const N& ndf, double mu, const LambdaOptions& opts = {}) {
     return 1.0 / (1.0 + Lambda_of_abs(mu, [&](double a) { return detail::Lambda_by_method(ndf, a, opts); }));
 }
 
+// mu = cot(theta) of c = cos(theta): c / sqrt((1 - c)(1 + c)), sin^2 without the cancellation of 1 - c^2 near c = 1.
+// c is clamped to [-1, 1] (rounding); c = 1 gives inf, c = 0 gives 0, c < 0 a negative mu.
+inline double mu_of_cos(double c) {
+    c = c > 1.0 ? 1.0 : c < -1.0 ? -1.0 : c;
+    return c / std::sqrt((1.0 - c) * (1.0 + c));
+}
+
+// Lambda and G1 from c = cos(theta_v) instead of mu (a renderer holds the cosine), for any NDF: through mu_of_cos,
+// with Lambda's and G1's conventions (c < 0: below the surface). Ggx (ndfs.hpp) and Gtr at gamma = 0..4 (gtr.hpp)
+// overload these with forms written in c itself, a root and a division cheaper and exact at c -> 0 and c -> 1.
+template <Ndf N>
+double Lambda_from_cos(const N& ndf, double c, const LambdaOptions& opts = {}) {
+    return Lambda(ndf, mu_of_cos(c), opts);
+}
+template <Ndf N>
+double G1_from_cos(const N& ndf, double c, const LambdaOptions& opts = {}) {
+    return G1(ndf, mu_of_cos(c), opts);
+}
+
 // Bidirectional shadowing-masking. Same side (reflection): height-correlated 1/(1 + Lambda_i + Lambda_o)
 // (Hammon 2017 appendix, "Solving for G2") or uncorrelated G1 G1 (Walter 2007 eq. 23).
 // Opposite sides (transmission), height-correlated: with u = f(height) uniform, the point is seen from above with

@@ -4,6 +4,10 @@
 // gamma = 2 is GGX, gamma = 1 the log limit c = (alpha^2 - 1) / (pi ln alpha^2), gamma = 0 and alpha = 1 give 1/pi.
 #pragma once
 
+#include <cmath>
+
+#include "smithlab/gtr/closed_forms.hpp"
+
 namespace smithlab {
 
 struct Gtr {
@@ -20,8 +24,13 @@ struct Gtr {
     double slope_density(double r2) const;
 
     // Closed forms exist for every integer gamma (Dimov 2015 sec. 3 for 0..4, generated above); see closed_forms.hpp.
-    bool has_closed_Lambda() const;
-    double Lambda(double mu) const;
+    // Inline: the closed forms are a renderer's hot path; the throw is out of line.
+    bool has_closed_Lambda() const { return gtr_has_closed_form(gamma); }
+    double Lambda(double mu) const {
+        if (!has_closed_Lambda()) no_closed_Lambda();
+        return Lambda_gtr_closed(alpha, static_cast<int>(gamma), mu);
+    }
+    [[noreturn]] void no_closed_Lambda() const;  // input_error naming gamma
     // Dimov 2015 section 5: natural cubic spline in gamma through G1 at gamma = 0..4, gamma clamped to 4 above;
     // the spline's G1 clamped to [0, 1] (Lambda_of_interpolated_G1).
     double Lambda_spline(double mu) const;
@@ -50,5 +59,24 @@ double gtr_K(double alpha, double gamma);
 // cpp_bin_float's exponent range near gamma = 2.7e6), and a lobe narrower than alpha / 1000 is no material.
 inline constexpr double gtr_max_gamma = 1e6;
 Gtr gtr(double alpha, double gamma);
+
+// Lambda and G1 from c = cos(theta_v) (a renderer holds the cosine; mu = cot = c / sqrt(1 - c^2) costs a root and a
+// division more, and 1 - c^2 loses digits near c = 1). Integer gamma <= 4 by the forms in c (closed_forms.hpp,
+// gtr_closed::ratio_cos): exact to a few ulp from grazing (c -> 0, Lambda -> inf) to normal (c = 1: Lambda = 0,
+// G1 = 1), with sin^2 as (1 - c)(1 + c). Other gamma: mu = c / sqrt((1 - c)(1 + c)), then the mu route
+// (Lambda_from_cos in smith.hpp). c in [0, 1]; c > 1 (rounding) is read as 1; c < 0 (below the surface): G1 takes |c|
+// (Walter 2007 eq. 44) and Lambda is Smith's -1 - Lambda(|c|), as smithlab::Lambda(ndf, mu) gives; NaN gives NaN.
+double Lambda_from_cos_slow(const Gtr& ndf, double c);  // gamma > 4, non-integer gamma, c < cos_small, c < 0, NaN
+inline double Lambda_from_cos(const Gtr& ndf, double c) {
+    if (c >= gtr_closed::cos_small && ndf.gamma <= 4.0 && ndf.has_closed_Lambda())
+        return c >= 1.0 ? 0.0 : gtr_closed::ratio_cos(ndf.alpha, static_cast<int>(ndf.gamma), c).Lambda();
+    return Lambda_from_cos_slow(ndf, c);
+}
+inline double G1_from_cos(const Gtr& ndf, double c) {
+    const double a = std::abs(c);
+    if (a >= gtr_closed::cos_small && ndf.gamma <= 4.0 && ndf.has_closed_Lambda())
+        return a >= 1.0 ? 1.0 : gtr_closed::ratio_cos(ndf.alpha, static_cast<int>(ndf.gamma), a).G1();
+    return 1.0 / (1.0 + Lambda_from_cos_slow(ndf, a));
+}
 
 }  // namespace smithlab
