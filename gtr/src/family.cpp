@@ -53,7 +53,7 @@ double divided4(const double* x, const double* f) {
 double GtrFamily::exact_f(double alpha, double gamma, double xi) {
     const double mu = alpha * std::exp(xi);
     const Gtr n = gtr(alpha, gamma);
-    const double L = gtr_has_closed_form(gamma) ? n.Lambda(mu) : Lambda_1d(n, mu, {Backend::gsl, 1e-11});
+    const double L = gtr_has_closed_form(gamma) ? n.Lambda(mu) : Lambda_fixed(n, mu, {Backend::gsl, 1e-11});
     return std::log(mu * L);
 }
 
@@ -166,8 +166,10 @@ GtrFamily::GtrFamily() {
                     for (int i = sa; i < sa + 4; ++i)
                         for (int j = sg; j < sg + 4; ++j) ex = std::max(ex, Dx[index(s, i, j, na_, ng_)]);
                 // error of 4-point Lagrange: |prod (v - x_m)| |f''''| / 24 = |prod| |f[x0..x4]| (divided difference);
-                // tensor product: the Lebesgue constants of the other axes (<= 1.6) and the estimate's own slack: x2
-                const double est = 2.0 * (Pa[ca] * ea + Pg[cg] * eg + Px[cx] * ex);
+                // tensor product: the Lebesgue constants of the other axes (<= 1.6) and the estimate's own slack: x3
+                // (measured against the adaptive route on 3000 random points: error / estimate <= 0.75 x 2 where the
+                // estimate is below 1e-5; the estimate misses by 2.3x in unresolved cells near alpha = 0.85, all > 1e-4)
+                const double est = 3.0 * (Pa[ca] * ea + Pg[cg] * eg + Px[cx] * ex);
                 const std::size_t cell = (static_cast<std::size_t>(ca) * (ng_ - 1) + cg) * (nx_ - 1) + cx;
                 if (est <= tolerance) {
                     ok_[cell >> 6] |= std::uint64_t{1} << (cell & 63);

@@ -6,14 +6,14 @@
 //     a = ln alpha  (uniform),   gamma  (non-uniform: dense at 0.8..2.2, where Lambda changes regime, geometric
 //     above 4),   xi = ln(mu / alpha)  (uniform on [xi_lo, xi_hi]),
 // and interpolates it with the 4-point Lagrange rule on each axis (64 knots; windows shifted inward at the edges).
-// Its knots come from the exact routes: the closed forms at integer gamma (closed_forms.hpp), else the 1D quadrature
-// (GSL, relative 1e-11). Outside [xi_lo, xi_hi] the two asymptotes of lambda_table.hpp:
+// Its knots come from the exact routes: the closed forms at integer gamma (closed_forms.hpp), else the fixed-rule 1D
+// quadrature (lambda_fixed.hpp, relative 1e-11). Outside [xi_lo, xi_hi] the two asymptotes of lambda_table.hpp:
 //   xi < xi_lo: mu Lambda = g_lo - mu/2, g_lo = mu_lo Lambda(mu_lo) + mu_lo/2 (Walter eq. 48 with P(q > 0) = 1/2;
 //               in error by R(mu_lo) - R(mu) in [0, R(mu_lo)], R bounded from two knots as in lambda_table.hpp);
 //   xi > xi_hi: Lambda ~ C mu^-2 (every GTR has a P22 ~ r^-4 tail: t -> alpha^2 as r -> inf, gtr.hpp), f continued
 //               with slope -1.
 // Error: each cell's interpolation error is estimated at build from the fourth divided differences along each
-// axis (error of 4-point Lagrange <= max|prod (x - x_m)| / 24 max|f''''|), summed over the axes and doubled. A cell
+// axis (error of 4-point Lagrange <= max|prod (x - x_m)| / 24 max|f''''|), summed over the axes and tripled. A cell
 // whose estimate exceeds `tolerance` is not interpolated: there the evaluator calls the exact route (microseconds).
 // The stated bound (error_bound()) is thus a bound on the relative error of Lambda everywhere, tested against
 // independent references in tests/test_family.cpp; |dG1| <= error_bound() / 4.
@@ -78,6 +78,14 @@ public:
         return std::exp(f) / mu;
     }
     double G1_up(double alpha, double gamma, double mu) const { return 1.0 / (1.0 + Lambda_up(alpha, gamma, mu)); }
+    // Whether Lambda_up interpolates at this point (else it takes the exact route).
+    bool interpolated(double alpha, double gamma, double mu) const {
+        const int ca = std::clamp(static_cast<int>((std::log(alpha) - a0_) * inv_ha_), 0, na_ - 2);
+        const double xc = std::clamp(std::log(mu / alpha), xi_lo_, xi_hi_);
+        const int cx = std::clamp(static_cast<int>((xc - xi_lo_) * inv_hx_), 0, nx_ - 2);
+        const std::size_t cell = (static_cast<std::size_t>(ca) * (ng_ - 1) + gamma_cell(gamma)) * (nx_ - 1) + cx;
+        return (ok_[cell >> 6] >> (cell & 63)) & 1u;
+    }
 
     // The stated bound on the relative error of Lambda, anywhere in the domain (the worst cell estimate, the
     // asymptotes' bounds, and the exact route's 1e-10 where a cell is not interpolated).

@@ -1,0 +1,128 @@
+// G1 of GTR for random (alpha, gamma, mu) streams (issue 14, item 1): the family evaluator (gtr/family.hpp, one table
+// for every material) beside the routes a renderer has on the same inputs: the per-material LambdaTable (built once
+// per (alpha, gamma): its build is not timed), Dimov's spline (dimov-spline), and the exact 1D quadrature (the fixed
+// rule of lambda_fixed.hpp, and the adaptive GSL route). 64 materials (alpha log-uniform in [1e-4, 1], gamma uniform
+// in [0, 20]) and 4096 (material, mu) pairs, mu log-uniform in [1e-3, 1e3]; each iteration is one G1.
+// family/interpolated-cells times the same evaluator on points where it interpolates (its hot path alone).
+// Run: build/bench/bench_family --benchmark_min_time=0.2   (one core)
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <memory>
+#include <random>
+#include <smithlab/gtr/family.hpp>
+#include <smithlab/smithlab.hpp>
+#include <vector>
+
+namespace {
+
+struct Stream {
+    std::vector<double> alpha, gamma, mu;
+    std::vector<int> material;
+};
+
+constexpr int n_materials = 64, n_points = 4096;
+
+const Stream& stream() {
+    static const Stream s = [] {
+        Stream t;
+        std::mt19937_64 rng(14);
+        std::uniform_real_distribution<double> la(std::log(1e-4), 0.0), g(0.0, 20.0), lm(std::log(1e-3), std::log(1e3));
+        std::vector<double> ma, mg;
+        for (int m = 0; m < n_materials; ++m) ma.push_back(std::exp(la(rng))), mg.push_back(g(rng));
+        for (int i = 0; i < n_points; ++i) {
+            const int m = static_cast<int>(rng() % n_materials);
+            t.material.push_back(m);
+            t.alpha.push_back(ma[m]);
+            t.gamma.push_back(mg[m]);
+            t.mu.push_back(std::exp(lm(rng)));
+        }
+        return t;
+    }();
+    return s;
+}
+
+// Points where the family table interpolates: alpha, gamma, mu drawn at random until 4096 are found.
+const Stream& interpolated_stream() {
+    static const Stream s = [] {
+        Stream t;
+        const smithlab::GtrFamily& f = smithlab::GtrFamily::get();
+        std::mt19937_64 rng(15);
+        std::uniform_real_distribution<double> la(std::log(1e-4), 0.0), g(0.0, 20.0), lm(std::log(1e-8), std::log(1e8));
+        for (long k = 0; k < 100000000 && static_cast<int>(t.mu.size()) < n_points; ++k) {
+            const double a = std::exp(la(rng)), gm = g(rng), m = std::exp(lm(rng));
+            if (!f.interpolated(a, gm, m)) continue;
+            t.alpha.push_back(a), t.gamma.push_back(gm), t.mu.push_back(m), t.material.push_back(0);
+        }
+        return t;
+    }();
+    return s;
+}
+
+template <class F>
+void run(benchmark::State& state, const Stream& s, const F& G1) {
+    std::size_t i = 0;
+    const std::size_t n = s.mu.size();
+    for (auto _ : state) {
+        benchmark::DoNotOptimize(G1(i % n));
+        ++i;
+    }
+    state.SetItemsProcessed(state.iterations());
+}
+
+void BM_family(benchmark::State& state) {
+    const smithlab::GtrFamily& f = smithlab::GtrFamily::get();
+    const Stream& s = stream();
+    run(state, s, [&](std::size_t i) { return f.G1_up(s.alpha[i], s.gamma[i], s.mu[i]); });
+}
+void BM_family_interpolated(benchmark::State& state) {
+    const smithlab::GtrFamily& f = smithlab::GtrFamily::get();
+    const Stream& s = interpolated_stream();
+    state.counters["points"] = static_cast<double>(s.mu.size());
+    run(state, s, [&](std::size_t i) { return f.G1_up(s.alpha[i], s.gamma[i], s.mu[i]); });
+}
+void BM_table(benchmark::State& state) {
+    const Stream& s = stream();
+    static const std::vector<smithlab::LambdaTable> tables = [&] {
+        std::vector<smithlab::LambdaTable> t;
+        std::vector<bool> seen(n_materials, false);
+        std::vector<int> order;
+        for (int i = 0; i < n_points; ++i)
+            if (!seen[s.material[i]]) seen[s.material[i]] = true, order.push_back(i);
+        std::vector<int> where(n_materials, -1);
+        for (int i : order) {
+            where[s.material[i]] = static_cast<int>(t.size());
+            t.push_back(smithlab::tabulate_Lambda(smithlab::gtr(s.alpha[i], s.gamma[i])));
+        }
+        std::vector<smithlab::LambdaTable> by_material;
+        for (int m = 0; m < n_materials; ++m) by_material.push_back(where[m] >= 0 ? t[where[m]] : t[0]);
+        return by_material;
+    }();
+    run(state, s, [&](std::size_t i) { return tables[s.material[i]].G1(s.mu[i]); });
+}
+void BM_dimov_spline(benchmark::State& state) {
+    const Stream& s = stream();
+    run(state, s, [&](std::size_t i) { return smithlab::G1_gtr_dimov_spline(s.alpha[i], s.gamma[i], s.mu[i]); });
+}
+void BM_exact_fixed(benchmark::State& state) {
+    const Stream& s = stream();
+    run(state, s, [&](std::size_t i) {
+        return 1.0 / (1.0 + smithlab::Lambda_fixed(smithlab::gtr(s.alpha[i], s.gamma[i]), s.mu[i], {smithlab::Backend::gsl, 1e-12}));
+    });
+}
+void BM_exact_gsl(benchmark::State& state) {
+    const Stream& s = stream();
+    run(state, s, [&](std::size_t i) {
+        return 1.0 / (1.0 + smithlab::Lambda_1d(smithlab::gtr(s.alpha[i], s.gamma[i]), s.mu[i], {smithlab::Backend::gsl, 1e-12}));
+    });
+}
+
+}  // namespace
+
+BENCHMARK(BM_family)->Name("family/random");
+BENCHMARK(BM_family_interpolated)->Name("family/interpolated-cells");
+BENCHMARK(BM_table)->Name("table/per-material");
+BENCHMARK(BM_dimov_spline)->Name("dimov-spline/random");
+BENCHMARK(BM_exact_fixed)->Name("exact-fixed-1e-12/random");
+BENCHMARK(BM_exact_gsl)->Name("exact-gsl-1e-12/random");
+BENCHMARK_MAIN();

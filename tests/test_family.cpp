@@ -1,0 +1,149 @@
+// The GTR family evaluator (gtr/family.hpp): one table for every (alpha, gamma), against routes it is not built
+// from at the points checked (the adaptive 1D quadrature, Boost tanh-sinh, where its knots come from the fixed rule;
+// the closed forms; the 50-digit reference), its stated bound checked as a bound, and its input rules.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <smithlab/gtr/family.hpp>
+#include <smithlab/smithlab.hpp>
+#include <thread>
+
+#include "reference.hpp"
+
+using namespace smithlab;
+
+namespace {
+
+// An independent Lambda: the closed form at integer gamma, else the adaptive tanh-sinh route (the table's knots are
+// the fixed Gauss-Kronrod rule's).
+double independent(double alpha, double gamma, double mu) {
+    const Gtr n = gtr(alpha, gamma);
+    return gtr_has_closed_form(gamma) ? n.Lambda(mu) : Lambda_1d(n, mu, {Backend::boost, 1e-12});
+}
+
+struct Worst {
+    double rel = 0.0, dG1 = 0.0, alpha = 0.0, gamma = 0.0, mu = 0.0;
+    void add(double got, double want, double a, double g, double m) {
+        const double r = std::abs(got - want) / want;
+        if (r > rel) rel = r, alpha = a, gamma = g, mu = m;
+        dG1 = std::max(dG1, std::abs(1.0 / (1.0 + got) - 1.0 / (1.0 + want)));
+    }
+};
+
+}  // namespace
+
+TEST_CASE("family: the stated bound holds on random points over the whole domain", "[family]") {
+    const GtrFamily& t = GtrFamily::get();
+    WARN("family table: " << t.knots() << " knots built in " << t.build_seconds() << " s, " << 100.0 * t.coverage()
+                          << " % of cells interpolated, stated bound " << t.error_bound());
+    CHECK(t.error_bound() <= 1e-5);  // the target on relative dLambda; |dG1| <= bound / 4
+    std::mt19937_64 rng(14);
+    std::uniform_real_distribution<double> log_alpha(std::log(1e-4), 0.0), gamma_u(0.0, 20.0), gamma_low(0.0, 3.0),
+        log_mu(std::log(1e-8), std::log(1e8));
+    Worst w;
+    for (int i = 0; i < 3000; ++i) {
+        const double alpha = std::exp(log_alpha(rng)), gamma = i % 3 == 0 ? gamma_low(rng) : gamma_u(rng);
+        const double mu = std::exp(log_mu(rng));
+        w.add(t.Lambda_up(alpha, gamma, mu), independent(alpha, gamma, mu), alpha, gamma, mu);
+    }
+    INFO("worst relative dLambda " << w.rel << " at alpha " << w.alpha << ", gamma " << w.gamma << ", mu " << w.mu
+                                   << "; worst |dG1| " << w.dG1);
+    WARN("family, random points: worst relative dLambda " << w.rel << ", |dG1| " << w.dG1);
+    CHECK(w.rel <= t.error_bound());
+    CHECK(w.dG1 <= t.error_bound() / 4);
+}
+
+TEST_CASE("family: the stiff corners, mu = 1e-8 .. 1e8, 0 and inf", "[family]") {
+    const GtrFamily& t = GtrFamily::get();
+    Worst w;
+    for (double alpha : {1e-4, 1.5e-4, 0.999999, 1.0})
+        for (double gamma : {0.0, 1e-9, 1.0 - 1e-9, 1.0, 1.0 + 1e-9, 1.5, 2.0, 19.99, 20.0})
+            for (double mu : {1e-8, 3e-7, 1e-4, 0.01, 1.0, 3.0, 1e4, 1e8}) {
+                w.add(t.Lambda_up(alpha, gamma, mu), independent(alpha, gamma, mu), alpha, gamma, mu);
+                CHECK(G1_gtr_family(alpha, gamma, 0.0) == 0.0);
+                CHECK(Lambda_gtr_family(alpha, gamma, INFINITY) == 0.0);
+                CHECK(Lambda_gtr_family(alpha, gamma, 0.0) == INFINITY);
+            }
+    INFO("worst relative dLambda " << w.rel << " at alpha " << w.alpha << ", gamma " << w.gamma << ", mu " << w.mu);
+    CHECK(w.rel <= t.error_bound());
+    CHECK(w.dG1 <= t.error_bound() / 4);
+    // beyond the tabulated xi range: the asymptotes, finite and positive to the ends of double (Lambda ~ C mu^-2
+    // underflows to 0 near mu = 1e300)
+    for (double mu : {1e-300, 1e-20, 1e20}) {
+        const double L = t.Lambda_up(1e-4, 1.5, mu);
+        CHECK((L > 0.0 && L < INFINITY));
+    }
+    CHECK(t.Lambda_up(1e-4, 1.5, 1e300) == 0.0);
+    CHECK(t.Lambda_up(1e-4, 1.5, 5e-324) == INFINITY);
+}
+
+TEST_CASE("family: the report's grid (9 alpha x 17 mu x 14 gamma)", "[family]") {
+    const GtrFamily& t = GtrFamily::get();
+    Worst w;
+    for (int i = 0; i < 9; ++i)
+        for (double gamma : {0.0, 0.5, 1.0, 1.5, 2.0, 2.5, 3.0, 3.5, 4.0, 5.5, 7.0, 10.0, 15.0, 20.0})
+            for (int k = 0; k < 17; ++k) {
+                const double alpha = std::pow(10.0, -4.0 + 0.5 * i), mu = std::pow(10.0, -4.0 + 0.5 * k);
+                w.add(t.Lambda_up(alpha, gamma, mu), independent(alpha, gamma, mu), alpha, gamma, mu);
+            }
+    INFO("worst relative dLambda " << w.rel << " at alpha " << w.alpha << ", gamma " << w.gamma << ", mu " << w.mu);
+    WARN("family, report grid: worst relative dLambda " << w.rel << ", |dG1| " << w.dG1);
+    CHECK(w.rel <= t.error_bound());
+    CHECK(w.dG1 <= 1e-6);
+}
+
+TEST_CASE("family: against the 50-digit reference", "[family][slow]") {
+    const GtrFamily& t = GtrFamily::get();
+    for (const auto& [alpha, gamma, mu] : {std::tuple{1e-4, 1.0 + 1e-9, 1e-3}, std::tuple{1e-4, 0.5, 1e-8},
+                                           std::tuple{0.37, 2.71, 0.9}, std::tuple{1.0, 13.3, 1e8}}) {
+        const double got = t.Lambda_up(alpha, gamma, mu);
+        INFO("alpha " << alpha << ", gamma " << gamma << ", mu " << mu << ": " << got);
+        CHECK(ref::close(got, ref::Lambda(ref::gtr(alpha, gamma), mu), t.error_bound()));
+    }
+}
+
+TEST_CASE("family: input rules and conventions", "[family]") {
+    auto says = [](auto f, const char* what) {
+        try {
+            f();
+        } catch (const input_error& e) {
+            return std::string(e.what()).find(what) != std::string::npos;
+        }
+        return false;
+    };
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    CHECK(says([] { Lambda_gtr_family(0.0, 1.0, 0.5); }, "alpha"));
+    CHECK(says([] { Lambda_gtr_family(9e-5, 1.0, 0.5); }, "alpha"));
+    CHECK(says([] { Lambda_gtr_family(1.0000001, 1.0, 0.5); }, "alpha"));
+    CHECK(says([&] { Lambda_gtr_family(nan, 1.0, 0.5); }, "alpha"));
+    CHECK(says([] { Lambda_gtr_family(0.5, -1e-12, 0.5); }, "gamma"));
+    CHECK(says([] { Lambda_gtr_family(0.5, 20.000001, 0.5); }, "gamma"));
+    CHECK(says([&] { G1_gtr_family(0.5, nan, 0.5); }, "gamma"));
+    CHECK(says([&] { Lambda_gtr_family(0.5, 1.0, nan); }, "mu is NaN"));
+    const double L = Lambda_gtr_family(0.3, 1.7, 0.6);
+    CHECK(Lambda_gtr_family(0.3, 1.7, -0.6) == -1.0 - L);                      // Smith's downward convention
+    CHECK(Lambda_gtr_family(0.3, 1.7, -0.6, Downward::hammon_symmetric) == -L);  // Hammon's
+    CHECK(G1_gtr_family(0.3, 1.7, -0.6) == 1.0 / (1.0 + L));                    // G1 takes |mu|
+
+    // The variant: GTR in the domain only; through the variant interface, the same numbers.
+    const VariantRegistry vr = builtin_variants();
+    const LambdaVariant& v = vr.at("family");
+    const NdfRegistry nr = builtin_registry();
+    CHECK(v.applies(nr.make("gtr(alpha=0.3, gamma=1.7)")));
+    CHECK_FALSE(v.applies(nr.make("gtr(alpha=1e-5, gamma=1.7)")));
+    CHECK_FALSE(v.applies(nr.make("gtr(alpha=0.3, gamma=21)")));
+    CHECK_FALSE(v.applies(nr.make("ggx(alpha=0.3)")));
+    CHECK(prepare(v, nr.make("gtr(alpha=0.3, gamma=1.7)"))(0.6) == L);
+}
+
+TEST_CASE("family: one table, shared by every thread", "[family]") {
+    const GtrFamily* seen[2] = {nullptr, nullptr};
+    double got[2] = {0.0, 0.0};
+    std::thread a([&] { seen[0] = &GtrFamily::get(); got[0] = seen[0]->Lambda_up(0.2, 2.5, 0.3); });
+    std::thread b([&] { seen[1] = &GtrFamily::get(); got[1] = seen[1]->Lambda_up(0.2, 2.5, 0.3); });
+    a.join();
+    b.join();
+    CHECK(seen[0] == seen[1]);
+    CHECK(got[0] == got[1]);
+}
