@@ -43,9 +43,22 @@ SlopeDensity gtr(double alpha_d, double gamma_d);
 SlopeDensity ggx(double alpha_d);
 SlopeDensity beckmann(double alpha_d);
 SlopeDensity blinn(double n_d);
+// Ribardiere, Bringier, Meneveaux, Simonot 2017 (STD), the slope density as printed:
+// (1 / (pi alpha^2)) (1 + r^2 / ((gamma - 1) alpha^2))^-gamma.
+SlopeDensity student_t(double alpha_d, double gamma_d);
 
 // The reduced integral in r, split at 2 mu: tanh-sinh on [mu, 2 mu], exp-sinh on [2 mu, inf).
 real Lambda(const SlopeDensity& f, double mu_d);
+// The same without the cut at r = 1e60 (1 + mu), for a tail heavier than r^-4 (the Student-t's r^(-2 gamma) leaves
+// (1e60)^(3 - 2 gamma) of Lambda beyond it, 1e-12 at gamma = 1.6): exp-sinh integrates to infinity, in u = r / mu
+// (scale-free, for mu up to 1e300).
+real Lambda_uncut(const SlopeDensity& f, double mu_d);
+
+// Ribardiere et al. 2017 eq. 13-14 as printed, at 100 digits, z = mu / alpha:
+// Lambda = Gamma(gamma - 1/2) / (sqrt(pi) Gamma(gamma)) [(gamma - 1)^gamma S1 / (2 gamma - 3) + sqrt(gamma - 1) S2] - 1/2,
+// S1 = ((gamma - 1) + z^2)^(3/2 - gamma) / z, S2 = integral_0^z (1 + u^2 / (gamma - 1))^(1/2 - gamma) du (eq. 15) by
+// tanh-sinh. It cancels to 1/2 as z grows: 100 digits leave 50 wherever Lambda > 1e-45.
+real Lambda_student_printed(double alpha_d, double gamma_d, double mu_d);
 
 // Dimov 2015, the printed closed forms for gamma = 0..4 (sec. 3.1-3.5), evaluated literally at 100 digits: they
 // cancel catastrophically (up to 32 digits for gamma = 4 at alpha = 1e-4, mu = 1e4), which leaves more than 60.

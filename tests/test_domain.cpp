@@ -73,6 +73,12 @@ Density gtr_ref(double a_d, double g_d) {
     };
 }
 
+// Ribardiere et al. 2017 (STD): (1 / (pi alpha^2)) (1 + r^2 / ((gamma - 1) alpha^2))^-gamma, the power through log1p.
+Density student_ref(double a_d, double g_d) {
+    const LD a2 = LD(a_d) * a_d, g = g_d;
+    return [=](LD r2) { return std::exp(-g * std::log1p(r2 / ((g - 1) * a2))) / (pi_ld * a2); };
+}
+
 // Lambda(mu) = (2/mu) integral_mu^inf f(r^2) r (sqrt(r^2 - mu^2) - mu acos(mu/r)) dr (the r-form; smithlab integrates
 // the t-form in double): [mu, 2 mu] in r by tanh-sinh, then in ln r (pieces of <= 8 e-folds) from 2 mu through 4x every scale of the
 // law above it, then in ln r by exp-sinh beyond the last, each to 1e-17.
@@ -130,6 +136,9 @@ std::string fmt(double x) {
 Draw ggx_draw(double a) { return {"ggx(alpha=" + fmt(a) + ")", ggx_ref(a), {a}}; }
 Draw beckmann_draw(double a) { return {"beckmann(alpha=" + fmt(a) + ")", beckmann_ref(a), {a}}; }
 Draw blinn_draw(double n) { return {"blinn(n=" + fmt(n) + ")", blinn_ref(n), {std::sqrt(2.0 / (n + 2.0)), 1.0}}; }
+Draw student_draw(double a, double gm) {
+    return {"student(alpha=" + fmt(a) + ", gamma=" + fmt(gm) + ")", student_ref(a, gm), {a}};
+}
 Draw gtr_draw(double a, double gm) {
     return {"gtr(alpha=" + fmt(a) + ", gamma=" + fmt(gm) + ")", gtr_ref(a, gm), {a, a / std::sqrt(1.0 + gm), 1.0}};
 }
@@ -144,6 +153,15 @@ std::vector<Draw> draws(const std::string& family, int random, smithlab::Rng& g)
     } else if (family == "blinn") {
         for (double n : {0.0, 1e-300, 1.0, 1e6, 1e90}) out.push_back(blinn_draw(n));
         for (int i = 0; i < random; ++i) out.push_back(blinn_draw(log_uniform(g, 1e-6, 1e90)));
+    } else if (family == "student") {
+        for (double a : {1e-50, 1e-4, 1.0, 1e50})
+            for (double gm : {1.65, 2.0, 1e6}) out.push_back(student_draw(a, gm));
+        for (int i = 0; i < random; ++i) {
+            const double a = log_uniform(g, 1e-50, 1e50);
+            // half in the shapes between GGX and its heavier tails and the paper's fits, half log-uniform up to 1e6
+            const double gm = smithlab::uniform01(g) < 0.5 ? 1.65 + 8.35 * smithlab::uniform01(g) : log_uniform(g, 1.65, 1e6);
+            out.push_back(student_draw(a, gm));
+        }
     } else if (family == "gtr") {
         for (double a : {1e-50, 1e-15, 1.0})
             for (double gm : {0.0, 0.5, 1.0 + 1e-9, 2.0, 31.0, 1e6}) out.push_back(gtr_draw(a, gm));
@@ -313,15 +331,19 @@ TEST_CASE("accepted means right: Blinn-Phong over n in [0, 1e90], every method",
 TEST_CASE("accepted means right: GTR over alpha in [1e-50, 1], gamma in [0, 1e6], every method", "[domain]") {
     run_family("gtr", 12, 4, false, 904);
 }
+TEST_CASE("accepted means right: Student-t over alpha in [1e-50, 1e50], gamma in [1.65, 1e6], every method", "[domain]") {
+    run_family("student", 8, 4, false, 907);
+}
 TEST_CASE("accepted means right: the nested 2D routes at the corners", "[domain][2d][sweep]") {
-    for (const char* family : {"ggx", "beckmann", "blinn", "gtr"}) run_family(family, 1, 1, true, 905);
+    for (const char* family : {"ggx", "beckmann", "blinn", "gtr", "student"}) run_family(family, 1, 1, true, 905);
 }
 
 TEST_CASE("factories refuse what lies beyond the accepted domain, naming it", "[domain]") {
     const smithlab::NdfRegistry r = smithlab::builtin_registry();
     for (const char* spec : {"ggx(alpha=1e-51)", "ggx(alpha=2e50)", "beckmann(alpha=0)", "blinn(n=-1)",
                              "gtr(alpha=1.5, gamma=1)", "gtr(alpha=1e-51, gamma=1)", "gtr(alpha=0.3, gamma=1.1e6)",
-                             "gtr(alpha=0.3, gamma=1e18)"}) {
+                             "gtr(alpha=0.3, gamma=1e18)", "student(alpha=0.3, gamma=1.6)", "student(alpha=0.3, gamma=2e6)",
+                             "student(alpha=1e-51, gamma=2)"}) {
         INFO(spec);
         CHECK_THROWS_AS(r.make(spec), input_error);
     }
@@ -425,7 +447,8 @@ TEST_CASE("the per-distribution checks pass over the accepted domain, or refuse"
     const smithlab::NdfRegistry r = smithlab::builtin_registry();
     for (const char* spec : {"ggx(alpha=1e-5)", "ggx(alpha=1e-50)", "ggx(alpha=1e20)", "beckmann(alpha=1e-20)",
                              "beckmann(alpha=1e-50)", "beckmann(alpha=1e8)", "blinn(n=1e90)", "gtr(alpha=1e-50, gamma=0.5)",
-                             "gtr(alpha=1e-30, gamma=31)", "gtr(alpha=1e-8, gamma=2.5)", "gtr(alpha=0.3, gamma=1e6)"}) {
+                             "gtr(alpha=1e-30, gamma=31)", "gtr(alpha=1e-8, gamma=2.5)", "gtr(alpha=0.3, gamma=1e6)",
+                             "student(alpha=1e-50, gamma=1.65)", "student(alpha=1e8, gamma=3)", "student(alpha=1e-8, gamma=1e6)"}) {
         const AnyNdf ndf = r.make(spec);
         for (const auto& c : smithlab::run_checks(ndf)) {
             INFO(spec << ": " << c.name << " " << c.where << " value=" << c.value << " expected=" << c.expected);
@@ -445,7 +468,8 @@ TEST_CASE("samplers at extreme incidence: a finite sample with its finite pdf, o
     const std::vector<std::string> specs = {
         "ggx(alpha=1e-50)", "ggx(alpha=0.3)",   "ggx(alpha=1e50)",   "beckmann(alpha=1e-50)", "beckmann(alpha=0.3)",
         "beckmann(alpha=1e50)", "blinn(n=0)", "blinn(n=1e90)", "gtr(alpha=1e-50, gamma=0.5)", "gtr(alpha=0.3, gamma=1e6)",
-        "gtr(alpha=1, gamma=0)", "gtr(alpha=1e-15, gamma=31)"};
+        "gtr(alpha=1, gamma=0)", "gtr(alpha=1e-15, gamma=31)", "student(alpha=1e-50, gamma=1.65)",
+        "student(alpha=0.3, gamma=1.65)", "student(alpha=1e50, gamma=1e6)"};
     const std::vector<double> thetas = {0.0, 1e-200, 45.0, 89.999999, 90.0, 179.99};
     int drawn = 0, refused = 0;
     for (const std::string& spec : specs) {

@@ -26,3 +26,30 @@ TEST_CASE("50-digit reference reproduces the Beckmann and GGX closed forms", "[r
             CHECK(static_cast<double>(abs((g - gc) / gc)) < 1e-20);
         }
 }
+
+TEST_CASE("50-digit uncut r-form reproduces Dimov's forms, and the STD paper's eq. 13 as printed", "[reference]") {
+    // Lambda_uncut (in u = r / mu, no cut) against the printed forms: GGX and GTR gamma = 3 (r^-4 tails), and
+    // the Student-t's eq. 13-15 (Ribardiere et al. 2017) evaluated literally at 100 digits, heavy tails included.
+    for (double alpha : {1e-4, 0.3})
+        for (double mu : {1e-4, 0.7, 1e4}) {
+            INFO("alpha=" << alpha << " mu=" << mu);
+            for (int gamma : {2, 3}) {
+                const ref::real q = ref::Lambda_uncut(ref::gtr(alpha, gamma), mu), c = ref::Lambda_dimov(gamma, alpha, mu);
+                CHECK(static_cast<double>(abs((q - c) / c)) < 1e-20);
+            }
+        }
+    for (double gamma : {1.6, 2.0, 2.5, 7.0, 40.0})
+        for (double alpha : {1e-3, 0.5})
+            for (double z : {1e-3, 0.7, 3.0, 30.0}) {
+                const ref::real printed = ref::Lambda_student_printed(alpha, gamma, z * alpha);
+                if (printed < ref::real("1e-40")) continue;  // eq. 13 cancels to 1/2: 100 digits leave 60 down to here
+                const ref::real q = ref::Lambda_uncut(ref::student_t(alpha, gamma), z * alpha);
+                INFO("gamma=" << gamma << " alpha=" << alpha << " z=" << z << ": " << static_cast<double>(q));
+                CHECK(static_cast<double>(abs((q - printed) / printed)) < 1e-20);
+            }
+    // gamma = 2 is GGX as printed
+    for (double mu : {1e-3, 0.4, 30.0}) {
+        const ref::real s = ref::Lambda_uncut(ref::student_t(0.2, 2.0), mu), g = ref::Lambda_dimov(2, 0.2, mu);
+        CHECK(static_cast<double>(abs((s - g) / g)) < 1e-20);
+    }
+}

@@ -26,7 +26,8 @@ std::vector<std::string> ndf_specs() {
             "blinn(n=1)",             "blinn(n=20)",            "blinn(n=2000000)",
             "gtr(alpha=0.3, gamma=0.5)", "gtr(alpha=0.001, gamma=1)", "gtr(alpha=0.3, gamma=1.5)",
             "gtr(alpha=0.5, gamma=3.3)", "gtr(alpha=0.001, gamma=10)", "gtr(alpha=1, gamma=4)",
-            "gtr(alpha=0.3, gamma=2)",   "donly_ggx(alpha=0.3)"};
+            "gtr(alpha=0.3, gamma=2)",   "student(alpha=0.3, gamma=1.65)", "student(alpha=0.001, gamma=4)",
+            "student(alpha=1, gamma=30)", "donly_ggx(alpha=0.3)"};
 }
 
 NdfRegistry registry_with_donly() {
@@ -166,6 +167,9 @@ TEST_CASE("D cos laws: the analytic survival functions against quadrature of pi 
     check(gtr(1e-30, 2.5), "gtr 1e-30 2.5");
     check(gtr(1e-30, 25.0), "gtr 1e-30 25");  // (gamma - 1) ln(1/alpha^2) = 3300: expm1 would overflow
     for (double n : {0.0, 1.0, 20.0, 1e4}) check(blinn(n), "blinn " + std::to_string(n));
+    for (double a : {1e-4, 0.3, 1.0})
+        for (double g : {1.65, 2.0, 3.3, 30.0, 1e6}) check(student(a, g), "student " + std::to_string(a) + " " + std::to_string(g));
+    check(student(1e-30, 2.5), "student 1e-30 2.5");
 }
 
 TEST_CASE("D cos tables: against the analytic inversions, within their stated error", "[sampling]") {
@@ -196,6 +200,8 @@ TEST_CASE("D cos tables: against the analytic inversions, within their stated er
     compare(gtr(1e-3, 1.0), "gtr(1e-3, 1)");
     compare(gtr(0.5, 20.0), "gtr(0.5, 20)");
     compare(blinn(20.0), "blinn(20)");
+    compare(student(1e-3, 1.65), "student(1e-3, 1.65)");
+    compare(student(0.5, 30.0), "student(0.5, 30)");
 }
 
 TEST_CASE("D cos tables: a law reaching the ends of the table's range is refused, not truncated", "[sampling]") {

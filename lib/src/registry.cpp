@@ -75,9 +75,9 @@ void register_core_ndfs(NdfRegistry& r) {
            {"blinn(n=0.5)", "blinn(n=20)", "blinn(n=1000)"}},
           [](const NdfParams& p) { return blinn(p.at("n")); });
     r.add({"student", {"alpha", "gamma"},
-           "Student's t-distribution of slopes (Ribardiere et al. 2017), gamma in [1.6, 1e6]: GGX at 2, Beckmann as "
+           "Student's t-distribution of slopes (Ribardiere et al. 2017), gamma in [1.65, 1e6]: GGX at 2, Beckmann as "
            "gamma -> inf; closed-form Lambda",
-           {"student(alpha=1e-4, gamma=1.6)", "student(alpha=0.3, gamma=1.6)", "student(alpha=0.3, gamma=2)",
+           {"student(alpha=1e-4, gamma=1.65)", "student(alpha=0.3, gamma=1.65)", "student(alpha=0.3, gamma=2)",
             "student(alpha=1, gamma=3)", "student(alpha=0.05, gamma=7.5)", "student(alpha=0.5, gamma=30)",
             "student(alpha=0.2, gamma=1e6)"}},
           [](const NdfParams& p) { return student(p.at("alpha"), p.at("gamma")); });

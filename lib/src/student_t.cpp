@@ -15,41 +15,60 @@ namespace {
 constexpr double pi = std::numbers::pi;
 // Boost's special functions in double itself (its default promotes to long double).
 constexpr boost::math::policies::policy<boost::math::policies::promote_double<false>> double_policy;
+
+// (1 + q)^-e for q >= 0: by log1p near q = 0, where 1 + q would drop q's digits; beyond, by pow, whose error is a few
+// ulp of 1 + q times e where exp(-e log1p(q)) would add e ln(q) ulp (5e-14 at q = 1e100, e = 2).
+double inv_pow1p(double q, double e) { return q < 0.5 ? std::exp(-e * std::log1p(q)) : std::pow(1.0 + q, -e); }
 }  // namespace
 
 StudentT student(double alpha, double gamma) {
     require(alpha >= 1e-50 && alpha <= 1e50, "student: alpha", "in [1e-50, 1e50]", alpha);
-    require(gamma >= student_min_gamma && gamma <= student_max_gamma, "student: gamma", "in [1.6, 1e6]", gamma);
-    const double g = gamma - 1.0, A = gamma - 1.5;  // both exact for gamma in [1.5, 2^52]
-    const double P = boost::math::tgamma_delta_ratio(gamma - 0.5, 0.5, double_policy) * std::sqrt(g) /
-                     (4.0 * A * std::sqrt(pi));
-    return {alpha, gamma, P};
+    require(gamma >= student_min_gamma && gamma <= student_max_gamma, "student: gamma", "in [1.65, 1e6]", gamma);
+    // P = Gamma(gamma - 1/2) / Gamma(gamma) sqrt(g) / (4 A sqrt(pi)), once per NDF in long double (to 0.5 ulp in
+    // double: its error is multiplied by up to 6.9 near z = 0.7, Lambda below).
+    const long double g = gamma - 1.0L, A = gamma - 1.5L;  // both exact
+    const long double P = boost::math::tgamma_delta_ratio(gamma - 0.5L, 0.5L) * std::sqrt(g) /
+                          (4.0L * A * std::sqrt(std::numbers::pi_v<long double>));
+    return {alpha, gamma, static_cast<double>(P)};
 }
 
 double StudentT::D(double c) const {
     if (!(c > 0.0)) return 0.0;
-    const double s2 = (1.0 - c) * (1.0 + c), ga2 = (gamma - 1.0) * alpha * alpha, lc = std::log(c);
-    // L = ln(1 + q), q = tan^2 / ((gamma - 1) alpha^2) = s2 / (ga2 c^2). Below c = 1e-100 (where c^2 c^2 would
-    // underflow) q > 1e94 and ln(1 + q) = ln q to double.
-    const double L = c > 1e-100 ? std::log1p(s2 / (ga2 * c * c)) : std::log(s2) - std::log(ga2) - 2.0 * lc;
-    // P22 / cos^4 as one exponential: (1 + q)^-gamma c^-4, finite at every c > 0 (it grows like c^(2 gamma - 4)).
+    const double s2 = (1.0 - c) * (1.0 + c), ga2 = (gamma - 1.0) * alpha * alpha;
+    // P22 / cos^4 with q = tan^2 / ((gamma - 1) alpha^2) = s2 / (ga2 c^2), while c^4 and (1 + q)^-gamma stay in range
+    // (the divisions in this order cannot underflow where D does not: pi alpha^2 c^2 >= 3e-220) ...
+    if (c > 1e-60) {
+        const double c2 = c * c, p = inv_pow1p(s2 / (ga2 * c2), gamma);
+        if (p > 1e-280) return p / (pi * alpha * alpha * c2) / c2;
+    }
+    // ... else as one exponential, (1 + q)^-gamma c^-4 = exp(-gamma ln(1 + q) - 4 ln c), finite at every c > 0 (it
+    // grows like c^(2 gamma - 4) for gamma < 2); past q = 1e94, ln(1 + q) = ln q to double.
+    const double lc = std::log(c), q_big = c > 1e-100 ? s2 / (ga2 * c * c) : INFINITY;
+    const double L = q_big < 1e94 ? std::log1p(q_big) : std::log(s2) - std::log(ga2) - 2.0 * lc;
     return std::exp(-gamma * L - 4.0 * lc) / (pi * alpha * alpha);
 }
 
 double StudentT::slope_density(double r2) const {
     if (!(r2 < INFINITY)) return 0.0;
-    return std::exp(-gamma * std::log1p(r2 / ((gamma - 1.0) * alpha * alpha))) / (pi * alpha * alpha);
+    const double q = r2 / ((gamma - 1.0) * alpha * alpha), p = inv_pow1p(q, gamma), pa2 = pi * alpha * alpha;
+    // Where (1 + q)^-gamma nears its underflow, 1 / (pi alpha^2) (up to 3e99) may still lift P22 into range: one
+    // exponential then (a q that overflows leaves P22 below 1e-400 for every accepted alpha and gamma: 0).
+    return p > 1e-280 ? p / pa2 : std::exp(-gamma * std::log1p(q) - std::log(pa2));
 }
 
 double StudentT::Dcos_sf(double r2) const {
     if (!(r2 < INFINITY)) return 0.0;
     const double g = gamma - 1.0;
-    return std::exp(-g * std::log1p(r2 / (g * alpha * alpha)));
+    return inv_pow1p(r2 / (g * alpha * alpha), g);
 }
 
 double StudentT::Dcos_r2(double v) const {
+    // r^2 = g alpha^2 (v^(-1/g) - 1): expm1 near v = 1, pow beyond (exact at g = 1: GGX's (1 - v) / v), and through
+    // logs where v^(-1/g) alone would overflow but r^2 need not (alpha < 1).
     const double g = gamma - 1.0, ga2 = g * alpha * alpha, y = -std::log(v) / g;
-    return y < 700.0 ? ga2 * std::expm1(y) : std::exp(std::log(ga2) + y);  // (overflows to inf only when r^2 does)
+    if (y < 0.5) return ga2 * std::expm1(y);
+    const double p = std::pow(v, -1.0 / g);
+    return p < INFINITY ? ga2 * (p - 1.0) : std::exp(std::log(ga2) + y);
 }
 
 double StudentT::ggx_alpha() const { return gamma == 2.0 ? alpha : std::numeric_limits<double>::quiet_NaN(); }
@@ -82,7 +101,7 @@ double StudentT::ggx_alpha() const { return gamma == 2.0 ? alpha : std::numeric_
 //  (X) For z <= 0.7, the same function continued to w = 0 (DLMF 15.8.4, c - a - b = 1/2):
 //          Lambda = 2 g P (1 + w)^-A / z H(x) - 1/2,   H(x) = 2F1(A, 1; 1/2; x),   x = w / (1 + w),
 //      a series of positive terms (x^n z^2n / (1/2)_n-like: ~15-35 terms); the -1/2 is the paper's, and costs
-//      a factor (Lambda + 1/2) / Lambda <= 6.8 (Lambda >= Beckmann's 0.0858 at z = 0.7: Lambda decreases with gamma).
+//      a factor (Lambda + 1/2) / Lambda <= 6.9 (Lambda >= Beckmann's 0.0857 at z = 0.7: Lambda decreases with gamma).
 // Both take mu / alpha and w as double-double (z + z_lo, w + w_lo) from the exact inputs: rounded once, their error
 // would be multiplied by Lambda's sensitivity to mu, ~2 gamma - 2 at large z.
 // ---------------------------------------------------------------------------------------------------------------
@@ -117,19 +136,21 @@ constexpr std::array<double, 96> inv_half_plus = [] {
     return a;
 }();
 
-// H(x) = 2F1(A, 1; 1/2; x) = sum_n (A)_n / (1/2)_n x^n: positive terms whose ratio r_n = (A + n) x / (1/2 + n) tends to
-// x (from above for A > 1/2, from below for A < 1/2); the tail after a term is at most term r / (1 - r),
-// r = max(r_n, x). Here x <= 0.49 / (g + 0.49) <= 0.48 (z <= 0.7, g >= 0.55).
-double H_series(double A, double x) {
-    double term = 1.0, sum = 1.0;
+// H(x) = 2F1(A, 1; 1/2; x) = sum_n (A)_n / (1/2)_n x^n at x + x_lo, to first order in x_lo (H' = sum_n n term_n / x):
+// positive terms whose ratio r_n = (A + n) x / (1/2 + n) tends to x (from above for A > 1/2, from below for
+// A < 1/2); the tail after a term is at most term r / (1 - r), r = max(r_n, x). Here x <= 0.49 / (g + 0.49) <= 0.48
+// (z <= 0.7, g >= 0.65).
+double H_series(double A, double x, double x_lo) {
+    double term = 1.0, sum = 1.0, dsum = 0.0;  // dsum = x H'(x)
     for (std::size_t n = 0; n < inv_half_plus.size(); ++n) {
         const double r = (A + static_cast<double>(n)) * inv_half_plus[n] * x;
         term *= r;
         sum += term;
+        dsum += static_cast<double>(n + 1) * term;
         const double rmax = std::max(r, x);
         if (term * rmax < 5e-17 * (1.0 - rmax) * sum) break;
     }
-    return sum;
+    return x > 0.0 ? sum + dsum * (x_lo / x) : sum;  // x = 0: z^2 underflowed
 }
 
 }  // namespace
@@ -150,7 +171,8 @@ double StudentT::Lambda(double mu) const {
     const double s = 1.0 + w, s_b = s - 1.0, s_lo = ((1.0 - (s - s_b)) + (w - s_b)) + w_lo;  // 1 + w = s + s_lo
     if (z <= 0.7) {
         const double tA_z = std::pow(s, -A) * (1.0 - A * (s_lo / s)) / z * (1.0 - z_lo / z);  // (1 + w)^-A / z
-        return 2.0 * g * P * tA_z * H_series(A, w / s) - 0.5;
+        const double x = w / s, x_lo = (std::fma(-x, s, w) + w_lo - x * s_lo) / s;  // w / (1 + w)
+        return 2.0 * g * P * tA_z * H_series(A, x, x_lo) - 0.5;
     }
     const double y = 1.0 / w * (1.0 - w_lo / w);
     const double lead = std::pow(s, 1.0 - A) * (1.0 + (1.0 - A) * (s_lo / s)) / (w * z) *

@@ -1,7 +1,7 @@
 // smithlab/student_t.hpp -- the Student's t-distribution of slopes (STD): Ribardiere, Bringier, Meneveaux, Simonot
 // 2017, "STD: Student's t-Distribution of Slopes for Microfacet Based BSDFs", Computer Graphics Forum 36(2).
 //
-// Its slopes follow a bivariate Student's t law of roughness alpha and shape gamma > 3/2 (here >= 1.6, below):
+// Its slopes follow a bivariate Student's t law of roughness alpha and shape gamma > 3/2 (here >= 1.65, below):
 //     P22(r^2) = (1 / (pi alpha^2)) (1 + r^2 / ((gamma - 1) alpha^2))^-gamma,   D = P22 / cos^4 theta_m,
 // normalized for every gamma > 1 (integral of pi P22 d(r^2) = 1). gamma = 2 is GGX of the same alpha, and as
 // gamma -> inf (1 + r^2/(g alpha^2))^-gamma -> exp(-r^2/alpha^2): Beckmann of the same alpha (the paper's sec. 3 and
@@ -39,12 +39,14 @@ struct StudentT {
     double ggx_alpha() const;
 };
 
-// The accepted domain: alpha in [1e-50, 1e50] (as GGX and Beckmann), gamma in [1.6, 1e6]. Near gamma = 3/2 the slope
-// law's r^(-2 gamma) tail leaves a fraction ~R^(3 - 2 gamma) of Lambda beyond any slope R: the quadrature routes
-// (smith.hpp), which reach R ~ 1e100, and with them the checks and the NDF-agnostic code (tables, samplers), miss
-// 1e-10 of it at gamma = 1.55 and 5e-13 at 1.57 (GSL; the closed form has no such limit); at gamma -> 3/2 every Lambda
-// -> inf. Above 1e6 the law is Beckmann's to within its own rounding, and 1e6 is where GTR stops too.
-inline constexpr double student_min_gamma = 1.6;
+// The accepted domain: alpha in [1e-50, 1e50] (as GGX and Beckmann), gamma in [1.65, 1e6]. Near gamma = 3/2 the
+// slope law's r^(-2 gamma) tail leaves a fraction ~(R / alpha)^(3 - 2 gamma) of Lambda, and of the law P22 r^2 dr
+// the visible normals draw from, beyond any slope R: the NDF-agnostic code cannot hold that (the quadrature routes of
+// smith.hpp reach R ~ 1e100 and miss 1e-10 of Lambda at gamma = 1.55; the visible-normal tables span tan^2 up to 1e100
+// and refuse a law with more than 1e-12 beyond 1e49, which at alpha = 1 is gamma < 1.62), though the closed form has no
+// such limit; at gamma -> 3/2 every Lambda -> inf. Above 1e6 the law is Beckmann's to within its own rounding, and
+// 1e6 is where GTR stops too.
+inline constexpr double student_min_gamma = 1.65;
 inline constexpr double student_max_gamma = 1e6;
 StudentT student(double alpha, double gamma);
 
