@@ -2,6 +2,7 @@
 
 #include <boost/math/quadrature/gauss.hpp>
 #include <boost/math/quadrature/gauss_kronrod.hpp>
+#include <memory>
 
 namespace smithlab::fixed_rule {
 
@@ -48,14 +49,31 @@ Piece make_piece(const Rule& R, double a, double b, bool in_s) {
     return p;
 }
 
-Tables make_tables() {
+// The tree of a piece [a, b]: tree[1] = [a, b], tree[2i], tree[2i + 1] the halves of tree[i].
+void make_tree(const Rule& R, Tree& tree, double a, double b, bool in_s) {
+    std::array<double, tree_size> lo{}, hi{};
+    lo[1] = a;
+    hi[1] = b;
+    for (int i = 1; i < tree_size; ++i) {
+        if (i > 1) {
+            const int parent = i / 2;
+            const double m = 0.5 * (lo[parent] + hi[parent]);
+            lo[i] = i % 2 == 0 ? lo[parent] : m;
+            hi[i] = i % 2 == 0 ? m : hi[parent];
+        }
+        tree[i] = make_piece(R, lo[i], hi[i], in_s);
+    }
+}
+
+// On the heap (0.8 MB: not a temporary on a thread's stack), built once.
+std::unique_ptr<const Tables> make_tables() {
     const Rule& R = rule();
-    Tables t{};
-    for (int j = 0; j < max_panels; ++j) t.panel[j] = make_piece(R, j * panel_width, (j + 1) * panel_width, false);
+    auto t = std::make_unique<Tables>();
+    for (int j = 0; j < max_panels; ++j) make_tree(R, t->panel[j], j * panel_width, (j + 1) * panel_width, false);
     for (int j = 0; j <= max_panels; ++j) {
         // s = pi/2 - gd(u) = atan(1 / sinh u), without the cancellation of pi/2 - atan(sinh u).
-        t.s_edge[j] = j == 0 ? std::numbers::pi / 2 : std::atan(1.0 / std::sinh(j * panel_width));
-        t.tail[j] = make_piece(R, 0.0, t.s_edge[j], true);
+        t->s_edge[j] = j == 0 ? std::numbers::pi / 2 : std::atan(1.0 / std::sinh(j * panel_width));
+        make_tree(R, t->tail[j], 0.0, t->s_edge[j], true);
     }
     return t;
 }
@@ -68,8 +86,8 @@ const Rule& rule() {
 }
 
 const Tables& tables() {
-    static const Tables t = make_tables();
-    return t;
+    static const std::unique_ptr<const Tables> t = make_tables();
+    return *t;
 }
 
 }  // namespace smithlab::fixed_rule

@@ -48,6 +48,10 @@ inline constexpr int nodes = 31;           // Gauss-Kronrod 15-31
 inline constexpr double panel_width = 2.0;  // in u
 inline constexpr int max_panels = 32;      // u up to 64: mu down to ~1e-27 max(r0, 1)
 inline constexpr int max_pieces = 64;      // the bisection's limit before the adaptive route takes over
+// Each fixed piece comes with its bisections to depth 3, precomputed: a tree in heap order, tree[1] the piece,
+// tree[2i] and tree[2i + 1] the halves of tree[i]. Deeper halves get their nodes computed on the fly (~80 ns a node
+// against ~0 from the table: sinh, cosh, atan).
+inline constexpr int tree_size = 16;
 
 // One piece of the integral on fixed nodes: r_k^2 = mu^2 S[k]; the piece is sum_k W[k] r_k^2 f(r_k^2) (Kronrod) and
 // sum_k V[k] r_k^2 f(r_k^2) (Gauss, V = 0 on the Kronrod-only nodes); W and V include the node's H and the
@@ -56,13 +60,15 @@ struct Piece {
     std::array<double, nodes> S, W, V;
 };
 
+using Tree = std::array<Piece, tree_size>;
+
 struct Tables {
-    std::array<Piece, max_panels> panel;    // u in [2j, 2j + 2]
-    std::array<Piece, max_panels + 1> tail;  // u >= 2J, in s = atan(1 / sinh(2J)) .. 0
+    std::array<Tree, max_panels> panel;      // [1]: u in [2j, 2j + 2]
+    std::array<Tree, max_panels + 1> tail;   // [1]: u >= 2J, in s from atan(1 / sinh(2J)) down to 0
     std::array<double, max_panels + 1> s_edge;  // s at u = 2J
 };
 
-// Built once, at the first call (a function-local static: thread-safe, C++11 [stmt.dcl]/4), ~20 us.
+// Built once, at the first call (a function-local static: thread-safe, C++11 [stmt.dcl]/4): ~2 ms, 0.8 MB.
 const Tables& tables();
 
 // The Gauss-Kronrod 10-21 nodes on [-1, 1] (all 21), Kronrod weights and Gauss weights (0 on Kronrod-only nodes).
@@ -76,7 +82,8 @@ struct Geometry {
     double S, H;
 };
 inline Geometry at_u(double u) {
-    const double sh = std::sinh(u), ch = std::cosh(u);
+    // sinh and cosh from one expm1: sinh u = m (m + 2) / (2 (m + 1)), m = e^u - 1, exact as u -> 0.
+    const double m = std::expm1(u), sh = m * (m + 2.0) / (2.0 * (m + 1.0)), ch = sh + 1.0 / (m + 1.0);
     return {ch * ch, sh * detail::tan_minus_x(std::atan(sh), sh) / ch};
 }
 inline Geometry at_s(double s) {
@@ -164,7 +171,7 @@ FixedLambda Lambda_fixed_rule(const N& ndf, double mu, double tolerance = 1e-12)
     const Tables& T = tables();
     const double P22_0 = slope_density(ndf, 0.0);
     const double r0 = P22_0 > 0.0 && P22_0 < INFINITY ? 1.0 / std::sqrt(std::numbers::pi * P22_0) : 1.0;
-    const double u_end = std::log(2.0 * std::fmax(r0, 1.0) / mu) + 1.0;
+    const double u_end = std::log(2.0 * std::fmax(r0, 1.0) / mu) + 0.0;
     FixedLambda out;
     out.evaluations = 1;
     if (!(u_end <= max_panels * panel_width)) return out;  // beyond the tables: not converged
@@ -175,19 +182,21 @@ FixedLambda Lambda_fixed_rule(const N& ndf, double mu, double tolerance = 1e-12)
     struct Open {
         double a, b, K, E;
         bool in_s;
+        const Tree* tree;  // the piece is (*tree)[node] while node < tree_size
+        int node;
     };
     std::array<Open, max_pieces> pieces;
     int n = 0;
     double K = 0.0, E = 0.0;
     for (int j = 0; j < J; ++j) {
-        const PieceResult r = eval_piece(ndf, mu2, T.panel[j], h_u);
-        pieces[n++] = {j * panel_width, (j + 1) * panel_width, r.K, r.E, false};
+        const PieceResult r = eval_piece(ndf, mu2, T.panel[j][1], h_u);
+        pieces[n++] = {j * panel_width, (j + 1) * panel_width, r.K, r.E, false, &T.panel[j], 1};
         K += r.K;
         E += r.E;
     }
     {
-        const PieceResult r = eval_piece(ndf, mu2, T.tail[J], 0.5 * T.s_edge[J]);
-        pieces[n++] = {0.0, T.s_edge[J], r.K, r.E, true};
+        const PieceResult r = eval_piece(ndf, mu2, T.tail[J][1], 0.5 * T.s_edge[J]);
+        pieces[n++] = {0.0, T.s_edge[J], r.K, r.E, true, &T.tail[J], 1};
         K += r.K;
         E += r.E;
     }
@@ -199,11 +208,16 @@ FixedLambda Lambda_fixed_rule(const N& ndf, double mu, double tolerance = 1e-12)
             if (pieces[i].E > pieces[worst].E) worst = i;
         const Open p = pieces[worst];
         const double m = 0.5 * (p.a + p.b);
-        const PieceResult left = eval_interval(ndf, mu2, p.a, m, p.in_s);
-        const PieceResult right = eval_interval(ndf, mu2, m, p.b, p.in_s);
+        // Below the tree's depth, node stays at tree_size (a piece bisected 60 times would overflow 2^node).
+        const bool tabled = p.node < tree_size / 2;
+        const int child = tabled ? 2 * p.node : tree_size;
+        const double h = 0.5 * (m - p.a);
+        const PieceResult left = tabled ? eval_piece(ndf, mu2, (*p.tree)[child], h) : eval_interval(ndf, mu2, p.a, m, p.in_s);
+        const PieceResult right =
+            tabled ? eval_piece(ndf, mu2, (*p.tree)[child + 1], h) : eval_interval(ndf, mu2, m, p.b, p.in_s);
         out.evaluations += 2 * nodes;
-        pieces[worst] = {p.a, m, left.K, left.E, p.in_s};
-        pieces[n++] = {m, p.b, right.K, right.E, p.in_s};
+        pieces[worst] = {p.a, m, left.K, left.E, p.in_s, p.tree, child};
+        pieces[n++] = {m, p.b, right.K, right.E, p.in_s, p.tree, tabled ? child + 1 : tree_size};
         // Re-summed, not updated, so that round-off does not accumulate over the bisections.
         K = 0.0;
         E = 0.0;
