@@ -14,8 +14,8 @@
 // Rule: Gauss-Kronrod 15-31 (Kronrod 1965; the nodes and weights are Boost.Math's gauss_kronrod<double, 31>) on
 // panels [2j, 2j + 2] of u, j < J, then the tail u >= 2J in s = pi/2 - t = atan(1/sinh u) in [0, s_J] (the t-form
 // of smith.hpp, where a power tail of f is smooth: f ~ r^-4 makes the integrand tend to a constant as s -> 0),
-// with J the first panel edge beyond ln(2 max(r0, 1)/mu) + 1, at least 1 (the tail then starts past every feature,
-// and its nearest singularity, at s ~ i mu/r_f, is >= 2.7 tail lengths from its end point). A panel of width 2 puts a
+// with J the first panel edge beyond ln(2 max(r0, 1)/mu), at least 1 (the tail then starts past every feature it
+// knows of: its nearest singularity, at s ~ i mu/r_f, is at least one tail length off its end point s = 0). A panel of width 2 puts a
 // singularity pi/2 off its middle at Bernstein ellipse parameter rho = 3.4 (Trefethen 2008, "Is Gauss quadrature
 // better than Clenshaw-Curtis?", thm 4.5: error ~ rho^-2n): 15-point Gauss ~ 1e-16, 31-point Kronrod far below, of
 // the panel's size. (Gauss-Kronrod 10-21 on these panels stopped ~1e-9 short of QUADPACK's test at u ~ 0, where the
