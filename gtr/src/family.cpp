@@ -146,7 +146,7 @@ GtrFamily::GtrFamily() {
     const std::size_t cells = static_cast<std::size_t>(na_ - 1) * (ng_ - 1) * (nx_ - 1);
     ok_.assign((cells + 63) / 64, 0);
     std::size_t n_ok = 0;
-    double worst_ok = 0.0;
+    double worst_ok = 0.0, worst_ok_g1 = 0.0;
     for (int ca = 0; ca < na_ - 1; ++ca)
         for (int cg = 0; cg < ng_ - 1; ++cg)
             for (int cx = 0; cx < nx_ - 1; ++cx) {
@@ -170,11 +170,24 @@ GtrFamily::GtrFamily() {
                 // (measured against the adaptive route on 3000 random points: error / estimate <= 0.75 x 2 where the
                 // estimate is below 1e-5; the estimate misses by 2.3x in unresolved cells near alpha = 0.85, all > 1e-4)
                 const double est = 3.0 * (Pa[ca] * ea + Pg[cg] * eg + Px[cx] * ex);
+                // |dG1| = |dLambda| / ((1 + Lambda)(1 + Lambda')) <= rel Lambda / (1 + Lambda)^2 = rel h(ln Lambda): h's
+                // largest value on the cell, from its 8 corner knots (ln Lambda = f - ln mu), their range widened by 0.1
+                double lo_l = INFINITY, hi_l = -INFINITY;
+                for (int i = ca; i <= ca + 1; ++i)
+                    for (int j = cg; j <= cg + 1; ++j)
+                        for (int k = cx; k <= cx + 1; ++k) {
+                            const double l = at(i, j, k) - (xi_lo_ + h_xi * k) - (a0_ + h_a * i);
+                            lo_l = std::min(lo_l, l - 0.1), hi_l = std::max(hi_l, l + 0.1);
+                        }
+                auto h = [](double l) { return l > 0 ? std::exp(-l) / ((1.0 + std::exp(-l)) * (1.0 + std::exp(-l)))
+                                                     : std::exp(l) / ((1.0 + std::exp(l)) * (1.0 + std::exp(l))); };
+                const double hmax = lo_l <= 0.0 && hi_l >= 0.0 ? 0.25 : std::max(h(lo_l), h(hi_l));
                 const std::size_t cell = (static_cast<std::size_t>(ca) * (ng_ - 1) + cg) * (nx_ - 1) + cx;
-                if (est <= tolerance) {
+                if (est <= tolerance && est * hmax <= G1_tolerance) {
                     ok_[cell >> 6] |= std::uint64_t{1} << (cell & 63);
                     ++n_ok;
                     worst_ok = std::max(worst_ok, est);
+                    worst_ok_g1 = std::max(worst_ok_g1, est * hmax);
                 }
             }
     coverage_ = static_cast<double>(n_ok) / static_cast<double>(cells);
@@ -190,7 +203,9 @@ GtrFamily::GtrFamily() {
             const double s = (at(i, j, nx_ - 1) - at(i, j, nx_ - 2)) / h_xi;
             hi_bound = std::max(hi_bound, std::abs(s + 1.0));
         }
-    error_bound_ = std::max({worst_ok, 1e-10}) + std::max(lo_bound, hi_bound);
+    const double asymptotes = std::max(lo_bound, hi_bound);
+    error_bound_ = std::max(worst_ok, 1e-10) + asymptotes;
+    G1_error_bound_ = std::max(worst_ok_g1, 1e-10) + asymptotes / 4;
     build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
