@@ -11,8 +11,9 @@ namespace smithlab {
 namespace {
 
 // G1 at the knots gamma = 0..4 for mu in [1e-100, 1e100]: G1 = 1 / (1 + Lambda_gtr_closed(alpha, k, mu)) to a few ulp,
-// by the forms of closed_forms.hpp sharing their roots A = sqrt(mu^2 + alpha^2), B = sqrt(mu^2 + 1) (two roots for
-// the five knots, one division per G1 and one more where a form needs it; issue 14: 151 ns -> the cost of the forms).
+// by the forms of closed_forms.hpp (ratio0..ratio4, their derivations there) sharing their roots A = sqrt(mu^2 +
+// alpha^2), B = sqrt(mu^2 + 1) and their reciprocals: two roots, two logs and four divisions for the five knots
+// (issue 14: the spline cost 151 ns, nearly all of it five separate closed forms with hypot and log1pmx).
 // gamma = 0 and 2 as 2 mu / (mu + B), 2 mu / (mu + A) (Walter 2007 eq. 34 times mu / mu; B^2 = mu^2 + 1 makes
 // 1 + 1 / (2 mu (mu + B)) = (mu + B)^2 / (2 mu (mu + B))). Beyond mu_big = 1e50 (where G1 = 1 to 1e-100) the forms'
 // own asymptote, through Lambda_gtr_closed.
@@ -24,11 +25,25 @@ std::array<double, 5> knot_G1(double alpha, double mu) {
     }
     const double a2 = alpha * alpha;
     const double A = gtr_closed::root_sum_squares(mu, a2), B = gtr_closed::root_sum_squares(mu, 1.0);
-    y[0] = 2.0 * mu / (mu + B);
-    y[1] = gtr_closed::ratio1(alpha, mu, A, B).G1();
-    y[2] = 2.0 * mu / (mu + A);
-    y[3] = gtr_closed::ratio3(a2, mu, A).G1();
-    y[4] = gtr_closed::ratio4(a2, mu, A).G1();
+    // The four reciprocals the forms need, 1/(mu + A), 1/(mu + B), 1/(A + B), 1/A, from one division (each within
+    // ~2 ulp): t1 t2 lies in [1e-100, 1e201] on mu in [1e-100, 1e50], alpha in [1e-50, 1].
+    const double s = mu + A, t1 = s * (mu + B), t2 = (A + B) * A, R = 1.0 / (t1 * t2);
+    const double inv_s = R * (mu + B) * t2, inv_muB = R * s * t2, inv_AB = R * t1 * A, inv_A = R * t1 * (A + B);
+    y[0] = 2.0 * mu * inv_muB;
+    y[1] = alpha == 1.0 ? y[0] : gtr_closed::ratio1_of_x(alpha, (1.0 - alpha) * (1.0 + alpha) * inv_AB * inv_s, A, mu).G1();
+    y[2] = 2.0 * mu * inv_s;
+    {  // ratio3 with w = a2 / s
+        const double w = a2 * inv_s;
+        const gtr_closed::Ratio r{w * (w * (4.0 * mu * s + 1.0 + 3.0 * a2)), 4.0 * (1.0 + a2) * mu * A};
+        y[3] = r.G1();
+    }
+    {  // ratio4 with v = a2 / A
+        const double v = a2 * inv_A, mu2 = mu * mu;
+        const double N = 3.0 * A + mu + 2.0 * a2 * (3.0 * A + 5.0 * mu) + a2 * a2 * (15.0 * A + 37.0 * mu);
+        const double P = 48.0 * mu2 * mu2 * s + 12.0 * mu2 * (s + a2 * (5.0 * A + 7.0 * mu)) + N;
+        const gtr_closed::Ratio r{v * (v * (v * P)), 16.0 * (a2 * a2 + a2 + 1.0) * mu * (s * s * s)};
+        y[4] = r.G1();
+    }
     return y;
 }
 
