@@ -1,6 +1,7 @@
 #include "trace_run.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -256,22 +257,24 @@ RunSummary run_scene(const TraceScene& s, const std::string& source, const NdfRe
                          static_cast<long long>(sum.cells), (out / "cells").string().c_str());
     }
     const std::int64_t to_trace = sum.cells - sum.reused;
+    std::atomic<std::int64_t> traced{0};  // finish runs beside the progress line (cluster/block_jobs.hpp)
     CellJobs plan(std::move(jobs), opts, [&](std::size_t i, walk::CellPartial&& total) {
         done[i] = rows_of(prepared[i], s, walk::CellResult{std::move(total.albedo), std::move(total.brdf)});
         write_cell(cell_path(out, prepared[i].cell.index), prepared[i], *done[i]);
-        ++sum.traced;
+        ++traced;
     });
     output::ProgressLine progress;
     const cluster::Traffic traffic = cluster::run_jobs(plan, threads, [&](std::uint64_t merged, std::uint64_t all) {
         progress(static_cast<double>(merged) / static_cast<double>(all), [&] {
             char line[128];
             std::snprintf(line, sizeof line, "trace: %lld of %lld cells done%s, %.0f%% of the walks",
-                          static_cast<long long>(sum.traced), static_cast<long long>(to_trace),
+                          static_cast<long long>(traced.load()), static_cast<long long>(to_trace),
                           distributed ? (" on " + std::to_string(mpi::size()) + " ranks").c_str() : "",
                           100.0 * static_cast<double>(merged) / static_cast<double>(all));
             return std::string(line);
         });
     });
+    sum.traced = traced;
     if (mpi::rank() != 0) return sum;
 
     nlohmann::ordered_json cell_list = nlohmann::ordered_json::array();
