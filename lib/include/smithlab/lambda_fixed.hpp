@@ -47,7 +47,7 @@ namespace fixed_rule {
 inline constexpr int nodes = 31;           // Gauss-Kronrod 15-31
 inline constexpr double panel_width = 2.0;  // in u
 inline constexpr int max_panels = 32;      // u up to 64: mu down to ~1e-27 max(r0, 1)
-inline constexpr int max_pieces = 64;      // the bisection's limit before the adaptive route takes over
+inline constexpr int max_pieces = 32;      // the bisection's limit before the adaptive route takes over
 // Each fixed piece comes with its bisections to depth 3, precomputed: a tree in heap order, tree[1] the piece,
 // tree[2i] and tree[2i + 1] the halves of tree[i]. Deeper halves get their nodes computed on the fly (~80 ns a node
 // against ~0 from the table: sinh, cosh, atan).
