@@ -1,10 +1,11 @@
-// Lambda per method and backend (closed, spline, 1D Boost, 1D GSL, 2D) for GGX and GTR at a few gamma; the table
-// (the fast evaluator) against the closed-form GGX G1; every registered variant.
+// Lambda per method and backend (closed, spline, 1D Boost, 1D GSL, 2D) for GGX, GTR at a few gamma and the Student-t;
+// the table (the fast evaluator) against the closed-form GGX G1; every registered variant.
 // Each iteration evaluates one Lambda; mu cycles through 0.01 .. 100 so that no single easy point is timed.
 // Run: build/bench/bench_lambda --benchmark_min_time=0.2   (one core; the README has the current numbers)
 #include <benchmark/benchmark.h>
 
 #include <array>
+#include <cstdio>
 #include <smithlab/smithlab.hpp>
 #include <string>
 #include <utility>
@@ -31,17 +32,33 @@ void register_all() {
         smithlab::AnyNdf ndf;
     };
     const auto reg = smithlab::builtin_registry();
-    const std::array<Ndf, 5> ndfs = {Ndf{"ggx(0.3)", reg.make("ggx(alpha=0.3)")},
+    const std::array<Ndf, 6> ndfs = {Ndf{"ggx(0.3)", reg.make("ggx(alpha=0.3)")},
                                      Ndf{"gtr(0.3,0.5)", reg.make("gtr(alpha=0.3, gamma=0.5)")},
                                      Ndf{"gtr(0.3,1)", reg.make("gtr(alpha=0.3, gamma=1)")},
                                      Ndf{"gtr(0.3,1.5)", reg.make("gtr(alpha=0.3, gamma=1.5)")},
-                                     Ndf{"gtr(0.3,3)", reg.make("gtr(alpha=0.3, gamma=3)")}};
+                                     Ndf{"gtr(0.3,3)", reg.make("gtr(alpha=0.3, gamma=3)")},
+                                     Ndf{"student(0.3,4)", reg.make("student(alpha=0.3, gamma=4)")}};
     // Closed forms on the concrete types (no virtual call): what a renderer would pay.
     benchmark::RegisterBenchmark("closed/ggx(0.3)", [](benchmark::State& s) { run(s, smithlab::ggx(0.3), {}); });
     for (int g : {0, 1, 2, 3, 4, 10, 20})
         benchmark::RegisterBenchmark(("closed/gtr(0.3," + std::to_string(g) + ")").c_str(),
                                      [g](benchmark::State& s) { run(s, smithlab::gtr(0.3, g), {}); });
     benchmark::RegisterBenchmark("closed/beckmann(0.3)", [](benchmark::State& s) { run(s, smithlab::beckmann(0.3), {}); });
+    // The Student-t (Ribardiere et al. 2017): its closed form over mu = 0.01 .. 100 (z = mu / alpha = 0.03 .. 333), and
+    // where it costs most, z in [0.7, 2] (its continued fraction just past the seam at z = 0.7, longer as gamma grows).
+    for (double g : {1.65, 2.0, 4.0, 30.0, 1e4}) {
+        char name[64];
+        std::snprintf(name, sizeof name, "student(0.3,%g)", g);
+        benchmark::RegisterBenchmark((std::string("closed/") + name).c_str(),
+                                     [g](benchmark::State& s) { run(s, smithlab::student(0.3, g), {}); });
+        benchmark::RegisterBenchmark((std::string("closed/z=0.7..2/") + name).c_str(), [g](benchmark::State& s) {
+            const smithlab::StudentT ndf = smithlab::student(0.3, g);
+            constexpr std::array<double, 5> zs = {0.71, 0.9, 1.2, 1.6, 2.0};
+            std::size_t i = 0;
+            for (auto _ : s) benchmark::DoNotOptimize(ndf.Lambda(0.3 * zs[i++ % zs.size()]));
+            s.SetItemsProcessed(s.iterations());
+        });
+    }
     benchmark::RegisterBenchmark("spline/gtr(0.3,1.5)", [](benchmark::State& s) {
         run(s, smithlab::gtr(0.3, 1.5), {.method = Method::spline});
     });
@@ -73,6 +90,14 @@ void register_table() {
     benchmark::RegisterBenchmark("G1/closed/ggx(0.3)", [g1](benchmark::State& s) {
         const smithlab::Ggx ggx = smithlab::ggx(0.3);
         g1(s, [&](double mu) { return ggx.Lambda(mu); });
+    });
+    benchmark::RegisterBenchmark("G1/closed/student(0.3,4)", [g1](benchmark::State& s) {
+        const smithlab::StudentT ndf = smithlab::student(0.3, 4.0);
+        g1(s, [&](double mu) { return ndf.Lambda(mu); });
+    });
+    benchmark::RegisterBenchmark("G1/table/student(0.3,4)", [g1](benchmark::State& s) {
+        const smithlab::LambdaTable t = smithlab::tabulate_Lambda(smithlab::student(0.3, 4.0));
+        g1(s, [&](double mu) { return t.Lambda(mu); });
     });
     for (double gamma : {0.5, 1.5, 2.0, 7.3, 15.0}) {
         const std::string name = "gtr(0.3," + std::to_string(gamma).substr(0, gamma < 10 ? 3 : 4) + ")";

@@ -37,7 +37,7 @@ std::vector<AnyNdf> grid_ndfs(const Scene& scene, const NdfRegistry& ndfs) {
 void add_point(G1Row& row, const AnyNdf& ndf, double mu, double got, double want, bool keep_errors) {
     const double dG1 = std::abs(G1_of(got) - G1_of(want));
     if (keep_errors)
-        row.errors.push_back({ndf.param("alpha"), ndf.family() == "gtr" ? ndf.param("gamma") : NAN, mu, dG1,
+        row.errors.push_back({ndf.param("alpha"), ndf.family() == "gtr" || ndf.family() == "student" ? ndf.param("gamma") : NAN, mu, dG1,
                               want >= DBL_MIN ? std::abs(got - want) / want : NAN});
     ++row.points;
     row.sum_dG1 += dG1;

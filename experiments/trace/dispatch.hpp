@@ -24,6 +24,7 @@ auto with_microsurface(const AnyNdf& ndf, const walk::MicrosurfaceOptions& opts,
     if (family == "beckmann") return f(walk::Microsurface(beckmann(ndf.param("alpha")), opts));
     if (family == "blinn") return f(walk::Microsurface(blinn(ndf.param("n")), opts));
     if (family == "gtr") return f(walk::Microsurface(gtr(ndf.param("alpha"), ndf.param("gamma")), opts));
+    if (family == "student") return f(walk::Microsurface(student(ndf.param("alpha"), ndf.param("gamma")), opts));
     return f(walk::Microsurface(ndf, opts));
 }
 

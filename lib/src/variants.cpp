@@ -106,7 +106,7 @@ void register_core_variants(VariantRegistry& r) {
                    std::string("nested 2D quadrature P22 -> P2 -> Lambda, ") + way.name + ", relative tolerance " + tname, any,
                    [q](const AnyNdf& n) -> LambdaOfMu { return [n, q](double mu) { return Lambda_2d(n, mu, q); }; }, way.q2d});
         }
-    r.add({"closed-form", "the NDF's closed form (GGX, Beckmann, GTR at every integer gamma <= 31)",
+    r.add({"closed-form", "the NDF's closed form (GGX, Beckmann, GTR at every integer gamma <= 31, Student-t)",
            [](const AnyNdf& n) { return n.has_closed_Lambda(); },
            [](const AnyNdf& n) -> LambdaOfMu { return [n](double mu) { return n.Lambda(mu); }; }, LambdaRoute::closed});
     r.add({"table",

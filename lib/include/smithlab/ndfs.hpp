@@ -1,11 +1,14 @@
 // smithlab/ndfs.hpp -- the classic isotropic NDFs: GGX (Trowbridge-Reitz), Beckmann, Blinn-Phong.
 //
 // Each gives D(cos theta_m), its slope form P22(r^2) (Walter 2007 eq. 42), and Lambda in closed form where one
-// exists. Factories validate their parameters and throw input_error naming the bad one.
+// exists. Factories validate their parameters and throw input_error naming the bad one. The Student-t (Ribardiere et
+// al. 2017), between GGX and Beckmann, has its own header, included here.
 #pragma once
 
 #include <cmath>
 #include <numbers>
+
+#include "smithlab/student_t.hpp"
 
 namespace smithlab {
 

@@ -26,7 +26,7 @@ enum class Method { automatic, closed, spline, quadrature, quadrature2d, fixed }
 // The methods by name (`smithlab eval --method NAME`) and what `--list-methods` says of each.
 inline constexpr std::array<Named<Method>, 6> method_names = {{
     {Method::automatic, "auto", "closed form where the NDF has one, else 1D quadrature (--backend, --tolerance)"},
-    {Method::closed, "closed", "the NDF's closed form (GGX, Beckmann, GTR at integer gamma <= 31)"},
+    {Method::closed, "closed", "the NDF's closed form (GGX, Beckmann, GTR at integer gamma <= 31, Student-t)"},
     {Method::spline, "spline", "the NDF's spline (GTR: Dimov's natural cubic spline of G1 in gamma)"},
     {Method::quadrature, "quadrature", "reduced 1D quadrature (--backend, --tolerance)"},
     {Method::quadrature2d, "quadrature2d", "nested 2D quadrature P22 -> P2 -> Lambda (--backend, --tolerance)"},
