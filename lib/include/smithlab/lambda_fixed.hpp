@@ -47,7 +47,8 @@ namespace fixed_rule {
 inline constexpr int nodes = 31;           // Gauss-Kronrod 15-31
 inline constexpr double panel_width = 2.0;  // in u
 inline constexpr int max_panels = 32;      // u up to 64: mu down to ~1e-27 max(r0, 1)
-inline constexpr int max_pieces = 32;      // the bisection's limit before the adaptive route takes over
+inline constexpr int max_pieces = 64;      // the bisection's limits before the adaptive route takes over:
+inline constexpr int max_untabled = 4;     // pieces, and bisections below the trees' depth (each ~5 us)
 // Each fixed piece comes with its bisections to depth 3, precomputed: a tree in heap order, tree[1] the piece,
 // tree[2i] and tree[2i + 1] the halves of tree[i]. Deeper halves get their nodes computed on the fly (~80 ns a node
 // against ~0 from the table: sinh, cosh, atan).
@@ -202,6 +203,7 @@ FixedLambda Lambda_fixed_rule(const N& ndf, double mu, double tolerance = 1e-12)
     }
     out.evaluations += nodes * n;
     // Bisect the worst piece until the estimate meets the tolerance or the pieces run out.
+    int untabled = 0;
     while (!(E <= tolerance * std::abs(K)) && n < max_pieces) {
         int worst = 0;
         for (int i = 1; i < n; ++i)
@@ -210,6 +212,10 @@ FixedLambda Lambda_fixed_rule(const N& ndf, double mu, double tolerance = 1e-12)
         const double m = 0.5 * (p.a + p.b);
         // Below the tree's depth, node stays at tree_size (a piece bisected 60 times would overflow 2^node).
         const bool tabled = p.node < tree_size / 2;
+        // A piece that needs halving below the tree's depth has a feature narrower than 1/16 of it: an end point
+        // singularity (Blinn n -> 0: s^n), a lobe far narrower than its panel (Beckmann at mu/alpha >~ 20). Bisection
+        // converges there only linearly; the adaptive route's double-exponential rule does better.
+        if (!tabled && ++untabled > max_untabled) break;
         const int child = tabled ? 2 * p.node : tree_size;
         const double h = 0.5 * (m - p.a);
         const PieceResult left = tabled ? eval_piece(ndf, mu2, (*p.tree)[child], h) : eval_interval(ndf, mu2, p.a, m, p.in_s);
