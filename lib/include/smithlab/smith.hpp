@@ -167,7 +167,7 @@ double Lambda_1d(const N& ndf, double mu, const QuadratureOptions& opts = {}) {
     }, opts);
 }
 
-// The same integral by the fixed rule of lambda_fixed.hpp (Gauss-Kronrod 10-21 panels in u = acosh(r/mu) on
+// The same integral by the fixed rule of lambda_fixed.hpp (Gauss-Kronrod 15-31 panels in u = acosh(r/mu) on
 // precomputed nodes, with QUADPACK's error estimate): where that estimate meets opts.tolerance its value, else
 // Lambda_1d's by opts.backend. Same domain as Lambda_1d.
 template <Ndf N>
