@@ -22,8 +22,8 @@ constexpr double xi_lo = -9.0, xi_hi = 19.0, h_xi = 0.14;
 
 std::vector<double> gamma_knots() {  // piecewise uniform, so that strip() steps t^gamma by products
     std::vector<double> g;
-    for (int i = 0; i < 8; ++i) g.push_back(0.1 * i);           // 0 .. 0.7
-    for (int i = 0; i <= 28; ++i) g.push_back(0.8 + 0.05 * i);  // 0.8 .. 2.2: the regime changes at 1 and 1.5
+    for (int i = 0; i < 16; ++i) g.push_back(0.05 * i);          // 0 .. 0.75
+    for (int i = 0; i <= 56; ++i) g.push_back(0.8 + 0.025 * i);  // 0.8 .. 2.2: the regime changes at 1 and 1.5
     for (int i = 1; i <= 18; ++i) g.push_back(2.2 + 0.1 * i);   // 2.3 .. 4
     for (int i = 1; i <= 32; ++i) g.push_back(4.0 + 0.5 * i);   // 4.5 .. 20
     for (double& x : g) x = std::round(x * 1e12) / 1e12;  // 0.1 * 3 is 0.30000000000000004: keep integers exact
