@@ -67,7 +67,7 @@ TEST_CASE("methods, backends and downward conventions by name: one table each, p
     CHECK(parse_downward("smith") == Downward::smith);
     CHECK(parse_downward("hammon") == Downward::hammon_symmetric);
     CHECK_THROWS_WITH(parse_method("q1d"),
-                      Catch::Contains("unknown method 'q1d' (expected auto, closed, spline, quadrature or quadrature2d)"));
+                      Catch::Contains("unknown method 'q1d' (expected auto, closed, spline, quadrature, quadrature2d or fixed)"));
     CHECK_THROWS_WITH(parse_backend("qags"), Catch::Contains("unknown quadrature backend 'qags' (expected boost or gsl)"));
     CHECK_THROWS_WITH(parse_downward("up"), Catch::Contains("'up' (expected smith or hammon)"));
 }
