@@ -1,6 +1,6 @@
 // The GTR family evaluator (gtr/family.hpp): one table for every (alpha, gamma), against routes it is not built
-// from at the points checked (the adaptive 1D quadrature, Boost tanh-sinh, where its knots come from the fixed rule;
-// the closed forms; the 50-digit reference), its stated bound checked as a bound, and its input rules.
+// from at the points checked (the adaptive 1D quadrature, Boost tanh-sinh, where its knots come from trapezoid strips
+// and its exact route is the fixed Gauss-Kronrod rule; the closed forms; the 50-digit reference), its stated bound checked as a bound, and its input rules.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>
@@ -16,7 +16,7 @@ using namespace smithlab;
 namespace {
 
 // An independent Lambda: the closed form at integer gamma, else the adaptive tanh-sinh route (the table's knots are
-// the fixed Gauss-Kronrod rule's).
+// trapezoid strips, its exact route the fixed Gauss-Kronrod rule).
 double independent(double alpha, double gamma, double mu) {
     const Gtr n = gtr(alpha, gamma);
     return gtr_has_closed_form(gamma) ? n.Lambda(mu) : Lambda_1d(n, mu, {Backend::boost, 1e-12});

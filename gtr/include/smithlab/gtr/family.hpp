@@ -3,10 +3,12 @@
 //
 // Domain: alpha in [1e-4, 1], gamma in [0, 20], any mu. The table holds f = ln(mu Lambda) (Lambda: Walter 2007
 // eq. 48, the reduced 1D form of smith.hpp) on a tensor grid in
-//     a = ln alpha  (uniform),   gamma  (non-uniform: dense at 0.8..2.2, where Lambda changes regime, geometric
-//     above 4),   xi = ln(mu / alpha)  (uniform on [xi_lo, xi_hi]),
+//     a = ln alpha  (63 uniform knots),   gamma  (123 knots, piecewise uniform, densest on [0.8, 2.2] where Lambda
+//     changes regime),   xi = ln(mu / alpha)  (201 uniform knots on [xi_lo, xi_hi]),
 // and interpolates it with the 4-point Lagrange rule on each axis (64 knots; windows shifted inward at the edges).
-// Its knots come from the exact routes: the closed forms at integer gamma (closed_forms.hpp), else the fixed-rule 1D
+// Its knots are computed at first use by strips (family.cpp): every gamma at once at one (alpha, mu), by the
+// trapezoid rule in u = acosh(r/mu) (the integrand of lambda_fixed.hpp). The exact route, where the table does not
+// resolve, is the closed form at integer gamma (closed_forms.hpp), else the fixed-rule 1D
 // quadrature (lambda_fixed.hpp, relative 1e-11). Outside [xi_lo, xi_hi] the two asymptotes of lambda_table.hpp:
 //   xi < xi_lo: mu Lambda = g_lo - mu/2, g_lo = mu_lo Lambda(mu_lo) + mu_lo/2 (Walter eq. 48 with P(q > 0) = 1/2;
 //               in error by R(mu_lo) - R(mu) in [0, R(mu_lo)], R bounded from two knots as in lambda_table.hpp);
