@@ -107,6 +107,18 @@ double divided4(const double* x, const double* f) {
     return std::abs(d[0]);
 }
 
+// fn(i) for i in [0, n), interleaved over every core.
+template <class F>
+void parallel_for(int n, const F& fn) {
+    const int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    std::vector<std::thread> pool;
+    for (int th = 0; th < threads; ++th)
+        pool.emplace_back([&, th] {
+            for (int i = th; i < n; i += threads) fn(i);
+        });
+    for (std::thread& t : pool) t.join();
+}
+
 }  // namespace
 
 double GtrFamily::exact_f(double alpha, double gamma, double xi) {
@@ -185,7 +197,7 @@ GtrFamily::GtrFamily() {
     auto index = [](int s, int j, int k, int nj, int nk) { return (static_cast<std::size_t>(s) * nj + j) * nk + k; };
     std::vector<double> Da((na_ - 4) * static_cast<std::size_t>(ng_) * nx_), Dg((ng_ - 4) * static_cast<std::size_t>(na_) * nx_),
         Dx((nx_ - 4) * static_cast<std::size_t>(na_) * ng_);
-    for (int i = 0; i < na_; ++i)
+    parallel_for(na_, [&](int i) {  // each i writes its own entries
         for (int j = 0; j < ng_; ++j)
             for (int k = 0; k < nx_; ++k) {
                 double v[5];
@@ -202,6 +214,7 @@ GtrFamily::GtrFamily() {
                     Dx[index(k, i, j, na_, ng_)] = divided4(&ux[k], v);
                 }
             }
+    });
     auto window = [](int c, int n) { return std::clamp(c - 1, 0, n - 4); };
     // the windows of 5 that hold the cell's 4-knot stencil s..s+3, or overlap it by 4
     auto windows5 = [](int s, int n, int& lo, int& hi) {
@@ -213,10 +226,9 @@ GtrFamily::GtrFamily() {
     for (int c = 0; c < ng_ - 1; ++c) Pg[c] = nodal_max(&g_[window(c, ng_)], g_[c], g_[c + 1]);
     for (int c = 0; c < nx_ - 1; ++c) Px[c] = nodal_max(&ux[window(c, nx_)], c, c + 1);
     const std::size_t cells = static_cast<std::size_t>(na_ - 1) * (ng_ - 1) * (nx_ - 1);
-    ok_.assign((cells + 63) / 64, 0);
-    std::size_t n_ok = 0;
-    double worst_ok = 0.0, worst_ok_g1 = 0.0;
-    for (int ca = 0; ca < na_ - 1; ++ca)
+    std::vector<std::uint8_t> ok_cell(cells, 0);
+    std::vector<double> worst_a(na_ - 1, 0.0), worst_g1_a(na_ - 1, 0.0);  // per ca, reduced below
+    parallel_for(na_ - 1, [&](int ca) {
         for (int cg = 0; cg < ng_ - 1; ++cg)
             for (int cx = 0; cx < nx_ - 1; ++cx) {
                 const int sa = window(ca, na_), sg = window(cg, ng_), sx = window(cx, nx_);
@@ -253,12 +265,18 @@ GtrFamily::GtrFamily() {
                 const double hmax = lo_l <= 0.0 && hi_l >= 0.0 ? 0.25 : std::max(h(lo_l), h(hi_l));
                 const std::size_t cell = (static_cast<std::size_t>(ca) * (ng_ - 1) + cg) * (nx_ - 1) + cx;
                 if (est <= tolerance && est * hmax <= G1_tolerance) {
-                    ok_[cell >> 6] |= std::uint64_t{1} << (cell & 63);
-                    ++n_ok;
-                    worst_ok = std::max(worst_ok, est);
-                    worst_ok_g1 = std::max(worst_ok_g1, est * hmax);
+                    ok_cell[cell] = 1;
+                    worst_a[ca] = std::max(worst_a[ca], est);
+                    worst_g1_a[ca] = std::max(worst_g1_a[ca], est * hmax);
                 }
             }
+    });
+    ok_.assign((cells + 63) / 64, 0);
+    std::size_t n_ok = 0;
+    for (std::size_t cell = 0; cell < cells; ++cell)
+        if (ok_cell[cell]) ok_[cell >> 6] |= std::uint64_t{1} << (cell & 63), ++n_ok;
+    const double worst_ok = *std::max_element(worst_a.begin(), worst_a.end());
+    const double worst_ok_g1 = *std::max_element(worst_g1_a.begin(), worst_g1_a.end());
     coverage_ = static_cast<double>(n_ok) / static_cast<double>(cells);
 
     // The asymptotes' bounds. Below: R(mu_lo) <= (g(mu_1) - g(mu_lo)) / (mu_1/mu_lo - 1), g = mu Lambda + mu/2
