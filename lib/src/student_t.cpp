@@ -13,9 +13,6 @@ namespace smithlab {
 
 namespace {
 constexpr double pi = std::numbers::pi;
-// Boost's special functions in double itself (its default promotes to long double).
-constexpr boost::math::policies::policy<boost::math::policies::promote_double<false>> double_policy;
-
 // (1 + q)^-e for q >= 0: by log1p near q = 0, where 1 + q would drop q's digits; beyond, by pow, whose error is a few
 // ulp of 1 + q times e where exp(-e log1p(q)) would add e ln(q) ulp (5e-14 at q = 1e100, e = 2).
 double inv_pow1p(double q, double e) { return q < 0.5 ? std::exp(-e * std::log1p(q)) : std::pow(1.0 + q, -e); }
@@ -87,21 +84,25 @@ double StudentT::ggx_alpha() const { return gamma == 2.0 ? alpha : std::numeric_
 // As written, eq. 13 cancels: all digits as mu -> inf (Lambda -> 0 against 1/2), a factor ~2 z^2 at large gamma
 // (as Beckmann's e^{-a^2}/(a sqrt pi) - erfc(a) does). Here it is evaluated in two forms that do not, with
 // g = gamma - 1, A = gamma - 3/2 and w = z^2 / g:
-//  (Y) Expanding eq. 13's integrals in powers of -1/w (the bracket's series, term by term) gives
+//  (Y) Expanding eq. 13's integrals in powers of -1/w, term by term, sums to 2F1(A, g; gamma; -1/w) times powers of w,
+//      and Euler's transformation (DLMF 15.8.1) turns it into
 //          Lambda = P (1 + w)^(1 - A) / (w z) Phi(1/w),   Phi(y) = 2F1(3/2, 1; gamma; -y),
-//      P = Gamma(gamma - 1/2) sqrt(g) / (4 A sqrt(pi) Gamma(gamma)) (student(), once per NDF), after the Pfaff
-//      transformation (DLMF 15.8.1) that makes it converge for every w > 0. Phi(y) = g integral_0^1 (1 - u)^(g-1)
-//      (1 + y u)^(-3/2) du (DLMF 15.6.1) is completely monotone in y; Gauss's continued fraction for it (DLMF 15.7(i),
-//      F(a, b + 1; c + 1; z) / F(a, b; c; z) at b = 0) has positive partial numerators,
+//      P = Gamma(gamma - 1/2) sqrt(g) / (4 A sqrt(pi) Gamma(gamma)) (student(), once per NDF), with no cancellation
+//      left; the series converges only for w > 1, the continued fraction below for every w.
+//      Phi(y) = g integral_0^1 (1 - u)^(g-1) (1 + y u)^(-3/2) du (DLMF 15.6.1) is completely monotone in y; Gauss's
+//      continued fraction for it (DLMF 15.7(i), F(a, b + 1; c + 1; z) / F(a, b; c; z) at b = 0) has positive partial
+//      numerators,
 //          Phi = 1 / (1 + k1 y / (1 + k2 y / (1 + ...))),
 //          k_{2m+1} = (3/2 + m)(g + m) / ((g + 2m)(g + 2m + 1)),   k_{2m} = m (g - 3/2 + m) / ((g + 2m - 1)(g + 2m)),
 //      so that every step adds and multiplies positive numbers, and its convergents bracket Phi. It is evaluated by
 //      the three-term (Wallis) recurrences, without a division on the recurrence's path. Steps: ~10 at z = 10, ~20
 //      at z = 4, ~60 at z = 2, ~100-700 at z = 0.7 (more as gamma, and with it y = g / z^2, grows).
-//  (X) For z <= 0.7, the same function continued to w = 0 (DLMF 15.8.4, c - a - b = 1/2):
-//          Lambda = 2 g P (1 + w)^-A / z H(x) - 1/2,   H(x) = 2F1(A, 1; 1/2; x),   x = w / (1 + w),
-//      a series of positive terms (x^n z^2n / (1/2)_n-like: ~15-35 terms); the -1/2 is the paper's, and costs
-//      a factor (Lambda + 1/2) / Lambda <= 6.9 (Lambda >= Beckmann's 0.0857 at z = 0.7: Lambda decreases with gamma).
+//  (X) For z <= 0.7, the same function about w = 0: Phi(y) = x F(A, 1; gamma; 1 - x), x = w / (1 + w) (Pfaff,
+//      DLMF 15.8.1), and F's connection formula from 1 - x to x (DLMF 15.8.4, c - a - b = 1/2) gives
+//          Lambda = 2 g P (1 + w)^-A / z H(x) - 1/2,   H(x) = 2F1(A, 1; 1/2; x),
+//      a series of positive terms (at large gamma ~ sum_n z^2n / (1/2)_n: ~15-35 terms); the -1/2 is the paper's, and
+//      costs a factor (Lambda + 1/2) / Lambda <= 6.9 (Lambda >= Beckmann's 0.0857 at z = 0.7; Lambda decreases with
+//      gamma, tests/test_student_t.cpp).
 // Both take mu / alpha and w as double-double (z + z_lo, w + w_lo) from the exact inputs: rounded once, their error
 // would be multiplied by Lambda's sensitivity to mu, ~2 gamma - 2 at large z.
 // ---------------------------------------------------------------------------------------------------------------
