@@ -99,8 +99,6 @@ inline std::string block_range(const Chunk& c) {
                         : "blocks " + std::to_string(c.first) + "-" + std::to_string(c.first + c.count - 1);
 }
 
-inline std::uint64_t thread_count(unsigned threads) { return threads ? threads : std::max(1u, std::thread::hardware_concurrency()); }
-
 // Requests each other rank keeps out: while it traces one chunk, the answer to its next request is on its way, so it
 // never waits for rank 0 between chunks.
 constexpr int depth = 2;
@@ -122,7 +120,7 @@ inline std::uint64_t rounds_for(double seconds, std::uint64_t rounds) {
 template <class Plan>
 void serve(const Plan& plan, unsigned threads) {
     RunnerCache<Plan> cache(plan);
-    const auto capacity = static_cast<std::int64_t>(thread_count(threads));
+    const auto capacity = static_cast<std::int64_t>(walk::thread_count(threads));
     std::vector<char> msg;
     mpi::put(msg, capacity);
     mpi::put(msg, std::int64_t{0});
@@ -250,7 +248,7 @@ Traffic run_jobs(Plan& plan, unsigned threads, Progress&& progress) {
 
     if (mpi::size() == 1) {
         std::vector<std::jthread> pool;
-        for (std::uint64_t t = 1; t < std::min<std::uint64_t>(detail::thread_count(threads), std::max<std::uint64_t>(all, 1)); ++t)
+        for (std::uint64_t t = 1; t < std::min<std::uint64_t>(walk::thread_count(threads), std::max<std::uint64_t>(all, 1)); ++t)
             pool.emplace_back(trace_here);
         trace_here();
     } else {
@@ -268,7 +266,7 @@ Traffic run_jobs(Plan& plan, unsigned threads, Progress&& progress) {
         std::vector<std::uint64_t> rounds(static_cast<std::size_t>(mpi::size()), 1);  // per rank, its next chunk's
         std::vector<std::pair<std::size_t, Partial>> finished;
         std::vector<std::jthread> pool;
-        for (std::uint64_t t = 0; t < detail::thread_count(threads); ++t) pool.emplace_back(trace_here);
+        for (std::uint64_t t = 0; t < walk::thread_count(threads); ++t) pool.emplace_back(trace_here);
         try {
             // Polls, sleeping between probes: 20 us after a message, doubling to 1 ms while none comes (the other
             // ranks hold their next chunk already, so an answer 1 ms late costs them nothing, and rank 0's own

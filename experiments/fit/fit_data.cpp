@@ -144,6 +144,14 @@ std::vector<double> midpoints(const std::vector<double>& a) {
     return m;
 }
 
+// One point's split moments on a concrete microsurface and facets, by the estimator asked for.
+template <class Microsurface, class M>
+fit::SplitMoments trace_point(const Microsurface& ms, const M& m, const TracePoint& p, Estimator estimator,
+                              std::uint64_t seed, std::int64_t walks) {
+    return estimator == Estimator::albedo ? fit::trace_albedo_point(ms, m, p.wi, seed, p.stream, walks)
+                                          : fit::trace_eval_point(ms, m, p.wi, p.wo, seed, p.stream, walks);
+}
+
 // The groups to trace as block jobs (cluster/block_jobs.hpp), for one process or MPI ranks: group j's blocks are its
 // points, each traced whole (fit::trace_eval_point, trace_albedo_point) from its own stream, and a group's total is
 // its points' moments in order: the same bits for any number of ranks and threads.
@@ -175,15 +183,10 @@ public:
             auto surface = std::make_shared<const std::decay_t<decltype(ms)>>(ms);
             return [surface, this](std::size_t job, std::uint64_t k) {
                 const Group& g = *jobs_[job].group;
-                const std::uint64_t cell = stream(g.set, jobs_[job].ndf_index, g.index, k);
-                const fit::Directions& d = g.dirs[k];
-                return std::visit(
-                    [&](const auto& m) {
-                        return Partial{g.set == albedo_set
-                                           ? fit::trace_albedo_point(*surface, m, d.wi(), seed_, cell, g.walks)
-                                           : fit::trace_eval_point(*surface, m, d.wi(), d.wo(), seed_, cell, g.walks)};
-                    },
-                    material_);
+                const TracePoint p{g.dirs[k].wi(), g.dirs[k].wo(), stream(g.set, jobs_[job].ndf_index, g.index, k)};
+                const Estimator e = g.set == albedo_set ? Estimator::albedo : Estimator::eval;
+                return std::visit([&](const auto& m) { return Partial{trace_point(*surface, m, p, e, seed_, g.walks)}; },
+                                  material_);
             };
         });
     }
@@ -217,10 +220,7 @@ std::vector<fit::SplitMoments> trace_points(const AnyNdf& ndf, const walk::Mater
         return walk::reduce_blocks(
             points.size(), threads, std::vector<fit::SplitMoments>{},
             [&](std::uint64_t j) {
-                const TracePoint& p = points[j];
-                return std::vector<fit::SplitMoments>{
-                    estimator == Estimator::albedo ? fit::trace_albedo_point(ms, m, p.wi, seed, p.stream, walks)
-                                                   : fit::trace_eval_point(ms, m, p.wi, p.wo, seed, p.stream, walks)};
+                return std::vector<fit::SplitMoments>{trace_point(ms, m, points[j], estimator, seed, walks)};
             },
             [](std::vector<fit::SplitMoments>& all, const std::vector<fit::SplitMoments>& one) {
                 all.insert(all.end(), one.begin(), one.end());

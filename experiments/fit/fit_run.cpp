@@ -22,6 +22,7 @@
 #include "smithlab/errors.hpp"
 #include "smithlab/fit/compensation.hpp"
 #include "smithlab/fit/fit_model.hpp"
+#include "smithlab/walk/parallel.hpp"
 #include "staged_directory.hpp"
 
 namespace smithlab::fitrun {
@@ -266,7 +267,7 @@ FitSummary run_fit(const FitScene& s, const std::string& source, const std::stri
         std::fprintf(stderr, "fit: traced %lld points, %.4g walks, in %.1f s (%.0f ns a walk on %u threads x %d ranks)\n",
                      static_cast<long long>(sum.traced), static_cast<double>(walks), trace_seconds,
                      trace_seconds / static_cast<double>(walks) * 1e9,
-                     threads ? threads : std::max(1u, std::thread::hardware_concurrency()), mpi::size());
+                     walk::thread_count(threads), mpi::size());
     write_constants(stage->path(), r);
     write_errors(stage->path(), sum.errors);
     write_values(stage->path() / "training.csv", s, r, false);
@@ -281,7 +282,7 @@ FitSummary run_fit(const FitScene& s, const std::string& source, const std::stri
         {"title", s.title},      {"source", source},         {"scene", scene_text},
         {"version", SMITHLAB_VERSION}, {"seed", s.seed},      {"points_traced", sum.traced},
         {"points_reused", sum.reused}, {"walks_traced", walks}, {"seconds", sum.seconds}, {"trace_seconds", trace_seconds},
-        {"threads", threads ? threads : std::max(1u, std::thread::hardware_concurrency())}};
+        {"threads", walk::thread_count(threads)}};
     if (mpi::size() > 1) meta["mpi"] = cluster::traffic_json(traffic);  // and threads is per rank
     output::write_file(stage->path() / "meta.json", meta.dump(2) + "\n");
     stage->publish();

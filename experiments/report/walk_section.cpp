@@ -111,7 +111,7 @@ void write_walk_section(const std::vector<WalkResult>& results, const Scene::Wal
     }
 
     std::ofstream md(dir / "report.md", std::ios::app);
-    const std::string threads = std::to_string(std::max(1u, std::thread::hardware_concurrency())) + " threads",
+    const std::string threads = std::to_string(walk::thread_count(0)) + " threads",
                       where = mpi::size() > 1 ? std::to_string(mpi::size()) + " MPI ranks x " + threads : threads;
     char head[1200];
     std::snprintf(head, sizeof head,

@@ -316,7 +316,7 @@ RunSummary run_scene(const TraceScene& s, const std::string& source, const NdfRe
                                  {"cells_reused", sum.reused},
                                  {"bounces", sum.bounces},
                                  {"seconds", sum.seconds},
-                                 {"threads", threads ? threads : std::max(1u, std::thread::hardware_concurrency())}};
+                                 {"threads", walk::thread_count(threads)}};
     if (distributed) meta["mpi"] = cluster::traffic_json(traffic);  // threads is then per rank
     std::ofstream(stage->path() / "meta.json") << meta.dump(2) << "\n";
     stage->publish();

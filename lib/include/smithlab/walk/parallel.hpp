@@ -5,6 +5,7 @@
 // Memory: a partial result waits only until every block before it is merged.
 #pragma once
 
+#include <algorithm>
 #include <atomic>
 #include <cstdint>
 #include <exception>
@@ -15,6 +16,9 @@
 #include <vector>
 
 namespace smithlab::walk {
+
+// The threads a run uses: `threads`, or all cores for 0.
+inline unsigned thread_count(unsigned threads) { return threads ? threads : std::max(1u, std::thread::hardware_concurrency()); }
 
 // Partials numbered 0, 1, 2, ... that arrive in any order, merged into a total in number order: a partial waits
 // only until every one before it is merged. Not thread-safe (its users lock). Also the distributed runs'
@@ -47,8 +51,7 @@ private:
 // progress(merged_blocks) after each merge. The first exception a block throws is rethrown here.
 template <class Partial, class Run, class Merge, class Progress>
 Partial reduce_blocks(std::uint64_t blocks, unsigned threads, Partial total, Run run, Merge merge, Progress progress) {
-    if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
-    threads = static_cast<unsigned>(std::min<std::uint64_t>(threads, std::max<std::uint64_t>(blocks, 1)));
+    threads = static_cast<unsigned>(std::min<std::uint64_t>(thread_count(threads), std::max<std::uint64_t>(blocks, 1)));
     std::atomic<std::uint64_t> next{0};
     std::atomic<bool> failed{false};
     std::mutex lock;
