@@ -105,9 +105,15 @@ void register_table() {
             const smithlab::LambdaTable t = smithlab::tabulate_Lambda(smithlab::gtr(0.3, gamma));
             g1(s, [&](double mu) { return t.Lambda(mu); });
         });
-        benchmark::RegisterBenchmark(("table-build/" + name).c_str(), [gamma](benchmark::State& s) {
-            for (auto _ : s) benchmark::DoNotOptimize(smithlab::tabulate_Lambda(smithlab::gtr(0.3, gamma)).knots());
-        })->Unit(benchmark::kMillisecond);
+        // the default route (auto: the closed form at integer gamma, else the fixed rule) beside the adaptive one
+        // `auto` took before issue 14 where there is no closed form
+        for (const auto& [route, method] : {std::pair{"", smithlab::Method::automatic}, std::pair{"/adaptive", smithlab::Method::quadrature}})
+            if (method == smithlab::Method::automatic || !smithlab::gtr_has_closed_form(gamma))
+                benchmark::RegisterBenchmark(("table-build/" + name + route).c_str(), [gamma, method](benchmark::State& s) {
+                    for (auto _ : s)
+                        benchmark::DoNotOptimize(
+                            smithlab::tabulate_Lambda(smithlab::gtr(0.3, gamma), {.exact = {.method = method}}).knots());
+                })->Unit(benchmark::kMillisecond);
     }
     // Outside the old range [1e-5, 1e5], where the exact route used to answer: the small-mu asymptote (mu = 1e-7)
     // and the continued tail (1e7) of a D-only GGX (nothing closed-form), against that exact route at 1e-7.
@@ -133,9 +139,11 @@ void register_table() {
         }
         s.SetItemsProcessed(s.iterations());
     })->Unit(benchmark::kMicrosecond);
-    benchmark::RegisterBenchmark("table-build/donly-ggx(0.3)", [](benchmark::State& s) {
-        for (auto _ : s) benchmark::DoNotOptimize(smithlab::tabulate_Lambda(DOnlyGgx{smithlab::ggx(0.3)}).knots());
-    })->Unit(benchmark::kMillisecond);
+    for (const auto& [route, method] : {std::pair{"", smithlab::Method::automatic}, std::pair{"/adaptive", smithlab::Method::quadrature}})
+        benchmark::RegisterBenchmark((std::string("table-build/donly-ggx(0.3)") + route).c_str(), [method](benchmark::State& s) {
+            for (auto _ : s)
+                benchmark::DoNotOptimize(smithlab::tabulate_Lambda(DOnlyGgx{smithlab::ggx(0.3)}, {.exact = {.method = method}}).knots());
+        })->Unit(benchmark::kMillisecond);
 }
 
 // Every registered variant, on the first of GTR(0.3, 1.5), GGX(0.3), Beckmann(0.3) it applies to.

@@ -50,7 +50,8 @@ TEST_CASE("method selection: closed where it exists, errors where it does not", 
     const auto gg = ggx(0.2);
     const auto bl = blinn(30.0);
     CHECK(Lambda(gg, 1.0) == gg.Lambda(1.0));                       // auto takes the closed form
-    CHECK(Lambda(bl, 1.0) == Lambda(bl, 1.0, {.method = Method::quadrature}));
+    CHECK(Lambda(bl, 1.0) == Lambda(bl, 1.0, {.method = Method::fixed}));  // else the fixed rule
+    CHECK(Lambda(bl, 1.0) == Approx(Lambda(bl, 1.0, {.method = Method::quadrature})).epsilon(1e-12));
     CHECK_THROWS_AS(Lambda(bl, 1.0, {.method = Method::closed}), input_error);
     CHECK_THROWS_AS(Lambda(gg, 1.0, {.method = Method::spline}), input_error);
     CHECK_THROWS_AS(Lambda(gtr(0.3, 1.5), 1.0, {.method = Method::closed}), input_error);

@@ -157,7 +157,7 @@ void add_eval(CLI::App& app, EvalArgs& a) {
         "CSV (RFC 4180): a header with at least columns ndf and mu (quote the spec: \"ggx(alpha=0.1)\");\n"
         "other columns pass through; lambda and g1 are appended with 17 significant digits. A bad row is\n"
         "reported with its line number; then nothing is written and the exit code is 2.\n"
-        "Methods: auto (closed form if the NDF has one, else 1D quadrature), closed, spline (GTR: Dimov's\n"
+        "Methods: auto (closed form if the NDF has one, else fixed), closed, spline (GTR: Dimov's\n"
         "natural cubic spline in gamma), quadrature (the reduced 1D integral), quadrature2d (nested P22->P2->Lambda),\n"
         "and every variant of `smithlab eval --list-methods` (fixed tolerances, interpolants, approximations).");
     auto* ndf = c->add_option("--ndf", a.ndf, "NDF spec, e.g. 'ggx(alpha=0.2)'");
