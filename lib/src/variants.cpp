@@ -28,7 +28,8 @@ const LambdaVariant& VariantRegistry::at(std::string_view name) const {
 
 LambdaRoute route_on(const LambdaVariant& variant, const AnyNdf& ndf) {
     if (variant.route != LambdaRoute::table) return variant.route;
-    return ndf.has_closed_Lambda() ? LambdaRoute::closed : LambdaRoute::q1d_boost;  // tabulate_Lambda's exact route
+    // tabulate_Lambda's exact route: else the fixed rule, Boost 1D where its estimate misses (so the reference is 2D)
+    return ndf.has_closed_Lambda() ? LambdaRoute::closed : LambdaRoute::q1d_boost;
 }
 
 bool is_quadrature(LambdaRoute r) {

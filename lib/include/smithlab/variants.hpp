@@ -23,7 +23,8 @@ enum class LambdaRoute {
     q2d_boost,  // the nested 2D quadrature (Lambda_2d), Boost
     q1d_gsl,    // Lambda_1d, GSL QAG
     q2d_gsl,    // Lambda_2d, GSL QAG
-    table,      // tabulated from the exact route: the closed form where the NDF has one, else Boost 1D
+    table,      // tabulated from the exact route: the closed form where the NDF has one, else the fixed rule (Boost 1D
+                // where its estimate misses)
     other,      // an approximation or an interpolant: none of the above
 };
 
