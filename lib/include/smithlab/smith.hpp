@@ -117,6 +117,18 @@ double P22(const N& ndf, double p, double q) {
     return slope_density(ndf, p * p + q * q);
 }
 
+namespace detail {
+// Where the t-form integrands of P2, Lambda_1d and Lambda_2d at a = |q| or mu have their grazing features, in
+// s = pi/2 - t (integrate_quarter_turn's breaks): s = a / r for the slope scales r = r0 = 1/sqrt(pi P22(0)) (the core)
+// and r = 1 (a GTR or Blinn-Phong tail bending, tan theta_m = 1).
+template <Ndf N>
+std::array<double, 2> grazing_breaks(const N& ndf, double a) {
+    const double P22_at_pole = slope_density(ndf, 0.0);
+    const double r0 = P22_at_pole > 0.0 && P22_at_pole < INFINITY ? 1.0 / std::sqrt(std::numbers::pi * P22_at_pole) : 1.0;
+    return {a / r0, a};
+}
+}  // namespace detail
+
 // P2(q) = 2 integral_0^inf P22(p, q) dp, Walter 2007 eq. 43 (P22 is even in p), in p = |q| tan u:
 //   P2(q) = 2 |q| integral_0^{pi/2} f(q^2 sec^2 u) sec^2 u du.
 // Below |q| = 1e-150, where q^2 would underflow, P2(q) = P2(0) to O(q^2) and is integrated as such, in log p.
@@ -130,7 +142,7 @@ double P2(const N& ndf, double q, const QuadratureOptions& opts = {}) {
         if (!(r2 < INFINITY)) return 0.0;
         const double f = slope_density(ndf, r2);
         return f == 0.0 ? 0.0 : f * sec2;
-    }, opts);
+    }, opts, detail::grazing_breaks(ndf, std::abs(q)));
 }
 
 // Lambda by the book: the nested route P22 -> P2 -> Lambda, Walter 2007 eq. 48. Cost: milliseconds.
@@ -146,7 +158,7 @@ double Lambda_2d(const N& ndf, double mu, const QuadratureOptions& opts = {}) {
         if (!(q < INFINITY)) return 0.0;
         const double p2 = P2(ndf, q, inner);
         return p2 == 0.0 ? 0.0 : sec / (sec + 1.0) * (tn * (tn * (tn * p2)));
-    }, opts);
+    }, opts, detail::grazing_breaks(ndf, mu));
 }
 
 // Lambda by the reduced route. Doing the azimuthal integral of Walter eq. 48 in closed form (README, "The math, and
@@ -165,7 +177,7 @@ double Lambda_1d(const N& ndf, double mu, const QuadratureOptions& opts = {}) {
         if (!(r2 < INFINITY)) return 0.0;
         const double f = slope_density(ndf, r2);
         return f == 0.0 ? 0.0 : f * r2 * tn * detail::tan_minus_x(t, tn);
-    }, opts);
+    }, opts, detail::grazing_breaks(ndf, mu));
 }
 
 // The same integral by the fixed rule of lambda_fixed.hpp (Gauss-Kronrod 15-31 panels in u = acosh(r/mu) on
