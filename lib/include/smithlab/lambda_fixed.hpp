@@ -215,7 +215,9 @@ FixedLambda Lambda_fixed_rule(const N& ndf, double mu, double tolerance = 1e-12)
         // A piece that needs halving below the tree's depth has a feature narrower than 1/16 of it: an end point
         // singularity (Blinn n -> 0: s^n), a lobe far narrower than its panel (Beckmann at mu/alpha >~ 20). Bisection
         // converges there only linearly; the adaptive route's double-exponential rule does better.
-        if (!tabled && ++untabled > max_untabled) break;
+        // At the tail's end point s = 0 such a feature is the power tail itself (s^(k - 4) for f ~ r^-k): no depth
+        // of bisection gains more than a constant factor there, so the adaptive route answers at once.
+        if (!tabled && (++untabled > max_untabled || (p.in_s && p.a == 0.0))) break;
         const int child = tabled ? 2 * p.node : tree_size;
         const double h = 0.5 * (m - p.a);
         const PieceResult left = tabled ? eval_piece(ndf, mu2, (*p.tree)[child], h) : eval_interval(ndf, mu2, p.a, m, p.in_s);
