@@ -922,7 +922,7 @@ Mutated mutate_scene(Gen& g, const std::string& base) {
             } else if (kind_of(key) == Kind::axis) {
                 const std::string v = g.pick<std::string>({"0.0", "-0.1", "1e-320", "1e308", "inf", "2.0", "0.9999999999999999"});
                 lines[at] = key + " = [" + v + "]";
-                const bool bad = key != "mu" && (v == "0.0" && key == "alpha" || v == "-0.1" || v == "inf");
+                const bool bad = key != "mu" && ((v == "0.0" && key == "alpha") || v == "-0.1" || v == "inf");
                 m = {join_lines(lines), bad ? key + " = [" + v + "] is outside the NDF's parameter range" : "", lines[at]};
             } else {
                 const auto [value, refuse] = scene_value(g, kind_of(key));

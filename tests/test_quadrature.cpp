@@ -138,7 +138,7 @@ TEST_CASE("quadrature holds to the ends of its range, mu in [1e-12, 1e12], and r
 // The decade points above missed it: between them, Boost's tanh-sinh took the grazing peak (s = pi/2 - t ~ mu/alpha)
 // for converged in narrow windows of mu, when it fell between the nodes of two successive levels alike -- Beckmann(1)
 // 59 % low at mu in [1.76e-12, 2.22e-12], 47 % at [4.5e-11, 5.0e-11], 35 % at [7.9e-10, 8.0e-10], 0.56 % at
-// [1.37e-8, 1.39e-8]; GGX(1) 5.6e-5, GTR(0.5, 4) 1.7e-3, ten such windows up to mu = 5e-6. The t-form integrals now
+// [1.37e-8, 1.39e-8], 19 windows up to mu = 5e-6; GGX(1) 5.6e-5, GTR(0.5, 4) 1.7e-3. The t-form integrals now
 // split at s = mu/r0 and s = mu (integrate_quarter_turn's breaks). Every 1/100 decade and every window, both backends.
 TEST_CASE("1D quadrature at grazing: every 1/100 decade of mu in [1e-12, 1] r0 against the closed forms", "[quadrature]") {
     std::vector<double> mus;

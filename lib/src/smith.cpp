@@ -2,7 +2,6 @@
 
 #include <array>
 #include <boost/math/special_functions/beta.hpp>
-#include <numbers>
 #include <sstream>
 #include <string>
 
@@ -47,7 +46,7 @@ void require_mu(double mu) {
 
 void require_quadrature_scale(double mu, double P22_at_pole, const char* method) {
     if (!(P22_at_pole > 0.0 && P22_at_pole < INFINITY)) return;  // no core scale to speak of (a plug-in's D(1) = 0)
-    const double r0 = 1.0 / std::sqrt(std::numbers::pi * P22_at_pole);
+    const double r0 = core_slope_scale(P22_at_pole);
     if (mu >= 1e-12 * r0 * (1.0 - 1e-9)) return;  // r0 = 1.0000000000000004 for GTR(0.3, 0) must admit mu = 1e-12
     std::ostringstream msg;
     msg.precision(17);
@@ -60,7 +59,7 @@ void require_quadrature_scale(double mu, double P22_at_pole, const char* method)
 
 void require_slope_digits(double P22_at_pole, const char* method) {
     if (!(P22_at_pole > 0.0 && P22_at_pole < INFINITY)) return;
-    const double r0 = 1.0 / std::sqrt(std::numbers::pi * P22_at_pole);
+    const double r0 = core_slope_scale(P22_at_pole);
     if (r0 >= 1e-3) return;
     std::ostringstream msg;
     msg.precision(3);

@@ -36,14 +36,6 @@ namespace detail {
 double clamped_cosine_azimuth(double a, double b);
 std::string format_where(const char* name, double value);
 
-// The NDF's core slope scale r0 = 1/sqrt(pi P22(0)) (alpha for GGX and Beckmann; smith.hpp's quadrature rule), 1
-// when P22(0) is not a positive number.
-template <Ndf N>
-double core_scale(const N& ndf) {
-    const double p0 = slope_density(ndf, 0.0);
-    return p0 > 0.0 && p0 < INFINITY ? 1.0 / std::sqrt(std::numbers::pi * p0) : 1.0;
-}
-
 // D cos^4 at tan^2 = r2 as the checks on D read it: through cos(theta_m), as the user wrote D, while the NDF's core
 // scale is >= 1e-3; below, where cos(theta_m) cannot carry a slope's digits (the rounding of sin^2 = (1-c)(1+c) is
 // 1e-16 / r^2 relative: a few 1e-9 of the integrals at alpha = 1e-4, 1e-7 at 1e-5, all of them from 1e-8 on), through
@@ -64,7 +56,7 @@ double checked_D_cos4(const N& ndf, double r2, double r0) {
 // 1. integral over the hemisphere of D(m) cos(theta_m) dm = 2 pi integral_0^inf D cos^4 r dr = 1.
 template <Ndf N>
 double projected_area(const N& ndf, Backend backend = Backend::boost) {
-    const double r0 = detail::core_scale(ndf);
+    const double r0 = core_slope_scale(ndf);
     auto f = [&](double r) { return detail::checked_D_cos4(ndf, r * r, r0) * r; };
     return 2.0 * std::numbers::pi * integrate_log_axis(f, {backend, 1e-12}, std::min(r0, 1.0), std::max(r0, 1.0));
 }
@@ -74,7 +66,7 @@ double projected_area(const N& ndf, Backend backend = Backend::boost) {
 // so that G1(v) times this equals cos(theta_v) (Heitz 2014 eq. 2).
 template <Ndf N>
 double visible_projected_area(const N& ndf, double theta_v, Backend backend = Backend::boost) {
-    const double sv = std::sin(theta_v), cv = std::cos(theta_v), r0 = detail::core_scale(ndf), kink = cv / sv;
+    const double sv = std::sin(theta_v), cv = std::cos(theta_v), r0 = core_slope_scale(ndf), kink = cv / sv;
     // D sin(theta) Phi(sin theta_v sin theta, cos theta_v cos theta) dtheta = D cos^4 r Phi(r sin theta_v, cos theta_v) dr,
     // Phi being homogeneous of degree 1.
     auto f = [&](double r) {
@@ -92,7 +84,7 @@ template <Ndf N>
 std::vector<CheckResult> run_checks(const N& ndf, const CheckOptions& opts = {}) {
     std::vector<CheckResult> out;
     const QuadratureOptions q{opts.backend, 1e-12};
-    const double r0 = detail::core_scale(ndf);
+    const double r0 = core_slope_scale(ndf);
     require(r0 <= 1e22, "checks: the ndf's slope scale 1/sqrt(pi P22(0))", "<= 1e22 (alpha <= 1e22), where the "
             "quadrature routes the checks compare have a mu to run at", r0);
     out.push_back({"integral D cos dm = 1", "", projected_area(ndf, opts.backend), 1.0, 1e-8});

@@ -170,8 +170,7 @@ template <Ndf N>
 FixedLambda Lambda_fixed_rule(const N& ndf, double mu, double tolerance = 1e-12) {
     using namespace fixed_rule;
     const Tables& T = tables();
-    const double P22_0 = slope_density(ndf, 0.0);
-    const double r0 = P22_0 > 0.0 && P22_0 < INFINITY ? 1.0 / std::sqrt(std::numbers::pi * P22_0) : 1.0;
+    const double r0 = core_slope_scale(ndf);
     const double u_end = std::log(2.0 * std::fmax(r0, 1.0) / mu) + 0.0;
     FixedLambda out;
     out.evaluations = 1;

@@ -23,6 +23,7 @@
 #include <cmath>
 #include <concepts>
 #include <limits>
+#include <numbers>
 
 namespace smithlab {
 
@@ -85,6 +86,18 @@ template <Ndf N>
 double slope_density(const N& ndf, double r2) {
     if constexpr (HasSlopeDensity<N>) return ndf.slope_density(r2);
     else return detail::D_cos4(ndf, r2);
+}
+
+// The core slope scale r0 = 1/sqrt(pi P22(0)) (alpha for GGX and Beckmann: the slope where a lobe of P22(0)'s height
+// would hold all the mass), 1 where P22(0) is 0 or not finite (a plug-in's D(1) = 0): where the quadrature routes put
+// their grazing features and panels (smith.hpp, lambda_fixed.hpp), what their domain is measured in, and where the
+// checks (checks.hpp) split their integrals.
+inline double core_slope_scale(double P22_at_pole) {
+    return P22_at_pole > 0.0 && P22_at_pole < INFINITY ? 1.0 / std::sqrt(std::numbers::pi * P22_at_pole) : 1.0;
+}
+template <Ndf N>
+double core_slope_scale(const N& ndf) {
+    return core_slope_scale(slope_density(ndf, 0.0));
 }
 
 // D(m) = P22 / cos^4 = P22(s) (1 + s)^2 (Walter 2007 eq. 42), from the slope density at s = tan^2(theta_m).

@@ -125,8 +125,7 @@ namespace detail {
 // break there costs GSL up to 2x.
 template <Ndf N>
 std::array<double, 2> grazing_breaks(const N& ndf, double a) {
-    const double P22_at_pole = slope_density(ndf, 0.0);
-    const double r0 = P22_at_pole > 0.0 && P22_at_pole < INFINITY ? 1.0 / std::sqrt(std::numbers::pi * P22_at_pole) : 1.0;
+    const double r0 = core_slope_scale(ndf);
     auto small = [](double s) { return s < 1e-3 ? s : 0.0; };  // 0: no break
     return {small(a / r0), small(a)};
 }
