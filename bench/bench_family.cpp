@@ -3,11 +3,13 @@
 // per (alpha, gamma): its build is not timed), Dimov's spline (dimov-spline), and the exact 1D quadrature (the fixed
 // rule of lambda_fixed.hpp, and the adaptive GSL route). 64 materials (alpha log-uniform in [1e-4, 1], gamma uniform
 // in [0, 20]) and 4096 (material, mu) pairs, mu log-uniform in [1e-3, 1e3]; each iteration is one G1.
-// family/interpolated-cells times the same evaluator on points where it interpolates (its hot path alone).
+// family/cubic-cells and family/6-point-cells time the same evaluator on points where it interpolates with that tier
+// (its hot paths alone; mu log-uniform in [1e-8, 1e8]).
 // Run: build/bench/bench_family --benchmark_min_time=0.2   (one core)
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <map>
 #include <memory>
 #include <random>
 #include <smithlab/gtr/family.hpp>
@@ -42,21 +44,21 @@ const Stream& stream() {
     return s;
 }
 
-// Points where the family table interpolates: alpha, gamma, mu drawn at random until 4096 are found.
-const Stream& interpolated_stream() {
-    static const Stream s = [] {
-        Stream t;
-        const smithlab::GtrFamily& f = smithlab::GtrFamily::get();
-        std::mt19937_64 rng(15);
-        std::uniform_real_distribution<double> la(std::log(1e-4), 0.0), g(0.0, 20.0), lm(std::log(1e-8), std::log(1e8));
-        for (long k = 0; k < 100000000 && static_cast<int>(t.mu.size()) < n_points; ++k) {
-            const double a = std::exp(la(rng)), gm = g(rng), m = std::exp(lm(rng));
-            if (!f.interpolated(a, gm, m)) continue;
-            t.alpha.push_back(a), t.gamma.push_back(gm), t.mu.push_back(m), t.material.push_back(0);
-        }
-        return t;
-    }();
-    return s;
+// Points where the family table interpolates with the given tier (4: cubic, 6: 6-point): alpha, gamma, mu drawn at
+// random until 4096 are found.
+const Stream& interpolated_stream(int tier) {
+    static std::map<int, Stream> streams;
+    Stream& t = streams[tier];
+    if (!t.mu.empty()) return t;
+    const smithlab::GtrFamily& f = smithlab::GtrFamily::get();
+    std::mt19937_64 rng(15);
+    std::uniform_real_distribution<double> la(std::log(1e-4), 0.0), g(0.0, 20.0), lm(std::log(1e-8), std::log(1e8));
+    for (long k = 0; k < 100000000 && static_cast<int>(t.mu.size()) < n_points; ++k) {
+        const double a = std::exp(la(rng)), gm = g(rng), m = std::exp(lm(rng));
+        if (f.tier(a, gm, m) != tier) continue;
+        t.alpha.push_back(a), t.gamma.push_back(gm), t.mu.push_back(m), t.material.push_back(0);
+    }
+    return t;
 }
 
 template <class F>
@@ -77,7 +79,7 @@ void BM_family(benchmark::State& state) {
 }
 void BM_family_interpolated(benchmark::State& state) {
     const smithlab::GtrFamily& f = smithlab::GtrFamily::get();
-    const Stream& s = interpolated_stream();
+    const Stream& s = interpolated_stream(static_cast<int>(state.range(0)));
     state.counters["points"] = static_cast<double>(s.mu.size());
     run(state, s, [&](std::size_t i) { return f.G1_up(s.alpha[i], s.gamma[i], s.mu[i]); });
 }
@@ -120,7 +122,8 @@ void BM_exact_gsl(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(BM_family)->Name("family/random");
-BENCHMARK(BM_family_interpolated)->Name("family/interpolated-cells");
+BENCHMARK(BM_family_interpolated)->Name("family/cubic-cells")->Arg(4);
+BENCHMARK(BM_family_interpolated)->Name("family/6-point-cells")->Arg(6);
 BENCHMARK(BM_table)->Name("table/per-material");
 BENCHMARK(BM_dimov_spline)->Name("dimov-spline/random");
 BENCHMARK(BM_exact_fixed)->Name("exact-fixed-1e-12/random");

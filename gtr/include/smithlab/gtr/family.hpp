@@ -1,23 +1,28 @@
 // smithlab/gtr/family.hpp -- Lambda and G1 of every GTR at once: one table over (alpha, gamma, mu), built once at
 // first use (a function-local static), read-only afterwards and shared by every material and thread (issue 14).
 //
-// Domain: alpha in [1e-4, 1], gamma in [0, 20], any mu. The table holds f = ln(mu Lambda) (Lambda: Walter 2007
-// eq. 48, the reduced 1D form of smith.hpp) on a tensor grid in
-//     a = ln alpha  (63 uniform knots),   gamma  (123 knots, piecewise uniform, densest on [0.8, 2.2] where Lambda
-//     changes regime),   xi = ln(mu / alpha)  (201 uniform knots on [xi_lo, xi_hi]),
-// and interpolates it with the 4-point Lagrange rule on each axis (64 knots; windows shifted inward at the edges).
+// Domain: alpha in [1e-4, 1], gamma in [0, 20], any mu. The table holds
+//     g = ln(mu Lambda) - ln K - gamma ln t(mu)
+// (Lambda: Walter 2007 eq. 48, the reduced 1D form of smith.hpp; K the normalization of gtr.hpp, whose gamma -> 1
+// transition is 1/ln(1/alpha^2) wide; t(mu) = alpha^2 (1 + mu^2)/(alpha^2 + mu^2) the GTR t at slope mu, gamma ln t the
+// Laplace leading term of P22's t^gamma, which carries Lambda's gamma-proportional fall: both known in closed form,
+// subtracted at the knots and added back here) on a tensor grid in
+//     a = ln alpha  (93 uniform knots, step 0.1),   gamma  (104 knots, piecewise uniform, the step ~ (gamma + 1/2) / 20:
+//     ln(mu Lambda) goes like ln gamma),   xi = ln(mu / alpha)  (281 uniform knots, step 0.1, on [xi_lo, xi_hi]).
+// Two tiers on the same knots: 4-point Lagrange on each axis (64 knots) where its error estimate passes, else 6-point
+// (216 knots) where its estimate passes (windows shifted inward at the edges), else the exact route.
 // Its knots are computed at first use by strips (family.cpp): every gamma at once at one (alpha, mu), by the
 // trapezoid rule in u = acosh(r/mu) (the integrand of lambda_fixed.hpp). The exact route, where the table does not
 // resolve, is the closed form at integer gamma (closed_forms.hpp), else the fixed-rule 1D
 // quadrature (lambda_fixed.hpp, relative 1e-11). Outside [xi_lo, xi_hi] the two asymptotes of lambda_table.hpp:
 //   xi < xi_lo: mu Lambda = g_lo - mu/2, g_lo = mu_lo Lambda(mu_lo) + mu_lo/2 (Walter eq. 48 with P(q > 0) = 1/2;
 //               in error by R(mu_lo) - R(mu) in [0, R(mu_lo)], R bounded from two knots as in lambda_table.hpp);
-//   xi > xi_hi: Lambda ~ C mu^-2 (every GTR has a P22 ~ r^-4 tail: t -> alpha^2 as r -> inf, gtr.hpp), f continued
-//               with slope -1.
-// Error: each cell's interpolation error is estimated at build from the fourth divided differences along each
-// axis (error of 4-point Lagrange <= max|prod (x - x_m)| / 24 max|f''''|), summed over the axes and tripled. A cell
-// whose estimate exceeds `tolerance` (relative, Lambda) or `G1_tolerance` (absolute, G1) is not interpolated: there
-// the evaluator calls the exact route (microseconds).
+//   xi > xi_hi: Lambda ~ C mu^-2 (every GTR has a P22 ~ r^-4 tail: t -> alpha^2 as r -> inf, gtr.hpp), ln(mu Lambda)
+//               continued with slope -1.
+// Error: each cell's interpolation error, per tier, is estimated at build from the fourth (sixth) divided differences
+// along each axis (error of P-point Lagrange <= max|prod (x - x_m)| max|f[x0..xP]|), summed over the axes and
+// tripled (measured: error / estimate <= 0.32 for both tiers). A tier whose estimate exceeds `tolerance` (relative,
+// Lambda) or `G1_tolerance` (absolute, G1) is not used in that cell.
 // The stated bounds (error_bound(), G1_error_bound()) thus hold everywhere; tested against independent references in
 // tests/test_family.cpp.
 #pragma once
@@ -46,89 +51,135 @@ public:
     static const GtrFamily& get();
 
     // Lambda at finite mu > 0 for alpha in [1e-4, 1], gamma in [0, 20]: nothing is checked here (see
-    // Lambda_gtr_family for the checked call). No allocation, exception or virtual call on the interpolated path.
+    // Lambda_gtr_family for the checked call). No allocation, exception or virtual call on the interpolated paths.
     double Lambda_up(double alpha, double gamma, double mu) const {
         const double a = std::log(alpha), xi = std::log(mu / alpha);
-        // a: uniform knots a0 + i h_a
-        const double ta = (a - a0_) * inv_ha_;
-        const int ca = std::clamp(static_cast<int>(ta), 0, na_ - 2);
-        const int sa = std::clamp(ca - 1, 0, na_ - 4);
-        std::array<double, 4> wa = uniform_weights(ta - sa);
-        // gamma: non-uniform knots, a lookup table on a 0.01 grid finds the cell
-        const int cg = gamma_cell(gamma);
-        const int sg = std::clamp(cg - 1, 0, ng_ - 4);
-        std::array<double, 4> wg = gamma_weights(sg, gamma);
-        // xi: uniform, clamped to the tabulated range
         const double xc = std::clamp(xi, xi_lo_, xi_hi_);
-        const double tx = (xc - xi_lo_) * inv_hx_;
-        const int cx = std::clamp(static_cast<int>(tx), 0, nx_ - 2);
-        const int sx = std::clamp(cx - 1, 0, nx_ - 4);
-        std::array<double, 4> wx = uniform_weights(tx - sx);
-        double f;
+        const double ta = (a - a0_) * inv_ha_, tx = (xc - xi_lo_) * inv_hx_;
+        const int ca = std::clamp(static_cast<int>(ta), 0, na_ - 2), cg = gamma_cell(gamma),
+                  cx = std::clamp(static_cast<int>(tx), 0, nx_ - 2);
         const std::size_t cell = (static_cast<std::size_t>(ca) * (ng_ - 1) + cg) * (nx_ - 1) + cx;
-        if ((ok_[cell >> 6] >> (cell & 63)) & 1u) {
-            f = 0.0;
-            for (int i = 0; i < 4; ++i) {
-                double fi = 0.0;
-                for (int j = 0; j < 4; ++j) {
-                    const double* p = &f_[(static_cast<std::size_t>(sa + i) * ng_ + (sg + j)) * nx_ + sx];
-                    fi += wg[j] * (((wx[0] * p[0] + wx[1] * p[1]) + wx[2] * p[2]) + wx[3] * p[3]);
-                }
-                f += wa[i] * fi;
-            }
-        } else {
-            f = exact_f(alpha, gamma, xc);  // a cell the table does not resolve to `tolerance`
-        }
+        double f;
+        if (bit(ok4_, cell))
+            f = interpolate<4>(ta, ca, gamma, cg, tx, cx) + known(alpha, a, gamma, alpha * std::exp(xc));
+        else if (bit(ok6_, cell))
+            f = interpolate<6>(ta, ca, gamma, cg, tx, cx) + known(alpha, a, gamma, alpha * std::exp(xc));
+        else
+            f = exact_f(alpha, gamma, xc);  // a cell neither tier resolves to `tolerance`
         if (xi < xi_lo_) return (std::exp(f) + 0.5 * alpha * mu_lo_rel_) / mu - 0.5;  // mu = 0: +inf
         if (xi > xi_hi_) return std::exp(f - (xi - xi_hi_)) / mu;                     // mu = inf: 0
         return std::exp(f) / mu;
     }
     double G1_up(double alpha, double gamma, double mu) const { return 1.0 / (1.0 + Lambda_up(alpha, gamma, mu)); }
-    // Whether Lambda_up interpolates at this point (else it takes the exact route).
-    bool interpolated(double alpha, double gamma, double mu) const {
+    // Which route Lambda_up takes at this point: 4 or 6 (the interpolation tier), 0 (the exact route).
+    int tier(double alpha, double gamma, double mu) const {
         const int ca = std::clamp(static_cast<int>((std::log(alpha) - a0_) * inv_ha_), 0, na_ - 2);
         const double xc = std::clamp(std::log(mu / alpha), xi_lo_, xi_hi_);
         const int cx = std::clamp(static_cast<int>((xc - xi_lo_) * inv_hx_), 0, nx_ - 2);
         const std::size_t cell = (static_cast<std::size_t>(ca) * (ng_ - 1) + gamma_cell(gamma)) * (nx_ - 1) + cx;
-        return (ok_[cell >> 6] >> (cell & 63)) & 1u;
+        return bit(ok4_, cell) ? 4 : bit(ok6_, cell) ? 6 : 0;
     }
 
     // The stated bound on the relative error of Lambda, anywhere in the domain (the worst cell estimate, the
     // asymptotes' bounds, and the exact route's 1e-10 where a cell is not interpolated).
     double error_bound() const { return error_bound_; }
     double G1_error_bound() const { return G1_error_bound_; }  // the same on |dG1|
-    double coverage() const { return coverage_; }          // fraction of cells interpolated
+    double coverage(int tier) const { return tier == 4 ? coverage4_ : coverage6_; }  // fraction of cells per tier
     double build_seconds() const { return build_seconds_; }
     std::size_t knots() const { return f_.size(); }
 
     // ln(mu Lambda) by the exact route at xi = ln(mu / alpha) (the knots' route).
     static double exact_f(double alpha, double gamma, double xi);
+    // ln K + gamma ln t(mu), the part of ln(mu Lambda) the table does not hold (a = ln alpha).
+    static double known(double alpha, double a, double gamma, double mu) {
+        return ln_K(alpha, a, gamma) + gamma * ln_t(alpha, mu);
+    }
+    // ln K, K = (1 - alpha^2)/(pi alpha^2) / (-2 ln alpha expm1(y)/y), y = 2 (gamma - 1) ln alpha (gtr_K; 1/pi at
+    // alpha = 1).
+    static double ln_K(double alpha, double a, double gamma) {
+        constexpr double ln_pi = 1.1447298858494002;
+        if (alpha == 1.0) return -ln_pi;
+        const double om = (1.0 - alpha) * (1.0 + alpha), y = 2.0 * (gamma - 1.0) * a;
+        const double exprel = y == 0.0 ? 1.0 : std::expm1(y) / y;
+        return std::log(om / (alpha * alpha * (-2.0 * a) * exprel)) - ln_pi;
+    }
+    // ln t(mu), t = alpha^2 (1 + mu^2)/(alpha^2 + mu^2), from 1 - t = (1 - alpha^2) mu^2 / (alpha^2 + mu^2) while
+    // t > 1/2 (as strip() in family.cpp).
+    static double ln_t(double alpha, double mu) {
+        const double om = (1.0 - alpha) * (1.0 + alpha), m2 = mu * mu, den = alpha * alpha + m2;
+        const double t = alpha * alpha * ((1.0 + m2) / den);
+        return t < 0.5 ? std::log(t) : std::log1p(-om * (m2 / den));
+    }
 
 private:
     GtrFamily();
-    static std::array<double, 4> uniform_weights(double v) {  // Lagrange on nodes 0, 1, 2, 3, v in [0, 3]
-        const double v1 = v - 1.0, v2 = v - 2.0, v3 = v - 3.0;
-        return {-(v1 * v2 * v3) * (1.0 / 6.0), v * v2 * v3 * 0.5, -(v * v1 * v3) * 0.5, v * v1 * v2 * (1.0 / 6.0)};
+    static bool bit(const std::vector<std::uint64_t>& b, std::size_t i) { return (b[i >> 6] >> (i & 63)) & 1u; }
+    // prod_{m != k} (v - x_m) for k < P, from prefix and suffix products (d_m = v - x_m)
+    template <int P>
+    static std::array<double, P> products_but_one(const std::array<double, P>& d) {
+        std::array<double, P> w;
+        double pre = 1.0;
+        for (int k = 0; k < P; ++k) w[k] = pre, pre *= d[k];
+        double suf = 1.0;
+        for (int k = P - 1; k >= 0; --k) w[k] *= suf, suf *= d[k];
+        return w;
     }
+    // P-point Lagrange weights on uniform nodes 0 .. P-1 at v: prod_{m != k} (v - m) / prod_{m != k} (k - m)
+    template <int P>
+    static std::array<double, P> uniform_weights(double v) {
+        static constexpr std::array<double, 6> c4 = {-1.0 / 6, 1.0 / 2, -1.0 / 2, 1.0 / 6}, c6 = {
+            -1.0 / 120, 1.0 / 24, -1.0 / 12, 1.0 / 12, -1.0 / 24, 1.0 / 120};
+        std::array<double, P> d;
+        for (int m = 0; m < P; ++m) d[m] = v - m;
+        std::array<double, P> w = products_but_one<P>(d);
+        for (int k = 0; k < P; ++k) w[k] *= (P == 4 ? c4 : c6)[k];
+        return w;
+    }
+    template <int P>
+    static int window(int c, int n) { return std::clamp(c - (P / 2 - 1), 0, n - P); }
     int gamma_cell(double gamma) const {
         int j = gamma_lut_[static_cast<std::size_t>(gamma * 100.0)];
         while (j < ng_ - 2 && gamma >= g_[j + 1]) ++j;
         return j;
     }
-    std::array<double, 4> gamma_weights(int s, double gamma) const {
-        const double d0 = gamma - g_[s], d1 = gamma - g_[s + 1], d2 = gamma - g_[s + 2], d3 = gamma - g_[s + 3];
-        const std::array<double, 4>& c = g_inv_den_[s];
-        return {d1 * d2 * d3 * c[0], d0 * d2 * d3 * c[1], d0 * d1 * d3 * c[2], d0 * d1 * d2 * c[3]};
+    template <int P>
+    std::array<double, P> gamma_weights(int s, double gamma) const {
+        const double* inv_den = P == 4 ? &g_inv_den4_[s][0] : &g_inv_den6_[s][0];
+        std::array<double, P> d;
+        for (int m = 0; m < P; ++m) d[m] = gamma - g_[s + m];
+        std::array<double, P> w = products_but_one<P>(d);
+        for (int k = 0; k < P; ++k) w[k] *= inv_den[k];
+        return w;
+    }
+    // The stored g at (ta, gamma, tx) (ta, tx: positions in knot steps) by P-point Lagrange on each axis.
+    template <int P>
+    double interpolate(double ta, int ca, double gamma, int cg, double tx, int cx) const {
+        const int sa = window<P>(ca, na_), sg = window<P>(cg, ng_), sx = window<P>(cx, nx_);
+        const std::array<double, P> wa = uniform_weights<P>(ta - sa), wg = gamma_weights<P>(sg, gamma),
+                                    wx = uniform_weights<P>(tx - sx);
+        double f = 0.0;
+        for (int i = 0; i < P; ++i) {
+            double fi = 0.0;
+            for (int j = 0; j < P; ++j) {
+                const double* p = &f_[(static_cast<std::size_t>(sa + i) * ng_ + (sg + j)) * nx_ + sx];
+                double row = 0.0;
+                for (int k = 0; k < P; ++k) row += wx[k] * p[k];
+                fi += wg[j] * row;
+            }
+            f += wa[i] * fi;
+        }
+        return f;
     }
 
     int na_ = 0, ng_ = 0, nx_ = 0;
     double a0_ = 0.0, inv_ha_ = 1.0, xi_lo_ = 0.0, xi_hi_ = 0.0, inv_hx_ = 1.0, mu_lo_rel_ = 0.0;
     std::vector<double> g_;                            // gamma knots
-    std::vector<std::array<double, 4>> g_inv_den_;     // 1 / prod_{m != k} (g_k - g_m), per window start
+    std::vector<std::array<double, 4>> g_inv_den4_;    // 1 / prod_{m != k} (g_k - g_m), per 4-knot window start
+    std::vector<std::array<double, 6>> g_inv_den6_;    // the same, 6-knot windows
     std::vector<std::uint16_t> gamma_lut_;             // cell of gamma = k / 100
-    std::vector<double> f_;                            // ln(mu Lambda) at [a][gamma][xi]
-    std::vector<std::uint64_t> ok_;                    // one bit per cell: interpolated
-    double error_bound_ = 0.0, G1_error_bound_ = 0.0, coverage_ = 0.0, build_seconds_ = 0.0;
+    std::vector<double> f_;                            // g = ln(mu Lambda) - known() at [a][gamma][xi]
+    std::vector<std::uint64_t> ok4_, ok6_;             // one bit per cell: that tier is within the tolerances
+    double error_bound_ = 0.0, G1_error_bound_ = 0.0, coverage4_ = 0.0, coverage6_ = 0.0, build_seconds_ = 0.0;
 };
 
 // Checked calls: input_error naming alpha (not in [1e-4, 1], NaN) or gamma (not in [0, 20], NaN); mu as everywhere
