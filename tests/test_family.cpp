@@ -45,14 +45,20 @@ TEST_CASE("family: the stated bound holds on random points over the whole domain
     std::uniform_real_distribution<double> log_alpha(std::log(1e-4), 0.0), gamma_u(0.0, 20.0), gamma_low(0.0, 3.0),
         log_mu(std::log(1e-8), std::log(1e8));
     Worst w;
+    int by_tier[7] = {0, 0, 0, 0, 0, 0, 0};  // 4: cubic, 6: 6-point, 0: the exact route
     for (int i = 0; i < 3000; ++i) {
         const double alpha = std::exp(log_alpha(rng)), gamma = i % 3 == 0 ? gamma_low(rng) : gamma_u(rng);
         const double mu = std::exp(log_mu(rng));
         w.add(t.Lambda_up(alpha, gamma, mu), independent(alpha, gamma, mu), alpha, gamma, mu);
+        ++by_tier[t.tier(alpha, gamma, mu)];
     }
     INFO("worst relative dLambda " << w.rel << " at alpha " << w.alpha << ", gamma " << w.gamma << ", mu " << w.mu
                                    << "; worst |dG1| " << w.dG1);
-    WARN("family, random points: worst relative dLambda " << w.rel << ", |dG1| " << w.dG1);
+    WARN("family, random points: worst relative dLambda " << w.rel << ", |dG1| " << w.dG1 << "; points by cubic "
+                                                          << by_tier[4] << ", 6-point " << by_tier[6] << ", exact "
+                                                          << by_tier[0]);
+    CHECK(by_tier[4] >= 500);  // both tiers are what is being checked here, not the exact route alone
+    CHECK(by_tier[6] >= 500);
     CHECK(w.rel <= t.error_bound());
     CHECK(w.dG1 <= t.G1_error_bound());
 }
