@@ -22,16 +22,22 @@ cells() { find "$1/cells" -name 'cell-*.csv' 2>/dev/null | wc -l; }
 
 "${launcher[@]}" -np 3 "$exe" trace "$scene" --output out --threads 1 > killed.log 2>&1 &
 launched=$!
+# Rank 2's process first (scanning /proc takes a while on a loaded machine: done after the cells appeared, it once let
+# the whole run finish before the kill), then the kill as soon as 3 cells are done.
+victim=""
+for _ in $(seq 1200); do
+  for p in $(pgrep -f -- "$exe trace $scene"); do
+    tr '\0' '\n' < /proc/$p/environ 2>/dev/null | grep -qx "OMPI_COMM_WORLD_RANK=2\|PMIX_RANK=2" && victim=$p
+  done
+  [ -n "$victim" ] && break
+  sleep 0.05
+done
+[ -n "$victim" ] || fail "found no process of rank 2 in 60 s"
 for _ in $(seq 1200); do
   [ "$(cells out)" -ge 3 ] && break
   sleep 0.05
 done
 [ "$(cells out)" -ge 3 ] || fail "no cell finished in 60 s"
-victim=""
-for p in $(pgrep -f -- "$exe trace $scene"); do
-  tr '\0' '\n' < /proc/$p/environ 2>/dev/null | grep -qx "OMPI_COMM_WORLD_RANK=2\|PMIX_RANK=2" && victim=$p
-done
-[ -n "$victim" ] || fail "found no process of rank 2"
 kill -9 "$victim"
 wait $launched
 rc=$?

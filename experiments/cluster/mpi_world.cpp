@@ -2,9 +2,13 @@
 
 #include <algorithm>
 #include <chrono>
+#include <csignal>
+#include <cstdio>
 #include <cstdlib>
-#include <thread>
 #include <stdexcept>
+#include <thread>
+
+#include "signal_cleanup.hpp"
 
 #ifdef SMITHLAB_MPI
 #include <mpi.h>
@@ -48,7 +52,23 @@ void init(int& argc, char**& argv) {
     started = true;
     MPI_Comm_rank(MPI_COMM_WORLD, &world_rank);
     MPI_Comm_size(MPI_COMM_WORLD, &world_size);
+    // A failed call (a rank died mid-message) comes back here (check) instead of aborting the process unheard.
+    MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
 }
+
+namespace {
+// A communication that failed -- a rank that died with a message on its way: said, then the process ends as on
+// mpirun's SIGTERM (the notes printed, the temporaries removed: output/signal_cleanup.hpp). Without it, the library's
+// default handler aborted rank 0 before mpirun's signal came, and the note of what each rank held was never printed.
+void check(int rc, const char* call) {
+    if (rc == MPI_SUCCESS) return;
+    char text[MPI_MAX_ERROR_STRING];
+    int length = 0;
+    MPI_Error_string(rc, text, &length);
+    std::fprintf(stderr, "smithlab: rank %d: %s failed (%.*s): a rank has died?\n", world_rank, call, length, text);
+    output::end_as_signalled(SIGTERM);
+}
+}  // namespace
 
 void finalize() {
     if (!started) return;
@@ -62,15 +82,15 @@ void abort(int code) {
 
 void send(int to, int tag, const std::vector<char>& bytes) {
     if (!started) no_mpi();
-    MPI_Send(bytes.data(), static_cast<int>(bytes.size()), MPI_BYTE, to, tag, MPI_COMM_WORLD);
+    check(MPI_Send(bytes.data(), static_cast<int>(bytes.size()), MPI_BYTE, to, tag, MPI_COMM_WORLD), "MPI_Send");
 }
 
 namespace {
 std::vector<char> receive(MPI_Status& st) {
     int n = 0;
-    MPI_Get_count(&st, MPI_BYTE, &n);
+    check(MPI_Get_count(&st, MPI_BYTE, &n), "MPI_Get_count");
     std::vector<char> bytes(static_cast<std::size_t>(n));
-    MPI_Recv(bytes.data(), n, MPI_BYTE, st.MPI_SOURCE, st.MPI_TAG, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    check(MPI_Recv(bytes.data(), n, MPI_BYTE, st.MPI_SOURCE, st.MPI_TAG, MPI_COMM_WORLD, MPI_STATUS_IGNORE), "MPI_Recv");
     return bytes;
 }
 }  // namespace
@@ -79,7 +99,7 @@ std::optional<Message> try_recv_any() {
     if (!started) no_mpi();
     MPI_Status st;
     int arrived = 0;
-    MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &arrived, &st);
+    check(MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &arrived, &st), "MPI_Iprobe");
     if (!arrived) return std::nullopt;
     Message m{st.MPI_SOURCE, st.MPI_TAG, {}};
     m.bytes = receive(st);
@@ -92,7 +112,7 @@ std::vector<char> recv(int from, int tag) {
     MPI_Status st;
     std::chrono::microseconds nap{10};  // doubling to 1 ms: prompt when the message is near, idle when it is not
     for (int arrived = 0;;) {
-        MPI_Iprobe(from, tag, MPI_COMM_WORLD, &arrived, &st);
+        check(MPI_Iprobe(from, tag, MPI_COMM_WORLD, &arrived, &st), "MPI_Iprobe");
         if (arrived) return receive(st);
         std::this_thread::sleep_for(nap);
         nap = std::min(2 * nap, std::chrono::microseconds(1000));

@@ -43,8 +43,9 @@ std::vector<double> gamma_knots() {
 // mu is: lambda_fixed.hpp), so the trapezoid rule converges like exp(-2 pi d / h) (Trefethen and Weideman 2014,
 // "The exponentially convergent trapezoidal rule", thm 5.1): h = 1/8 with d = pi/4 leaves ~1e-17 x the integrand's
 // growth there (<= 2^(gamma/2)); measured <= 6.3e-10 relative against the adaptive route (tanh-sinh, 1e-13) at 300
-// random (alpha, mu) x 29 gamma, the same with the tail cut 24 or 32 past ln(9/mu) (h = 1/6: 1.6e-5). Every geometric factor and ln t are shared by all gamma; t^(gamma - 2) is stepped
-// from knot to knot by products (two exps per run of equal steps), e^u by products too.
+// random (alpha, mu) x 29 gamma, the same with the tail cut 24 or 32 past ln(9/mu) (h = 1/6: 1.6e-5). Every
+// geometric factor and ln t (GtrFamily::ln_t) are shared by all gamma; t^(gamma - 2) is stepped from knot to knot by
+// products (two exps per run of equal steps), e^u by products too.
 void strip(double alpha, double mu, const std::vector<double>& g, const std::vector<double>& K, double* out,
            std::ptrdiff_t stride) {
     const int ng = static_cast<int>(g.size());
@@ -65,7 +66,7 @@ void strip(double alpha, double mu, const std::vector<double>& g, const std::vec
         runs.push_back({j, e, d});
         j = e;
     }
-    const double a2 = alpha * alpha, om = (1.0 - alpha) * (1.0 + alpha), eh = std::exp(h);
+    const double a2 = alpha * alpha, eh = std::exp(h);
     double E = 1.0;  // e^u, stepped (n <= ~500 products: a relative drift below 1e-13)
     for (int k = 1; k <= n; ++k) {
         E *= eh;
@@ -74,8 +75,7 @@ void strip(double alpha, double mu, const std::vector<double>& g, const std::vec
         const double s2 = s * s;
         const double smg = s < 0.1 ? s * s2 * (1.0 / 3 - s2 * (1.0 / 5 - s2 * (1.0 / 7 - s2 / 9))) : s - std::atan(s);
         const double r2 = mu * mu * c * c, den = r2 + a2, w = a2 / den;
-        const double t = a2 * ((1.0 + r2) / den);  // in [alpha^2, 1]; ln t from 1 - t = (1 - alpha^2) r^2 / den near 1
-        const double lt = t < 0.5 ? std::log(t) : std::log1p(-om * (r2 / den));
+        const double lt = GtrFamily::ln_t(alpha, r2);
         const double base = r2 * w * w * (s * smg / c);
         // four knots per product in each run: the chain of products is a quarter as long
         for (const Run& run : runs) {
@@ -199,11 +199,11 @@ GtrFamily::GtrFamily() {
     f_.assign(static_cast<std::size_t>(na_) * ng_ * nx_, 0.0);
     std::vector<double> ln_mu_Lambda(f_.size());  // ln(mu Lambda) itself, for the asymptotes' bounds
     parallel_for(na_, [&](int i) {
-        const double alpha = alpha_of(i), a = std::log(alpha);
+        const double alpha = alpha_of(i);
         std::vector<double> K(ng_), lnK(ng_);
-        for (int j = 0; j < ng_; ++j) K[j] = gtr(alpha, g_[j]).K, lnK[j] = ln_K(alpha, a, g_[j]);
+        for (int j = 0; j < ng_; ++j) K[j] = gtr_K(alpha, g_[j]), lnK[j] = std::log(K[j]);
         for (int k = 0; k < nx_; ++k) {
-            const double xi = xi_lo_ + h_xi * k, mu = alpha * std::exp(xi), lt = ln_t(alpha, mu);
+            const double xi = xi_lo_ + h_xi * k, mu = alpha * std::exp(xi), lt = ln_t(alpha, mu * mu);
             const std::size_t at0 = static_cast<std::size_t>(i) * ng_ * nx_ + k;
             strip(alpha, mu, g_, K, &ln_mu_Lambda[at0], nx_);
             for (int j = 0; j < ng_; ++j) {

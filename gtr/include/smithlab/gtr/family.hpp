@@ -34,6 +34,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "smithlab/gtr/gtr.hpp"
 #include "smithlab/smith.hpp"
 
 namespace smithlab {
@@ -61,9 +62,9 @@ public:
         const std::size_t cell = (static_cast<std::size_t>(ca) * (ng_ - 1) + cg) * (nx_ - 1) + cx;
         double f;
         if (bit(ok4_, cell))
-            f = interpolate<4>(ta, ca, gamma, cg, tx, cx) + known(alpha, a, gamma, alpha * std::exp(xc));
+            f = interpolate<4>(ta, ca, gamma, cg, tx, cx) + known(alpha, gamma, alpha * std::exp(xc));
         else if (bit(ok6_, cell))
-            f = interpolate<6>(ta, ca, gamma, cg, tx, cx) + known(alpha, a, gamma, alpha * std::exp(xc));
+            f = interpolate<6>(ta, ca, gamma, cg, tx, cx) + known(alpha, gamma, alpha * std::exp(xc));
         else
             f = exact_f(alpha, gamma, xc);  // a cell neither tier resolves to `tolerance`
         if (xi < xi_lo_) return (std::exp(f) + 0.5 * alpha * mu_lo_rel_) / mu - 0.5;  // mu = 0: +inf
@@ -90,25 +91,16 @@ public:
 
     // ln(mu Lambda) by the exact route at xi = ln(mu / alpha) (the knots' route).
     static double exact_f(double alpha, double gamma, double xi);
-    // ln K + gamma ln t(mu), the part of ln(mu Lambda) the table does not hold (a = ln alpha).
-    static double known(double alpha, double a, double gamma, double mu) {
-        return ln_K(alpha, a, gamma) + gamma * ln_t(alpha, mu);
+    // ln K + gamma ln t(mu), the part of ln(mu Lambda) the table does not hold (K: gtr_K).
+    static double known(double alpha, double gamma, double mu) {
+        return std::log(gtr_K(alpha, gamma)) + gamma * ln_t(alpha, mu * mu);
     }
-    // ln K, K = (1 - alpha^2)/(pi alpha^2) / (-2 ln alpha expm1(y)/y), y = 2 (gamma - 1) ln alpha (gtr_K; 1/pi at
-    // alpha = 1).
-    static double ln_K(double alpha, double a, double gamma) {
-        constexpr double ln_pi = 1.1447298858494002;
-        if (alpha == 1.0) return -ln_pi;
-        const double om = (1.0 - alpha) * (1.0 + alpha), y = 2.0 * (gamma - 1.0) * a;
-        const double exprel = y == 0.0 ? 1.0 : std::expm1(y) / y;
-        return std::log(om / (alpha * alpha * (-2.0 * a) * exprel)) - ln_pi;
-    }
-    // ln t(mu), t = alpha^2 (1 + mu^2)/(alpha^2 + mu^2), from 1 - t = (1 - alpha^2) mu^2 / (alpha^2 + mu^2) while
-    // t > 1/2 (as strip() in family.cpp).
-    static double ln_t(double alpha, double mu) {
-        const double om = (1.0 - alpha) * (1.0 + alpha), m2 = mu * mu, den = alpha * alpha + m2;
-        const double t = alpha * alpha * ((1.0 + m2) / den);
-        return t < 0.5 ? std::log(t) : std::log1p(-om * (m2 / den));
+    // ln t at slope r (r2 = r^2), t = alpha^2 (1 + r^2)/(alpha^2 + r^2) in [alpha^2, 1]: while t > 1/2 from
+    // 1 - t = (1 - alpha^2) r^2 / (alpha^2 + r^2), which keeps the digits t would round away.
+    static double ln_t(double alpha, double r2) {
+        const double om = (1.0 - alpha) * (1.0 + alpha), den = alpha * alpha + r2;
+        const double t = alpha * alpha * ((1.0 + r2) / den);
+        return t < 0.5 ? std::log(t) : std::log1p(-om * (r2 / den));
     }
 
 private:
