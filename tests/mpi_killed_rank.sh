@@ -24,10 +24,15 @@ cells() { find "$1/cells" -name 'cell-*.csv' 2>/dev/null | wc -l; }
 launched=$!
 # Rank 2's process first (scanning /proc takes a while on a loaded machine: done after the cells appeared, it once let
 # the whole run finish before the kill), then the kill as soon as 3 cells are done.
+# A rank of this run: its working directory is this test's (not a leftover of another run), rank 2 in its environment.
+is_rank2() {
+  [ "$(readlink "/proc/$1/cwd" 2>/dev/null)" = "$PWD" ] &&
+    tr '\0' '\n' < "/proc/$1/environ" 2>/dev/null | grep -qx "OMPI_COMM_WORLD_RANK=2\|PMIX_RANK=2\|PMI_RANK=2"
+}
 victim=""
 for _ in $(seq 1200); do
-  for p in $(pgrep -f -- "$exe trace $scene"); do
-    tr '\0' '\n' < /proc/$p/environ 2>/dev/null | grep -qx "OMPI_COMM_WORLD_RANK=2\|PMIX_RANK=2" && victim=$p
+  for p in $(pgrep -f -- "trace $scene"); do
+    is_rank2 "$p" && victim=$p
   done
   [ -n "$victim" ] && break
   sleep 0.05
@@ -38,6 +43,7 @@ for _ in $(seq 1200); do
   sleep 0.05
 done
 [ "$(cells out)" -ge 3 ] || fail "no cell finished in 60 s"
+is_rank2 "$victim" || fail "the run ended before rank 2 could be killed"
 kill -9 "$victim"
 wait $launched
 rc=$?

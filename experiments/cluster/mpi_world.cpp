@@ -66,6 +66,9 @@ void check(int rc, const char* call) {
     int length = 0;
     MPI_Error_string(rc, text, &length);
     std::fprintf(stderr, "smithlab: rank %d: %s failed (%.*s): a rank has died?\n", world_rank, call, length, text);
+    // mpirun's own SIGTERM follows a dead rank within ~1 s and names it: let it come first (the signal thread takes it
+    // as usual), so that this rank is not reported as the one that failed.
+    std::this_thread::sleep_for(std::chrono::seconds(3));
     output::end_as_signalled(SIGTERM);
 }
 }  // namespace

@@ -85,7 +85,10 @@ public:
     // asymptotes' bounds, and the exact route's 1e-10 where a cell is not interpolated).
     double error_bound() const { return error_bound_; }
     double G1_error_bound() const { return G1_error_bound_; }  // the same on |dG1|
-    double coverage(int tier) const { return tier == 4 ? coverage4_ : coverage6_; }  // fraction of cells per tier
+    // The fraction of cells that take tier 4, 6, or 0 (the exact route).
+    double coverage(int tier) const {
+        return tier == 4 ? coverage4_ : tier == 6 ? coverage6_ : 1.0 - coverage4_ - coverage6_;
+    }
     double build_seconds() const { return build_seconds_; }
     std::size_t knots() const { return f_.size(); }
 
