@@ -6,7 +6,6 @@
 #include <thread>
 
 #include "smithlab/errors.hpp"
-#include "smithlab/gtr/closed_forms.hpp"
 #include "smithlab/gtr/gtr.hpp"
 
 namespace smithlab {
@@ -152,9 +151,8 @@ void block_max(std::vector<double>& D, int ns, int nu, int nv, int P) {
 
 double GtrFamily::exact_f(double alpha, double gamma, double xi) {
     const double mu = alpha * std::exp(xi);
-    const Gtr n = gtr(alpha, gamma);
-    const double L = gtr_has_closed_form(gamma) ? n.Lambda(mu) : Lambda_fixed(n, mu, {Backend::gsl, 1e-11});
-    return std::log(mu * L);
+    // auto: the closed form at integer gamma, else the fixed rule (GSL where its estimate misses 1e-11)
+    return std::log(mu * Lambda(gtr(alpha, gamma), mu, {.backend = Backend::gsl, .tolerance = 1e-11}));
 }
 
 const GtrFamily& GtrFamily::get() {
@@ -175,18 +173,8 @@ GtrFamily::GtrFamily() {
     xi_hi_ = xi_lo + h_xi * (nx_ - 1);
     inv_hx_ = 1.0 / h_xi;
     mu_lo_rel_ = std::exp(xi_lo_);
-    auto inv_den = [&](int s, int P, double* c) {
-        for (int k = 0; k < P; ++k) {
-            double den = 1.0;
-            for (int m = 0; m < P; ++m)
-                if (m != k) den *= g_[s + k] - g_[s + m];
-            c[k] = 1.0 / den;
-        }
-    };
-    g_inv_den4_.resize(ng_ - 3);
-    g_inv_den6_.resize(ng_ - 5);
-    for (int s = 0; s + 3 < ng_; ++s) inv_den(s, 4, g_inv_den4_[s].data());
-    for (int s = 0; s + 5 < ng_; ++s) inv_den(s, 6, g_inv_den6_[s].data());
+    g_inv_den4_ = divided_weights(g_, 3);  // P-point Lagrange's denominators: the (P-1)-th difference's weights
+    g_inv_den6_ = divided_weights(g_, 5);
     for (int k = 0; k <= 100 * static_cast<int>(gamma_max); ++k) {
         const double gm = k / 100.0;
         int j = 0;
@@ -254,11 +242,10 @@ GtrFamily::GtrFamily() {
         std::vector<double> a, g, x;
     };
     auto nodal = [&](int P) {
-        auto win = [P](int c, int n) { return std::clamp(c - (P / 2 - 1), 0, n - P); };
         Nodal m{std::vector<double>(na_ - 1), std::vector<double>(ng_ - 1), std::vector<double>(nx_ - 1)};
-        for (int c = 0; c < na_ - 1; ++c) m.a[c] = nodal_max(&ua[win(c, na_)], P, c, c + 1);
-        for (int c = 0; c < ng_ - 1; ++c) m.g[c] = nodal_max(&g_[win(c, ng_)], P, g_[c], g_[c + 1]);
-        for (int c = 0; c < nx_ - 1; ++c) m.x[c] = nodal_max(&ux[win(c, nx_)], P, c, c + 1);
+        for (int c = 0; c < na_ - 1; ++c) m.a[c] = nodal_max(&ua[window(c, na_, P)], P, c, c + 1);
+        for (int c = 0; c < ng_ - 1; ++c) m.g[c] = nodal_max(&g_[window(c, ng_, P)], P, g_[c], g_[c + 1]);
+        for (int c = 0; c < nx_ - 1; ++c) m.x[c] = nodal_max(&ux[window(c, nx_, P)], P, c, c + 1);
         return m;
     };
     const Nodal n4 = nodal(4), n6 = nodal(6);
@@ -267,8 +254,7 @@ GtrFamily::GtrFamily() {
     // P + 1 that hold the cell's P-knot stencil or overlap it by P, across the stencil's lines of the other axes),
     // summed over the axes and tripled (the Lebesgue constants of the other axes, the estimate's own slack).
     auto estimate = [&](const Differences& d, const Nodal& n, int P, int ca, int cg, int cx) {
-        auto win = [P](int c, int n) { return std::clamp(c - (P / 2 - 1), 0, n - P); };
-        const int sa = win(ca, na_), sg = win(cg, ng_), sx = win(cx, nx_);
+        const int sa = window(ca, na_, P), sg = window(cg, ng_, P), sx = window(cx, nx_, P);
         double ea = 0.0, eg = 0.0, ex = 0.0;
         for (int s = std::max(sa - 1, 0); s <= std::min(sa, na_ - P - 1); ++s) ea = std::max(ea, d.a[index(s, sg, sx, ng_, nx_)]);
         for (int s = std::max(sg - 1, 0); s <= std::min(sg, ng_ - P - 1); ++s) eg = std::max(eg, d.g[index(s, sa, sx, na_, nx_)]);

@@ -130,8 +130,9 @@ private:
         for (int k = 0; k < P; ++k) w[k] *= (P == 4 ? c4 : c6)[k];
         return w;
     }
-    template <int P>
-    static int window(int c, int n) { return std::clamp(c - (P / 2 - 1), 0, n - P); }
+    // The first knot of cell c's P-knot stencil on an axis of n knots (shifted inward at the edges): the evaluator's and
+    // the build's estimates' (family.cpp) one rule.
+    static int window(int c, int n, int P) { return std::clamp(c - (P / 2 - 1), 0, n - P); }
     int gamma_cell(double gamma) const {
         int j = gamma_lut_[static_cast<std::size_t>(gamma * 100.0)];
         while (j < ng_ - 2 && gamma >= g_[j + 1]) ++j;
@@ -149,7 +150,7 @@ private:
     // The stored g at (ta, gamma, tx) (ta, tx: positions in knot steps) by P-point Lagrange on each axis.
     template <int P>
     double interpolate(double ta, int ca, double gamma, int cg, double tx, int cx) const {
-        const int sa = window<P>(ca, na_), sg = window<P>(cg, ng_), sx = window<P>(cx, nx_);
+        const int sa = window(ca, na_, P), sg = window(cg, ng_, P), sx = window(cx, nx_, P);
         const std::array<double, P> wa = uniform_weights<P>(ta - sa), wg = gamma_weights<P>(sg, gamma),
                                     wx = uniform_weights<P>(tx - sx);
         double f = 0.0;
@@ -169,8 +170,8 @@ private:
     int na_ = 0, ng_ = 0, nx_ = 0;
     double a0_ = 0.0, inv_ha_ = 1.0, xi_lo_ = 0.0, xi_hi_ = 0.0, inv_hx_ = 1.0, mu_lo_rel_ = 0.0;
     std::vector<double> g_;                            // gamma knots
-    std::vector<std::array<double, 4>> g_inv_den4_;    // 1 / prod_{m != k} (g_k - g_m), per 4-knot window start
-    std::vector<std::array<double, 6>> g_inv_den6_;    // the same, 6-knot windows
+    // 1 / prod_{m != k} (g_k - g_m) per window start, 4- and 6-knot windows (the divided-difference weights)
+    std::vector<std::array<double, 7>> g_inv_den4_, g_inv_den6_;
     std::vector<std::uint16_t> gamma_lut_;             // cell of gamma = k / 100
     std::vector<double> f_;                            // g = ln(mu Lambda) - known() at [a][gamma][xi]
     std::vector<std::uint64_t> ok4_, ok6_;             // one bit per cell: that tier is within the tolerances
