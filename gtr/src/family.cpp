@@ -7,6 +7,7 @@
 
 #include "smithlab/errors.hpp"
 #include "smithlab/gtr/gtr.hpp"
+#include "smithlab/walk/parallel.hpp"
 
 namespace smithlab {
 
@@ -122,7 +123,7 @@ std::vector<std::array<double, 7>> divided_weights(const std::vector<double>& x,
 // fn(i) for i in [0, n), interleaved over every core.
 template <class F>
 void parallel_for(int n, const F& fn) {
-    const int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    const int threads = static_cast<int>(walk::thread_count(0));  // every core
     std::vector<std::thread> pool;
     for (int th = 0; th < threads; ++th)
         pool.emplace_back([&, th] {
