@@ -1,15 +1,14 @@
-// G1 of GTR for random (alpha, gamma, mu) streams (issue 14, item 1): the family evaluator (gtr/family.hpp, one table
+// G1 of GTR for random (alpha, gamma, mu) streams (issue 14, item 1): the family evaluator (gtr/family.hpp, one tree
 // for every material) beside the routes a renderer has on the same inputs: the per-material LambdaTable (built once
 // per (alpha, gamma): its build is not timed), Dimov's spline (dimov-spline), and the exact 1D quadrature (the fixed
 // rule of lambda_fixed.hpp, and the adaptive GSL route). 64 materials (alpha log-uniform in [1e-4, 1], gamma uniform
 // in [0, 20]) and 4096 (material, mu) pairs, mu log-uniform in [1e-3, 1e3]; each iteration is one G1.
-// family/cubic-cells and family/6-point-cells time the same evaluator on points where it interpolates with that tier
-// (its hot paths alone; mu log-uniform in [1e-8, 1e8]).
+// family/scattered times the same evaluator on 4096 points each of its own (alpha, gamma), mu log-uniform in
+// [1e-8, 1e8]: the whole tree in use.
 // Run: build/bench/bench_family --benchmark_min_time=0.2   (one core)
 #include <benchmark/benchmark.h>
 
 #include <cmath>
-#include <map>
 #include <memory>
 #include <random>
 #include <smithlab/gtr/family.hpp>
@@ -44,21 +43,20 @@ const Stream& stream() {
     return s;
 }
 
-// Points where the family table interpolates with the given tier (4: cubic, 6: 6-point): alpha, gamma, mu drawn at
-// random until 4096 are found.
-const Stream& interpolated_stream(int tier) {
-    static std::map<int, Stream> streams;
-    Stream& t = streams[tier];
-    if (!t.mu.empty()) return t;
-    const smithlab::GtrFamily& f = smithlab::GtrFamily::get();
-    std::mt19937_64 rng(15);
-    std::uniform_real_distribution<double> la(std::log(1e-4), 0.0), g(0.0, 20.0), lm(std::log(1e-8), std::log(1e8));
-    for (long k = 0; k < 100000000 && static_cast<int>(t.mu.size()) < n_points; ++k) {
-        const double a = std::exp(la(rng)), gm = g(rng), m = std::exp(lm(rng));
-        if (f.tier(a, gm, m) != tier) continue;
-        t.alpha.push_back(a), t.gamma.push_back(gm), t.mu.push_back(m), t.material.push_back(0);
-    }
-    return t;
+// Every point its own material: alpha log-uniform in [1e-4, 1], gamma uniform in [0, 20], mu log-uniform in
+// [1e-8, 1e8] (the whole tree in use, no two calls alike).
+const Stream& scattered_stream() {
+    static const Stream s = [] {
+        Stream t;
+        std::mt19937_64 rng(15);
+        std::uniform_real_distribution<double> la(std::log(1e-4), 0.0), g(0.0, 20.0), lm(std::log(1e-8), std::log(1e8));
+        for (int i = 0; i < n_points; ++i) {
+            t.alpha.push_back(std::exp(la(rng))), t.gamma.push_back(g(rng)), t.mu.push_back(std::exp(lm(rng)));
+            t.material.push_back(0);
+        }
+        return t;
+    }();
+    return s;
 }
 
 template <class F>
@@ -77,10 +75,9 @@ void BM_family(benchmark::State& state) {
     const Stream& s = stream();
     run(state, s, [&](std::size_t i) { return f.G1_up(s.alpha[i], s.gamma[i], s.mu[i]); });
 }
-void BM_family_interpolated(benchmark::State& state) {
+void BM_family_scattered(benchmark::State& state) {
     const smithlab::GtrFamily& f = smithlab::GtrFamily::get();
-    const Stream& s = interpolated_stream(static_cast<int>(state.range(0)));
-    state.counters["points"] = static_cast<double>(s.mu.size());
+    const Stream& s = scattered_stream();
     run(state, s, [&](std::size_t i) { return f.G1_up(s.alpha[i], s.gamma[i], s.mu[i]); });
 }
 void BM_table(benchmark::State& state) {
@@ -122,8 +119,7 @@ void BM_exact_gsl(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(BM_family)->Name("family/random");
-BENCHMARK(BM_family_interpolated)->Name("family/cubic-cells")->Arg(4);
-BENCHMARK(BM_family_interpolated)->Name("family/6-point-cells")->Arg(6);
+BENCHMARK(BM_family_scattered)->Name("family/scattered");
 BENCHMARK(BM_table)->Name("table/per-material");
 BENCHMARK(BM_dimov_spline)->Name("dimov-spline/random");
 BENCHMARK(BM_exact_fixed)->Name("exact-fixed-1e-12/random");

@@ -1,0 +1,297 @@
+// smithlab_family_gen OUT.cpp -- generates the GTR family evaluator's tree (family.hpp) at build time: every leaf's
+// polynomial, its estimate and its checks, and the asymptotes' bound, written as C++ (hex floats: exact).
+// Deterministic: the same tree on any number of threads.
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <numbers>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "smithlab/gtr/family.hpp"
+#include "smithlab/gtr/gtr.hpp"
+
+namespace {
+
+using smithlab::GtrFamily;
+constexpr int D = GtrFamily::degree;
+constexpr int F = D + 1;      // the tensor Chebyshev interpolant's degree on each axis (F + 1 points)
+constexpr int N = F + 1;
+constexpr int max_gammas = N;  // gammas per strip
+constexpr int max_depth = 24;
+
+// ln t at slope r (r2 = r^2), t = alpha^2 (1 + r^2)/(alpha^2 + r^2) in [alpha^2, 1] (gtr.hpp): while t > 1/2 from
+// 1 - t = (1 - alpha^2) r^2 / (alpha^2 + r^2), which keeps the digits t would round away.
+double ln_t(double alpha, double r2) {
+    const double om = (1.0 - alpha) * (1.0 + alpha), den = alpha * alpha + r2;
+    const double t = alpha * alpha * ((1.0 + r2) / den);
+    return t < 0.5 ? std::log(t) : std::log1p(-om * (r2 / den));
+}
+
+// ln(mu Lambda) at (alpha, mu) for n <= max_gammas gammas at once (the knots' route). The reduced integral in
+// u = acosh(r/mu), as in lambda_fixed.hpp: Lambda = 2 int_0^inf f(r^2) r^2 H(u) du, H(u) = sinh u (sinh u - gd u) /
+// cosh u, gd u = atan(sinh u), with GTR's f = K t^(gamma - 2) w^2 (gtr.hpp). The integrand is even in u and analytic
+// in the strip |Im u| < pi/2 (its nearest singularities, f's pole r^2 = -alpha^2 and gd's, are pi/2 off the real
+// axis, wherever mu is: lambda_fixed.hpp), so the trapezoid rule converges like exp(-2 pi d / h) (Trefethen and
+// Weideman 2014, "The exponentially convergent trapezoidal rule", thm 5.1): h = 1/8 with d = pi/4 leaves ~1e-17 x
+// the integrand's growth there (<= 2^(gamma/2)); measured <= 6.3e-10 relative against the adaptive route (tanh-sinh,
+// 1e-13) at 300 random (alpha, mu) x 29 gamma, the same with the tail cut 24 or 32 past ln(9/mu). The geometry and
+// ln t are shared by the gammas.
+void strip(double alpha, double mu, const double* gamma, int n, double* out) {
+    constexpr double h = 0.125;
+    // past the last slope scale (sqrt(20) < 4.5) by 24: the r^-4 tail leaves ~e^-24 = 4e-11 of Lambda beyond
+    const int steps = static_cast<int>((std::max(0.0, std::log(9.0 / mu)) + 24.0) / h) + 1;
+    std::array<double, max_gammas> acc{};
+    const double a2 = alpha * alpha, eh = std::exp(h);
+    double E = 1.0;  // e^u, stepped (<= ~500 products: a relative drift below 1e-13)
+    for (int k = 1; k <= steps; ++k) {
+        E *= eh;
+        const double s = 0.5 * (E - 1.0 / E), c = 0.5 * (E + 1.0 / E);
+        // sinh u - gd u = s - atan s, its series below s = 0.1 (no cancellation)
+        const double s2 = s * s;
+        const double smg = s < 0.1 ? s * s2 * (1.0 / 3 - s2 * (1.0 / 5 - s2 * (1.0 / 7 - s2 / 9))) : s - std::atan(s);
+        const double r2 = mu * mu * c * c, w = a2 / (r2 + a2), lt = ln_t(alpha, r2);
+        const double base = r2 * w * w * (s * smg / c);
+        for (int j = 0; j < n; ++j) acc[j] += base * std::exp((gamma[j] - 2.0) * lt);
+    }
+    for (int j = 0; j < n; ++j) out[j] = std::log(mu * 2.0 * h * smithlab::gtr_K(alpha, gamma[j]) * acc[j]);
+}
+
+using Point = std::array<double, 3>;  // (a = ln alpha, gamma, xi = ln(mu/alpha))
+double alpha_of(double a) { return std::min(1.0, std::exp(a)); }
+double mu_of(double a, double xi) { return alpha_of(a) * std::exp(xi); }
+
+struct Box {
+    Point l, h;
+    int slot, depth;
+};
+
+// |dG1| <= rel Lambda * max over the box of Lambda / (1 + Lambda)^2, from ln Lambda at the box's points (their range
+// widened by 0.1)
+double G1_factor(double ln_lambda_min, double ln_lambda_max) {
+    auto q = [](double l) { const double e = std::exp(-std::abs(l)); return e / ((1.0 + e) * (1.0 + e)); };
+    const double lo = ln_lambda_min - 0.1, hi = ln_lambda_max + 0.1;
+    return lo <= 0.0 && hi >= 0.0 ? 0.25 : std::max(q(lo), q(hi));
+}
+
+struct Fit {
+    std::array<double, GtrFamily::n_coefficients> monomial{};
+    std::array<double, 3> estimate{};  // per axis
+    double est = 0.0, g1_factor = 0.0, check = 0.0, G1_check = 0.0;  // checks: the largest |error| (of ln(mu Lambda), of G1)
+    bool ok = false;
+};
+
+// Chebyshev T_n's monomial coefficients, n <= F
+std::array<std::array<double, N>, N> chebyshev_monomials() {
+    std::array<std::array<double, N>, N> t{};
+    t[0][0] = 1.0;
+    t[1][1] = 1.0;
+    for (int n = 2; n < N; ++n)
+        for (int m = 0; m < N; ++m) t[n][m] = (m > 0 ? 2.0 * t[n - 1][m - 1] : 0.0) - t[n - 2][m];
+    return t;
+}
+
+Fit fit(const Box& b) {
+    static const auto T = chebyshev_monomials();
+    std::array<std::array<double, N>, 3> x;  // Chebyshev points of the first kind on each axis
+    for (int d = 0; d < 3; ++d)
+        for (int i = 0; i < N; ++i)
+            x[d][i] = 0.5 * (b.l[d] + b.h[d]) + 0.5 * (b.h[d] - b.l[d]) * std::cos(std::numbers::pi * (i + 0.5) / N);
+    std::vector<double> v(N * N * N);  // [i][j][k]
+    double ll_min = INFINITY, ll_max = -INFINITY;
+    for (int i = 0; i < N; ++i)
+        for (int k = 0; k < N; ++k) {
+            std::array<double, N> out, g;
+            for (int j = 0; j < N; ++j) g[j] = std::max(0.0, x[1][j]);
+            strip(alpha_of(x[0][i]), mu_of(x[0][i], x[2][k]), g.data(), N, out.data());
+            for (int j = 0; j < N; ++j) {
+                v[(i * N + j) * N + k] = out[j];
+                const double ll = out[j] - (x[0][i] + x[2][k]);  // ln Lambda = ln(mu Lambda) - ln mu
+                ll_min = std::min(ll_min, ll), ll_max = std::max(ll_max, ll);
+            }
+        }
+    // values -> Chebyshev coefficients, one axis at a time: c_m = (2 - [m = 0]) / N sum_l v_l T_m(x_l)
+    for (int axis = 0; axis < 3; ++axis) {
+        std::vector<double> c(v.size());
+        for (int i = 0; i < N; ++i)
+            for (int j = 0; j < N; ++j)
+                for (int k = 0; k < N; ++k) {
+                    const std::array<int, 3> at = {i, j, k};
+                    const int m = at[axis];
+                    double s = 0.0;
+                    for (int l = 0; l < N; ++l) {
+                        std::array<int, 3> q = at;
+                        q[axis] = l;
+                        s += v[(q[0] * N + q[1]) * N + q[2]] * std::cos(std::numbers::pi * m * (l + 0.5) / N);
+                    }
+                    c[(i * N + j) * N + k] = s * (m == 0 ? 1.0 : 2.0) / N;
+                }
+        v = c;
+    }
+    Fit r;
+    r.g1_factor = G1_factor(ll_min, ll_max);
+    // the estimate: the dropped coefficients (total degree > D), each on the axis of its highest degree
+    for (int i = 0; i < N; ++i)
+        for (int j = 0; j < N; ++j)
+            for (int k = 0; k < N; ++k)
+                if (i + j + k > D) r.estimate[i >= j && i >= k ? 0 : j >= k ? 1 : 2] += std::abs(v[(i * N + j) * N + k]);
+    r.est = r.estimate[0] + r.estimate[1] + r.estimate[2];
+    if (r.est > GtrFamily::tolerance || r.est * r.g1_factor > GtrFamily::G1_tolerance) return r;
+    // the kept part in monomials of s, in family.hpp's order (i, j, k; k fastest)
+    int at = 0;
+    for (int i = 0; i <= D; ++i)
+        for (int j = 0; j <= D - i; ++j)
+            for (int k = 0; k <= D - i - j; ++k, ++at) {
+                double m = 0.0;
+                for (int ci = i; ci <= D; ++ci)
+                    for (int cj = j; cj <= D - ci; ++cj)
+                        for (int ck = k; ck <= D - ci - cj; ++ck)
+                            m += v[(ci * N + cj) * N + ck] * T[ci][i] * T[cj][j] * T[ck][k];
+                r.monomial[at] = m;
+            }
+    // checks at the 8 corners and the centre against the knots' route
+    auto check_at = [&](const Point& p) {
+        std::array<double, 3> s;
+        for (int d = 0; d < 3; ++d) s[d] = (2.0 * p[d] - b.l[d] - b.h[d]) / (b.h[d] - b.l[d]);
+        double want;
+        strip(alpha_of(p[0]), mu_of(p[0], p[2]), &p[1], 1, &want);
+        const double e = std::abs(GtrFamily::polynomial(r.monomial.data(), s) - want);
+        r.check = std::max(r.check, e), r.G1_check = std::max(r.G1_check, e * r.g1_factor);
+    };
+    for (int c = 0; c < 8; ++c) check_at({c & 1 ? b.h[0] : b.l[0], c & 2 ? b.h[1] : b.l[1], c & 4 ? b.h[2] : b.l[2]});
+    check_at({0.5 * (b.l[0] + b.h[0]), 0.5 * (b.l[1] + b.h[1]), 0.5 * (b.l[2] + b.h[2])});
+    r.ok = r.check <= 2.0 * GtrFamily::tolerance && r.G1_check <= 2.0 * GtrFamily::G1_tolerance;
+    return r;
+}
+
+template <class Fn>
+void parallel_for(std::size_t n, const Fn& fn) {
+    std::atomic<std::size_t> next{0};
+    std::vector<std::thread> pool;
+    const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+    for (unsigned t = 0; t < threads; ++t)
+        pool.emplace_back([&] {
+            for (std::size_t i; (i = next++) < n;) fn(i);
+        });
+    for (std::thread& t : pool) t.join();
+}
+
+// The asymptotes' bound, on a grid of (alpha, gamma). Below: R(mu_lo) <= (g(mu_1) - g(mu_lo)) / (mu_1/mu_lo - 1),
+// g = mu Lambda + mu/2 (lambda_table.hpp), relative to mu Lambda. Above: the secant slope of ln(mu Lambda) over the
+// last 0.1 against -1.
+double asymptote_bound() {
+    constexpr int na = 93, ng = 80;
+    constexpr double hx = 0.1;
+    std::vector<double> worst(na, 0.0);
+    parallel_for(na, [&](std::size_t i) {
+        const double a = GtrFamily::lo[0] * (1.0 - static_cast<double>(i) / (na - 1)), alpha = alpha_of(a);
+        for (int j0 = 0; j0 < ng; j0 += max_gammas) {
+            std::array<double, max_gammas> g, f0, f1, f2, f3;
+            const int n = std::min(max_gammas, ng - j0);
+            for (int j = 0; j < n; ++j) g[j] = GtrFamily::gamma_max * (j0 + j) / (ng - 1);
+            const double m0 = mu_of(a, GtrFamily::xi_lo), m1 = mu_of(a, GtrFamily::xi_lo + hx);
+            strip(alpha, m0, g.data(), n, f0.data());
+            strip(alpha, m1, g.data(), n, f1.data());
+            strip(alpha, mu_of(a, GtrFamily::xi_hi - hx), g.data(), n, f2.data());
+            strip(alpha, mu_of(a, GtrFamily::xi_hi), g.data(), n, f3.data());
+            for (int j = 0; j < n; ++j) {
+                const double g0 = std::exp(f0[j]) + 0.5 * m0, g1 = std::exp(f1[j]) + 0.5 * m1;
+                worst[i] = std::max(worst[i], std::max(0.0, g1 - g0) / std::expm1(hx) / std::exp(f0[j]));
+                worst[i] = std::max(worst[i], std::abs((f3[j] - f2[j]) / hx + 1.0));
+            }
+        }
+    });
+    return *std::max_element(worst.begin(), worst.end());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc != 2) {
+        std::fprintf(stderr, "usage: smithlab_family_gen OUT.cpp\n");
+        return 2;
+    }
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto& top = GtrFamily::top;
+    std::vector<smithlab::GtrFamilyNode> nodes(static_cast<std::size_t>(top[0]) * top[1] * top[2]);
+    std::vector<Box> pending;
+    for (int i = 0; i < top[0]; ++i)
+        for (int j = 0; j < top[1]; ++j)
+            for (int k = 0; k < top[2]; ++k)
+                pending.push_back({{GtrFamily::edge(0, i), GtrFamily::edge(1, j), GtrFamily::edge(2, k)},
+                                   {GtrFamily::edge(0, i + 1), GtrFamily::edge(1, j + 1), GtrFamily::edge(2, k + 1)},
+                                   (i * top[1] + j) * top[2] + k, 0});
+    std::vector<double> coefficients;  // per leaf: centre, 2 / width, coefficients
+    std::size_t leaves = 0;
+    double est_max = 0.0, g1_est_max = 0.0, check_max = 0.0, g1_check_max = 0.0;
+    int depth_max = 0;
+    while (!pending.empty()) {
+        std::vector<Fit> fits(pending.size());
+        parallel_for(pending.size(), [&](std::size_t i) { fits[i] = fit(pending[i]); });
+        std::vector<Box> next;
+        for (std::size_t i = 0; i < pending.size(); ++i) {
+            const Box& b = pending[i];
+            const Fit& f = fits[i];
+            if (f.ok) {
+                nodes[b.slot] = {0.0, ~static_cast<std::int32_t>(leaves++), 0};
+                for (int d = 0; d < 3; ++d) coefficients.push_back(0.5 * (b.l[d] + b.h[d]));
+                for (int d = 0; d < 3; ++d) coefficients.push_back(2.0 / (b.h[d] - b.l[d]));
+                coefficients.insert(coefficients.end(), f.monomial.begin(), f.monomial.end());
+                est_max = std::max(est_max, f.est), g1_est_max = std::max(g1_est_max, f.est * f.g1_factor);
+                check_max = std::max(check_max, f.check), g1_check_max = std::max(g1_check_max, f.G1_check);
+                depth_max = std::max(depth_max, b.depth);
+                continue;
+            }
+            if (b.depth == max_depth) {
+                std::fprintf(stderr, "smithlab_family_gen: no fit within the tolerance at depth %d, box a [%g, %g] gamma "
+                             "[%g, %g] xi [%g, %g] (estimate %g)\n", max_depth, b.l[0], b.h[0], b.l[1], b.h[1], b.l[2],
+                             b.h[2], f.est);
+                return 1;
+            }
+            const int axis = static_cast<int>(std::max_element(f.estimate.begin(), f.estimate.end()) - f.estimate.begin());
+            const auto first = static_cast<std::int32_t>(nodes.size());
+            const double split = 0.5 * (b.l[axis] + b.h[axis]);
+            nodes[b.slot] = {split, first, axis};
+            nodes.push_back({}), nodes.push_back({});
+            Box lo = b, hi = b;
+            lo.h[axis] = hi.l[axis] = split;
+            lo.slot = first, hi.slot = first + 1, lo.depth = hi.depth = b.depth + 1;
+            next.push_back(lo), next.push_back(hi);
+        }
+        pending.swap(next);
+    }
+    const double asymptotes = asymptote_bound();
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+    const std::string out_path = argv[1], tmp = out_path + ".tmp";
+    std::FILE* out = std::fopen(tmp.c_str(), "w");
+    if (!out) {
+        std::fprintf(stderr, "smithlab_family_gen: cannot write %s\n", tmp.c_str());
+        return 1;
+    }
+    std::fprintf(out, "// Generated by smithlab_family_gen (gtr/tools/family_gen.cpp) at build time: do not edit.\n"
+                      "#include \"smithlab/gtr/family.hpp\"\n\nnamespace smithlab {\nnamespace {\n"
+                      "const GtrFamilyNode nodes[] = {\n");
+    for (std::size_t i = 0; i < nodes.size(); ++i)
+        std::fprintf(out, "{%a,%d,%d},%s", nodes[i].split, nodes[i].next, nodes[i].axis, i % 4 == 3 ? "\n" : "");
+    std::fprintf(out, "};\nalignas(64) const double leaves[] = {\n");
+    for (std::size_t i = 0; i < coefficients.size(); ++i)
+        std::fprintf(out, "%a,%s", coefficients[i], i % 6 == 5 ? "\n" : "");
+    std::fprintf(out, "};\n}  // namespace\n\nconst GtrFamilyData gtr_family_data = {nodes, %zu, leaves, %zu, %a, %a, "
+                      "%a, %a, %a, %d, %a};\n\n}  // namespace smithlab\n",
+                 nodes.size(), leaves, est_max, g1_est_max, check_max, g1_check_max, asymptotes, depth_max, seconds);
+    if (std::fclose(out) != 0 || std::rename(tmp.c_str(), out_path.c_str()) != 0) {
+        std::fprintf(stderr, "smithlab_family_gen: cannot write %s\n", out_path.c_str());
+        return 1;
+    }
+    std::printf("smithlab_family_gen: %zu leaves (%.1f MB), depth <= %d, estimates <= %.3g / %.3g (G1), checks <= "
+                "%.3g / %.3g, asymptotes %.3g, %.1f s\n",
+                leaves, (coefficients.size() * 8.0 + nodes.size() * 16.0) / 1e6, depth_max, est_max, g1_est_max,
+                check_max, g1_check_max, asymptotes, seconds);
+    return 0;
+}
