@@ -1,8 +1,6 @@
 // The GTR family evaluator (family.hpp): the generated tree and its stated bounds, and the checked calls.
 #include "smithlab/gtr/family.hpp"
 
-#include <cmath>
-
 #include "smithlab/errors.hpp"
 
 namespace smithlab {
@@ -18,28 +16,6 @@ GtrFamily::GtrFamily() : data_(gtr_family_data) {
     // the leaves are checked to twice the tolerances at their corners and centres (family_gen.cpp)
     error_bound_ = 2.0 * tolerance + data_.asymptote_bound;
     G1_error_bound_ = 2.0 * G1_tolerance + data_.asymptote_bound / 4;
-}
-
-void GtrFamily::G1_up(const double* alpha, const double* gamma, const double* mu, double* out, std::size_t n,
-                      bool lambda) const {
-    constexpr std::size_t block = 16;  // points found and fetched ahead of their evaluation
-    constexpr std::size_t line = 64, bytes = n_coefficients * sizeof(double);
-    std::array<Leaf, block> leaves;
-    std::array<double, block> xi;
-    for (std::size_t b = 0; b < n; b += block) {
-        const std::size_t m = std::min(block, n - b);
-        for (std::size_t i = 0; i < m; ++i) {
-            const double a = std::log(alpha[b + i]);
-            xi[i] = std::log(mu[b + i] / alpha[b + i]);
-            leaves[i] = locate({a, gamma[b + i], std::clamp(xi[i], xi_lo, xi_hi)});
-            for (std::size_t at = 0; at < bytes; at += line)
-                __builtin_prefetch(reinterpret_cast<const char*>(leaves[i].c) + at);
-        }
-        for (std::size_t i = 0; i < m; ++i) {
-            const double L = Lambda_of(polynomial(leaves[i].c, leaves[i].s), alpha[b + i], mu[b + i], xi[i]);
-            out[b + i] = lambda ? L : 1.0 / (1.0 + L);
-        }
-    }
 }
 
 void require_gtr_family_domain(double alpha, double gamma) {

@@ -88,12 +88,6 @@ public:
     }
     double G1_up(double alpha, double gamma, double mu) const { return 1.0 / (1.0 + Lambda_up(alpha, gamma, mu)); }
 
-    // G1 (or Lambda, with `lambda`) of n points at once: out[i] = G1_up(alpha[i], gamma[i], mu[i]), the same values.
-    // For streams: the leaves of a block of points are found and fetched ahead of their evaluation, so that their
-    // memory latency overlaps (the tree is ~10 MB, beyond a core's cache). The inputs as Lambda_up takes them.
-    void G1_up(const double* alpha, const double* gamma, const double* mu, double* out, std::size_t n,
-               bool lambda = false) const;
-
     // ln(mu Lambda) at x = (ln alpha, gamma, xi) inside the domain (clamped to it).
     double value(const std::array<double, 3>& x) const {
         const Leaf leaf = locate(x);
@@ -111,9 +105,8 @@ public:
             cell = cell * top[d] + std::min(static_cast<int>((x[d] - lo[d]) * inv_step_[d]), top[d] - 1);
         }
         const GtrFamilyNode* node = &data_.nodes[cell];
-        while (node->next >= 0) {
-            node = &data_.nodes[node->next + (x[node->axis] >= node->split)];
-        }
+        while (node->next >= 0) node = &data_.nodes[node->next + (x[node->axis] >= node->split)];
+        // the leaf's block: its box's centre (3) and 2 / width (3), then its coefficients
         const double* box = &data_.leaves[static_cast<std::size_t>(~node->next) * leaf_size];
         return {box + 6, {(x[0] - box[0]) * box[3], (x[1] - box[1]) * box[4], (x[2] - box[2]) * box[5]}};
     }
@@ -148,17 +141,17 @@ private:
     template <std::size_t... Q>
     static double polynomial(const double* c, const std::array<double, 3>& s, std::index_sequence<Q...>) {
         constexpr Monomials m = monomials();
-        static_assert(n_rows % 2 == 0);
         double p0[degree + 1], p1[degree + 1], p2[degree + 1];
         p0[0] = p1[0] = p2[0] = 1.0;
         for (int e = 1; e <= degree; ++e) p0[e] = p0[e - 1] * s[0], p1[e] = p1[e - 1] * s[1], p2[e] = p2[e - 1] * s[2];
         double rows[n_rows] = {};
         ((rows[m.row[Q]] += c[Q] * p2[m.k[Q]]), ...);
         double r0 = 0.0, r1 = 0.0;  // two partial sums: a chain half as long
-        for (int row = 0; row < n_rows; row += 2) {
+        for (int row = 0; row + 1 < n_rows; row += 2) {
             r0 += rows[row] * (p0[m.i[row]] * p1[m.j[row]]);
             r1 += rows[row + 1] * (p0[m.i[row + 1]] * p1[m.j[row + 1]]);
         }
+        if constexpr (n_rows % 2 == 1) r0 += rows[n_rows - 1] * (p0[m.i[n_rows - 1]] * p1[m.j[n_rows - 1]]);
         return r0 + r1;
     }
 
