@@ -25,10 +25,10 @@ void register_gtr_variants(VariantRegistry& r) {
                };
            },
            LambdaRoute::other});
-    // One table for the whole family (family.hpp): no per-NDF work, alpha in [1e-4, 1], gamma in [0, 20].
+    // One evaluator for the whole family (family.hpp): no per-NDF work, alpha in [1e-4, 1], gamma in [0, 20].
     r.add({"family",
-           "one table over (alpha, gamma, mu) for every GTR with alpha in [1e-4, 1], gamma in [0, 20], built once; "
-           "the exact route where a cell misses its bound (family.hpp)",
+           "one compiled-in tree of polynomial patches over (alpha, gamma, mu) for every GTR with alpha in [1e-4, 1], "
+           "gamma in [0, 20], generated at build time (family.hpp)",
            [](const AnyNdf& n) {
                if (n.family() != "gtr") return false;
                const double a = n.param("alpha"), g = n.param("gamma");
