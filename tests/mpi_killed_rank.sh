@@ -10,10 +10,11 @@ launcher=("$mpiexec")
 openmpi=0
 if "$mpiexec" --version 2>&1 | grep -q "Open MPI\|OpenRTE"; then
   openmpi=1
-  # Open MPI 4.1 waits odls_base_sigkill_timeout (1 s) after a rank died, sends SIGTERM, and SIGKILL after as long
-  # again (measured: with 10, the ranks got SIGTERM 10 s after the kill). On a loaded 2-core machine rank 0 once in ~8
-  # runs neither printed its notes nor removed its stage within the 1 s: 3 s leaves it room.
-  launcher+=(--oversubscribe --mca odls_base_sigkill_timeout 3)
+  launcher+=(--oversubscribe)
+  # Open MPI 4 waits odls_base_sigkill_timeout (1 s) after a rank died, sends SIGTERM, and SIGKILL after as long again
+  # (measured: with 10, the ranks got SIGTERM 10 s after the kill). On a loaded 2-core machine rank 0 once in ~8 runs
+  # neither printed its notes nor removed its stage within the 1 s: 3 s leaves it room. (An ORTE parameter: 4 only.)
+  "$mpiexec" --version 2>&1 | grep -q "Open MPI) 4\.\|OpenRTE) 4\." && launcher+=(--mca odls_base_sigkill_timeout 3)
   [ "$(id -u)" = 0 ] && launcher+=(--allow-run-as-root)
 fi
 fail() {

@@ -12,17 +12,6 @@
 
 namespace smithlab {
 
-double gtr_K(double alpha, double gamma) {
-    constexpr double pi = std::numbers::pi;
-    if (alpha == 1.0) return 1.0 / pi;  // uniform D
-    const double one_minus_a2 = (1.0 - alpha) * (1.0 + alpha);  // not 1 - alpha*alpha: 5 digits at alpha = 0.999999
-    const double log_a = std::log(alpha);
-    const double y = 2.0 * (gamma - 1.0) * log_a;  // (gamma - 1) is exact near 1 (Sterbenz)
-    // (gamma - 1) / (-expm1(y)) = 1 / (-2 ln alpha * expm1(y)/y), and expm1(y)/y -> 1 as y -> 0.
-    const double exprel = (y == 0.0) ? 1.0 : std::expm1(y) / y;
-    return one_minus_a2 / (pi * alpha * alpha) / (-2.0 * log_a * exprel);
-}
-
 Gtr gtr(double alpha, double gamma) {
     require(alpha >= 1e-50 && alpha <= 1.0, "gtr: alpha", "in [1e-50, 1]", alpha);
     require(gamma >= 0.0 && gamma <= gtr_max_gamma, "gtr: gamma", "in [0, 1e6]", gamma);

@@ -1,6 +1,6 @@
 // smithlab_family_gen OUT.cpp -- generates the GTR family evaluator's tree (family.hpp) at build time: every leaf's
 // polynomial, its estimate and its checks, and the asymptotes' bound, written as C++ (hex floats: exact).
-// Deterministic: the same tree on any number of threads.
+// Deterministic: the same file on any number of threads (the time it took is printed, not written).
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -22,7 +22,6 @@ using smithlab::GtrFamily;
 constexpr int D = GtrFamily::degree;
 constexpr int F = D + 1;      // the tensor Chebyshev interpolant's degree on each axis (F + 1 points)
 constexpr int N = F + 1;
-constexpr int max_gammas = N;  // gammas per strip
 constexpr int max_depth = 24;
 
 // ln t at slope r (r2 = r^2), t = alpha^2 (1 + r^2)/(alpha^2 + r^2) in [alpha^2, 1] (gtr.hpp): while t > 1/2 from
@@ -33,7 +32,7 @@ double ln_t(double alpha, double r2) {
     return t < 0.5 ? std::log(t) : std::log1p(-om * (r2 / den));
 }
 
-// ln(mu Lambda) at (alpha, mu) for n <= max_gammas gammas at once (the knots' route). The reduced integral in
+// ln(mu Lambda) at (alpha, mu) for n <= N gammas at once (the knots' route). The reduced integral in
 // u = acosh(r/mu), as in lambda_fixed.hpp: Lambda = 2 int_0^inf f(r^2) r^2 H(u) du, H(u) = sinh u (sinh u - gd u) /
 // cosh u, gd u = atan(sinh u), with GTR's f = K t^(gamma - 2) w^2 (gtr.hpp). The integrand is even in u and analytic
 // in the strip |Im u| < pi/2 (its nearest singularities, f's pole r^2 = -alpha^2 and gd's, are pi/2 off the real
@@ -46,7 +45,7 @@ void strip(double alpha, double mu, const double* gamma, int n, double* out) {
     constexpr double h = 0.125;
     // past the last slope scale (sqrt(20) < 4.5) by 24: the r^-4 tail leaves ~e^-24 = 4e-11 of Lambda beyond
     const int steps = static_cast<int>((std::max(0.0, std::log(9.0 / mu)) + 24.0) / h) + 1;
-    std::array<double, max_gammas> acc{};
+    std::array<double, N> acc{};
     const double a2 = alpha * alpha, eh = std::exp(h);
     double E = 1.0;  // e^u, stepped (<= ~500 products: a relative drift below 1e-13)
     for (int k = 1; k <= steps; ++k) {
@@ -82,7 +81,7 @@ double G1_factor(double ln_lambda_min, double ln_lambda_max) {
 struct Fit {
     std::array<double, GtrFamily::n_coefficients> monomial{};
     std::array<double, 3> estimate{};  // per axis
-    double est = 0.0, g1_factor = 0.0, check = 0.0, G1_check = 0.0;  // checks: the largest |error| (of ln(mu Lambda), of G1)
+    double est = 0.0, g1_factor = 0.0, check = 0.0, G1_check = 0.0;  // checks: the largest |error| of ln(mu Lambda), of G1
     bool ok = false;
 };
 
@@ -106,9 +105,8 @@ Fit fit(const Box& b) {
     double ll_min = INFINITY, ll_max = -INFINITY;
     for (int i = 0; i < N; ++i)
         for (int k = 0; k < N; ++k) {
-            std::array<double, N> out, g;
-            for (int j = 0; j < N; ++j) g[j] = std::max(0.0, x[1][j]);
-            strip(alpha_of(x[0][i]), mu_of(x[0][i], x[2][k]), g.data(), N, out.data());
+            std::array<double, N> out;
+            strip(alpha_of(x[0][i]), mu_of(x[0][i], x[2][k]), x[1].data(), N, out.data());
             for (int j = 0; j < N; ++j) {
                 v[(i * N + j) * N + k] = out[j];
                 const double ll = out[j] - (x[0][i] + x[2][k]);  // ln Lambda = ln(mu Lambda) - ln mu
@@ -154,17 +152,24 @@ Fit fit(const Box& b) {
                             m += v[(ci * N + cj) * N + ck] * T[ci][i] * T[cj][j] * T[ck][k];
                 r.monomial[at] = m;
             }
-    // checks at the 8 corners and the centre against the knots' route
-    auto check_at = [&](const Point& p) {
-        std::array<double, 3> s;
-        for (int d = 0; d < 3; ++d) s[d] = (2.0 * p[d] - b.l[d] - b.h[d]) / (b.h[d] - b.l[d]);
-        double want;
-        strip(alpha_of(p[0]), mu_of(p[0], p[2]), &p[1], 1, &want);
-        const double e = std::abs(GtrFamily::polynomial(r.monomial.data(), s) - want);
-        r.check = std::max(r.check, e), r.G1_check = std::max(r.G1_check, e * r.g1_factor);
-    };
-    for (int c = 0; c < 8; ++c) check_at({c & 1 ? b.h[0] : b.l[0], c & 2 ? b.h[1] : b.l[1], c & 4 ? b.h[2] : b.l[2]});
-    check_at({0.5 * (b.l[0] + b.h[0]), 0.5 * (b.l[1] + b.h[1]), 0.5 * (b.l[2] + b.h[2])});
+    // checks on the box's 3 x 3 x 3 grid (corners, edge and face midpoints, centre: off the fit's points, the
+    // corners where interpolation errors are largest) against the knots' route, in ln(mu Lambda) and in G1
+    for (int i = 0; i < 3; ++i)
+        for (int k = 0; k < 3; ++k) {
+            const double a = b.l[0] + 0.5 * i * (b.h[0] - b.l[0]), xi = b.l[2] + 0.5 * k * (b.h[2] - b.l[2]);
+            const std::array<double, 3> g = {b.l[1], 0.5 * (b.l[1] + b.h[1]), b.h[1]};
+            std::array<double, 3> want;
+            strip(alpha_of(a), mu_of(a, xi), g.data(), 3, want.data());
+            for (int j = 0; j < 3; ++j) {
+                const Point p = {a, g[j], xi};
+                std::array<double, 3> s;
+                for (int d = 0; d < 3; ++d) s[d] = (2.0 * p[d] - b.l[d] - b.h[d]) / (b.h[d] - b.l[d]);
+                const double got = GtrFamily::polynomial(r.monomial.data(), s), ln_mu = a + xi;
+                auto G1 = [&](double f) { return 1.0 / (1.0 + std::exp(f - ln_mu)); };
+                r.check = std::max(r.check, std::abs(got - want[j]));
+                r.G1_check = std::max(r.G1_check, std::abs(G1(got) - G1(want[j])));
+            }
+        }
     r.ok = r.check <= 2.0 * GtrFamily::tolerance && r.G1_check <= 2.0 * GtrFamily::G1_tolerance;
     return r;
 }
@@ -190,9 +195,9 @@ double asymptote_bound() {
     std::vector<double> worst(na, 0.0);
     parallel_for(na, [&](std::size_t i) {
         const double a = GtrFamily::lo[0] * (1.0 - static_cast<double>(i) / (na - 1)), alpha = alpha_of(a);
-        for (int j0 = 0; j0 < ng; j0 += max_gammas) {
-            std::array<double, max_gammas> g, f0, f1, f2, f3;
-            const int n = std::min(max_gammas, ng - j0);
+        for (int j0 = 0; j0 < ng; j0 += N) {
+            std::array<double, N> g, f0, f1, f2, f3;
+            const int n = std::min(N, ng - j0);
             for (int j = 0; j < n; ++j) g[j] = GtrFamily::gamma_max * (j0 + j) / (ng - 1);
             const double m0 = mu_of(a, GtrFamily::xi_lo), m1 = mu_of(a, GtrFamily::xi_lo + hx);
             strip(alpha, m0, g.data(), n, f0.data());
@@ -283,8 +288,8 @@ int main(int argc, char** argv) {
     for (std::size_t i = 0; i < coefficients.size(); ++i)
         std::fprintf(out, "%a,%s", coefficients[i], i % 6 == 5 ? "\n" : "");
     std::fprintf(out, "};\n}  // namespace\n\nconst GtrFamilyData gtr_family_data = {nodes, %zu, leaves, %zu, %a, %a, "
-                      "%a, %a, %a, %d, %a};\n\n}  // namespace smithlab\n",
-                 nodes.size(), leaves, est_max, g1_est_max, check_max, g1_check_max, asymptotes, depth_max, seconds);
+                      "%a, %a, %a, %d};\n\n}  // namespace smithlab\n",
+                 nodes.size(), leaves, est_max, g1_est_max, check_max, g1_check_max, asymptotes, depth_max);
     if (std::fclose(out) != 0 || std::rename(tmp.c_str(), out_path.c_str()) != 0) {
         std::fprintf(stderr, "smithlab_family_gen: cannot write %s\n", out_path.c_str());
         return 1;

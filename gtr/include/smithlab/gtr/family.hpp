@@ -12,17 +12,19 @@
 // truncated to total degree `degree`. A leaf's error estimate is the sum of the dropped Chebyshev coefficients
 // (|T_n| <= 1 on the box), each counted on the axis of its highest degree; the box is split along the axis whose share
 // is largest, until the estimate is within `tolerance` (relative, Lambda) and `G1_tolerance` (|dG1| <= rel Lambda /
-// (1 + Lambda)^2, from the leaf's own values), and the polynomial is within twice those at the box's 8 corners and
-// centre (where interpolation errors peak; checked against the knots' route, not the fit).
+// (1 + Lambda)^2, from the leaf's own values), and the polynomial is within twice those on the box's 3 x 3 x 3 grid
+// (corners, edge and face midpoints, centre: off the fit's points; checked against the knots' route, not the fit).
 // The knots' route (family_gen.cpp): the trapezoid rule in u = acosh(r/mu) on the integrand of lambda_fixed.hpp,
 // every gamma of a box at once (6.3e-10 relative against tanh-sinh).
 // Outside [xi_lo, xi_hi] the two asymptotes of lambda_table.hpp:
 //   xi < xi_lo: mu Lambda = g_lo - mu/2, g_lo = mu_lo Lambda(mu_lo) + mu_lo/2 (Walter eq. 48 with P(q > 0) = 1/2;
 //               in error by R(mu_lo) - R(mu) in [0, R(mu_lo)], R bounded from two points as in lambda_table.hpp);
 //   xi > xi_hi: Lambda ~ C mu^-2 (every GTR has a P22 ~ r^-4 tail: t -> alpha^2 as r -> inf, gtr.hpp), ln(mu Lambda)
-//               continued with slope -1.
-// The stated bounds (error_bound(), G1_error_bound()): twice the tolerances (the checks' limit) plus the asymptotes';
-// tested against independent references in tests/test_family.cpp.
+//               continued with slope -1 (its slope's deviation s + 1 at xi_hi, measured, bounds the error: the next
+//               term is relative mu^-2, so the deviation decays like e^(-2 (xi - xi_hi)) and sums to (s + 1)/2).
+// The stated bounds (error_bound(), G1_error_bound()): twice the tolerances (the checks' limit) plus the asymptotes'.
+// An estimate and 27 checks per leaf, not a proof: tested against independent references at two random points of
+// every leaf, and elsewhere (tests/test_family.cpp).
 #pragma once
 
 #include <algorithm>
@@ -51,7 +53,6 @@ struct GtrFamilyData {
     double check_max, G1_check_max;        // the largest errors at the leaves' corners and centres
     double asymptote_bound;                // relative Lambda, outside [xi_lo, xi_hi]
     int max_depth;                         // splits below a top box
-    double generate_seconds;
 };
 extern const GtrFamilyData gtr_family_data;
 
@@ -60,7 +61,7 @@ public:
     static constexpr double alpha_min = 1e-4;
     static constexpr double gamma_max = 20.0;
     static constexpr double xi_lo = -9.0, xi_hi = 19.0;
-    // below xi_lo, R(mu_lo) / (mu_lo Lambda) ~ (mu_lo / alpha)^2 gamma < 1e-6; above xi_hi, mu >= 1.8e4 alpha, past
+    // below xi_lo, R(mu_lo) / (mu_lo Lambda) ~ (mu_lo / alpha)^2 gamma < 1e-6; above xi_hi, mu >= 1.8e8 alpha, past
     // every GTR's second slope scale (1 and sqrt(gamma), gtr.hpp), where Lambda ~ C mu^-2
     static constexpr int degree = 6;
     static constexpr int n_coefficients = (degree + 1) * (degree + 2) * (degree + 3) / 6;
@@ -74,7 +75,8 @@ public:
     static const GtrFamily& get();
 
     // Lambda at finite mu > 0 for alpha in [1e-4, 1], gamma in [0, 20]: nothing is checked here (see
-    // Lambda_gtr_family for the checked call). No allocation, exception or virtual call.
+    // Lambda_gtr_family for the checked call; a NaN gives some value, never a read out of bounds). No allocation,
+    // exception or virtual call.
     double Lambda_up(double alpha, double gamma, double mu) const {
         const double a = std::log(alpha), xi = std::log(mu / alpha);
         const double xc = std::clamp(xi, xi_lo, xi_hi);
@@ -101,7 +103,7 @@ public:
     Leaf locate(std::array<double, 3> x) const {
         std::size_t cell = 0;
         for (int d = 0; d < 3; ++d) {
-            x[d] = std::clamp(x[d], lo[d], hi[d]);
+            x[d] = x[d] >= lo[d] ? std::min(x[d], hi[d]) : lo[d];  // NaN to lo: a value, never a read out of bounds
             cell = cell * top[d] + std::min(static_cast<int>((x[d] - lo[d]) * inv_step_[d]), top[d] - 1);
         }
         const GtrFamilyNode* node = &data_.nodes[cell];

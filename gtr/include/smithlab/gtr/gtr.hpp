@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cmath>
+#include <numbers>
 
 #include "smithlab/gtr/closed_forms.hpp"
 
@@ -50,7 +51,17 @@ struct Gtr {
 
 // K = (1 - alpha^2)/(pi alpha^2) * (gamma - 1) / (1 - alpha^{2(gamma - 1)}), evaluated with expm1/log1p so that
 // the 0/0 at gamma -> 1 (-> 1/(-2 ln alpha)) and at alpha -> 1 (-> 1/pi overall) keep every digit.
-double gtr_K(double alpha, double gamma);
+// Inline: the family generator (gtr/tools/family_gen.cpp) uses it without the library.
+inline double gtr_K(double alpha, double gamma) {
+    constexpr double pi = std::numbers::pi;
+    if (alpha == 1.0) return 1.0 / pi;  // uniform D
+    const double one_minus_a2 = (1.0 - alpha) * (1.0 + alpha);  // not 1 - alpha*alpha: 5 digits at alpha = 0.999999
+    const double log_a = std::log(alpha);
+    const double y = 2.0 * (gamma - 1.0) * log_a;  // (gamma - 1) is exact near 1 (Sterbenz)
+    // (gamma - 1) / (-expm1(y)) = 1 / (-2 ln alpha * expm1(y)/y), and expm1(y)/y -> 1 as y -> 0.
+    const double exprel = (y == 0.0) ? 1.0 : std::expm1(y) / y;
+    return one_minus_a2 / (pi * alpha * alpha) / (-2.0 * log_a * exprel);
+}
 
 // The accepted domain: alpha in [1e-50, 1] (below, alpha^6 underflows in the closed forms), gamma in [0, 1e6].
 // Large gamma is a Beckmann-like lobe of width alpha / sqrt(gamma) (t^gamma ~ exp(-gamma r^2 / alpha^2)); P22, D and
