@@ -159,9 +159,10 @@ TEST_CASE("family: the stated bound holds at two random points of every leaf", "
     std::uniform_real_distribution<double> u(-1.0, 1.0);
     Worst w;
     for (std::size_t leaf = 0; leaf < d.n_leaves; ++leaf) {
-        const double* box = &d.leaves[leaf * GtrFamily::leaf_size];  // centre (3), 2 / width (3)
+        const GtrFamilyLeaf& box = d.leaves[leaf];  // s = (x - centre) * scale in [-1, 1]
         for (int k = 0; k < 2; ++k) {
-            const double a = box[0] + u(rng) / box[3], gamma = box[1] + u(rng) / box[4], xi = box[2] + u(rng) / box[5];
+            const double a = box.centre[0] + u(rng) / box.scale[0], gamma = box.centre[1] + u(rng) / box.scale[1],
+                         xi = box.centre[2] + u(rng) / box.scale[2];
             const double alpha = std::min(1.0, std::exp(a)), mu = alpha * std::exp(xi);
             w.add(t.Lambda_up(alpha, gamma, mu), independent(alpha, gamma, mu), alpha, gamma, mu);
         }
@@ -180,7 +181,7 @@ TEST_CASE("family: every point lands in its leaf's box", "[family]") {
     std::uniform_real_distribution<double> log_alpha(std::log(1e-4), 0.0), gamma_u(0.0, 20.0), xi_u(-12.0, 22.0);
     int outside = 0;
     for (int i = 0; i < 100000; ++i) {
-        const GtrFamily::Leaf leaf = t.locate({log_alpha(rng), i % 100 == 0 ? 20.0 * (i % 200 == 0) : gamma_u(rng), xi_u(rng)});
+        const GtrFamily::Located leaf = t.locate({log_alpha(rng), i % 100 == 0 ? 20.0 * (i % 200 == 0) : gamma_u(rng), xi_u(rng)});
         for (double s : leaf.s) outside += !(std::abs(s) <= 1.0 + 1e-12);
     }
     CHECK(outside == 0);

@@ -79,7 +79,7 @@ double G1_factor(double ln_lambda_min, double ln_lambda_max) {
 }
 
 struct Fit {
-    std::array<double, GtrFamily::n_coefficients> monomial{};
+    smithlab::GtrFamilyLeaf leaf{};
     std::array<double, 3> estimate{};  // per axis
     double est = 0.0, g1_factor = 0.0, check = 0.0, G1_check = 0.0;  // checks: the largest |error| of ln(mu Lambda), of G1
     bool ok = false;
@@ -140,17 +140,22 @@ Fit fit(const Box& b) {
                 if (i + j + k > D) r.estimate[i >= j && i >= k ? 0 : j >= k ? 1 : 2] += std::abs(v[(i * N + j) * N + k]);
     r.est = r.estimate[0] + r.estimate[1] + r.estimate[2];
     if (r.est > GtrFamily::tolerance || r.est * r.g1_factor > GtrFamily::G1_tolerance) return r;
-    // the kept part in monomials of s, in family.hpp's order (i, j, k; k fastest)
-    int at = 0;
+    // the kept part in monomials of s = (x - centre) * scale: the constant and linear terms as doubles, the rest
+    // rounded to float in family.hpp's order (i, j, k; k fastest)
+    smithlab::GtrFamilyLeaf& leaf = r.leaf;
+    for (int d = 0; d < 3; ++d) leaf.centre[d] = 0.5 * (b.l[d] + b.h[d]), leaf.scale[d] = 2.0 / (b.h[d] - b.l[d]);
+    int higher = 0;
     for (int i = 0; i <= D; ++i)
         for (int j = 0; j <= D - i; ++j)
-            for (int k = 0; k <= D - i - j; ++k, ++at) {
+            for (int k = 0; k <= D - i - j; ++k) {
                 double m = 0.0;
                 for (int ci = i; ci <= D; ++ci)
                     for (int cj = j; cj <= D - ci; ++cj)
                         for (int ck = k; ck <= D - ci - cj; ++ck)
                             m += v[(ci * N + cj) * N + ck] * T[ci][i] * T[cj][j] * T[ck][k];
-                r.monomial[at] = m;
+                if (i + j + k == 0) leaf.c0 = m;
+                else if (i + j + k == 1) leaf.linear[i == 1 ? 0 : j == 1 ? 1 : 2] = m;
+                else leaf.higher[higher++] = static_cast<float>(m);
             }
     // checks on the box's 3 x 3 x 3 grid (corners, edge and face midpoints, centre: off the fit's points, the
     // corners where interpolation errors are largest) against the knots' route, in ln(mu Lambda) and in G1
@@ -163,8 +168,8 @@ Fit fit(const Box& b) {
             for (int j = 0; j < 3; ++j) {
                 const Point p = {a, g[j], xi};
                 std::array<double, 3> s;
-                for (int d = 0; d < 3; ++d) s[d] = (2.0 * p[d] - b.l[d] - b.h[d]) / (b.h[d] - b.l[d]);
-                const double got = GtrFamily::polynomial(r.monomial.data(), s), ln_mu = a + xi;
+                for (int d = 0; d < 3; ++d) s[d] = (p[d] - leaf.centre[d]) * leaf.scale[d];  // as GtrFamily::locate
+                const double got = GtrFamily::polynomial(leaf, s), ln_mu = a + xi;
                 auto G1 = [&](double f) { return 1.0 / (1.0 + std::exp(f - ln_mu)); };
                 r.check = std::max(r.check, std::abs(got - want[j]));
                 r.G1_check = std::max(r.G1_check, std::abs(G1(got) - G1(want[j])));
@@ -231,7 +236,7 @@ int main(int argc, char** argv) {
                 pending.push_back({{GtrFamily::edge(0, i), GtrFamily::edge(1, j), GtrFamily::edge(2, k)},
                                    {GtrFamily::edge(0, i + 1), GtrFamily::edge(1, j + 1), GtrFamily::edge(2, k + 1)},
                                    (i * top[1] + j) * top[2] + k, 0});
-    std::vector<double> coefficients;  // per leaf: centre, 2 / width, coefficients
+    std::vector<smithlab::GtrFamilyLeaf> leaf_data;
     std::size_t leaves = 0;
     double est_max = 0.0, g1_est_max = 0.0, check_max = 0.0, g1_check_max = 0.0;
     int depth_max = 0;
@@ -244,9 +249,7 @@ int main(int argc, char** argv) {
             const Fit& f = fits[i];
             if (f.ok) {
                 nodes[b.slot] = {0.0, ~static_cast<std::int32_t>(leaves++), 0};
-                for (int d = 0; d < 3; ++d) coefficients.push_back(0.5 * (b.l[d] + b.h[d]));
-                for (int d = 0; d < 3; ++d) coefficients.push_back(2.0 / (b.h[d] - b.l[d]));
-                coefficients.insert(coefficients.end(), f.monomial.begin(), f.monomial.end());
+                leaf_data.push_back(f.leaf);
                 est_max = std::max(est_max, f.est), g1_est_max = std::max(g1_est_max, f.est * f.g1_factor);
                 check_max = std::max(check_max, f.check), g1_check_max = std::max(g1_check_max, f.G1_check);
                 depth_max = std::max(depth_max, b.depth);
@@ -284,9 +287,13 @@ int main(int argc, char** argv) {
                       "const GtrFamilyNode nodes[] = {\n");
     for (std::size_t i = 0; i < nodes.size(); ++i)
         std::fprintf(out, "{%a,%d,%d},%s", nodes[i].split, nodes[i].next, nodes[i].axis, i % 4 == 3 ? "\n" : "");
-    std::fprintf(out, "};\nalignas(64) const double leaves[] = {\n");
-    for (std::size_t i = 0; i < coefficients.size(); ++i)
-        std::fprintf(out, "%a,%s", coefficients[i], i % 6 == 5 ? "\n" : "");
+    std::fprintf(out, "};\nconst GtrFamilyLeaf leaves[] = {\n");
+    for (const smithlab::GtrFamilyLeaf& l : leaf_data) {
+        std::fprintf(out, "{{%a,%a,%a},{%a,%a,%a},%a,{%a,%a,%a},{", l.centre[0], l.centre[1], l.centre[2], l.scale[0],
+                     l.scale[1], l.scale[2], l.c0, l.linear[0], l.linear[1], l.linear[2]);
+        for (float c : l.higher) std::fprintf(out, "%af,", static_cast<double>(c));
+        std::fprintf(out, "}},\n");
+    }
     std::fprintf(out, "};\n}  // namespace\n\nconst GtrFamilyData gtr_family_data = {nodes, %zu, leaves, %zu, %a, %a, "
                       "%a, %a, %a, %d};\n\n}  // namespace smithlab\n",
                  nodes.size(), leaves, est_max, g1_est_max, check_max, g1_check_max, asymptotes, depth_max);
@@ -296,7 +303,7 @@ int main(int argc, char** argv) {
     }
     std::printf("smithlab_family_gen: %zu leaves (%.1f MB), depth <= %d, estimates <= %.3g / %.3g (G1), checks <= "
                 "%.3g / %.3g, asymptotes %.3g, %.1f s\n",
-                leaves, (coefficients.size() * 8.0 + nodes.size() * 16.0) / 1e6, depth_max, est_max, g1_est_max,
+                leaves, static_cast<double>(leaf_data.size() * sizeof(smithlab::GtrFamilyLeaf) + nodes.size() * sizeof(smithlab::GtrFamilyNode)) / 1e6, depth_max, est_max, g1_est_max,
                 check_max, g1_check_max, asymptotes, seconds);
     return 0;
 }

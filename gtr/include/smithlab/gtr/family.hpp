@@ -12,7 +12,7 @@
 // truncated to total degree `degree`. A leaf's error estimate is the sum of the dropped Chebyshev coefficients
 // (|T_n| <= 1 on the box), each counted on the axis of its highest degree; the box is split along the axis whose share
 // is largest, until the estimate is within `tolerance` (relative, Lambda) and `G1_tolerance` (|dG1| <= rel Lambda /
-// (1 + Lambda)^2, from the leaf's own values), and the polynomial is within twice those on the box's 3 x 3 x 3 grid
+// (1 + Lambda)^2, from the leaf's own values; its terms of degree >= 2 then rounded to float, GtrFamilyLeaf), and the polynomial is within twice those on the box's 3 x 3 x 3 grid
 // (corners, edge and face midpoints, centre: off the fit's points; checked against the knots' route, not the fit).
 // The knots' route (family_gen.cpp): the trapezoid rule in u = acosh(r/mu) on the integrand of lambda_fixed.hpp,
 // every gamma of a box at once (6.3e-10 relative against tanh-sinh).
@@ -39,6 +39,17 @@
 namespace smithlab {
 
 // The generated data (family_gen.cpp writes it; one definition, in the build tree's family_patches.cpp).
+inline constexpr int gtr_family_degree = 6;  // each leaf's polynomial: total degree
+// One leaf: its box, and its polynomial in the box's coordinates s = (x - centre) * scale in [-1, 1]^3. The constant
+// and linear terms are doubles (they carry ln(mu Lambda), up to ~300, and its slopes, up to ~40); the rest are floats
+// (their magnitudes sum to < 2 on every leaf: rounding them moves the value by < 1.1e-7, and the generator's checks
+// are of these rounded values). Half the bytes of doubles: a leaf is ~7 cache lines, not 12.
+struct GtrFamilyLeaf {
+    static constexpr int n_higher = (gtr_family_degree + 1) * (gtr_family_degree + 2) * (gtr_family_degree + 3) / 6 - 4;
+    double centre[3], scale[3];
+    double c0, linear[3];  // the terms in 1, s0, s1, s2
+    float higher[n_higher];  // c_ijk s0^i s1^j s2^k for 2 <= i + j + k <= degree, in (i, j, k) order, k fastest
+};
 struct GtrFamilyNode {
     double split;       // an inner node: its children hold x[axis] < split and >= split
     std::int32_t next;  // >= 0: the first of its two children; < 0: the leaf ~next
@@ -47,10 +58,10 @@ struct GtrFamilyNode {
 struct GtrFamilyData {
     const GtrFamilyNode* nodes;  // the top boxes first (row-major over a, gamma, xi), then children in pairs
     std::size_t n_nodes;
-    const double* leaves;  // per leaf: its box's centre (3) and 2 / width (3), then its n_coefficients
+    const GtrFamilyLeaf* leaves;
     std::size_t n_leaves;
     double estimate_max, G1_estimate_max;  // the largest leaf estimates (relative Lambda, |dG1|)
-    double check_max, G1_check_max;        // the largest errors at the leaves' corners and centres
+    double check_max, G1_check_max;        // the largest errors on the leaves' 3 x 3 x 3 grids
     double asymptote_bound;                // relative Lambda, outside [xi_lo, xi_hi]
     int max_depth;                         // splits below a top box
 };
@@ -63,8 +74,7 @@ public:
     static constexpr double xi_lo = -9.0, xi_hi = 19.0;
     // below xi_lo, R(mu_lo) / (mu_lo Lambda) ~ (mu_lo / alpha)^2 gamma < 1e-6; above xi_hi, mu >= 1.8e8 alpha, past
     // every GTR's second slope scale (1 and sqrt(gamma), gtr.hpp), where Lambda ~ C mu^-2
-    static constexpr int degree = 6;
-    static constexpr int n_coefficients = (degree + 1) * (degree + 2) * (degree + 3) / 6;
+    static constexpr int degree = gtr_family_degree;
     static constexpr std::array<int, 3> top = {8, 8, 28};
     static constexpr std::array<double, 3> lo = {-9.2103403719762, 0.0, xi_lo};  // just below ln 1e-4
     static constexpr std::array<double, 3> hi = {0.0, gamma_max, xi_hi};
@@ -92,15 +102,15 @@ public:
 
     // ln(mu Lambda) at x = (ln alpha, gamma, xi) inside the domain (clamped to it).
     double value(const std::array<double, 3>& x) const {
-        const Leaf leaf = locate(x);
-        return polynomial(leaf.c, leaf.s);
+        const Located l = locate(x);
+        return polynomial(*l.leaf, l.s);
     }
     // The leaf holding x (clamped to the domain), and x in its coordinates s in [-1, 1]^3.
-    struct Leaf {
-        const double* c;
+    struct Located {
+        const GtrFamilyLeaf* leaf;
         std::array<double, 3> s;
     };
-    Leaf locate(std::array<double, 3> x) const {
+    Located locate(std::array<double, 3> x) const {
         std::size_t cell = 0;
         for (int d = 0; d < 3; ++d) {
             x[d] = x[d] >= lo[d] ? std::min(x[d], hi[d]) : lo[d];  // NaN to lo: a value, never a read out of bounds
@@ -108,26 +118,25 @@ public:
         }
         const GtrFamilyNode* node = &data_.nodes[cell];
         while (node->next >= 0) node = &data_.nodes[node->next + (x[node->axis] >= node->split)];
-        // the leaf's block: its box's centre (3) and 2 / width (3), then its coefficients
-        const double* box = &data_.leaves[static_cast<std::size_t>(~node->next) * leaf_size];
-        return {box + 6, {(x[0] - box[0]) * box[3], (x[1] - box[1]) * box[4], (x[2] - box[2]) * box[5]}};
+        const GtrFamilyLeaf& leaf = data_.leaves[~node->next];
+        return {&leaf, {(x[0] - leaf.centre[0]) * leaf.scale[0], (x[1] - leaf.centre[1]) * leaf.scale[1],
+                        (x[2] - leaf.centre[2]) * leaf.scale[2]}};
     }
-    static constexpr int leaf_size = 6 + n_coefficients;
 
     // The top grid's i-th edge on axis d (the generator's boxes are these, halved; the evaluator's top cell is the one
     // x falls in by its own rounding, which may be the neighbour's at an edge: both polynomials hold there).
     static constexpr double edge(int d, int i) { return i == top[d] ? hi[d] : lo[d] + (hi[d] - lo[d]) * i / top[d]; }
 
-    // sum over i + j + k <= degree of c_ijk s0^i s1^j s2^k (c in that order, k fastest): straight-line code (the
-    // terms unrolled by index sequences over constant tables), each row's sum over k independent of the others.
-    static double polynomial(const double* c, const std::array<double, 3>& s) {
-        return polynomial(c, s, std::make_index_sequence<n_coefficients>{});
+    // sum over i + j + k <= degree of c_ijk s0^i s1^j s2^k: straight-line code (the higher terms unrolled by index
+    // sequences over constant tables), each row's sum over k independent of the others.
+    static double polynomial(const GtrFamilyLeaf& leaf, const std::array<double, 3>& s) {
+        return polynomial(leaf, s, std::make_index_sequence<GtrFamilyLeaf::n_higher>{});
     }
 
 private:
     static constexpr int n_rows = (degree + 1) * (degree + 2) / 2;  // the (i, j) with i + j <= degree
     struct Monomials {
-        std::array<int, n_coefficients> row{}, k{};  // term q is row[q]'s s2^k[q]
+        std::array<int, GtrFamilyLeaf::n_higher> row{}, k{};  // higher term q is row[q]'s s2^k[q]
         std::array<int, n_rows> i{}, j{};
     };
     static constexpr Monomials monomials() {
@@ -136,19 +145,20 @@ private:
         for (int i = 0; i <= degree; ++i)
             for (int j = 0; j <= degree - i; ++j, ++row) {
                 m.i[row] = i, m.j[row] = j;
-                for (int k = 0; k <= degree - i - j; ++k, ++q) m.row[q] = row, m.k[q] = k;
+                for (int k = std::max(0, 2 - i - j); k <= degree - i - j; ++k, ++q) m.row[q] = row, m.k[q] = k;
             }
         return m;
     }
     template <std::size_t... Q>
-    static double polynomial(const double* c, const std::array<double, 3>& s, std::index_sequence<Q...>) {
+    static double polynomial(const GtrFamilyLeaf& leaf, const std::array<double, 3>& s, std::index_sequence<Q...>) {
         constexpr Monomials m = monomials();
         double p0[degree + 1], p1[degree + 1], p2[degree + 1];
         p0[0] = p1[0] = p2[0] = 1.0;
         for (int e = 1; e <= degree; ++e) p0[e] = p0[e - 1] * s[0], p1[e] = p1[e - 1] * s[1], p2[e] = p2[e - 1] * s[2];
         double rows[n_rows] = {};
-        ((rows[m.row[Q]] += c[Q] * p2[m.k[Q]]), ...);
-        double r0 = 0.0, r1 = 0.0;  // two partial sums: a chain half as long
+        ((rows[m.row[Q]] += static_cast<double>(leaf.higher[Q]) * p2[m.k[Q]]), ...);
+        // two partial sums: a chain half as long
+        double r0 = leaf.c0 + leaf.linear[0] * s[0], r1 = leaf.linear[1] * s[1] + leaf.linear[2] * s[2];
         for (int row = 0; row + 1 < n_rows; row += 2) {
             r0 += rows[row] * (p0[m.i[row]] * p1[m.j[row]]);
             r1 += rows[row + 1] * (p0[m.i[row + 1]] * p1[m.j[row + 1]]);
@@ -163,7 +173,7 @@ public:
     double G1_error_bound() const { return G1_error_bound_; }
     const GtrFamilyData& data() const { return data_; }
     std::size_t bytes() const {
-        return data_.n_nodes * sizeof(GtrFamilyNode) + data_.n_leaves * leaf_size * sizeof(double);
+        return data_.n_nodes * sizeof(GtrFamilyNode) + data_.n_leaves * sizeof(GtrFamilyLeaf);
     }
 
 private:
