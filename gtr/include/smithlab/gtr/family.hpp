@@ -12,8 +12,9 @@
 // truncated to total degree `degree`. A leaf's error estimate is the sum of the dropped Chebyshev coefficients
 // (|T_n| <= 1 on the box), each counted on the axis of its highest degree; the box is split along the axis whose share
 // is largest, until the estimate is within `tolerance` (relative, Lambda) and `G1_tolerance` (|dG1| <= rel Lambda /
-// (1 + Lambda)^2, from the leaf's own values; its terms of degree >= 2 then rounded to float, GtrFamilyLeaf), and the polynomial is within twice those on the box's 3 x 3 x 3 grid
-// (corners, edge and face midpoints, centre: off the fit's points; checked against the knots' route, not the fit).
+// (1 + Lambda)^2, from the leaf's own values), and the polynomial, its terms of degree >= 2 rounded to float
+// (GtrFamilyLeaf), is within twice those on the box's 3 x 3 x 3 grid (corners, edge and face midpoints, centre: off
+// the fit's points; checked against the knots' route, not the fit).
 // The knots' route (family_gen.cpp): the trapezoid rule in u = acosh(r/mu) on the integrand of lambda_fixed.hpp,
 // every gamma of a box at once (6.3e-10 relative against tanh-sinh).
 // Outside [xi_lo, xi_hi] the two asymptotes of lambda_table.hpp:
