@@ -13,7 +13,7 @@ const GtrFamily& GtrFamily::get() {
 GtrFamily::GtrFamily() : data_(gtr_family_data) {
     for (int d = 0; d < 3; ++d) inv_step_[d] = top[d] / (hi[d] - lo[d]);
     mu_lo_rel_ = std::exp(xi_lo);
-    // the leaves are checked to twice the tolerances at their corners and centres (family_gen.cpp)
+    // the leaves are checked to twice the tolerances on their 3 x 3 x 3 grids (family_gen.cpp)
     error_bound_ = 2.0 * tolerance + data_.asymptote_bound;
     G1_error_bound_ = 2.0 * G1_tolerance + data_.asymptote_bound / 4;
 }

@@ -15,6 +15,7 @@
 
 #include "smithlab/gtr/family.hpp"
 #include "smithlab/gtr/gtr.hpp"
+#include "smithlab/walk/parallel.hpp"
 
 namespace {
 
@@ -183,7 +184,7 @@ template <class Fn>
 void parallel_for(std::size_t n, const Fn& fn) {
     std::atomic<std::size_t> next{0};
     std::vector<std::thread> pool;
-    const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+    const unsigned threads = smithlab::walk::thread_count(0);  // every core
     for (unsigned t = 0; t < threads; ++t)
         pool.emplace_back([&] {
             for (std::size_t i; (i = next++) < n;) fn(i);
@@ -294,9 +295,9 @@ int main(int argc, char** argv) {
         for (float c : l.higher) std::fprintf(out, "%af,", static_cast<double>(c));
         std::fprintf(out, "}},\n");
     }
-    std::fprintf(out, "};\n}  // namespace\n\nconst GtrFamilyData gtr_family_data = {nodes, %zu, leaves, %zu, %a, %a, "
-                      "%a, %a, %a, %d};\n\n}  // namespace smithlab\n",
-                 nodes.size(), leaves, est_max, g1_est_max, check_max, g1_check_max, asymptotes, depth_max);
+    std::fprintf(out, "};\n}  // namespace\n\nconst GtrFamilyData gtr_family_data = {nodes, %zu, leaves, %zu, %a, %d};\n\n"
+                      "}  // namespace smithlab\n",
+                 nodes.size(), leaves, asymptotes, depth_max);
     if (std::fclose(out) != 0 || std::rename(tmp.c_str(), out_path.c_str()) != 0) {
         std::fprintf(stderr, "smithlab_family_gen: cannot write %s\n", out_path.c_str());
         return 1;

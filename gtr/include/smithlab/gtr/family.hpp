@@ -61,10 +61,8 @@ struct GtrFamilyData {
     std::size_t n_nodes;
     const GtrFamilyLeaf* leaves;
     std::size_t n_leaves;
-    double estimate_max, G1_estimate_max;  // the largest leaf estimates (relative Lambda, |dG1|)
-    double check_max, G1_check_max;        // the largest errors on the leaves' 3 x 3 x 3 grids
-    double asymptote_bound;                // relative Lambda, outside [xi_lo, xi_hi]
-    int max_depth;                         // splits below a top box
+    double asymptote_bound;  // relative Lambda, outside [xi_lo, xi_hi]
+    int max_depth;           // splits below a top box
 };
 extern const GtrFamilyData gtr_family_data;
 
