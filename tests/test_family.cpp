@@ -72,7 +72,7 @@ TEST_CASE("family: the stiff corners, mu = 1e-8 .. 1e8, 0 and inf", "[family]") 
     INFO("worst relative dLambda " << w.rel << " at alpha " << w.alpha << ", gamma " << w.gamma << ", mu " << w.mu);
     CHECK(w.rel <= t.error_bound());
     CHECK(w.dG1 <= t.G1_error_bound());
-    // beyond the tabulated xi range: the asymptotes, finite and positive to the ends of double (Lambda ~ C mu^-2
+    // beyond the charts (xi < xi_lo, eta > eta_hi): the asymptotes, finite and positive to the ends of double (Lambda ~ C mu^-2
     // underflows to 0 near mu = 1e300)
     for (double mu : {1e-300, 1e-20, 1e20}) {
         const double L = t.Lambda_up(1e-4, 1.5, mu);
@@ -158,15 +158,21 @@ TEST_CASE("family: the stated bound holds at two random points of every leaf", "
     std::mt19937_64 rng(22);
     std::uniform_real_distribution<double> u(-1.0, 1.0);
     Worst w;
+    int charted = 0;
     for (std::size_t leaf = 0; leaf < d.n_leaves; ++leaf) {
         const GtrFamilyLeaf& box = d.leaves[leaf];  // s = (x - centre) * scale in [-1, 1]
-        for (int k = 0; k < 2; ++k) {
-            const double a = box.centre[0] + u(rng) / box.scale[0], gamma = box.centre[1] + u(rng) / box.scale[1],
-                         xi = box.centre[2] + u(rng) / box.scale[2];
-            const double alpha = std::min(1.0, std::exp(a)), mu = alpha * std::exp(xi);
-            w.add(t.Lambda_up(alpha, gamma, mu), independent(alpha, gamma, mu), alpha, gamma, mu);
+        const std::array<double, 3> centre = {box.centre[0], box.centre[1], box.centre[2]};
+        const int chart = t.locate(0, centre).leaf == &box ? 0 : 1;
+        charted += t.locate(chart, centre).leaf == &box;
+        for (int k = 0; k < 2; ++k) {  // anywhere in the box, across the charts' boundary too: the leaf's own value
+            const std::array<double, 3> s = {u(rng), u(rng), u(rng)};
+            const double a = box.centre[0] + s[0] / box.scale[0], gamma = box.centre[1] + s[1] / box.scale[1],
+                         z = box.centre[2] + s[2] / box.scale[2];
+            const double alpha = std::min(1.0, std::exp(a)), mu = chart == 0 ? alpha * std::exp(z) : std::exp(z);
+            w.add(std::exp(GtrFamily::polynomial(box, s)) / mu, independent(alpha, gamma, mu), alpha, gamma, mu);
         }
     }
+    CHECK(charted == static_cast<int>(d.n_leaves));  // every leaf is reached from its own centre
     INFO("worst relative dLambda " << w.rel << " at alpha " << w.alpha << ", gamma " << w.gamma << ", mu " << w.mu
                                    << "; worst |dG1| " << w.dG1);
     WARN("family, two random points per leaf (" << d.n_leaves << " leaves): worst relative dLambda " << w.rel
@@ -178,11 +184,15 @@ TEST_CASE("family: the stated bound holds at two random points of every leaf", "
 TEST_CASE("family: every point lands in its leaf's box", "[family]") {
     const GtrFamily& t = GtrFamily::get();
     std::mt19937_64 rng(41);
-    std::uniform_real_distribution<double> log_alpha(std::log(1e-4), 0.0), gamma_u(0.0, 20.0), xi_u(-12.0, 22.0);
-    int outside = 0;
+    std::uniform_real_distribution<double> log_alpha(std::log(1e-4), 0.0), gamma_u(0.0, 20.0), log_mu(-25.0, 25.0);
+    int outside = 0, empty = 0;
     for (int i = 0; i < 100000; ++i) {
-        const GtrFamily::Located leaf = t.locate({log_alpha(rng), i % 100 == 0 ? 20.0 * (i % 200 == 0) : gamma_u(rng), xi_u(rng)});
+        const double a = log_alpha(rng), gamma = i % 100 == 0 ? 20.0 * (i % 200 == 0) : gamma_u(rng), eta = log_mu(rng);
+        const int chart = eta < 0.5 * a ? 0 : 1;  // as Lambda_up
+        const GtrFamily::Located leaf = t.locate(chart, {a, gamma, chart == 0 ? eta - a : eta});
         for (double s : leaf.s) outside += !(std::abs(s) <= 1.0 + 1e-12);
+        empty += leaf.leaf == &t.data().leaves[t.data().n_leaves];  // the empty leaf: a box in the other chart's half
     }
     CHECK(outside == 0);
+    CHECK(empty == 0);
 }

@@ -11,7 +11,8 @@ const GtrFamily& GtrFamily::get() {
 }
 
 GtrFamily::GtrFamily() : data_(gtr_family_data) {
-    for (int d = 0; d < 3; ++d) inv_step_[d] = top[d] / (hi[d] - lo[d]);
+    for (int c = 0; c < 2; ++c)
+        for (int d = 0; d < 3; ++d) inv_step_[c][d] = top[d] / (hi[c][d] - lo[c][d]);
     mu_lo_rel_ = std::exp(xi_lo);
     // the leaves are checked to twice the tolerances on their 3 x 3 x 3 grids (family_gen.cpp)
     error_bound_ = 2.0 * tolerance + data_.asymptote_bound;

@@ -62,14 +62,21 @@ void strip(double alpha, double mu, const double* gamma, int n, double* out) {
     for (int j = 0; j < n; ++j) out[j] = std::log(mu * 2.0 * h * smithlab::gtr_K(alpha, gamma[j]) * acc[j]);
 }
 
-using Point = std::array<double, 3>;  // (a = ln alpha, gamma, xi = ln(mu/alpha))
+using Point = std::array<double, 3>;  // (a = ln alpha, gamma, z): z = xi = ln(mu / alpha) in chart 0, ln mu in chart 1
 double alpha_of(double a) { return std::min(1.0, std::exp(a)); }
-double mu_of(double a, double xi) { return alpha_of(a) * std::exp(xi); }
+double ln_mu_of(int chart, double a, double z) { return chart == 0 ? std::log(alpha_of(a)) + z : z; }
+double mu_of(int chart, double a, double z) { return std::exp(ln_mu_of(chart, a, z)); }
 
 struct Box {
+    int chart;
     Point l, h;
     int slot, depth;
 };
+// A box wholly in the other chart's half (family.hpp: chart 0 holds ln mu < a/2) is no leaf: no point reaches it. The
+// margin 1e-9 is far above the rounding of an evaluator's z (~1e-14), so a box near the boundary is always fitted.
+bool other_half(const Box& b) {
+    return b.chart == 0 ? b.l[2] + 0.5 * b.l[0] > 1e-9 : b.h[2] - 0.5 * b.l[0] < -1e-9;
+}
 
 // |dG1| <= rel Lambda * max over the box of Lambda / (1 + Lambda)^2, from ln Lambda at the box's points (their range
 // widened by 0.1)
@@ -107,10 +114,10 @@ Fit fit(const Box& b) {
     for (int i = 0; i < N; ++i)
         for (int k = 0; k < N; ++k) {
             std::array<double, N> out;
-            strip(alpha_of(x[0][i]), mu_of(x[0][i], x[2][k]), x[1].data(), N, out.data());
+            strip(alpha_of(x[0][i]), mu_of(b.chart, x[0][i], x[2][k]), x[1].data(), N, out.data());
             for (int j = 0; j < N; ++j) {
                 v[(i * N + j) * N + k] = out[j];
-                const double ll = out[j] - (x[0][i] + x[2][k]);  // ln Lambda = ln(mu Lambda) - ln mu
+                const double ll = out[j] - ln_mu_of(b.chart, x[0][i], x[2][k]);  // ln Lambda = ln(mu Lambda) - ln mu
                 ll_min = std::min(ll_min, ll), ll_max = std::max(ll_max, ll);
             }
         }
@@ -162,15 +169,15 @@ Fit fit(const Box& b) {
     // corners where interpolation errors are largest) against the knots' route, in ln(mu Lambda) and in G1
     for (int i = 0; i < 3; ++i)
         for (int k = 0; k < 3; ++k) {
-            const double a = b.l[0] + 0.5 * i * (b.h[0] - b.l[0]), xi = b.l[2] + 0.5 * k * (b.h[2] - b.l[2]);
+            const double a = b.l[0] + 0.5 * i * (b.h[0] - b.l[0]), z = b.l[2] + 0.5 * k * (b.h[2] - b.l[2]);
             const std::array<double, 3> g = {b.l[1], 0.5 * (b.l[1] + b.h[1]), b.h[1]};
             std::array<double, 3> want;
-            strip(alpha_of(a), mu_of(a, xi), g.data(), 3, want.data());
+            strip(alpha_of(a), mu_of(b.chart, a, z), g.data(), 3, want.data());
             for (int j = 0; j < 3; ++j) {
-                const Point p = {a, g[j], xi};
+                const Point p = {a, g[j], z};
                 std::array<double, 3> s;
                 for (int d = 0; d < 3; ++d) s[d] = (p[d] - leaf.centre[d]) * leaf.scale[d];  // as GtrFamily::locate
-                const double got = GtrFamily::polynomial(leaf, s), ln_mu = a + xi;
+                const double got = GtrFamily::polynomial(leaf, s), ln_mu = ln_mu_of(b.chart, a, z);
                 auto G1 = [&](double f) { return 1.0 / (1.0 + std::exp(f - ln_mu)); };
                 r.check = std::max(r.check, std::abs(got - want[j]));
                 r.G1_check = std::max(r.G1_check, std::abs(G1(got) - G1(want[j])));
@@ -192,24 +199,24 @@ void parallel_for(std::size_t n, const Fn& fn) {
     for (std::thread& t : pool) t.join();
 }
 
-// The asymptotes' bound, on a grid of (alpha, gamma). Below: R(mu_lo) <= (g(mu_1) - g(mu_lo)) / (mu_1/mu_lo - 1),
-// g = mu Lambda + mu/2 (lambda_table.hpp), relative to mu Lambda. Above: the secant slope of ln(mu Lambda) over the
-// last 0.1 against -1.
+// The asymptotes' bound, on a grid of (alpha, gamma). Below xi_lo: R(mu_lo) <= (g(mu_1) - g(mu_lo)) / (mu_1/mu_lo -
+// 1), g = mu Lambda + mu/2 (lambda_table.hpp), relative to mu Lambda. Above eta_hi: the secant slope of ln(mu Lambda)
+// over the last 0.1 in ln mu against -1.
 double asymptote_bound() {
     constexpr int na = 93, ng = 80;
     constexpr double hx = 0.1;
     std::vector<double> worst(na, 0.0);
     parallel_for(na, [&](std::size_t i) {
-        const double a = GtrFamily::lo[0] * (1.0 - static_cast<double>(i) / (na - 1)), alpha = alpha_of(a);
+        const double a = GtrFamily::a_lo * (1.0 - static_cast<double>(i) / (na - 1)), alpha = alpha_of(a);
         for (int j0 = 0; j0 < ng; j0 += N) {
             std::array<double, N> g, f0, f1, f2, f3;
             const int n = std::min(N, ng - j0);
             for (int j = 0; j < n; ++j) g[j] = GtrFamily::gamma_max * (j0 + j) / (ng - 1);
-            const double m0 = mu_of(a, GtrFamily::xi_lo), m1 = mu_of(a, GtrFamily::xi_lo + hx);
+            const double m0 = mu_of(0, a, GtrFamily::xi_lo), m1 = mu_of(0, a, GtrFamily::xi_lo + hx);
             strip(alpha, m0, g.data(), n, f0.data());
             strip(alpha, m1, g.data(), n, f1.data());
-            strip(alpha, mu_of(a, GtrFamily::xi_hi - hx), g.data(), n, f2.data());
-            strip(alpha, mu_of(a, GtrFamily::xi_hi), g.data(), n, f3.data());
+            strip(alpha, mu_of(1, a, GtrFamily::eta_hi - hx), g.data(), n, f2.data());
+            strip(alpha, mu_of(1, a, GtrFamily::eta_hi), g.data(), n, f3.data());
             for (int j = 0; j < n; ++j) {
                 const double g0 = std::exp(f0[j]) + 0.5 * m0, g1 = std::exp(f1[j]) + 0.5 * m1;
                 worst[i] = std::max(worst[i], std::max(0.0, g1 - g0) / std::expm1(hx) / std::exp(f0[j]));
@@ -229,25 +236,32 @@ int main(int argc, char** argv) {
     }
     const auto t0 = std::chrono::steady_clock::now();
     const auto& top = GtrFamily::top;
-    std::vector<smithlab::GtrFamilyNode> nodes(static_cast<std::size_t>(top[0]) * top[1] * top[2]);
+    std::vector<smithlab::GtrFamilyNode> nodes(2 * GtrFamily::top_cells);
     std::vector<Box> pending;
-    for (int i = 0; i < top[0]; ++i)
-        for (int j = 0; j < top[1]; ++j)
-            for (int k = 0; k < top[2]; ++k)
-                pending.push_back({{GtrFamily::edge(0, i), GtrFamily::edge(1, j), GtrFamily::edge(2, k)},
-                                   {GtrFamily::edge(0, i + 1), GtrFamily::edge(1, j + 1), GtrFamily::edge(2, k + 1)},
-                                   (i * top[1] + j) * top[2] + k, 0});
+    for (int c = 0; c < 2; ++c)
+        for (int i = 0; i < top[0]; ++i)
+            for (int j = 0; j < top[1]; ++j)
+                for (int k = 0; k < top[2]; ++k)
+                    pending.push_back({c,
+                                       {GtrFamily::edge(c, 0, i), GtrFamily::edge(c, 1, j), GtrFamily::edge(c, 2, k)},
+                                       {GtrFamily::edge(c, 0, i + 1), GtrFamily::edge(c, 1, j + 1), GtrFamily::edge(c, 2, k + 1)},
+                                       static_cast<int>(c * GtrFamily::top_cells) + (i * top[1] + j) * top[2] + k, 0});
+    std::vector<int> no_leaf;  // the slots of boxes in the other chart's half
     std::vector<smithlab::GtrFamilyLeaf> leaf_data;
     std::size_t leaves = 0;
     double est_max = 0.0, g1_est_max = 0.0, check_max = 0.0, g1_check_max = 0.0;
     int depth_max = 0;
     while (!pending.empty()) {
         std::vector<Fit> fits(pending.size());
-        parallel_for(pending.size(), [&](std::size_t i) { fits[i] = fit(pending[i]); });
+        parallel_for(pending.size(), [&](std::size_t i) { if (!other_half(pending[i])) fits[i] = fit(pending[i]); });
         std::vector<Box> next;
         for (std::size_t i = 0; i < pending.size(); ++i) {
             const Box& b = pending[i];
             const Fit& f = fits[i];
+            if (other_half(b)) {
+                no_leaf.push_back(b.slot);
+                continue;
+            }
             if (f.ok) {
                 nodes[b.slot] = {0.0, ~static_cast<std::int32_t>(leaves++), 0};
                 leaf_data.push_back(f.leaf);
@@ -257,9 +271,9 @@ int main(int argc, char** argv) {
                 continue;
             }
             if (b.depth == max_depth) {
-                std::fprintf(stderr, "smithlab_family_gen: no fit within the tolerance at depth %d, box a [%g, %g] gamma "
-                             "[%g, %g] xi [%g, %g] (estimate %g)\n", max_depth, b.l[0], b.h[0], b.l[1], b.h[1], b.l[2],
-                             b.h[2], f.est);
+                std::fprintf(stderr, "smithlab_family_gen: no fit within the tolerance at depth %d, chart %d box a [%g, "
+                             "%g] gamma [%g, %g] z [%g, %g] (estimate %g)\n", max_depth, b.chart, b.l[0], b.h[0], b.l[1],
+                             b.h[1], b.l[2], b.h[2], f.est);
                 return 1;
             }
             const int axis = static_cast<int>(std::max_element(f.estimate.begin(), f.estimate.end()) - f.estimate.begin());
@@ -274,6 +288,7 @@ int main(int argc, char** argv) {
         }
         pending.swap(next);
     }
+    for (int slot : no_leaf) nodes[slot] = {0.0, ~static_cast<std::int32_t>(leaves), 0};  // the empty leaf
     const double asymptotes = asymptote_bound();
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
@@ -295,7 +310,7 @@ int main(int argc, char** argv) {
         for (float c : l.higher) std::fprintf(out, "%af,", static_cast<double>(c));
         std::fprintf(out, "}},\n");
     }
-    std::fprintf(out, "};\n}  // namespace\n\nconst GtrFamilyData gtr_family_data = {nodes, %zu, leaves, %zu, %a, %d};\n\n"
+    std::fprintf(out, "{},\n};\n}  // namespace\n\nconst GtrFamilyData gtr_family_data = {nodes, %zu, leaves, %zu, %a, %d};\n\n"
                       "}  // namespace smithlab\n",
                  nodes.size(), leaves, asymptotes, depth_max);
     if (std::fclose(out) != 0 || std::rename(tmp.c_str(), out_path.c_str()) != 0) {

@@ -2,11 +2,17 @@
 // generated at build time (gtr/tools/family_gen.cpp) and compiled in, read-only, shared by every material and thread
 // (issue 14). No per-material work and no first-use build.
 //
-// Domain: alpha in [1e-4, 1], gamma in [0, 20], any mu. The function held is
-//     f(a, gamma, xi) = ln(mu Lambda),   a = ln alpha,   xi = ln(mu / alpha) in [xi_lo, xi_hi]
-// (Lambda: Walter 2007 eq. 48, the reduced 1D form of smith.hpp), on a k-d tree of boxes: a uniform top grid
-// (`top` boxes per axis), each box split in two at its middle, along one axis, until its polynomial is within the
-// tolerance. Each leaf holds the polynomial of total degree `degree` in the box's coordinates s in [-1, 1]^3 (monomials
+// Domain: alpha in [1e-4, 1], gamma in [0, 20], any mu. The function held is f = ln(mu Lambda) (Lambda: Walter 2007
+// eq. 48, the reduced 1D form of smith.hpp) over (a = ln alpha, gamma, z), in two charts that meet at mu = sqrt(alpha):
+//   chart 0, mu < sqrt(alpha): z = xi = ln(mu / alpha) in [xi_lo, -a/2] (the slope scale alpha, where Lambda turns
+//            from ~1/mu to its power-law tail, is the plane xi = 0);
+//   chart 1, mu >= sqrt(alpha): z = eta = ln mu in [a/2, eta_hi] (GTR's second slope scale, r ~ 1 where t^(gamma - 2)
+//            turns, gtr.hpp, is the plane eta = 0).
+// Each feature is axis-aligned in its own chart; in one chart over (a, xi) the second runs diagonally, and resolving
+// it took 2.2x the leaves (14 237 against 6 546 at the same tolerance). Each chart is a k-d tree of boxes: a uniform
+// top grid (`top` boxes per axis), each box split in two at its middle, along one axis, until its polynomial is within
+// the tolerance; a box wholly in the other chart's half is no leaf (its node points at an empty leaf past the last).
+// Each leaf holds the polynomial of total degree `degree` in the box's coordinates s in [-1, 1]^3 (monomials
 // s0^i s1^j s2^k, i + j + k <= degree): the Chebyshev interpolant of degree degree + 1 on each axis (Trefethen 2013,
 // "Approximation Theory and Approximation Practice", ch. 3-4; tensor product of Chebyshev points of the first kind),
 // truncated to total degree `degree`. A leaf's error estimate is the sum of the dropped Chebyshev coefficients
@@ -14,15 +20,16 @@
 // is largest, until the estimate is within `tolerance` (relative, Lambda) and `G1_tolerance` (|dG1| <= rel Lambda /
 // (1 + Lambda)^2, from the leaf's own values), and the polynomial, its terms of degree >= 2 rounded to float
 // (GtrFamilyLeaf), is within twice those on the box's 3 x 3 x 3 grid (corners, edge and face midpoints, centre: off
-// the fit's points; checked against the knots' route, not the fit).
+// the fit's points; checked against the knots' route, not the fit). A leaf holds on its whole box, across the charts'
+// boundary too.
 // The knots' route (family_gen.cpp): the trapezoid rule in u = acosh(r/mu) on the integrand of lambda_fixed.hpp,
 // every gamma of a box at once (6.3e-10 relative against tanh-sinh).
-// Outside [xi_lo, xi_hi] the two asymptotes of lambda_table.hpp:
-//   xi < xi_lo: mu Lambda = g_lo - mu/2, g_lo = mu_lo Lambda(mu_lo) + mu_lo/2 (Walter eq. 48 with P(q > 0) = 1/2;
-//               in error by R(mu_lo) - R(mu) in [0, R(mu_lo)], R bounded from two points as in lambda_table.hpp);
-//   xi > xi_hi: Lambda ~ C mu^-2 (every GTR has a P22 ~ r^-4 tail: t -> alpha^2 as r -> inf, gtr.hpp), ln(mu Lambda)
-//               continued with slope -1 (its slope's deviation s + 1 at xi_hi, measured, bounds the error: the next
-//               term is relative mu^-2, so the deviation decays like e^(-2 (xi - xi_hi)) and sums to (s + 1)/2).
+// Beyond the charts, the two asymptotes of lambda_table.hpp:
+//   xi < xi_lo:   mu Lambda = g_lo - mu/2, g_lo = mu_lo Lambda(mu_lo) + mu_lo/2 (Walter eq. 48 with P(q > 0) = 1/2;
+//                 in error by R(mu_lo) - R(mu) in [0, R(mu_lo)], R bounded from two points as in lambda_table.hpp);
+//   eta > eta_hi: Lambda ~ C mu^-2 (every GTR has a P22 ~ r^-4 tail: t -> alpha^2 as r -> inf, gtr.hpp), ln(mu Lambda)
+//                 continued with slope -1 (its slope's deviation s + 1 at eta_hi, measured, bounds the error: the next
+//                 term is relative mu^-2, so the deviation decays like e^(-2 (eta - eta_hi)) and sums to (s + 1)/2).
 // The stated bounds (error_bound(), G1_error_bound()): twice the tolerances (the checks' limit) plus the asymptotes'.
 // An estimate and 27 checks per leaf, not a proof: tested against independent references at two random points of
 // every leaf, and elsewhere (tests/test_family.cpp).
@@ -57,11 +64,11 @@ struct GtrFamilyNode {
     std::int32_t axis;
 };
 struct GtrFamilyData {
-    const GtrFamilyNode* nodes;  // the top boxes first (row-major over a, gamma, xi), then children in pairs
-    std::size_t n_nodes;
-    const GtrFamilyLeaf* leaves;
+    const GtrFamilyNode* nodes;  // each chart's top boxes first (chart 0's, chart 1's; row-major over a, gamma, z),
+    std::size_t n_nodes;         // then children in pairs
+    const GtrFamilyLeaf* leaves;  // n_leaves + 1: the last, empty, for the boxes that are no leaf
     std::size_t n_leaves;
-    double asymptote_bound;  // relative Lambda, outside [xi_lo, xi_hi]
+    double asymptote_bound;  // relative Lambda, beyond the charts
     int max_depth;           // splits below a top box
 };
 extern const GtrFamilyData gtr_family_data;
@@ -70,13 +77,15 @@ class GtrFamily {
 public:
     static constexpr double alpha_min = 1e-4;
     static constexpr double gamma_max = 20.0;
-    static constexpr double xi_lo = -9.0, xi_hi = 19.0;
-    // below xi_lo, R(mu_lo) / (mu_lo Lambda) ~ (mu_lo / alpha)^2 gamma < 1e-6; above xi_hi, mu >= 1.8e8 alpha, past
-    // every GTR's second slope scale (1 and sqrt(gamma), gtr.hpp), where Lambda ~ C mu^-2
+    static constexpr double xi_lo = -9.0, eta_hi = 9.8;
+    // below xi_lo, R(mu_lo) / (mu_lo Lambda) ~ (mu_lo / alpha)^2 gamma < 1e-6; above eta_hi, mu >= 1.8e4, past every
+    // GTR's second slope scale (1 and sqrt(gamma), gtr.hpp), where Lambda ~ C mu^-2
     static constexpr int degree = gtr_family_degree;
-    static constexpr std::array<int, 3> top = {8, 8, 28};
-    static constexpr std::array<double, 3> lo = {-9.2103403719762, 0.0, xi_lo};  // just below ln 1e-4
-    static constexpr std::array<double, 3> hi = {0.0, gamma_max, xi_hi};
+    static constexpr double a_lo = -9.2103403719762;  // just below ln 1e-4
+    static constexpr std::array<int, 3> top = {8, 8, 14};  // each chart's
+    static constexpr std::array<std::array<double, 3>, 2> lo = {{{a_lo, 0.0, xi_lo}, {a_lo, 0.0, 0.5 * a_lo}}};
+    static constexpr std::array<std::array<double, 3>, 2> hi = {{{0.0, gamma_max, -0.5 * a_lo}, {0.0, gamma_max, eta_hi}}};
+    static constexpr std::size_t top_cells = static_cast<std::size_t>(top[0]) * top[1] * top[2];
     // A leaf's estimate is at most `tolerance` relative in Lambda and `G1_tolerance` in G1; its checks at most twice.
     static constexpr double tolerance = 4e-6;
     static constexpr double G1_tolerance = 4e-7;
@@ -87,44 +96,44 @@ public:
     // Lambda_gtr_family for the checked call; a NaN gives some value, never a read out of bounds). No allocation,
     // exception or virtual call.
     double Lambda_up(double alpha, double gamma, double mu) const {
-        const double a = std::log(alpha), xi = std::log(mu / alpha);
-        const double xc = std::clamp(xi, xi_lo, xi_hi);
-        return Lambda_of(value({a, gamma, xc}), alpha, mu, xi);
-    }
-    // Lambda from f = ln(mu Lambda) at the clamped xi, and the asymptotes beyond [xi_lo, xi_hi].
-    double Lambda_of(double f, double alpha, double mu, double xi) const {
-        if (xi < xi_lo) return (std::exp(f) + 0.5 * alpha * mu_lo_rel_) / mu - 0.5;  // mu = 0: +inf
-        if (xi > xi_hi) return std::exp(f - (xi - xi_hi)) / mu;                     // mu = inf: 0
-        return std::exp(f) / mu;
+        const double a = std::log(alpha), eta = std::log(mu);
+        if (eta < 0.5 * a) {  // chart 0 (locate clamps xi to xi_lo); mu = 0: +inf
+            const double xi = eta - a, f = value(0, {a, gamma, xi});
+            return xi < xi_lo ? (std::exp(f) + 0.5 * alpha * mu_lo_rel_) / mu - 0.5 : std::exp(f) / mu;
+        }
+        const double f = value(1, {a, gamma, eta});  // chart 1 (locate clamps eta to eta_hi); mu = inf: 0
+        return std::exp(eta > eta_hi ? f - (eta - eta_hi) : f) / mu;
     }
     double G1_up(double alpha, double gamma, double mu) const { return 1.0 / (1.0 + Lambda_up(alpha, gamma, mu)); }
 
-    // ln(mu Lambda) at x = (ln alpha, gamma, xi) inside the domain (clamped to it).
-    double value(const std::array<double, 3>& x) const {
-        const Located l = locate(x);
+    // ln(mu Lambda) at x = (ln alpha, gamma, z) in chart c, inside the chart's box (clamped to it).
+    double value(int c, const std::array<double, 3>& x) const {
+        const Located l = locate(c, x);
         return polynomial(*l.leaf, l.s);
     }
-    // The leaf holding x (clamped to the domain), and x in its coordinates s in [-1, 1]^3.
+    // The leaf holding x in chart c (x clamped to the chart's box), and x in its coordinates s in [-1, 1]^3.
     struct Located {
         const GtrFamilyLeaf* leaf;
         std::array<double, 3> s;
     };
-    Located locate(std::array<double, 3> x) const {
+    Located locate(int c, std::array<double, 3> x) const {
         std::size_t cell = 0;
         for (int d = 0; d < 3; ++d) {
-            x[d] = x[d] >= lo[d] ? std::min(x[d], hi[d]) : lo[d];  // NaN to lo: a value, never a read out of bounds
-            cell = cell * top[d] + std::min(static_cast<int>((x[d] - lo[d]) * inv_step_[d]), top[d] - 1);
+            x[d] = x[d] >= lo[c][d] ? std::min(x[d], hi[c][d]) : lo[c][d];  // NaN to lo: never a read out of bounds
+            cell = cell * top[d] + std::min(static_cast<int>((x[d] - lo[c][d]) * inv_step_[c][d]), top[d] - 1);
         }
-        const GtrFamilyNode* node = &data_.nodes[cell];
+        const GtrFamilyNode* node = &data_.nodes[c * top_cells + cell];
         while (node->next >= 0) node = &data_.nodes[node->next + (x[node->axis] >= node->split)];
         const GtrFamilyLeaf& leaf = data_.leaves[~node->next];
         return {&leaf, {(x[0] - leaf.centre[0]) * leaf.scale[0], (x[1] - leaf.centre[1]) * leaf.scale[1],
                         (x[2] - leaf.centre[2]) * leaf.scale[2]}};
     }
 
-    // The top grid's i-th edge on axis d (the generator's boxes are these, halved; the evaluator's top cell is the one
-    // x falls in by its own rounding, which may be the neighbour's at an edge: both polynomials hold there).
-    static constexpr double edge(int d, int i) { return i == top[d] ? hi[d] : lo[d] + (hi[d] - lo[d]) * i / top[d]; }
+    // Chart c's top grid's i-th edge on axis d (the generator's boxes are these, halved; the evaluator's top cell is the
+    // one x falls in by its own rounding, which may be the neighbour's at an edge: both polynomials hold there).
+    static constexpr double edge(int c, int d, int i) {
+        return i == top[d] ? hi[c][d] : lo[c][d] + (hi[c][d] - lo[c][d]) * i / top[d];
+    }
 
     // sum over i + j + k <= degree of c_ijk s0^i s1^j s2^k: straight-line code (the higher terms unrolled by index
     // sequences over constant tables), each row's sum over k independent of the others.
@@ -178,7 +187,7 @@ public:
 private:
     GtrFamily();
     const GtrFamilyData& data_;
-    std::array<double, 3> inv_step_;
+    std::array<std::array<double, 3>, 2> inv_step_;
     double mu_lo_rel_, error_bound_, G1_error_bound_;
 };
 
