@@ -9,7 +9,7 @@
 //   chart 1, mu >= sqrt(alpha): z = eta = ln mu in [a/2, eta_hi] (GTR's second slope scale, r ~ 1 where t^(gamma - 2)
 //            turns, gtr.hpp, is the plane eta = 0).
 // Each feature is axis-aligned in its own chart; in one chart over (a, xi) the second runs diagonally, and resolving
-// it took 2.2x the leaves (14 237 against 6 546 at the same tolerance). Each chart is a k-d tree of boxes: a uniform
+// it took 2.1x the leaves (14 237 against 6 712 at the same tolerance). Each chart is a k-d tree of boxes: a uniform
 // top grid (`top` boxes per axis), each box split in two at its middle, along one axis, until its polynomial is within
 // the tolerance; a box wholly in the other chart's half is no leaf (its node points at an empty leaf past the last).
 // Each leaf holds the polynomial of total degree `degree` in the box's coordinates s in [-1, 1]^3 (monomials
