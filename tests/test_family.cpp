@@ -1,4 +1,4 @@
-// The GTR family evaluator (gtr/family.hpp): one tree of polynomial patches for every (alpha, gamma), against routes
+// The GTR family evaluator (gtr/family.hpp): two charts of polynomial patches for every (alpha, gamma), against routes
 // it is not built from (the adaptive 1D quadrature, Boost tanh-sinh, where its knots come from trapezoid strips; the
 // closed forms; the 50-digit reference), its stated bound checked as a bound in every leaf, and its input rules.
 #include <catch2/catch.hpp>
@@ -72,8 +72,8 @@ TEST_CASE("family: the stiff corners, mu = 1e-8 .. 1e8, 0 and inf", "[family]") 
     INFO("worst relative dLambda " << w.rel << " at alpha " << w.alpha << ", gamma " << w.gamma << ", mu " << w.mu);
     CHECK(w.rel <= t.error_bound());
     CHECK(w.dG1 <= t.G1_error_bound());
-    // beyond the charts (xi < xi_lo, eta > eta_hi): the asymptotes, finite and positive to the ends of double (Lambda ~ C mu^-2
-    // underflows to 0 near mu = 1e300)
+    // beyond the charts (xi < xi_lo, eta > eta_hi): the asymptotes, finite and positive to the ends of double
+    // (Lambda ~ C mu^-2 underflows to 0 near mu = 1e300)
     for (double mu : {1e-300, 1e-20, 1e20}) {
         const double L = t.Lambda_up(1e-4, 1.5, mu);
         CHECK((L > 0.0 && L < INFINITY));

@@ -27,8 +27,8 @@ void register_gtr_variants(VariantRegistry& r) {
            LambdaRoute::other});
     // One evaluator for the whole family (family.hpp): no per-NDF work, alpha in [1e-4, 1], gamma in [0, 20].
     r.add({"family",
-           "one compiled-in tree of polynomial patches over (alpha, gamma, mu) for every GTR with alpha in [1e-4, 1], "
-           "gamma in [0, 20], generated at build time (family.hpp)",
+           "compiled-in trees of polynomial patches over (alpha, gamma, mu), in two charts, for every GTR with alpha in "
+           "[1e-4, 1], gamma in [0, 20], generated at build time (family.hpp)",
            [](const AnyNdf& n) {
                if (n.family() != "gtr") return false;
                const double a = n.param("alpha"), g = n.param("gamma");

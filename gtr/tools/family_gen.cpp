@@ -242,10 +242,11 @@ int main(int argc, char** argv) {
         for (int i = 0; i < top[0]; ++i)
             for (int j = 0; j < top[1]; ++j)
                 for (int k = 0; k < top[2]; ++k)
-                    pending.push_back({c,
-                                       {GtrFamily::edge(c, 0, i), GtrFamily::edge(c, 1, j), GtrFamily::edge(c, 2, k)},
-                                       {GtrFamily::edge(c, 0, i + 1), GtrFamily::edge(c, 1, j + 1), GtrFamily::edge(c, 2, k + 1)},
-                                       static_cast<int>(c * GtrFamily::top_cells) + (i * top[1] + j) * top[2] + k, 0});
+                    pending.push_back(
+                        {c,
+                         {GtrFamily::edge(c, 0, i), GtrFamily::edge(c, 1, j), GtrFamily::edge(c, 2, k)},
+                         {GtrFamily::edge(c, 0, i + 1), GtrFamily::edge(c, 1, j + 1), GtrFamily::edge(c, 2, k + 1)},
+                         static_cast<int>(c * GtrFamily::top_cells) + (i * top[1] + j) * top[2] + k, 0});
     std::vector<int> no_leaf;  // the slots of boxes in the other chart's half
     std::vector<smithlab::GtrFamilyLeaf> leaf_data;
     std::size_t leaves = 0;
@@ -271,9 +272,9 @@ int main(int argc, char** argv) {
                 continue;
             }
             if (b.depth == max_depth) {
-                std::fprintf(stderr, "smithlab_family_gen: no fit within the tolerance at depth %d, chart %d box a [%g, "
-                             "%g] gamma [%g, %g] z [%g, %g] (estimate %g)\n", max_depth, b.chart, b.l[0], b.h[0], b.l[1],
-                             b.h[1], b.l[2], b.h[2], f.est);
+                std::fprintf(stderr, "smithlab_family_gen: no fit within the tolerance at depth %d, chart %d box a "
+                             "[%g, %g] gamma [%g, %g] z [%g, %g] (estimate %g)\n", max_depth, b.chart, b.l[0], b.h[0],
+                             b.l[1], b.h[1], b.l[2], b.h[2], f.est);
                 return 1;
             }
             const int axis = static_cast<int>(std::max_element(f.estimate.begin(), f.estimate.end()) - f.estimate.begin());

@@ -84,7 +84,8 @@ public:
     static constexpr double a_lo = -9.2103403719762;  // just below ln 1e-4
     static constexpr std::array<int, 3> top = {8, 8, 14};  // each chart's
     static constexpr std::array<std::array<double, 3>, 2> lo = {{{a_lo, 0.0, xi_lo}, {a_lo, 0.0, 0.5 * a_lo}}};
-    static constexpr std::array<std::array<double, 3>, 2> hi = {{{0.0, gamma_max, -0.5 * a_lo}, {0.0, gamma_max, eta_hi}}};
+    static constexpr std::array<std::array<double, 3>, 2> hi = {
+        {{0.0, gamma_max, -0.5 * a_lo}, {0.0, gamma_max, eta_hi}}};
     static constexpr std::size_t top_cells = static_cast<std::size_t>(top[0]) * top[1] * top[2];
     // A leaf's estimate is at most `tolerance` relative in Lambda and `G1_tolerance` in G1; its checks at most twice.
     static constexpr double tolerance = 4e-6;
@@ -129,8 +130,8 @@ public:
                         (x[2] - leaf.centre[2]) * leaf.scale[2]}};
     }
 
-    // Chart c's top grid's i-th edge on axis d (the generator's boxes are these, halved; the evaluator's top cell is the
-    // one x falls in by its own rounding, which may be the neighbour's at an edge: both polynomials hold there).
+    // Chart c's top grid's i-th edge on axis d (the generator's boxes are these, halved; the evaluator's top cell is
+    // the one x falls in by its own rounding, which may be the neighbour's at an edge: both polynomials hold there).
     static constexpr double edge(int c, int d, int i) {
         return i == top[d] ? hi[c][d] : lo[c][d] + (hi[c][d] - lo[c][d]) * i / top[d];
     }
