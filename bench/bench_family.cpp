@@ -59,12 +59,14 @@ const Stream& scattered_stream() {
     return s;
 }
 
+// n_points is a power of two: the next point is i & (n_points - 1), not i % n (a 64-bit division, ~10 ns of each
+// iteration on this machine, shared by no evaluator)
+static_assert((n_points & (n_points - 1)) == 0);
 template <class F>
-void run(benchmark::State& state, const Stream& s, const F& G1) {
+void run(benchmark::State& state, const Stream&, const F& G1) {
     std::size_t i = 0;
-    const std::size_t n = s.mu.size();
     for (auto _ : state) {
-        benchmark::DoNotOptimize(G1(i % n));
+        benchmark::DoNotOptimize(G1(i & (n_points - 1)));
         ++i;
     }
     state.SetItemsProcessed(state.iterations());

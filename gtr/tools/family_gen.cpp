@@ -149,22 +149,22 @@ Fit fit(const Box& b) {
     r.est = r.estimate[0] + r.estimate[1] + r.estimate[2];
     if (r.est > GtrFamily::tolerance || r.est * r.g1_factor > GtrFamily::G1_tolerance) return r;
     // the kept part in monomials of s = (x - centre) * scale: the constant and linear terms as doubles, the rest
-    // rounded to float in family.hpp's order (i, j, k; k fastest)
+    // rounded to float in family.hpp's stored order (gtr_family_plan.term)
     smithlab::GtrFamilyLeaf& leaf = r.leaf;
     for (int d = 0; d < 3; ++d) leaf.centre[d] = 0.5 * (b.l[d] + b.h[d]), leaf.scale[d] = 2.0 / (b.h[d] - b.l[d]);
-    int higher = 0;
-    for (int i = 0; i <= D; ++i)
-        for (int j = 0; j <= D - i; ++j)
-            for (int k = 0; k <= D - i - j; ++k) {
-                double m = 0.0;
-                for (int ci = i; ci <= D; ++ci)
-                    for (int cj = j; cj <= D - ci; ++cj)
-                        for (int ck = k; ck <= D - ci - cj; ++ck)
-                            m += v[(ci * N + cj) * N + ck] * T[ci][i] * T[cj][j] * T[ck][k];
-                if (i + j + k == 0) leaf.c0 = m;
-                else if (i + j + k == 1) leaf.linear[i == 1 ? 0 : j == 1 ? 1 : 2] = m;
-                else leaf.higher[higher++] = static_cast<float>(m);
-            }
+    auto monomial = [&](int i, int j, int k) {
+        double m = 0.0;
+        for (int ci = i; ci <= D; ++ci)
+            for (int cj = j; cj <= D - ci; ++cj)
+                for (int ck = k; ck <= D - ci - cj; ++ck) m += v[(ci * N + cj) * N + ck] * T[ci][i] * T[cj][j] * T[ck][k];
+        return m;
+    };
+    leaf.c0 = monomial(0, 0, 0);
+    leaf.linear[0] = monomial(1, 0, 0), leaf.linear[1] = monomial(0, 1, 0), leaf.linear[2] = monomial(0, 0, 1);
+    for (int q = 0; q < smithlab::GtrFamilyLeaf::n_higher; ++q) {
+        const auto [i, j, k] = smithlab::gtr_family_plan.term[q];
+        leaf.higher[q] = static_cast<float>(monomial(i, j, k));
+    }
     // checks on the box's 3 x 3 x 3 grid (corners, edge and face midpoints, centre: off the fit's points, the
     // corners where interpolation errors are largest) against the knots' route, in ln(mu Lambda) and in G1
     for (int i = 0; i < 3; ++i)
