@@ -37,7 +37,7 @@ struct Worst {
 TEST_CASE("family: the stated bound holds on random points over the whole domain", "[family]") {
     const GtrFamily& t = GtrFamily::get();
     const GtrFamilyData& d = t.data();
-    WARN("family tree: " << d.n_leaves << " leaves of degree " << GtrFamily::degree << ", " << t.bytes() / 1e6
+    WARN("family trees: " << d.n_leaves << " leaves of degree " << GtrFamily::degree << ", " << t.bytes() / 1e6
                          << " MB, depth <= " << d.max_depth << "; stated bounds " << t.error_bound() << " (relative dLambda), " << t.G1_error_bound()
                          << " (|dG1|)");
     CHECK(t.error_bound() <= 1e-5);     // the issue's targets
@@ -158,21 +158,29 @@ TEST_CASE("family: the stated bound holds at two random points of every leaf", "
     std::mt19937_64 rng(22);
     std::uniform_real_distribution<double> u(-1.0, 1.0);
     Worst w;
-    int charted = 0;
+    int unreached = 0, through_Lambda_up = 0;
     for (std::size_t leaf = 0; leaf < d.n_leaves; ++leaf) {
         const GtrFamilyLeaf& box = d.leaves[leaf];  // s = (x - centre) * scale in [-1, 1]
         const std::array<double, 3> centre = {box.centre[0], box.centre[1], box.centre[2]};
-        const int chart = t.locate(0, centre).leaf == &box ? 0 : 1;
-        charted += t.locate(chart, centre).leaf == &box;
+        const bool in0 = t.locate(0, centre).leaf == &box, in1 = t.locate(1, centre).leaf == &box;
+        unreached += !in0 && !in1;  // each leaf is found from its own centre, in its chart
+        const int chart = in0 ? 0 : 1;
         for (int k = 0; k < 2; ++k) {  // anywhere in the box, across the charts' boundary too: the leaf's own value
             const std::array<double, 3> s = {u(rng), u(rng), u(rng)};
             const double a = box.centre[0] + s[0] / box.scale[0], gamma = box.centre[1] + s[1] / box.scale[1],
                          z = box.centre[2] + s[2] / box.scale[2];
             const double alpha = std::min(1.0, std::exp(a)), mu = chart == 0 ? alpha * std::exp(z) : std::exp(z);
-            w.add(std::exp(GtrFamily::polynomial(box, s)) / mu, independent(alpha, gamma, mu), alpha, gamma, mu);
+            const double want = independent(alpha, gamma, mu);
+            w.add(std::exp(GtrFamily::polynomial(box, s)) / mu, want, alpha, gamma, mu);
+            // on the leaf's own side of the boundary, the whole call (chart, locate, polynomial, exp) as well
+            if (GtrFamily::chart_of(std::log(alpha), std::log(mu)) == chart) {
+                w.add(t.Lambda_up(alpha, gamma, mu), want, alpha, gamma, mu);
+                ++through_Lambda_up;
+            }
         }
     }
-    CHECK(charted == static_cast<int>(d.n_leaves));  // every leaf is reached from its own centre
+    CHECK(unreached == 0);
+    CHECK(through_Lambda_up > static_cast<int>(d.n_leaves));  // most of the points (a box straddles rarely)
     INFO("worst relative dLambda " << w.rel << " at alpha " << w.alpha << ", gamma " << w.gamma << ", mu " << w.mu
                                    << "; worst |dG1| " << w.dG1);
     WARN("family, two random points per leaf (" << d.n_leaves << " leaves): worst relative dLambda " << w.rel
@@ -186,12 +194,21 @@ TEST_CASE("family: every point lands in its leaf's box", "[family]") {
     std::mt19937_64 rng(41);
     std::uniform_real_distribution<double> log_alpha(std::log(1e-4), 0.0), gamma_u(0.0, 20.0), log_mu(-25.0, 25.0);
     int outside = 0, empty = 0;
-    for (int i = 0; i < 100000; ++i) {
-        const double a = log_alpha(rng), gamma = i % 100 == 0 ? 20.0 * (i % 200 == 0) : gamma_u(rng), eta = log_mu(rng);
-        const int chart = eta < 0.5 * a ? 0 : 1;  // as Lambda_up
+    auto land = [&](double alpha, double gamma, double mu) {
+        const double a = std::log(alpha), eta = std::log(mu);
+        const int chart = GtrFamily::chart_of(a, eta);  // as Lambda_up
         const GtrFamily::Located leaf = t.locate(chart, {a, gamma, chart == 0 ? eta - a : eta});
         for (double s : leaf.s) outside += !(std::abs(s) <= 1.0 + 1e-12);
         empty += leaf.leaf == &t.data().leaves[t.data().n_leaves];  // the empty leaf: a box in the other chart's half
+    };
+    for (int i = 0; i < 100000; ++i)
+        land(std::exp(log_alpha(rng)), i % 100 == 0 ? 20.0 * (i % 200 == 0) : gamma_u(rng), std::exp(log_mu(rng)));
+    // at the charts' boundary, mu = sqrt(alpha), to the last ulp on either side
+    for (int i = 0; i < 2000; ++i) {
+        const double alpha = i == 0 ? 1e-4 : i == 1 ? 1.0 : std::exp(log_alpha(rng)), gamma = gamma_u(rng);
+        double mu = std::sqrt(alpha);
+        for (int k = 0; k < 4; ++k) mu = std::nextafter(mu, 0.0);
+        for (int k = 0; k < 8; ++k, mu = std::nextafter(mu, 2.0)) land(alpha, gamma, mu);
     }
     CHECK(outside == 0);
     CHECK(empty == 0);

@@ -1,4 +1,4 @@
-// The GTR family evaluator (family.hpp): the generated tree and its stated bounds, and the checked calls.
+// The GTR family evaluator (family.hpp): the generated trees and their stated bounds, and the checked calls.
 #include "smithlab/gtr/family.hpp"
 
 #include "smithlab/errors.hpp"

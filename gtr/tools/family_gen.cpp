@@ -1,5 +1,5 @@
-// smithlab_family_gen OUT.cpp -- generates the GTR family evaluator's tree (family.hpp) at build time: every leaf's
-// polynomial, its estimate and its checks, and the asymptotes' bound, written as C++ (hex floats: exact).
+// smithlab_family_gen OUT.cpp -- generates the GTR family evaluator's two trees (family.hpp) at build time: every
+// leaf's polynomial, its estimate and its checks, and the asymptotes' bound, written as C++ (hex floats: exact).
 // Deterministic: the same file on any number of threads (the time it took is printed, not written).
 #include <algorithm>
 #include <array>
@@ -64,7 +64,7 @@ void strip(double alpha, double mu, const double* gamma, int n, double* out) {
 
 using Point = std::array<double, 3>;  // (a = ln alpha, gamma, z): z = xi = ln(mu / alpha) in chart 0, ln mu in chart 1
 double alpha_of(double a) { return std::min(1.0, std::exp(a)); }
-double ln_mu_of(int chart, double a, double z) { return chart == 0 ? std::log(alpha_of(a)) + z : z; }
+double ln_mu_of(int chart, double a, double z) { return chart == 0 ? a + z : z; }  // a <= 0 on every box
 double mu_of(int chart, double a, double z) { return std::exp(ln_mu_of(chart, a, z)); }
 
 struct Box {
@@ -89,7 +89,9 @@ double G1_factor(double ln_lambda_min, double ln_lambda_max) {
 struct Fit {
     smithlab::GtrFamilyLeaf leaf{};
     std::array<double, 3> estimate{};  // per axis
-    double est = 0.0, g1_factor = 0.0, check = 0.0, G1_check = 0.0;  // checks: the largest |error| of ln(mu Lambda), of G1
+    double est = 0.0, g1_factor = 0.0;
+    double check = 0.0, G1_check = 0.0;  // the largest |error| of ln(mu Lambda), of G1
+    double float_sum = 0.0;             // sum of |float terms|: rounding them moves the value by <= float_sum 2^-24
     bool ok = false;
 };
 
@@ -156,7 +158,8 @@ Fit fit(const Box& b) {
         double m = 0.0;
         for (int ci = i; ci <= D; ++ci)
             for (int cj = j; cj <= D - ci; ++cj)
-                for (int ck = k; ck <= D - ci - cj; ++ck) m += v[(ci * N + cj) * N + ck] * T[ci][i] * T[cj][j] * T[ck][k];
+                for (int ck = k; ck <= D - ci - cj; ++ck)
+                    m += v[(ci * N + cj) * N + ck] * T[ci][i] * T[cj][j] * T[ck][k];
         return m;
     };
     leaf.c0 = monomial(0, 0, 0);
@@ -164,6 +167,7 @@ Fit fit(const Box& b) {
     for (int q = 0; q < smithlab::GtrFamilyLeaf::n_higher; ++q) {
         const auto [i, j, k] = smithlab::gtr_family_plan.term[q];
         leaf.higher[q] = static_cast<float>(monomial(i, j, k));
+        r.float_sum += std::abs(static_cast<double>(leaf.higher[q]));
     }
     // checks on the box's 3 x 3 x 3 grid (corners, edge and face midpoints, centre: off the fit's points, the
     // corners where interpolation errors are largest) against the knots' route, in ln(mu Lambda) and in G1
@@ -250,16 +254,18 @@ int main(int argc, char** argv) {
     std::vector<int> no_leaf;  // the slots of boxes in the other chart's half
     std::vector<smithlab::GtrFamilyLeaf> leaf_data;
     std::size_t leaves = 0;
-    double est_max = 0.0, g1_est_max = 0.0, check_max = 0.0, g1_check_max = 0.0;
+    double est_max = 0.0, g1_est_max = 0.0, check_max = 0.0, g1_check_max = 0.0, float_sum_max = 0.0;
     int depth_max = 0;
     while (!pending.empty()) {
         std::vector<Fit> fits(pending.size());
-        parallel_for(pending.size(), [&](std::size_t i) { if (!other_half(pending[i])) fits[i] = fit(pending[i]); });
+        std::vector<char> no(pending.size());
+        for (std::size_t i = 0; i < pending.size(); ++i) no[i] = other_half(pending[i]);
+        parallel_for(pending.size(), [&](std::size_t i) { if (!no[i]) fits[i] = fit(pending[i]); });
         std::vector<Box> next;
         for (std::size_t i = 0; i < pending.size(); ++i) {
             const Box& b = pending[i];
             const Fit& f = fits[i];
-            if (other_half(b)) {
+            if (no[i]) {
                 no_leaf.push_back(b.slot);
                 continue;
             }
@@ -268,6 +274,7 @@ int main(int argc, char** argv) {
                 leaf_data.push_back(f.leaf);
                 est_max = std::max(est_max, f.est), g1_est_max = std::max(g1_est_max, f.est * f.g1_factor);
                 check_max = std::max(check_max, f.check), g1_check_max = std::max(g1_check_max, f.G1_check);
+                float_sum_max = std::max(float_sum_max, f.float_sum);
                 depth_max = std::max(depth_max, b.depth);
                 continue;
             }
@@ -311,16 +318,19 @@ int main(int argc, char** argv) {
         for (float c : l.higher) std::fprintf(out, "%af,", static_cast<double>(c));
         std::fprintf(out, "}},\n");
     }
-    std::fprintf(out, "{},\n};\n}  // namespace\n\nconst GtrFamilyData gtr_family_data = {nodes, %zu, leaves, %zu, %a, %d};\n\n"
+    std::fprintf(out, "{},\n};\n}  // namespace\n\n"
+                      "const GtrFamilyData gtr_family_data = {nodes, %zu, leaves, %zu, %a, %d};\n\n"
                       "}  // namespace smithlab\n",
                  nodes.size(), leaves, asymptotes, depth_max);
     if (std::fclose(out) != 0 || std::rename(tmp.c_str(), out_path.c_str()) != 0) {
         std::fprintf(stderr, "smithlab_family_gen: cannot write %s\n", out_path.c_str());
         return 1;
     }
-    std::printf("smithlab_family_gen: %zu leaves (%.1f MB), depth <= %d, estimates <= %.3g / %.3g (G1), checks <= "
-                "%.3g / %.3g, asymptotes %.3g, %.1f s\n",
-                leaves, static_cast<double>(leaf_data.size() * sizeof(smithlab::GtrFamilyLeaf) + nodes.size() * sizeof(smithlab::GtrFamilyNode)) / 1e6, depth_max, est_max, g1_est_max,
-                check_max, g1_check_max, asymptotes, seconds);
+    const double bytes = static_cast<double>(leaf_data.size() * sizeof(smithlab::GtrFamilyLeaf) +
+                                             nodes.size() * sizeof(smithlab::GtrFamilyNode));
+    std::printf("smithlab_family_gen: %zu leaves and %zu nodes (%.1f MB), depth <= %d, estimates <= %.3g / %.3g (G1), "
+                "checks <= %.3g / %.3g, float terms' |sum| <= %.3g (rounding <= %.2g), asymptotes %.3g, %.1f s\n",
+                leaves, nodes.size(), bytes / 1e6, depth_max, est_max, g1_est_max, check_max, g1_check_max,
+                float_sum_max, std::ldexp(float_sum_max, -24), asymptotes, seconds);
     return 0;
 }

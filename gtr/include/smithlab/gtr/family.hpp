@@ -1,4 +1,4 @@
-// smithlab/gtr/family.hpp -- Lambda and G1 of every GTR at once: one piecewise polynomial over (alpha, gamma, mu),
+// smithlab/gtr/family.hpp -- Lambda and G1 of every GTR at once: piecewise polynomials over (alpha, gamma, mu),
 // generated at build time (gtr/tools/family_gen.cpp) and compiled in, read-only, shared by every material and thread
 // (issue 14). No per-material work and no first-use build.
 //
@@ -11,7 +11,8 @@
 // Each feature is axis-aligned in its own chart; in one chart over (a, xi) the second runs diagonally, and resolving
 // it took 2.1x the leaves (14 237 against 6 712 at the same tolerance). Each chart is a k-d tree of boxes: a uniform
 // top grid (`top` boxes per axis), each box split in two at its middle, along one axis, until its polynomial is within
-// the tolerance; a box wholly in the other chart's half is no leaf (its node points at an empty leaf past the last).
+// the tolerance; a box wholly in the other chart's half is no leaf (its node points at an empty leaf past the last:
+// no point of the domain reaches it, a NaN may, and reads zeros).
 // Each leaf holds the polynomial of total degree `degree` in the box's coordinates s in [-1, 1]^3 (monomials
 // s0^i s1^j s2^k, i + j + k <= degree): the Chebyshev interpolant of degree degree + 1 on each axis (Trefethen 2013,
 // "Approximation Theory and Approximation Practice", ch. 3-4; tensor product of Chebyshev points of the first kind),
@@ -51,8 +52,8 @@ namespace smithlab {
 inline constexpr int gtr_family_degree = 6;  // each leaf's polynomial: total degree
 // One leaf: its box, and its polynomial in the box's coordinates s = (x - centre) * scale in [-1, 1]^3. The constant
 // and linear terms are doubles (they carry ln(mu Lambda), up to ~300, and its slopes, up to ~40); the rest are floats
-// (their magnitudes sum to < 2 on every leaf: rounding them moves the value by < 1.1e-7, and the generator's checks
-// are of these rounded values). Half the bytes of doubles: a leaf is ~7 cache lines, not 12.
+// (their magnitudes sum to <= 2.97 on every leaf, so rounding them moves the value by <= 1.8e-7: the generator prints
+// the figure, and its checks are of these rounded values). Half the bytes of doubles: ~7 cache lines a leaf, not 12.
 struct GtrFamilyLeaf {
     static constexpr int n_higher = (gtr_family_degree + 1) * (gtr_family_degree + 2) * (gtr_family_degree + 3) / 6 - 4;
     double centre[3], scale[3];
@@ -69,7 +70,7 @@ struct GtrFamilyPlan {
     static constexpr int n_rows = (degree + 1) * (degree + 2) / 2;  // the (i, j) with i + j <= degree
     std::array<int, n_rows> i{}, j{}, k0{}, length{};                        // per row, in (i, j) order
     std::array<int, n_rows> pair_a{}, pair_b{}, pair_at{}, single{}, single_at{};  // rows; where their terms start
-    int n_pairs = 0, n_singles = 0;
+    int n_pairs = 0, n_singles = 0, n_terms = 0;
     std::array<std::array<int, 3>, GtrFamilyLeaf::n_higher> term{};
 };
 constexpr GtrFamilyPlan make_gtr_family_plan() {
@@ -77,8 +78,10 @@ constexpr GtrFamilyPlan make_gtr_family_plan() {
     GtrFamilyPlan p;
     int row = 0;
     for (int i = 0; i <= degree; ++i)
-        for (int j = 0; j <= degree - i; ++j, ++row)
-            p.i[row] = i, p.j[row] = j, p.k0[row] = std::max(0, 2 - i - j), p.length[row] = degree - i - j - p.k0[row] + 1;
+        for (int j = 0; j <= degree - i; ++j, ++row) {
+            p.i[row] = i, p.j[row] = j, p.k0[row] = std::max(0, 2 - i - j);
+            p.length[row] = degree - i - j - p.k0[row] + 1;
+        }
     int at = 0;
     std::array<int, n_rows> odd{};
     int n_odd = 0;
@@ -104,9 +107,11 @@ constexpr GtrFamilyPlan make_gtr_family_plan() {
         p.single[p.n_singles] = r, p.single_at[p.n_singles++] = at;
         for (int t = 0; t < p.length[r]; ++t) p.term[at++] = {p.i[r], p.j[r], p.k0[r] + t};
     }
+    p.n_terms = at;
     return p;
 }
 inline constexpr GtrFamilyPlan gtr_family_plan = make_gtr_family_plan();
+static_assert(gtr_family_plan.n_terms == GtrFamilyLeaf::n_higher);  // every row placed once, in pairs or alone
 
 struct GtrFamilyNode {
     double split;       // an inner node: its children hold x[axis] < split and >= split
@@ -146,13 +151,15 @@ public:
     // Lambda at finite mu > 0 for alpha in [1e-4, 1], gamma in [0, 20]: nothing is checked here (see
     // Lambda_gtr_family for the checked call; a NaN gives some value, never a read out of bounds). No allocation,
     // exception or virtual call.
+    // The chart of (a = ln alpha, eta = ln mu): 0 below mu = sqrt(alpha), else 1 (NaN: 1).
+    static constexpr int chart_of(double a, double eta) { return eta < 0.5 * a ? 0 : 1; }
     double Lambda_up(double alpha, double gamma, double mu) const {
         const double a = std::log(alpha), eta = std::log(mu);
-        if (eta < 0.5 * a) {  // chart 0 (locate clamps xi to xi_lo); mu = 0: +inf
+        if (chart_of(a, eta) == 0) {  // locate clamps xi to xi_lo; mu = 0: +inf
             const double xi = eta - a, f = value(0, {a, gamma, xi});
             return xi < xi_lo ? (std::exp(f) + 0.5 * alpha * mu_lo_rel_) / mu - 0.5 : std::exp(f) / mu;
         }
-        const double f = value(1, {a, gamma, eta});  // chart 1 (locate clamps eta to eta_hi); mu = inf: 0
+        const double f = value(1, {a, gamma, eta});  // locate clamps eta to eta_hi; mu = inf: 0
         return std::exp(eta > eta_hi ? f - (eta - eta_hi) : f) / mu;
     }
     double G1_up(double alpha, double gamma, double mu) const { return 1.0 / (1.0 + Lambda_up(alpha, gamma, mu)); }
@@ -187,9 +194,10 @@ public:
     }
 
     // sum over i + j + k <= degree of c_ijk s0^i s1^j s2^k. The terms of degree >= 2 by rows (i, j): each row a
-    // polynomial in s2 (Horner), times s0^i s1^j s2^k0. Two rows of one length run in one two-lane vector (GCC/Clang
-    // vector extensions, SSE2 on x86-64), their floats widened four at a time: straight-line code, unrolled by index
-    // sequences over gtr_family_plan (18.9 ns alone, against 26.7 for one row at a time with scalar widening).
+    // polynomial in s2 (Horner), times s0^i s1^j s2^k0. Two rows of one length run in one two-lane vector (GCC >= 9
+    // and Clang vector extensions, which this header needs; SSE2 on x86-64), their floats widened four at a time:
+    // straight-line code, unrolled by index sequences over gtr_family_plan (~19 ns alone, against 26.7 for one row at
+    // a time with scalar widening).
     static double polynomial(const GtrFamilyLeaf& leaf, const std::array<double, 3>& s) {
         return polynomial(leaf, s, std::make_index_sequence<gtr_family_plan.n_pairs>{},
                           std::make_index_sequence<gtr_family_plan.n_singles>{});
