@@ -169,7 +169,7 @@ TEST_CASE("family: the stated bound holds at two random points of every leaf", "
             const std::array<double, 3> s = {u(rng), u(rng), u(rng)};
             const double a = box.centre[0] + s[0] / box.scale[0], gamma = box.centre[1] + s[1] / box.scale[1],
                          z = box.centre[2] + s[2] / box.scale[2];
-            const double alpha = std::min(1.0, std::exp(a)), mu = chart == 0 ? alpha * std::exp(z) : std::exp(z);
+            const double alpha = std::min(1.0, std::exp(a)), mu = std::exp(GtrFamily::ln_mu_of(chart, a, z));
             const double want = independent(alpha, gamma, mu);
             w.add(std::exp(GtrFamily::polynomial(box, s)) / mu, want, alpha, gamma, mu);
             // on the leaf's own side of the boundary, the whole call (chart, locate, polynomial, exp) as well
@@ -197,7 +197,7 @@ TEST_CASE("family: every point lands in its leaf's box", "[family]") {
     auto land = [&](double alpha, double gamma, double mu) {
         const double a = std::log(alpha), eta = std::log(mu);
         const int chart = GtrFamily::chart_of(a, eta);  // as Lambda_up
-        const GtrFamily::Located leaf = t.locate(chart, {a, gamma, chart == 0 ? eta - a : eta});
+        const GtrFamily::Located leaf = t.locate(chart, {a, gamma, GtrFamily::z_of(chart, a, eta)});
         for (double s : leaf.s) outside += !(std::abs(s) <= 1.0 + 1e-12);
         empty += leaf.leaf == &t.data().leaves[t.data().n_leaves];  // the empty leaf: a box in the other chart's half
     };

@@ -64,8 +64,7 @@ void strip(double alpha, double mu, const double* gamma, int n, double* out) {
 
 using Point = std::array<double, 3>;  // (a = ln alpha, gamma, z): z = xi = ln(mu / alpha) in chart 0, ln mu in chart 1
 double alpha_of(double a) { return std::min(1.0, std::exp(a)); }
-double ln_mu_of(int chart, double a, double z) { return chart == 0 ? a + z : z; }  // a <= 0 on every box
-double mu_of(int chart, double a, double z) { return std::exp(ln_mu_of(chart, a, z)); }
+double mu_of(int chart, double a, double z) { return std::exp(GtrFamily::ln_mu_of(chart, a, z)); }
 
 struct Box {
     int chart;
@@ -119,7 +118,8 @@ Fit fit(const Box& b) {
             strip(alpha_of(x[0][i]), mu_of(b.chart, x[0][i], x[2][k]), x[1].data(), N, out.data());
             for (int j = 0; j < N; ++j) {
                 v[(i * N + j) * N + k] = out[j];
-                const double ll = out[j] - ln_mu_of(b.chart, x[0][i], x[2][k]);  // ln Lambda = ln(mu Lambda) - ln mu
+                // ln Lambda = ln(mu Lambda) - ln mu
+                const double ll = out[j] - GtrFamily::ln_mu_of(b.chart, x[0][i], x[2][k]);
                 ll_min = std::min(ll_min, ll), ll_max = std::max(ll_max, ll);
             }
         }
@@ -181,7 +181,7 @@ Fit fit(const Box& b) {
                 const Point p = {a, g[j], z};
                 std::array<double, 3> s;
                 for (int d = 0; d < 3; ++d) s[d] = (p[d] - leaf.centre[d]) * leaf.scale[d];  // as GtrFamily::locate
-                const double got = GtrFamily::polynomial(leaf, s), ln_mu = ln_mu_of(b.chart, a, z);
+                const double got = GtrFamily::polynomial(leaf, s), ln_mu = GtrFamily::ln_mu_of(b.chart, a, z);
                 auto G1 = [&](double f) { return 1.0 / (1.0 + std::exp(f - ln_mu)); };
                 r.check = std::max(r.check, std::abs(got - want[j]));
                 r.G1_check = std::max(r.G1_check, std::abs(G1(got) - G1(want[j])));

@@ -151,12 +151,15 @@ public:
     // Lambda at finite mu > 0 for alpha in [1e-4, 1], gamma in [0, 20]: nothing is checked here (see
     // Lambda_gtr_family for the checked call; a NaN gives some value, never a read out of bounds). No allocation,
     // exception or virtual call.
-    // The chart of (a = ln alpha, eta = ln mu): 0 below mu = sqrt(alpha), else 1 (NaN: 1).
+    // The chart of (a = ln alpha, eta = ln mu): 0 below mu = sqrt(alpha), else 1 (NaN: 1); chart c's third coordinate
+    // z of (a, eta), and ln mu back from z (the generator's and the tests' one definition).
     static constexpr int chart_of(double a, double eta) { return eta < 0.5 * a ? 0 : 1; }
+    static constexpr double z_of(int c, double a, double eta) { return c == 0 ? eta - a : eta; }
+    static constexpr double ln_mu_of(int c, double a, double z) { return c == 0 ? a + z : z; }
     double Lambda_up(double alpha, double gamma, double mu) const {
         const double a = std::log(alpha), eta = std::log(mu);
         if (chart_of(a, eta) == 0) {  // locate clamps xi to xi_lo; mu = 0: +inf
-            const double xi = eta - a, f = value(0, {a, gamma, xi});
+            const double xi = z_of(0, a, eta), f = value(0, {a, gamma, xi});
             return xi < xi_lo ? (std::exp(f) + 0.5 * alpha * mu_lo_rel_) / mu - 0.5 : std::exp(f) / mu;
         }
         const double f = value(1, {a, gamma, eta});  // locate clamps eta to eta_hi; mu = inf: 0
