@@ -6,6 +6,7 @@
 #include <limits>
 #include <random>
 #include <smithlab/gtr/family.hpp>
+#include <smithlab/gtr/family_stream.hpp>
 #include <smithlab/smithlab.hpp>
 #include <thread>
 #include <vector>
@@ -212,4 +213,117 @@ TEST_CASE("family: every point lands in its leaf's box", "[family]") {
     }
     CHECK(outside == 0);
     CHECK(empty == 0);
+}
+
+// The stream route (family_stream.hpp): the same leaves by another route (eight lanes, libmvec's logs, a uniform grid
+// per top box instead of the descent), so the same G1 to rounding: |dG1| <= 1e-12 G1 (1 - G1) (relative dLambda
+// <= 1e-12) plus two ulps of 1; the special values exactly. Within a few ulps of the charts' boundary the two routes'
+// logs may pick different charts, whose leaves both hold there: checked against the independent route instead.
+TEST_CASE("family stream: the same G1 as one point at a time, over the whole domain and its corners", "[family]") {
+    const GtrFamily& t = GtrFamily::get();
+    const GtrFamilyStream& stream = GtrFamilyStream::get();
+    WARN("family stream: " << (stream.vectorized() ? "eight lanes (AVX-512)" : "one point at a time (no AVX-512)"));
+    std::vector<double> alpha, gamma, mu;
+    auto add = [&](double a, double g, double m) { alpha.push_back(a), gamma.push_back(g), mu.push_back(m); };
+    std::mt19937_64 rng(42);
+    std::uniform_real_distribution<double> log_alpha(std::log(1e-4), 0.0), gamma_u(0.0, 20.0), gamma_low(0.0, 3.0),
+        log_mu(-25.0, 25.0);
+    for (int i = 0; i < 20000; ++i)
+        add(std::exp(log_alpha(rng)), i % 3 == 0 ? gamma_low(rng) : gamma_u(rng), std::exp(log_mu(rng)));
+    for (double a : {1e-4, 1.5e-4, 0.999999, 1.0})
+        for (double g : {0.0, 1e-9, 1.0 - 1e-9, 1.0, 1.0 + 1e-9, 1.5, 2.0, 19.99, 20.0})
+            for (double m : {0.0, 5e-324, 1e-300, 1e-8, 1e-4, 1.0, 1e4, 1e8, 1e300, double(INFINITY)}) add(a, g, m);
+    const std::size_t n = mu.size();
+    std::vector<double> got(n);
+    stream.G1_up(alpha.data(), gamma.data(), mu.data(), got.data(), n);
+    double worst = 0.0;
+    std::size_t at = 0;
+    int special = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const double want = t.G1_up(alpha[i], gamma[i], mu[i]);
+        if (mu[i] == 0.0 || mu[i] == INFINITY) {
+            special += got[i] == (mu[i] == 0.0 ? 0.0 : 1.0);
+            continue;
+        }
+        const double allowed = 1e-12 * want * (1.0 - want) + 4.5e-16, ratio = std::abs(got[i] - want) / allowed;
+        if (ratio > worst) worst = ratio, at = i;
+    }
+    INFO("worst |dG1| over its allowance: " << worst << " at alpha " << alpha[at] << ", gamma " << gamma[at] << ", mu "
+                                            << mu[at] << ": " << got[at] << " against " << t.G1_up(alpha[at], gamma[at], mu[at]));
+    CHECK(worst <= 1.0);
+    CHECK(special == 4 * 9 * 2);
+
+    // any length: each point's value is its own (a short tail runs padded through the same route)
+    for (std::size_t m : {0, 1, 15, 16, 17, 31, 33}) {
+        std::vector<double> part(m, -1.0);
+        stream.G1_up(alpha.data() + 5, gamma.data() + 5, mu.data() + 5, part.data(), m);
+        for (std::size_t i = 0; i < m; ++i) CHECK(part[i] == got[5 + i]);
+    }
+    // at the charts' boundary, mu = sqrt(alpha), to the last ulp on either side: the stated bound
+    Worst w;
+    std::vector<double> a8(8), g8(8), m8(8), out8(8);
+    for (int i = 0; i < 300; ++i) {
+        const double a = std::exp(log_alpha(rng)), g = gamma_u(rng);
+        double m = std::sqrt(a);
+        for (int k = 0; k < 4; ++k) m = std::nextafter(m, 0.0);
+        for (int k = 0; k < 8; ++k, m = std::nextafter(m, 2.0)) a8[k] = a, g8[k] = g, m8[k] = m;
+        stream.G1_up(a8.data(), g8.data(), m8.data(), out8.data(), 8);
+        const double want = 1.0 / (1.0 + independent(a, g, std::sqrt(a)));
+        for (double o : out8) w.dG1 = std::max(w.dG1, std::abs(o - want));
+    }
+    INFO("at the charts' boundary: worst |dG1| " << w.dG1);
+    CHECK(w.dG1 <= t.G1_error_bound());
+
+    // in place (out == mu)
+    std::vector<double> in_place(mu.begin(), mu.begin() + 100);
+    stream.G1_up(alpha.data(), gamma.data(), in_place.data(), in_place.data(), in_place.size());
+    for (std::size_t i = 0; i < in_place.size(); ++i) CHECK(in_place[i] == got[i]);
+}
+
+TEST_CASE("family stream: the stated bound against independent routes", "[family]") {
+    const GtrFamily& t = GtrFamily::get();
+    std::mt19937_64 rng(43);
+    std::uniform_real_distribution<double> log_alpha(std::log(1e-4), 0.0), gamma_u(0.0, 20.0),
+        log_mu(std::log(1e-8), std::log(1e8));
+    std::vector<double> alpha, gamma, mu;
+    for (int i = 0; i < 400; ++i)
+        alpha.push_back(std::exp(log_alpha(rng))), gamma.push_back(gamma_u(rng)), mu.push_back(std::exp(log_mu(rng)));
+    std::vector<double> got(mu.size());
+    G1_gtr_family(alpha, gamma, mu, got);
+    double worst = 0.0;
+    for (std::size_t i = 0; i < mu.size(); ++i)
+        worst = std::max(worst, std::abs(got[i] - 1.0 / (1.0 + independent(alpha[i], gamma[i], mu[i]))));
+    WARN("family stream, 400 random points: worst |dG1| " << worst);
+    CHECK(worst <= t.G1_error_bound());
+}
+
+TEST_CASE("family stream: input rules (nothing written on bad input)", "[family]") {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    std::vector<double> alpha(20, 0.3), gamma(20, 1.7), mu(20, 0.6), out(20, -7.0);
+    auto says = [&](const char* what) {
+        try {
+            G1_gtr_family(alpha, gamma, mu, out);
+        } catch (const input_error& e) {
+            const bool named = std::string(e.what()).find(what) != std::string::npos;
+            INFO(e.what());
+            CHECK(named);
+            for (double o : out) CHECK(o == -7.0);
+            return named;
+        }
+        return false;
+    };
+    alpha[5] = nan;
+    CHECK(says("family: alpha[5] must be in [1e-4, 1]"));
+    alpha[5] = 0.3, gamma[2] = 21.0;
+    CHECK(says("family: gamma[2] must be in [0, 20]"));
+    gamma[2] = 1.7, mu[19] = nan;
+    CHECK(says("family: mu[19] is NaN"));
+    mu[19] = 0.6;
+    std::vector<double> short_out(19);
+    CHECK_THROWS_AS(G1_gtr_family(alpha, gamma, mu, short_out), input_error);
+    // G1 takes |mu|, as G1_gtr_family at one point
+    mu[3] = -0.6;
+    G1_gtr_family(alpha, gamma, mu, out);
+    for (double o : out) CHECK(o == out[0]);
+    CHECK(std::abs(out[0] - G1_gtr_family(0.3, 1.7, 0.6)) <= 1e-13);
 }

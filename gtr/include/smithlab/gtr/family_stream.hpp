@@ -1,0 +1,76 @@
+// smithlab/gtr/family_stream.hpp -- G1 of GTR for a stream of (alpha, gamma, mu) points: the family evaluator of
+// family.hpp, eight points at a time (issue 14, item 1: <= 30 ns a G1 on random streams; one call of
+// GtrFamily::G1_up is ~62 ns, a chain of dependent steps that a core cannot overlap with the next call's).
+//
+// Same leaves and the same stated bounds as GtrFamily (error_bound(), G1_error_bound()); what differs is the route
+// through them, so the two agree to rounding (~1e-13, tests/test_family.cpp), not bit for bit:
+//   1. eight points at once (AVX-512): ln alpha and ln mu (glibc's libmvec), the chart, each top box's leaves on a
+//      uniform grid at its finest split (built here from the k-d tree: no descent, no branch on the data), the
+//      asymptotes by max and select;
+//   2. point by point: the leaf's box coordinates s and its polynomial, its 80 float terms laid out by rows of one
+//      length side by side on eight lanes (a copy of family.hpp's leaves in that order; Horner in s2 on all lanes at
+//      once, each lane's s0^i s1^j s2^k0 from three permutes of the powers; the leaves are prefetched first);
+//   3. eight at once again: the exp and G1 = 1 / (1 - P/2 + (e^f + P alpha mu_lo / 2) / mu), P = 1 below xi_lo
+//      (family.hpp's lower asymptote), else 0.
+// Built at first use from the compiled-in data (a few ms; 3.4 MB of leaves in this layout, 47 kB of index), shared by
+// every thread. Where the CPU lacks AVX-512 (F, VL, DQ), or the build has no libmvec, the stream is G1_up point by
+// point: the same values, at the one-call speed.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace smithlab {
+
+// G1(alpha[i], gamma[i], |mu[i]|) into out[i] for every i: the checked stream call. Everything is checked before
+// anything is written: input_error for spans of different lengths, and naming the first offending item otherwise
+// ("family: alpha[3] must be in [1e-4, 1], got 0"; gamma as for alpha, in [0, 20]; "mu[7] is NaN"). mu = 0 gives 0,
+// |mu| = inf gives 1, as everywhere (smith.hpp).
+void G1_gtr_family(std::span<const double> alpha, std::span<const double> gamma, std::span<const double> mu,
+                   std::span<double> out);
+
+class GtrFamilyStream {
+public:
+    static const GtrFamilyStream& get();
+
+    // G1 at n points with alpha in [1e-4, 1], gamma in [0, 20], mu in [0, inf]: nothing is checked (a NaN gives some
+    // value, never a read out of bounds). out may be mu (in place). No allocation, exception or virtual call.
+    void G1_up(const double* alpha, const double* gamma, const double* mu, double* out, std::size_t n) const;
+    // Whether G1_up runs eight points at a time here (else it is GtrFamily::G1_up point by point).
+    bool vectorized() const { return vectorized_; }
+
+    // The layout G1_up's vector route reads (family_stream.cpp builds it; family_stream_avx512.cpp reads it).
+    // One leaf: its 80 terms of degree >= 2 on eight lanes, lane l of group g holding row (i, j) = lanes[g][l]:
+    // group 0 five Horner steps in s2, group 1 four, group 2 two, group 3 one (96 floats, zero where a row is
+    // shorter), then the box and the constant and linear terms (as GtrFamilyLeaf).
+    struct Leaf {
+        float c[96];
+        double centre[3], scale[3], c0, linear[3];
+        char pad[512 - 96 * sizeof(float) - 10 * sizeof(double)];
+    };
+    // One top box: where its grid of leaf numbers starts in `ids`, and its finest split per axis (2^depth cells).
+    struct Cell {
+        std::int32_t offset;
+        std::uint8_t depth[3], pad;
+    };
+    struct Lanes {
+        std::int64_t i[4][8], j[4][8], k0[4][8];  // row (i, j) of each lane and its first power of s2; 7: a zero lane
+        int steps[4];
+    };
+    const std::vector<Leaf>& leaves() const { return leaves_; }
+    const std::vector<Cell>& cells() const { return cells_; }
+    const std::vector<std::uint16_t>& ids() const { return ids_; }  // one past the last is a zero (32-bit gathers)
+    const Lanes& lanes() const { return lanes_; }
+
+private:
+    GtrFamilyStream();
+    std::vector<Leaf> leaves_;
+    std::vector<Cell> cells_;
+    std::vector<std::uint16_t> ids_;
+    Lanes lanes_{};
+    bool vectorized_ = false;
+};
+
+}  // namespace smithlab

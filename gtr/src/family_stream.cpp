@@ -1,0 +1,200 @@
+// The GTR family evaluator for streams (family_stream.hpp): the leaves in lanes, the uniform grid of each top box
+// (from family.hpp's k-d tree), the choice of route, and the checked call.
+#include "smithlab/gtr/family_stream.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+
+#include "smithlab/errors.hpp"
+#include "smithlab/gtr/family.hpp"
+
+namespace smithlab {
+
+#if SMITHLAB_FAMILY_AVX512
+void family_stream_avx512(const GtrFamilyStream& s, const double* alpha, const double* gamma, const double* mu,
+                          double* out, std::size_t n);  // family_stream_avx512.cpp: n a multiple of 16
+#endif
+
+namespace {
+
+// The rows (i, j) of the terms of degree >= 2 (i + j <= degree; k from k0 = max(0, 2 - i - j) to degree - i - j):
+// rows of length 5 (6 of them) and two of length 4 in group 0; the other two of length 4, the five of length 3 and one
+// of 2 in group 1; five of length 2 and three of 1 in group 2; four of length 1 in group 3, and four zero lanes.
+GtrFamilyStream::Lanes make_lanes() {
+    static_assert(gtr_family_degree == 6, "the lanes are laid out for total degree 6");
+    struct Row {
+        int i, j, k0;
+    };
+    std::array<std::vector<Row>, 6> by_length;
+    for (int i = 0; i <= gtr_family_degree; ++i)
+        for (int j = 0; j <= gtr_family_degree - i; ++j) {
+            const int k0 = std::max(0, 2 - i - j);
+            by_length[gtr_family_degree - i - j - k0 + 1].push_back({i, j, k0});
+        }
+    GtrFamilyStream::Lanes L{};
+    const int steps[4] = {5, 4, 2, 1};
+    const std::array<std::array<int, 8>, 4> lengths = {{{5, 5, 5, 5, 5, 5, 4, 4},
+                                                        {4, 4, 3, 3, 3, 3, 3, 2},
+                                                        {2, 2, 2, 2, 2, 1, 1, 1},
+                                                        {1, 1, 1, 1, 0, 0, 0, 0}}};
+    for (int g = 0; g < 4; ++g) {
+        L.steps[g] = steps[g];
+        for (int l = 0; l < 8; ++l) {
+            Row r{7, 7, 7};  // a zero lane: its coefficients are 0, its factor any power (s^7)
+            if (const int n = lengths[g][l]; n > 0) {
+                r = by_length[n].front();
+                by_length[n].erase(by_length[n].begin());
+            }
+            L.i[g][l] = r.i, L.j[g][l] = r.j, L.k0[g][l] = r.k0;
+        }
+    }
+    return L;
+}
+
+// Each top box's leaves on a uniform grid at its finest split per axis: the k-d tree's splits are at the middle of
+// their boxes, so each leaf is a block of the grid.
+void fill_grid(const GtrFamilyData& d, int node, std::array<int, 3> lo, std::array<int, 3> hi,
+               const GtrFamilyStream::Cell& cell, std::vector<std::uint16_t>& ids) {
+    const GtrFamilyNode& n = d.nodes[node];
+    if (n.next < 0) {
+        for (int i = lo[0]; i < hi[0]; ++i)
+            for (int j = lo[1]; j < hi[1]; ++j)
+                for (int k = lo[2]; k < hi[2]; ++k)
+                    ids[cell.offset + (((i << cell.depth[1]) + j) << cell.depth[2]) + k] =
+                        static_cast<std::uint16_t>(~n.next);
+        return;
+    }
+    const int middle = (lo[n.axis] + hi[n.axis]) / 2;
+    std::array<int, 3> hi_low = hi, lo_high = lo;
+    hi_low[n.axis] = lo_high[n.axis] = middle;
+    fill_grid(d, n.next, lo, hi_low, cell, ids);
+    fill_grid(d, n.next + 1, lo_high, hi, cell, ids);
+}
+void depths(const GtrFamilyData& d, int node, std::array<int, 3> here, std::array<int, 3>& most) {
+    const GtrFamilyNode& n = d.nodes[node];
+    if (n.next < 0) {
+        for (int a = 0; a < 3; ++a) most[a] = std::max(most[a], here[a]);
+        return;
+    }
+    ++here[n.axis];
+    depths(d, n.next, here, most);
+    depths(d, n.next + 1, here, most);
+}
+
+bool cpu_has_avx512() {
+#if SMITHLAB_FAMILY_AVX512
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+           __builtin_cpu_supports("avx512dq");
+#else
+    return false;
+#endif
+}
+
+}  // namespace
+
+const GtrFamilyStream& GtrFamilyStream::get() {
+    static const GtrFamilyStream stream;
+    return stream;
+}
+
+GtrFamilyStream::GtrFamilyStream() : lanes_(make_lanes()), vectorized_(cpu_has_avx512()) {
+    const GtrFamilyData& d = gtr_family_data;
+    if (d.n_leaves + 1 > 65535) {  // the leaf numbers are 16-bit
+        std::fprintf(stderr, "smithlab: the family data has %zu leaves, more than the stream's index holds\n",
+                     d.n_leaves);
+        std::abort();
+    }
+    // the leaves in lanes (the last, empty, stays zero)
+    std::array<std::array<std::array<int, 7>, 7>, 7> where{};  // (i, j, k) -> index in GtrFamilyLeaf::higher
+    for (int q = 0; q < GtrFamilyLeaf::n_higher; ++q) {
+        const auto& t = gtr_family_plan.term[q];
+        where[t[0]][t[1]][t[2]] = q;
+    }
+    leaves_.resize(d.n_leaves + 1);
+    std::memset(static_cast<void*>(leaves_.data()), 0, leaves_.size() * sizeof(Leaf));
+    for (std::size_t n = 0; n < d.n_leaves; ++n) {
+        const GtrFamilyLeaf& from = d.leaves[n];
+        Leaf& to = leaves_[n];
+        for (int a = 0; a < 3; ++a)
+            to.centre[a] = from.centre[a], to.scale[a] = from.scale[a], to.linear[a] = from.linear[a];
+        to.c0 = from.c0;
+        int at = 0;
+        for (int g = 0; g < 4; ++g) {
+            for (int t = 0; t < lanes_.steps[g]; ++t)
+                for (int l = 0; l < 8; ++l) {
+                    const int i = static_cast<int>(lanes_.i[g][l]), j = static_cast<int>(lanes_.j[g][l]);
+                    const int k = static_cast<int>(lanes_.k0[g][l]) + t;
+                    to.c[at + 8 * t + l] = i + j + k <= gtr_family_degree ? from.higher[where[i][j][k]] : 0.0f;
+                }
+            at += 8 * lanes_.steps[g];
+        }
+    }
+    // each top box's grid of leaf numbers
+    for (std::size_t top = 0; top < 2 * GtrFamily::top_cells; ++top) {
+        std::array<int, 3> most{};
+        depths(d, static_cast<int>(top), {0, 0, 0}, most);
+        const Cell cell{static_cast<std::int32_t>(ids_.size()),
+                        {static_cast<std::uint8_t>(most[0]), static_cast<std::uint8_t>(most[1]),
+                         static_cast<std::uint8_t>(most[2])},
+                        0};
+        cells_.push_back(cell);
+        ids_.resize(ids_.size() + (std::size_t{1} << (most[0] + most[1] + most[2])));
+        fill_grid(d, static_cast<int>(top), {0, 0, 0}, {1 << most[0], 1 << most[1], 1 << most[2]}, cell, ids_);
+    }
+    ids_.push_back(0);
+}
+
+void GtrFamilyStream::G1_up(const double* alpha, const double* gamma, const double* mu, double* out,
+                            std::size_t n) const {
+    std::size_t done = 0;
+#if SMITHLAB_FAMILY_AVX512
+    if (vectorized_) {
+        constexpr std::size_t block = 16;
+        done = n - n % block;
+        family_stream_avx512(*this, alpha, gamma, mu, out, done);
+        if (done < n) {  // the last few, padded with a point inside the domain
+            double a[block], g[block], m[block], o[block];
+            for (std::size_t i = 0; i < block; ++i) {
+                const bool in = done + i < n;
+                a[i] = in ? alpha[done + i] : 1.0, g[i] = in ? gamma[done + i] : 2.0, m[i] = in ? mu[done + i] : 1.0;
+            }
+            family_stream_avx512(*this, a, g, m, o, block);
+            std::copy(o, o + (n - done), out + done);
+            done = n;
+        }
+    }
+#endif
+    const GtrFamily& f = GtrFamily::get();
+    for (std::size_t i = done; i < n; ++i) out[i] = f.G1_up(alpha[i], gamma[i], mu[i]);
+}
+
+void G1_gtr_family(std::span<const double> alpha, std::span<const double> gamma, std::span<const double> mu,
+                   std::span<double> out) {
+    const std::size_t n = out.size();
+    if (alpha.size() != n || gamma.size() != n || mu.size() != n)
+        throw input_error("family: alpha, gamma, mu and out must be of one length, got " +
+                          std::to_string(alpha.size()) + ", " + std::to_string(gamma.size()) + ", " +
+                          std::to_string(mu.size()) + " and " + std::to_string(n));
+    for (std::size_t i = 0; i < n; ++i) {
+        if (!(alpha[i] >= GtrFamily::alpha_min && alpha[i] <= 1.0) ||
+            !(gamma[i] >= 0.0 && gamma[i] <= GtrFamily::gamma_max) || std::isnan(mu[i])) {
+            auto item = [i](const char* name) { return std::string(name) + '[' + std::to_string(i) + ']'; };
+            require(alpha[i] >= GtrFamily::alpha_min && alpha[i] <= 1.0, item("family: alpha"), "in [1e-4, 1]",
+                    alpha[i]);
+            require(gamma[i] >= 0.0 && gamma[i] <= GtrFamily::gamma_max, item("family: gamma"), "in [0, 20]",
+                    gamma[i]);
+            throw input_error(item("family: mu") + " is NaN");
+        }
+    }
+    // |mu| into out, then G1 over it in place (G1_up allows out == mu)
+    for (std::size_t i = 0; i < n; ++i) out[i] = std::abs(mu[i]);
+    GtrFamilyStream::get().G1_up(alpha.data(), gamma.data(), out.data(), out.data(), n);
+}
+
+}  // namespace smithlab
