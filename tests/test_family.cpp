@@ -248,8 +248,9 @@ TEST_CASE("family stream: the same G1 as one point at a time, over the whole dom
         const double allowed = 1e-12 * want * (1.0 - want) + 4.5e-16, ratio = std::abs(got[i] - want) / allowed;
         if (ratio > worst) worst = ratio, at = i;
     }
-    INFO("worst |dG1| over its allowance: " << worst << " at alpha " << alpha[at] << ", gamma " << gamma[at] << ", mu "
-                                            << mu[at] << ": " << got[at] << " against " << t.G1_up(alpha[at], gamma[at], mu[at]));
+    INFO("worst |dG1| over its allowance: " << worst << " at alpha " << alpha[at] << ", gamma " << gamma[at]
+                                            << ", mu " << mu[at] << ": " << got[at] << " against "
+                                            << t.G1_up(alpha[at], gamma[at], mu[at]));
     CHECK(worst <= 1.0);
     CHECK(special == 4 * 9 * 2);
 
@@ -278,6 +279,70 @@ TEST_CASE("family stream: the same G1 as one point at a time, over the whole dom
     std::vector<double> in_place(mu.begin(), mu.begin() + 100);
     stream.G1_up(alpha.data(), gamma.data(), in_place.data(), in_place.data(), in_place.size());
     for (std::size_t i = 0; i < in_place.size(); ++i) CHECK(in_place[i] == got[i]);
+}
+
+// The stream's two data structures by themselves (built only where the stream runs on eight lanes): the grid of each
+// top box gives a leaf whose box holds the point (the tree's own, away from edges), and each leaf's terms in lanes sum
+// to the leaf's polynomial (family.hpp's, in its stored order).
+TEST_CASE("family stream: its grids find the tree's leaves, its lanes hold their polynomials", "[family]") {
+    const GtrFamilyStream& stream = GtrFamilyStream::get();
+    if (!stream.vectorized()) {
+        WARN("family stream: no AVX-512 here, its layout is not built");
+        return;
+    }
+    const GtrFamily& t = GtrFamily::get();
+    const GtrFamilyData& d = t.data();
+    std::mt19937_64 rng(44);
+    std::uniform_real_distribution<double> u(0.0, 1.0), sym(-1.0, 1.0);
+    int other = 0, outside = 0;
+    for (int n = 0; n < 50000; ++n) {
+        const int c = n % 2;
+        std::array<double, 3> x;
+        for (int a = 0; a < 3; ++a) x[a] = GtrFamily::lo[c][a] + (GtrFamily::hi[c][a] - GtrFamily::lo[c][a]) * u(rng);
+        // the kernel's index, in scalar code
+        double tt[3];
+        int top[3], cell = 0;
+        for (int a = 0; a < 3; ++a) {
+            tt[a] = (x[a] - GtrFamily::lo[c][a]) * GtrFamily::inv_step(c, a);
+            top[a] = std::min(static_cast<int>(tt[a]), GtrFamily::top[a] - 1);
+            cell = cell * GtrFamily::top[a] + top[a];
+        }
+        const GtrFamilyStream::Cell& box = stream.cells()[c * GtrFamily::top_cells + cell];
+        int fine = 0;
+        for (int a = 0; a < 3; ++a) {
+            const int cells = 1 << box.depth[a];
+            fine = (fine << box.depth[a]) + std::min(static_cast<int>((tt[a] - top[a]) * cells), cells - 1);
+        }
+        const std::size_t id = stream.ids()[box.offset + fine];
+        const GtrFamily::Located tree = t.locate(c, x);
+        other += id != static_cast<std::size_t>(tree.leaf - d.leaves);
+        if (id < d.n_leaves)
+            for (int a = 0; a < 3; ++a)
+                outside += !(std::abs((x[a] - d.leaves[id].centre[a]) * d.leaves[id].scale[a]) <= 1.0 + 1e-12);
+    }
+    CHECK(other == 0);
+    CHECK(outside == 0);
+
+    const GtrFamilyStream::Lanes& lanes = stream.lanes();
+    double worst = 0.0;
+    for (int n = 0; n < 5000; ++n) {
+        const std::size_t leaf = rng() % d.n_leaves;
+        const std::array<double, 3> s3 = {sym(rng), sym(rng), sym(rng)};
+        const GtrFamilyStream::Leaf& l = stream.leaves()[leaf];
+        double sum = l.c0 + l.linear[0] * s3[0] + l.linear[1] * s3[1] + l.linear[2] * s3[2];
+        for (int g = 0; g < 4; ++g)
+            for (int lane = 0; lane < 8; ++lane) {
+                double h = 0.0;
+                for (int k = GtrFamilyStream::Lanes::steps[g] - 1; k >= 0; --k)
+                    h = h * s3[2] + l.c[GtrFamilyStream::Lanes::offset[g] + 8 * k + lane];
+                sum += h * std::pow(s3[0], lanes.i[g][lane]) * std::pow(s3[1], lanes.j[g][lane]) *
+                       std::pow(s3[2], lanes.k0[g][lane]);
+            }
+        const double want = GtrFamily::polynomial(d.leaves[leaf], s3);
+        worst = std::max(worst, std::abs(sum - want) / (1.0 + std::abs(want)));
+    }
+    INFO("worst difference of the lanes' sum from the leaf's polynomial: " << worst);
+    CHECK(worst <= 1e-13);
 }
 
 TEST_CASE("family stream: the stated bound against independent routes", "[family]") {

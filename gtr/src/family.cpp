@@ -12,7 +12,7 @@ const GtrFamily& GtrFamily::get() {
 
 GtrFamily::GtrFamily() : data_(gtr_family_data) {
     for (int c = 0; c < 2; ++c)
-        for (int d = 0; d < 3; ++d) inv_step_[c][d] = top[d] / (hi[c][d] - lo[c][d]);
+        for (int d = 0; d < 3; ++d) inv_step_[c][d] = inv_step(c, d);
     mu_lo_rel_ = std::exp(xi_lo);
     // the leaves are checked to twice the tolerances on their 3 x 3 x 3 grids (family_gen.cpp)
     error_bound_ = 2.0 * tolerance + data_.asymptote_bound;
@@ -20,8 +20,8 @@ GtrFamily::GtrFamily() : data_(gtr_family_data) {
 }
 
 void require_gtr_family_domain(double alpha, double gamma) {
-    require(alpha >= GtrFamily::alpha_min && alpha <= 1.0, "family: alpha", "in [1e-4, 1]", alpha);
-    require(gamma >= 0.0 && gamma <= GtrFamily::gamma_max, "family: gamma", "in [0, 20]", gamma);
+    require(GtrFamily::alpha_in_domain(alpha), "family: alpha", "in [1e-4, 1]", alpha);
+    require(GtrFamily::gamma_in_domain(gamma), "family: gamma", "in [0, 20]", gamma);
 }
 
 double Lambda_gtr_family(double alpha, double gamma, double mu, Downward downward) {

@@ -5,8 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
+#include <cstdint>
 #include <cstring>
 #include <string>
 
@@ -37,13 +36,11 @@ GtrFamilyStream::Lanes make_lanes() {
             by_length[gtr_family_degree - i - j - k0 + 1].push_back({i, j, k0});
         }
     GtrFamilyStream::Lanes L{};
-    const int steps[4] = {5, 4, 2, 1};
     const std::array<std::array<int, 8>, 4> lengths = {{{5, 5, 5, 5, 5, 5, 4, 4},
                                                         {4, 4, 3, 3, 3, 3, 3, 2},
                                                         {2, 2, 2, 2, 2, 1, 1, 1},
                                                         {1, 1, 1, 1, 0, 0, 0, 0}}};
     for (int g = 0; g < 4; ++g) {
-        L.steps[g] = steps[g];
         for (int l = 0; l < 8; ++l) {
             Row r{7, 7, 7};  // a zero lane: its coefficients are 0, its factor any power (s^7)
             if (const int n = lengths[g][l]; n > 0) {
@@ -89,8 +86,7 @@ void depths(const GtrFamilyData& d, int node, std::array<int, 3> here, std::arra
 bool cpu_has_avx512() {
 #if SMITHLAB_FAMILY_AVX512
     __builtin_cpu_init();
-    return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
-           __builtin_cpu_supports("avx512dq");
+    return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl");
 #else
     return false;
 #endif
@@ -104,11 +100,20 @@ const GtrFamilyStream& GtrFamilyStream::get() {
 }
 
 GtrFamilyStream::GtrFamilyStream() : lanes_(make_lanes()), vectorized_(cpu_has_avx512()) {
+    if (!vectorized_) return;  // the stream is GtrFamily::G1_up point by point: nothing here is read
     const GtrFamilyData& d = gtr_family_data;
-    if (d.n_leaves + 1 > 65535) {  // the leaf numbers are 16-bit
-        std::fprintf(stderr, "smithlab: the family data has %zu leaves, more than the stream's index holds\n",
-                     d.n_leaves);
-        std::abort();
+    // each top box's finest split per axis; the grid's leaf numbers are 16-bit, its cells counted in 32 bits
+    std::vector<std::array<int, 3>> most(2 * GtrFamily::top_cells);
+    std::size_t cells = 0;
+    for (std::size_t top = 0; top < most.size(); ++top) {
+        depths(d, static_cast<int>(top), {0, 0, 0}, most[top]);
+        const int splits = most[top][0] + most[top][1] + most[top][2];
+        if (splits > 20) cells = SIZE_MAX;
+        else cells += std::size_t{1} << splits;
+    }
+    if (d.n_leaves > 65535 || cells > (std::size_t{1} << 30)) {  // data this index cannot hold: one point at a time
+        vectorized_ = false;
+        return;
     }
     // the leaves in lanes (the last, empty, stays zero)
     std::array<std::array<std::array<int, 7>, 7>, 7> where{};  // (i, j, k) -> index in GtrFamilyLeaf::higher
@@ -117,35 +122,30 @@ GtrFamilyStream::GtrFamilyStream() : lanes_(make_lanes()), vectorized_(cpu_has_a
         where[t[0]][t[1]][t[2]] = q;
     }
     leaves_.resize(d.n_leaves + 1);
-    std::memset(static_cast<void*>(leaves_.data()), 0, leaves_.size() * sizeof(Leaf));
     for (std::size_t n = 0; n < d.n_leaves; ++n) {
         const GtrFamilyLeaf& from = d.leaves[n];
         Leaf& to = leaves_[n];
         for (int a = 0; a < 3; ++a)
             to.centre[a] = from.centre[a], to.scale[a] = from.scale[a], to.linear[a] = from.linear[a];
         to.c0 = from.c0;
-        int at = 0;
-        for (int g = 0; g < 4; ++g) {
-            for (int t = 0; t < lanes_.steps[g]; ++t)
+        for (int g = 0; g < 4; ++g)
+            for (int t = 0; t < Lanes::steps[g]; ++t)
                 for (int l = 0; l < 8; ++l) {
                     const int i = static_cast<int>(lanes_.i[g][l]), j = static_cast<int>(lanes_.j[g][l]);
                     const int k = static_cast<int>(lanes_.k0[g][l]) + t;
-                    to.c[at + 8 * t + l] = i + j + k <= gtr_family_degree ? from.higher[where[i][j][k]] : 0.0f;
+                    to.c[Lanes::offset[g] + 8 * t + l] =
+                        i + j + k <= gtr_family_degree ? from.higher[where[i][j][k]] : 0.0f;
                 }
-            at += 8 * lanes_.steps[g];
-        }
     }
     // each top box's grid of leaf numbers
-    for (std::size_t top = 0; top < 2 * GtrFamily::top_cells; ++top) {
-        std::array<int, 3> most{};
-        depths(d, static_cast<int>(top), {0, 0, 0}, most);
-        const Cell cell{static_cast<std::int32_t>(ids_.size()),
-                        {static_cast<std::uint8_t>(most[0]), static_cast<std::uint8_t>(most[1]),
-                         static_cast<std::uint8_t>(most[2])},
-                        0};
+    ids_.reserve(cells + 1);
+    for (std::size_t top = 0; top < most.size(); ++top) {
+        const auto& m = most[top];
+        const auto depth = [&](int a) { return static_cast<std::uint8_t>(m[a]); };
+        const Cell cell{static_cast<std::int32_t>(ids_.size()), {depth(0), depth(1), depth(2)}, 0};
         cells_.push_back(cell);
-        ids_.resize(ids_.size() + (std::size_t{1} << (most[0] + most[1] + most[2])));
-        fill_grid(d, static_cast<int>(top), {0, 0, 0}, {1 << most[0], 1 << most[1], 1 << most[2]}, cell, ids_);
+        ids_.resize(ids_.size() + (std::size_t{1} << (m[0] + m[1] + m[2])));
+        fill_grid(d, static_cast<int>(top), {0, 0, 0}, {1 << m[0], 1 << m[1], 1 << m[2]}, cell, ids_);
     }
     ids_.push_back(0);
 }
@@ -171,7 +171,7 @@ void GtrFamilyStream::G1_up(const double* alpha, const double* gamma, const doub
     }
 #endif
     const GtrFamily& f = GtrFamily::get();
-    for (std::size_t i = done; i < n; ++i) out[i] = f.G1_up(alpha[i], gamma[i], mu[i]);
+    for (std::size_t i = done; i < n; ++i) out[i] = f.G1_up(alpha[i], gamma[i], std::abs(mu[i]));
 }
 
 void G1_gtr_family(std::span<const double> alpha, std::span<const double> gamma, std::span<const double> mu,
@@ -181,20 +181,29 @@ void G1_gtr_family(std::span<const double> alpha, std::span<const double> gamma,
         throw input_error("family: alpha, gamma, mu and out must be of one length, got " +
                           std::to_string(alpha.size()) + ", " + std::to_string(gamma.size()) + ", " +
                           std::to_string(mu.size()) + " and " + std::to_string(n));
-    for (std::size_t i = 0; i < n; ++i) {
-        if (!(alpha[i] >= GtrFamily::alpha_min && alpha[i] <= 1.0) ||
-            !(gamma[i] >= 0.0 && gamma[i] <= GtrFamily::gamma_max) || std::isnan(mu[i])) {
+    // one pass two points at a time with no branch on the data, then the first offending item, if any
+    typedef double v2d __attribute__((vector_size(16)));
+    typedef long long v2l __attribute__((vector_size(16)));
+    v2l lanes_good = {-1, -1};
+    std::size_t i = 0;
+    for (; i + 2 <= n; i += 2) {
+        v2d a, g, m;
+        std::memcpy(&a, alpha.data() + i, sizeof a), std::memcpy(&g, gamma.data() + i, sizeof g);
+        std::memcpy(&m, mu.data() + i, sizeof m);
+        lanes_good &= GtrFamily::alpha_in_domain(a) & GtrFamily::gamma_in_domain(g) & (m == m);
+    }
+    bool good = lanes_good[0] & lanes_good[1];
+    for (; i < n; ++i)
+        good &= GtrFamily::alpha_in_domain(alpha[i]) & GtrFamily::gamma_in_domain(gamma[i]) & (mu[i] == mu[i]);
+    for (std::size_t i = 0; !good && i < n; ++i) {
+        if (!GtrFamily::alpha_in_domain(alpha[i]) || !GtrFamily::gamma_in_domain(gamma[i]) || std::isnan(mu[i])) {
             auto item = [i](const char* name) { return std::string(name) + '[' + std::to_string(i) + ']'; };
-            require(alpha[i] >= GtrFamily::alpha_min && alpha[i] <= 1.0, item("family: alpha"), "in [1e-4, 1]",
-                    alpha[i]);
-            require(gamma[i] >= 0.0 && gamma[i] <= GtrFamily::gamma_max, item("family: gamma"), "in [0, 20]",
-                    gamma[i]);
+            require(GtrFamily::alpha_in_domain(alpha[i]), item("family: alpha"), "in [1e-4, 1]", alpha[i]);
+            require(GtrFamily::gamma_in_domain(gamma[i]), item("family: gamma"), "in [0, 20]", gamma[i]);
             throw input_error(item("family: mu") + " is NaN");
         }
     }
-    // |mu| into out, then G1 over it in place (G1_up allows out == mu)
-    for (std::size_t i = 0; i < n; ++i) out[i] = std::abs(mu[i]);
-    GtrFamilyStream::get().G1_up(alpha.data(), gamma.data(), out.data(), out.data(), n);
+    GtrFamilyStream::get().G1_up(alpha.data(), gamma.data(), mu.data(), out.data(), n);
 }
 
 }  // namespace smithlab

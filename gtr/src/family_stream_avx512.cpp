@@ -1,4 +1,4 @@
-// The stream route of family_stream.hpp on AVX-512 (F, VL, DQ), chosen at run time (GtrFamilyStream::vectorized):
+// The stream route of family_stream.hpp on AVX-512 (F and VL), chosen at run time (GtrFamilyStream::vectorized):
 // sixteen points a block, eight lanes at a time. Built only where libmvec is (glibc on x86-64); every function here
 // carries its target, so the rest of smithlab stays baseline x86-64.
 #include <immintrin.h>
@@ -8,7 +8,8 @@
 #include "smithlab/gtr/family.hpp"
 #include "smithlab/gtr/family_stream.hpp"
 
-// glibc's vector math (libmvec, x86-64 vector function ABI): ln and exp on eight doubles, within 4 ulp.
+// glibc's vector math (libmvec; its names are the x86-64 vector function ABI's, which glibc's own headers declare
+// only under -ffast-math): ln and exp on eight doubles, within 4 ulp.
 extern "C" __m512d _ZGVeN8v_log(__m512d);
 extern "C" __m512d _ZGVeN8v_exp(__m512d);
 
@@ -16,18 +17,15 @@ namespace smithlab {
 
 namespace {
 
-// 1 / a top box's width, as GtrFamily's constructor has it
-constexpr double inv_step(int c, int d) { return GtrFamily::top[d] / (GtrFamily::hi[c][d] - GtrFamily::lo[c][d]); }
-
 // (1, x, x^2, ..., x^7)
-[[gnu::target("avx512f,avx512vl,avx512dq,avx2,fma"), gnu::always_inline]] inline __m512d powers(double x) {
+[[gnu::target("avx512f,avx512vl,avx2,fma"), gnu::always_inline]] inline __m512d powers(double x) {
     const __m512d X = _mm512_set1_pd(x), one = _mm512_set1_pd(1.0);
     const __m512d x2 = _mm512_mul_pd(X, X), x4 = _mm512_mul_pd(x2, x2);
     const __m512d a = _mm512_mask_blend_pd(0xAA, one, X), b = _mm512_mask_blend_pd(0xCC, one, x2);
     return _mm512_mul_pd(_mm512_mul_pd(a, b), _mm512_mask_blend_pd(0xF0, one, x4));
 }
 
-[[gnu::target("avx512f,avx512vl,avx512dq,avx2,fma"), gnu::always_inline]] inline __m512d terms(
+[[gnu::target("avx512f,avx512vl,avx2,fma"), gnu::always_inline]] inline __m512d terms(
     const float* c) {
     return _mm512_cvtps_pd(_mm256_loadu_ps(c));
 }
@@ -36,24 +34,24 @@ struct LaneIndex {
     __m512i i[4], j[4], k0[4];
 };
 
-// ln(mu Lambda) of one point: the leaf's constant and linear terms, and its 80 others on eight lanes (family_stream.hpp:
-// Horner in s2 for each group's rows, times each row's s0^i s1^j s2^k0, summed over the lanes).
-[[gnu::target("avx512f,avx512vl,avx512dq,avx2,fma"), gnu::always_inline]] inline double polynomial(
+// ln(mu Lambda) of one point: the leaf's constant and linear terms, and its 80 others on eight lanes
+// (family_stream.hpp; Horner in s2 for each group's rows, times each row's s0^i s1^j s2^k0, summed over the lanes).
+[[gnu::target("avx512f,avx512vl,avx2,fma"), gnu::always_inline]] inline double polynomial(
     const GtrFamilyStream::Leaf& leaf, const double s[3], const LaneIndex& L) {
     const __m512d P0 = powers(s[0]), P1 = powers(s[1]), P2 = powers(s[2]), s2 = _mm512_set1_pd(s[2]);
     __m512d factor[4];
     for (int g = 0; g < 4; ++g)
         factor[g] = _mm512_mul_pd(_mm512_mul_pd(_mm512_permutexvar_pd(L.i[g], P0), _mm512_permutexvar_pd(L.j[g], P1)),
                                   _mm512_permutexvar_pd(L.k0[g], P2));
-    const float* c = leaf.c;
-    __m512d h0 = terms(c + 32);  // group 0: floats 0..39, five steps
-    for (int t = 3; t >= 0; --t) h0 = _mm512_fmadd_pd(h0, s2, terms(c + 8 * t));
-    __m512d h1 = terms(c + 64);  // group 1: floats 40..71, four steps
-    for (int t = 2; t >= 0; --t) h1 = _mm512_fmadd_pd(h1, s2, terms(c + 40 + 8 * t));
-    const __m512d h2 = _mm512_fmadd_pd(terms(c + 80), s2, terms(c + 72));  // group 2: floats 72..87
-    const __m512d h3 = terms(c + 88);                                        // group 3: floats 88..95
-    const __m512d sum = _mm512_add_pd(_mm512_fmadd_pd(h0, factor[0], _mm512_mul_pd(h1, factor[1])),
-                                      _mm512_fmadd_pd(h2, factor[2], _mm512_mul_pd(h3, factor[3])));
+    using Lanes = GtrFamilyStream::Lanes;
+    __m512d h[4];
+    for (int g = 0; g < 4; ++g) {
+        const float* c = leaf.c + Lanes::offset[g];
+        h[g] = terms(c + 8 * (Lanes::steps[g] - 1));
+        for (int t = Lanes::steps[g] - 2; t >= 0; --t) h[g] = _mm512_fmadd_pd(h[g], s2, terms(c + 8 * t));
+    }
+    const __m512d sum = _mm512_add_pd(_mm512_fmadd_pd(h[0], factor[0], _mm512_mul_pd(h[1], factor[1])),
+                                      _mm512_fmadd_pd(h[2], factor[2], _mm512_mul_pd(h[3], factor[3])));
     return (leaf.c0 + leaf.linear[0] * s[0]) + (leaf.linear[1] * s[1] + leaf.linear[2] * s[2]) +
            _mm512_reduce_add_pd(sum);
 }
@@ -61,7 +59,7 @@ struct LaneIndex {
 }  // namespace
 
 // n: a multiple of 16. G1 as family.hpp's GtrFamily::G1_up, the same leaves, by the route of family_stream.hpp.
-[[gnu::target("avx512f,avx512vl,avx512dq,avx2,fma")]] void family_stream_avx512(
+[[gnu::target("avx512f,avx512vl,avx2,fma")]] void family_stream_avx512(
     const GtrFamilyStream& stream, const double* alpha, const double* gamma, const double* mu, double* out,
     std::size_t n) {
     constexpr int block = 16;
@@ -75,7 +73,7 @@ struct LaneIndex {
     const GtrFamilyStream::Leaf* leaves = stream.leaves().data();
     const long long* cells = reinterpret_cast<const long long*>(stream.cells().data());
     const int* ids = reinterpret_cast<const int*>(stream.ids().data());
-    const double mu_lo_rel = std::exp(GtrFamily::xi_lo);
+    const double mu_lo_rel = GtrFamily::get().mu_lo_rel();
     const __m512d half = _mm512_set1_pd(0.5), one = _mm512_set1_pd(1.0), zero = _mm512_setzero_pd();
 
     alignas(64) double x[3][block], shift[block], below[block], f[block];
@@ -85,7 +83,7 @@ struct LaneIndex {
         //    cell in the box's grid, the leaf; the asymptotes' flags
         for (int h = 0; h < block; h += 8) {
             const __m512d a = _ZGVeN8v_log(_mm512_loadu_pd(alpha + b + h));
-            const __m512d eta = _ZGVeN8v_log(_mm512_loadu_pd(mu + b + h));
+            const __m512d eta = _ZGVeN8v_log(_mm512_abs_pd(_mm512_loadu_pd(mu + b + h)));
             // GtrFamily::chart_of: chart 1 unless eta < a/2 (NaN: 1); z = xi = eta - a in chart 0, eta in chart 1
             const __mmask8 c1 = _mm512_cmp_pd_mask(eta, _mm512_mul_pd(half, a), _CMP_NLT_UQ);
             const __m512d z = _mm512_mask_sub_pd(eta, static_cast<__mmask8>(~c1), eta, a);
@@ -97,7 +95,8 @@ struct LaneIndex {
                                                         _mm512_set1_pd(GtrFamily::lo[1][d]));
                 const __m512d hi = _mm512_mask_blend_pd(c1, _mm512_set1_pd(GtrFamily::hi[0][d]),
                                                         _mm512_set1_pd(GtrFamily::hi[1][d]));
-                const __m512d inv = _mm512_mask_blend_pd(c1, _mm512_set1_pd(inv_step(0, d)), _mm512_set1_pd(inv_step(1, d)));
+                const __m512d inv = _mm512_mask_blend_pd(c1, _mm512_set1_pd(GtrFamily::inv_step(0, d)),
+                                                         _mm512_set1_pd(GtrFamily::inv_step(1, d)));
                 // as GtrFamily::locate: x >= lo ? min(x, hi) : lo (NaN to lo)
                 const __mmask8 above = _mm512_cmp_pd_mask(coordinate[d], lo, _CMP_GE_OQ);
                 const __m512d xc = _mm512_mask_blend_pd(above, lo, _mm512_min_pd(coordinate[d], hi));
@@ -128,7 +127,8 @@ struct LaneIndex {
             const __m256i leaf = _mm256_and_si256(
                 _mm256_i32gather_epi32(ids, _mm256_add_epi32(offset, fine), 2), _mm256_set1_epi32(0xFFFF));
             _mm256_store_si256(reinterpret_cast<__m256i*>(id + h), leaf);
-            // family.hpp's asymptotes: below xi_lo in chart 0 (flag), beyond eta_hi (slope -1 in ln mu)
+            // family.hpp's asymptotes: below xi_lo in chart 0 (a flag), beyond eta_hi (slope -1 in ln mu: a shift
+            // min(0, eta_hi - eta) of ln(mu Lambda))
             const __mmask8 low = _mm512_kandn(c1, _mm512_cmp_pd_mask(z, _mm512_set1_pd(GtrFamily::xi_lo), _CMP_LT_OQ));
             _mm512_store_pd(below + h, _mm512_maskz_mov_pd(low, one));
             _mm512_store_pd(shift + h,
@@ -150,7 +150,8 @@ struct LaneIndex {
             const __m512d e = _ZGVeN8v_exp(_mm512_load_pd(f + h)), P = _mm512_load_pd(below + h);
             const __m512d k = _mm512_mul_pd(_mm512_mul_pd(P, _mm512_loadu_pd(alpha + b + h)),
                                             _mm512_set1_pd(0.5 * mu_lo_rel));
-            const __m512d Lambda = _mm512_sub_pd(_mm512_div_pd(_mm512_add_pd(e, k), _mm512_loadu_pd(mu + b + h)),
+            const __m512d m = _mm512_abs_pd(_mm512_loadu_pd(mu + b + h));
+            const __m512d Lambda = _mm512_sub_pd(_mm512_div_pd(_mm512_add_pd(e, k), m),
                                                  _mm512_mul_pd(half, P));
             _mm512_storeu_pd(out + b + h, _mm512_div_pd(one, _mm512_add_pd(one, Lambda)));
         }

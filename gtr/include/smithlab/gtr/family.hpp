@@ -142,6 +142,14 @@ public:
     static constexpr std::array<std::array<double, 3>, 2> hi = {
         {{0.0, gamma_max, -0.5 * a_lo}, {0.0, gamma_max, eta_hi}}};
     static constexpr std::size_t top_cells = static_cast<std::size_t>(top[0]) * top[1] * top[2];
+    // 1 / the width of chart c's top boxes along axis d (x -> top box: (x - lo) * inv_step)
+    static constexpr double inv_step(int c, int d) { return top[d] / (hi[c][d] - lo[c][d]); }
+    // The domain (the checked calls' rules): alpha in [1e-4, 1], gamma in [0, 20]; NaN is outside. For a double, or
+    // lane by lane for a vector of them (GCC/Clang vector extensions: a mask).
+    template <class T>
+    static constexpr auto alpha_in_domain(T alpha) { return (alpha >= alpha_min) & (alpha <= 1.0); }
+    template <class T>
+    static constexpr auto gamma_in_domain(T gamma) { return (gamma >= 0.0) & (gamma <= gamma_max); }
     // A leaf's estimate is at most `tolerance` relative in Lambda and `G1_tolerance` in G1; its checks at most twice.
     static constexpr double tolerance = 4e-6;
     static constexpr double G1_tolerance = 4e-7;
@@ -265,6 +273,8 @@ private:
 public:
     // The stated bound on the relative error of Lambda, anywhere in the domain, and on |dG1|.
     double error_bound() const { return error_bound_; }
+    // e^xi_lo: mu / alpha where the lower asymptote begins (Lambda_up)
+    double mu_lo_rel() const { return mu_lo_rel_; }
     double G1_error_bound() const { return G1_error_bound_; }
     const GtrFamilyData& data() const { return data_; }
     std::size_t bytes() const {

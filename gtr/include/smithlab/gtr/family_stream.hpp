@@ -3,18 +3,20 @@
 // GtrFamily::G1_up is ~62 ns, a chain of dependent steps that a core cannot overlap with the next call's).
 //
 // Same leaves and the same stated bounds as GtrFamily (error_bound(), G1_error_bound()); what differs is the route
-// through them, so the two agree to rounding (~1e-13, tests/test_family.cpp), not bit for bit:
+// through them, so the two agree to rounding (1e-12 relative in Lambda, tests/test_family.cpp), not bit for bit, but
+// for points within a few ulps of a box's edge (the charts' boundary included), where the two may pick neighbouring
+// leaves, both of which hold there:
 //   1. eight points at once (AVX-512): ln alpha and ln mu (glibc's libmvec), the chart, each top box's leaves on a
 //      uniform grid at its finest split (built here from the k-d tree: no descent, no branch on the data), the
-//      asymptotes by max and select;
+//      asymptotes by min and a masked move;
 //   2. point by point: the leaf's box coordinates s and its polynomial, its 80 float terms laid out by rows of one
 //      length side by side on eight lanes (a copy of family.hpp's leaves in that order; Horner in s2 on all lanes at
 //      once, each lane's s0^i s1^j s2^k0 from three permutes of the powers; the leaves are prefetched first);
 //   3. eight at once again: the exp and G1 = 1 / (1 - P/2 + (e^f + P alpha mu_lo / 2) / mu), P = 1 below xi_lo
 //      (family.hpp's lower asymptote), else 0.
 // Built at first use from the compiled-in data (a few ms; 3.4 MB of leaves in this layout, 47 kB of index), shared by
-// every thread. Where the CPU lacks AVX-512 (F, VL, DQ), or the build has no libmvec, the stream is G1_up point by
-// point: the same values, at the one-call speed.
+// every thread. Where the CPU lacks AVX-512 (F and VL), or the build has no libmvec (glibc's, x86-64), the stream is
+// GtrFamily::G1_up point by point, and none of this is built: the same values, at the one-call speed.
 #pragma once
 
 #include <cstddef>
@@ -35,8 +37,9 @@ class GtrFamilyStream {
 public:
     static const GtrFamilyStream& get();
 
-    // G1 at n points with alpha in [1e-4, 1], gamma in [0, 20], mu in [0, inf]: nothing is checked (a NaN gives some
-    // value, never a read out of bounds). out may be mu (in place). No allocation, exception or virtual call.
+    // G1 at n points (alpha[i], gamma[i], |mu[i]|), alpha in [1e-4, 1], gamma in [0, 20]: nothing is checked (a NaN
+    // gives some value, never a read out of bounds). out may be any of the inputs (in place). No allocation,
+    // exception or virtual call.
     void G1_up(const double* alpha, const double* gamma, const double* mu, double* out, std::size_t n) const;
     // Whether G1_up runs eight points at a time here (else it is GtrFamily::G1_up point by point).
     bool vectorized() const { return vectorized_; }
@@ -45,20 +48,22 @@ public:
     // One leaf: its 80 terms of degree >= 2 on eight lanes, lane l of group g holding row (i, j) = lanes[g][l]:
     // group 0 five Horner steps in s2, group 1 four, group 2 two, group 3 one (96 floats, zero where a row is
     // shorter), then the box and the constant and linear terms (as GtrFamilyLeaf).
-    struct Leaf {
+    struct alignas(64) Leaf {
         float c[96];
         double centre[3], scale[3], c0, linear[3];
-        char pad[512 - 96 * sizeof(float) - 10 * sizeof(double)];
     };
+    static_assert(sizeof(Leaf) == 512);  // eight cache lines, prefetched whole
     // One top box: where its grid of leaf numbers starts in `ids`, and its finest split per axis (2^depth cells).
     struct Cell {
         std::int32_t offset;
         std::uint8_t depth[3], pad;
     };
     struct Lanes {
+        static constexpr int steps[4] = {5, 4, 2, 1};    // Horner steps of each group
+        static constexpr int offset[4] = {0, 40, 72, 88};  // where each group's 8 x steps floats start in Leaf::c
         std::int64_t i[4][8], j[4][8], k0[4][8];  // row (i, j) of each lane and its first power of s2; 7: a zero lane
-        int steps[4];
     };
+    static_assert(Lanes::offset[3] + 8 * Lanes::steps[3] == 96);
     const std::vector<Leaf>& leaves() const { return leaves_; }
     const std::vector<Cell>& cells() const { return cells_; }
     const std::vector<std::uint16_t>& ids() const { return ids_; }  // one past the last is a zero (32-bit gathers)
