@@ -6,7 +6,6 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <string>
 
 #include "smithlab/errors.hpp"
@@ -181,20 +180,10 @@ void G1_gtr_family(std::span<const double> alpha, std::span<const double> gamma,
         throw input_error("family: alpha, gamma, mu and out must be of one length, got " +
                           std::to_string(alpha.size()) + ", " + std::to_string(gamma.size()) + ", " +
                           std::to_string(mu.size()) + " and " + std::to_string(n));
-    // one pass two points at a time with no branch on the data, then the first offending item, if any
-    typedef double v2d __attribute__((vector_size(16)));
-    typedef long long v2l __attribute__((vector_size(16)));
-    v2l lanes_good = {-1, -1};
-    std::size_t i = 0;
-    for (; i + 2 <= n; i += 2) {
-        v2d a, g, m;
-        std::memcpy(&a, alpha.data() + i, sizeof a), std::memcpy(&g, gamma.data() + i, sizeof g);
-        std::memcpy(&m, mu.data() + i, sizeof m);
-        lanes_good &= GtrFamily::alpha_in_domain(a) & GtrFamily::gamma_in_domain(g) & (m == m);
-    }
-    bool good = lanes_good[0] & lanes_good[1];
-    for (; i < n; ++i)
-        good &= GtrFamily::alpha_in_domain(alpha[i]) & GtrFamily::gamma_in_domain(gamma[i]) & (mu[i] == mu[i]);
+    // one pass with no branch on the data, then the first offending item, if any
+    bool good = true;
+    for (std::size_t i = 0; i < n; ++i)
+        good &= GtrFamily::alpha_in_domain(alpha[i]) & GtrFamily::gamma_in_domain(gamma[i]) & !std::isnan(mu[i]);
     for (std::size_t i = 0; !good && i < n; ++i) {
         if (!GtrFamily::alpha_in_domain(alpha[i]) || !GtrFamily::gamma_in_domain(gamma[i]) || std::isnan(mu[i])) {
             auto item = [i](const char* name) { return std::string(name) + '[' + std::to_string(i) + ']'; };

@@ -144,12 +144,9 @@ public:
     static constexpr std::size_t top_cells = static_cast<std::size_t>(top[0]) * top[1] * top[2];
     // 1 / the width of chart c's top boxes along axis d (x -> top box: (x - lo) * inv_step)
     static constexpr double inv_step(int c, int d) { return top[d] / (hi[c][d] - lo[c][d]); }
-    // The domain (the checked calls' rules): alpha in [1e-4, 1], gamma in [0, 20]; NaN is outside. For a double, or
-    // lane by lane for a vector of them (GCC/Clang vector extensions: a mask).
-    template <class T>
-    static constexpr auto alpha_in_domain(T alpha) { return (alpha >= alpha_min) & (alpha <= 1.0); }
-    template <class T>
-    static constexpr auto gamma_in_domain(T gamma) { return (gamma >= 0.0) & (gamma <= gamma_max); }
+    // The domain (the checked calls' rules): alpha in [1e-4, 1], gamma in [0, 20]; NaN is outside.
+    static constexpr bool alpha_in_domain(double alpha) { return alpha >= alpha_min && alpha <= 1.0; }
+    static constexpr bool gamma_in_domain(double gamma) { return gamma >= 0.0 && gamma <= gamma_max; }
     // A leaf's estimate is at most `tolerance` relative in Lambda and `G1_tolerance` in G1; its checks at most twice.
     static constexpr double tolerance = 4e-6;
     static constexpr double G1_tolerance = 4e-7;
