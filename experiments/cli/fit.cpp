@@ -56,7 +56,7 @@ int run_fit(const FitArgs& a, const NdfRegistry& registry) {
     require(a.threads >= 0, "--threads", ">= 0 (0: all cores)", a.threads);
     const std::string source = a.scene.empty() ? "<default scene>" : a.scene;
     const std::string text = a.scene.empty() ? fitrun::default_fit_scene_text() : read_scene_file(a.scene);
-    const fitrun::FitScene scene = fitrun::parse_fit_scene(text, source);
+    const fitrun::FitScene scene = fitrun::parse_fit_scene(text, source, registry);
     const fitrun::FitSummary sum = fitrun::run_fit(scene, source, text, registry, a.output, static_cast<unsigned>(a.threads));
     if (mpi::rank() != 0) return exit_ok;  // a rank of a run under mpirun: rank 0 reports
     std::printf("%-28s %-16s %10s %10s %10s %10s\n", "model", "ndf", "rms_rel", "max_rel", "albedo_rms", "chi2_dof");

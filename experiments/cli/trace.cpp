@@ -1,13 +1,13 @@
 // smithlab trace / smithlab brdf: the microsurface walk (lib/walk/) from the command line. `trace` runs a scene
 // (experiments/trace/: a file, the embedded default sweep, or one cell given by flags); `brdf` evaluates one
-// (wi, wo) pair. Types are erased once per cell (experiments/trace/dispatch.hpp).
+// (wi, wo) pair. Types are erased once per cell (smithlab/surface.hpp).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
 
 #include "commands.hpp"
-#include "dispatch.hpp"
+#include "walk_options.hpp"
 #include "mpi_world.hpp"
 #include "smithlab/errors.hpp"
 #include "smithlab/single_scattering.hpp"
@@ -119,7 +119,7 @@ int run_trace(const TraceArgs& a, const NdfRegistry& registry) {
     const trace::TraceScene scene = flags ? cell_scene(a)
                                     : trace::parse_trace_scene(a.scene.empty() ? trace::default_trace_scene_text()
                                                                                : read_scene_file(a.scene),
-                                                               source);
+                                                               source, registry);
     const trace::RunSummary sum = trace::run_scene(scene, source, registry, a.output, static_cast<unsigned>(a.threads));
     if (mpi::rank() != 0) return exit_ok;  // a worker of rank 0's run (mpirun): rank 0 reports
     if (sum.total.size() == 1) std::printf("albedo %.17g\nstderr %.17g\n", sum.total[0].value, sum.total[0].stderr_);
@@ -158,8 +158,8 @@ int run_brdf(const BrdfArgs& a, const NdfRegistry& registry) {
     r.seed = seed;
     r.walks = a.n;
     r.threads = static_cast<unsigned>(a.threads);
-    const walk::EvalTally t = trace::with_walk_types(ndf, material, trace::parse_walk_options(a.downward, "visible", "--"),
-                                                     [&](const auto& ms, const auto& m) { return walk::eval_cell(ms, m, r); });
+    const walk::EvalTally t =
+        make_surface(ndf, trace::parse_walk_options(a.downward, "visible", "--"))->eval_cell(material, r);
     const walk::Estimate v = t.value();
     std::printf("value %.17g\nstderr %.17g\n", v.value, v.stderr_);
     for (int o = 0; o < walk::order_bins; ++o) {

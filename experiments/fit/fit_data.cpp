@@ -10,7 +10,6 @@
 #include <sstream>
 
 #include "block_jobs.hpp"
-#include "dispatch.hpp"
 #include "mpi_world.hpp"
 #include "output_file.hpp"
 #include "smithlab/csv.hpp"
@@ -145,11 +144,10 @@ std::vector<double> midpoints(const std::vector<double>& a) {
 }
 
 // One point's split moments on a concrete microsurface and facets, by the estimator asked for.
-template <class Microsurface, class M>
-fit::SplitMoments trace_point(const Microsurface& ms, const M& m, const TracePoint& p, Estimator estimator,
-                              std::uint64_t seed, std::int64_t walks) {
-    return estimator == Estimator::albedo ? fit::trace_albedo_point(ms, m, p.wi, seed, p.stream, walks)
-                                          : fit::trace_eval_point(ms, m, p.wi, p.wo, seed, p.stream, walks);
+fit::SplitMoments trace_point(const AnySurface& surface, const walk::Material& m, const TracePoint& p,
+                              Estimator estimator, std::uint64_t seed, std::int64_t walks) {
+    return estimator == Estimator::albedo ? surface.albedo_point(m, p.wi, seed, p.stream, walks)
+                                          : surface.eval_point(m, p.wi, p.wo, seed, p.stream, walks);
 }
 
 // The groups to trace as block jobs (cluster/block_jobs.hpp), for one process or MPI ranks: group j's blocks are its
@@ -179,16 +177,12 @@ public:
     void finish(std::size_t j, Partial&& total) { finish_(j, std::move(total)); }
 
     cluster::Runner<Partial> runner(std::size_t j) const {
-        return trace::with_microsurface(*jobs_[j].ndf, {}, [&](const auto& ms) -> cluster::Runner<Partial> {
-            auto surface = std::make_shared<const std::decay_t<decltype(ms)>>(ms);
-            return [surface, this](std::size_t job, std::uint64_t k) {
-                const Group& g = *jobs_[job].group;
-                const TracePoint p{g.dirs[k].wi(), g.dirs[k].wo(), stream(g.set, jobs_[job].ndf_index, g.index, k)};
-                const Estimator e = g.set == albedo_set ? Estimator::albedo : Estimator::eval;
-                return std::visit([&](const auto& m) { return Partial{trace_point(*surface, m, p, e, seed_, g.walks)}; },
-                                  material_);
-            };
-        });
+        return [surface = make_surface(*jobs_[j].ndf), this](std::size_t job, std::uint64_t k) {
+            const Group& g = *jobs_[job].group;
+            const TracePoint p{g.dirs[k].wi(), g.dirs[k].wo(), stream(g.set, jobs_[job].ndf_index, g.index, k)};
+            const Estimator e = g.set == albedo_set ? Estimator::albedo : Estimator::eval;
+            return Partial{trace_point(*surface, material_, p, e, seed_, g.walks)};
+        };
     }
 
     static_assert(std::is_trivially_copyable_v<fit::SplitMoments>);
@@ -216,31 +210,22 @@ std::vector<fit::SplitMoments> trace_points(const AnyNdf& ndf, const walk::Mater
                                             const std::vector<TracePoint>& points, Estimator estimator,
                                             std::uint64_t seed, std::int64_t walks, unsigned threads,
                                             const std::function<void(std::uint64_t)>& done) {
-    return trace::with_walk_types(ndf, material, {}, [&](const auto& ms, const auto& m) {
-        return walk::reduce_blocks(
-            points.size(), threads, std::vector<fit::SplitMoments>{},
-            [&](std::uint64_t j) {
-                return std::vector<fit::SplitMoments>{trace_point(ms, m, points[j], estimator, seed, walks)};
-            },
-            [](std::vector<fit::SplitMoments>& all, const std::vector<fit::SplitMoments>& one) {
-                all.insert(all.end(), one.begin(), one.end());
-            },
-            [&](std::uint64_t k) {
-                if (done) done(k);
-            });
-    });
+    const std::shared_ptr<const AnySurface> surface = make_surface(ndf);
+    return walk::reduce_blocks(
+        points.size(), threads, std::vector<fit::SplitMoments>{},
+        [&](std::uint64_t j) {
+            return std::vector<fit::SplitMoments>{trace_point(*surface, material, points[j], estimator, seed, walks)};
+        },
+        [](std::vector<fit::SplitMoments>& all, const std::vector<fit::SplitMoments>& one) {
+            all.insert(all.end(), one.begin(), one.end());
+        },
+        [&](std::uint64_t k) {
+            if (done) done(k);
+        });
 }
 
 AnyNdf make_ndf(const NdfRegistry& registry, const FitFamily& f, double alpha) {
-    try {
-        if (f.gamma) return registry.make(f.family, {{"alpha", alpha}, {"gamma", *f.gamma}});
-        // Blinn-Phong has no alpha and no closed-form Lambda (it is derived from D: the fitter on a D-only NDF); its
-        // exponent at the Beckmann alpha it resembles, n = 2 / alpha^2 - 2 (Walter et al. 2007, sec. 5.2).
-        if (f.family == "blinn") return registry.make(f.family, {{"n", 2.0 / (alpha * alpha) - 2.0}});
-        return registry.make(f.family, {{"alpha", alpha}});
-    } catch (const input_error& e) {
-        throw input_error(f.where + ": " + e.what());
-    }
+    return report::make_entry_ndf(f.entry, registry, f.params, alpha);
 }
 
 std::vector<NdfData> gather(const FitScene& s, const NdfRegistry& registry, const fs::path& cache, unsigned threads,
@@ -262,7 +247,7 @@ std::vector<NdfData> gather(const FitScene& s, const NdfRegistry& registry, cons
         for (const Group& g : p.groups) {
             p.ndfs.push_back(make_ndf(registry, p.data.family, g.alpha));
             // A D-only NDF's tables are built here once, and may refuse the NDF: before anything is traced.
-            trace::with_microsurface(p.ndfs.back(), {}, [](const auto&) { return 0; });
+            make_surface(p.ndfs.back());
         }
         plans.push_back(std::move(p));
     }

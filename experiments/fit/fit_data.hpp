@@ -57,7 +57,7 @@ std::vector<fit::SplitMoments> trace_points(const AnyNdf& ndf, const walk::Mater
                                             std::uint64_t seed, std::int64_t walks, unsigned threads,
                                             const std::function<void(std::uint64_t)>& done);
 
-// The NDF of a family at one alpha (blinn: at n = 2 / alpha^2 - 2).
+// The NDF of a family at one alpha (alpha itself, or the parameter its registered roughness sets from alpha).
 AnyNdf make_ndf(const NdfRegistry& registry, const FitFamily& family, double alpha);
 
 }  // namespace smithlab::fitrun

@@ -9,8 +9,8 @@
 #include <numbers>
 #include <sstream>
 
-#include "dispatch.hpp"
 #include "fit_data.hpp"
+#include "fit_trends.hpp"
 #include "plot_script.hpp"
 #include "progress.hpp"
 #include "staged_directory.hpp"
@@ -318,27 +318,26 @@ void record_missing(Files& f, std::vector<Missing>& missing, const std::string& 
     }
 }
 
-// The GTR families of the results, by gamma: their constants against gamma (constants_vs_gamma.csv), when there are
-// two gammas or more; GGX too where fitted, at gamma = 2 (GTR at gamma 2 is GGX: Burley 2012, appendix B.2).
-bool write_constants_vs_gamma(const fs::path& file, const Results& r) {
-    std::vector<std::size_t> gtr;
-    for (std::size_t n = 0; n < r.data.size(); ++n)
-        if (r.data[n].family.family == "gtr" && r.data[n].family.gamma) gtr.push_back(n);
-    if (gtr.size() < 2) return false;
-    for (std::size_t n = 0; n < r.data.size(); ++n)
-        if (r.data[n].family.family == "ggx") gtr.push_back(n);
-    std::ofstream csv(file, std::ios::binary);
-    write_csv_record(csv, {"ndf", "model", "parameter", "gamma", "value", "stderr"});
-    for (std::size_t n : gtr)
-        for (const Measured& m : r.fits[n]) {
-            if (!m.fitted()) continue;
-            for (std::size_t i = 0; i < m.params.size(); ++i)
-                write_csv_record(csv, {r.data[n].label, m.name, std::string(m.model->parameters[i]),
-                                       format_g17(r.data[n].family.gamma.value_or(2.0)), format_g17(m.params[i]),
-                                       format_g17(m.stderr_[i])});
-        }
-    output::finish(csv, file);
-    return true;
+// For each family swept in one parameter over two values or more (fit_trends.hpp): its constants against that
+// parameter, DIR/constants_vs_FAMILY_PARAMETER.csv; returns the files' stems.
+std::vector<std::string> write_constants_vs_parameter(const fs::path& dir, const Results& r) {
+    std::vector<std::string> stems;
+    for (const ParameterSweep& sweep : parameter_sweeps(r, 2)) {
+        stems.push_back("constants_vs_" + sweep.family + "_" + sweep.parameter);
+        const fs::path file = dir / (stems.back() + ".csv");
+        std::ofstream csv(file, std::ios::binary);
+        write_csv_record(csv, {"ndf", "model", "parameter", sweep.parameter, "value", "stderr"});
+        for (std::size_t k = 0; k < sweep.fits.size(); ++k)
+            for (const Measured& m : r.fits[sweep.fits[k]]) {
+                if (!m.fitted()) continue;
+                for (std::size_t i = 0; i < m.params.size(); ++i)
+                    write_csv_record(csv, {r.data[sweep.fits[k]].label, m.name, std::string(m.model->parameters[i]),
+                                           format_g17(sweep.values[k]), format_g17(m.params[i]),
+                                           format_g17(m.stderr_[i])});
+            }
+        output::finish(csv, file);
+    }
+    return stems;
 }
 
 std::string fixed(double v, int digits) {
@@ -354,7 +353,7 @@ struct Check {
 };
 
 std::string markdown(const Results& r, const FitScene& s, const std::vector<Missing>& missing,
-                     const std::vector<Check>& checks, bool gamma, bool drawn,
+                     const std::vector<Check>& checks, const std::vector<std::string>& swept, bool drawn,
                      double seconds, std::int64_t walks) {
     const FitScene::Pictures& p = s.pictures;
     std::ostringstream md;
@@ -423,9 +422,10 @@ std::string markdown(const Results& r, const FitScene& s, const std::vector<Miss
            << format_g17(w->alpha) << ", theta_i " << format_g17(w->theta)
            << " degrees, of the incidences traced); Hammon 2017: \"up to half\".\n\n";
     for (const NdfData& d : r.data) md << "![](pictures/missing_" << file_stem(d.label) << ".png)\n\n";
-    if (gamma)
-        md << "### The fitted constants against gamma (GTR)\n\nEach fitted model's constants with their standard "
-              "errors from the fit's covariance.\n\n![](pictures/constants_vs_gamma.png)\n";
+    for (const std::string& stem : swept)
+        md << "### The fitted constants: " << stem.substr(std::string("constants_vs_").size()) << "\n\nEach fitted "
+           << "model's constants with their standard errors from the fit's covariance.\n\n![](pictures/" << stem
+           << ".png)\n";
     return md.str();
 }
 
@@ -485,11 +485,11 @@ std::string write_pictures(const fs::path& dir, const FitScene& s, const Results
         }
     }
     f.finish();
-    const bool gamma = write_constants_vs_gamma(out / "constants_vs_gamma.csv", r);
+    const std::vector<std::string> swept = write_constants_vs_parameter(out, r);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::fprintf(stderr, "fit: pictures: traced in %.1f s\n", seconds);
     const bool drawn = output::run_plot_script("fit_plots.py", SMITHLAB_FIT_PLOT_SCRIPT, out, "fit: pictures");
-    return markdown(r, s, missing, checks, gamma, drawn, seconds, progress.total);
+    return markdown(r, s, missing, checks, swept, drawn, seconds, progress.total);
 }
 
 }  // namespace smithlab::fitrun

@@ -1,5 +1,5 @@
 // The fit's pictures (PNG, drawn by experiments/plots/fit_plots.py from CSV written here): lit spheres as Hammon laid
-// them out, Disney-style BRDF slices, the light single scattering misses, and the fitted constants against gamma.
+// them out, Disney-style BRDF slices, the light single scattering misses, and the fitted constants against a swept parameter.
 #pragma once
 
 #include <filesystem>
@@ -20,8 +20,9 @@ namespace smithlab::fitrun {
 //                 indirect and indirect light, and every fitted model with lambert, disney and eon as measured;
 //   slices.csv    Burley 2012's BRDF slices (theta_h, theta_d at phi_d = 90) at slice_alpha, albedo 0.75: f itself;
 //   missing.csv   1 - E_1/E of Lambertian facets per sphere alpha and theta_i (0, 30, 60, 80), albedo 1 and 0.75;
-//   constants_vs_gamma.csv  the fitted constants per GTR gamma (with two gammas or more; GGX at gamma 2);
-// and spheres_NDF.png, lambert_spheres_NDF.png, slices_NDF.png, missing_NDF.png, constants_vs_gamma.png drawn by
+//   constants_vs_FAMILY_PARAMETER.csv  the fitted constants of a family swept in one parameter (fit_trends.hpp), with
+//                 two values or more;
+// and spheres_NDF.png, lambert_spheres_NDF.png, slices_NDF.png, missing_NDF.png, constants_vs_*.png drawn by
 // experiments/plots/fit_plots.py (a warning, and a note in the Markdown, when it cannot run).
 std::string write_pictures(const std::filesystem::path& dir, const FitScene& scene, const Results& results,
                            const NdfRegistry& registry, unsigned threads);

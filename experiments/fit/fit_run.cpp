@@ -275,7 +275,7 @@ FitSummary run_fit(const FitScene& s, const std::string& source, const std::stri
     write_shaders(stage->path(), r);
     const std::string compensation = write_compensation(stage->path(), s, registry);
     const std::string pictures = write_pictures(stage->path(), s, r, registry, threads);
-    const std::string trends = write_gamma_trends(stage->path(), r);
+    const std::string trends = write_parameter_trends(stage->path(), r);
     write_report(stage->path(), s, r, sum.errors, trends + compensation + pictures);
     sum.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     nlohmann::ordered_json meta = {

@@ -51,10 +51,10 @@ std::vector<double> read_bounded(StrictTable& t, const std::string& key, double 
 }  // namespace
 
 std::string family_label(const FitFamily& f) {
-    return f.gamma ? format_spec({f.family, {{"gamma", *f.gamma}}}) : f.family;
+    return f.params.empty() ? f.family() : format_spec({f.family(), f.params});
 }
 
-FitScene parse_fit_scene(const std::string& text, const std::string& source) {
+FitScene parse_fit_scene(const std::string& text, const std::string& source, const NdfRegistry& registry) {
     const toml::value data = report::parse_toml(text, source);
     StrictTable doc(data, source, "",
                     {"title", "material", "albedos", "models", "floor", "energy_bound", "seed", "ndf", "training", "validation",
@@ -77,15 +77,11 @@ FitScene parse_fit_scene(const std::string& text, const std::string& source) {
     s.energy_bound = doc.flag("energy_bound", s.energy_bound);
     s.seed = static_cast<std::uint64_t>(doc.integer("seed", 0, std::numeric_limits<std::int64_t>::max(), 1));
 
-    for (StrictTable& n : doc.tables("ndf", {"family", "gamma"})) {
-        const std::string family = n.text("family");
-        const std::string where = n.where("family");
-        if (n.has("gamma")) {
-            for (double g : read_bounded(n, "gamma", 0.0, INFINITY, false, true, "[0, inf)"))
-                s.ndfs.push_back({family, g, where});
-        } else {
-            s.ndfs.push_back({family, std::nullopt, where});
-        }
+    for (StrictTable& n : doc.tables("ndf", report::ndf_table_keys(registry))) {
+        const report::NdfEntry e = report::read_ndf_entry(n, registry);
+        if (e.roughness_given)
+            n.fail("family", "'" + e.family + "' is given its roughness here: the fit sweeps alpha over training.alpha");
+        for (const report::ParamPoint& p : e.points()) s.ndfs.push_back({e, p});
         n.done();
     }
     if (s.ndfs.empty()) doc.fail("ndf", "is missing: no [[ndf]] table names an NDF family");

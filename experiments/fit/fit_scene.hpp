@@ -8,12 +8,16 @@
 #include <string>
 #include <vector>
 
+#include "scene_ndf.hpp"
+#include "smithlab/registry.hpp"
+
 namespace smithlab::fitrun {
 
+// One fitted NDF: a family at fixed parameters, swept over the training set's alpha (registry.hpp, make_at_alpha).
 struct FitFamily {
-    std::string family;           // a registered NDF family with an alpha parameter
-    std::optional<double> gamma;  // GTR: one fit per gamma
-    std::string where;            // "FILE:LINE: ndf.family", for the registry's refusals
+    report::NdfEntry entry;     // the [[ndf]] it comes from
+    report::ParamPoint params;  // its parameters but the roughness: one fit per point of the entry's axes
+    const std::string& family() const { return entry.family; }
 };
 
 struct FitScene {
@@ -24,7 +28,7 @@ struct FitScene {
     double floor = 0.02;
     bool energy_bound = true;         // fitted models held to a directional albedo <= 1 (fit_model.hpp)
     std::uint64_t seed = 1;
-    std::vector<FitFamily> ndfs;      // gamma lists expanded: one entry per fitted NDF
+    std::vector<FitFamily> ndfs;      // the [[ndf]] axes expanded: one entry per fitted NDF
     struct Training {
         std::vector<double> alpha, theta, phi;
         std::int64_t walks = 20000;
@@ -54,13 +58,13 @@ struct FitScene {
 // is not lambert or fresnel-diffuse at albedo 1, an albedo outside (0, 1], a model that is not known, a floor
 // outside [0, 1), alpha outside (0, 1], theta outside [0, 90), an integer out of its bounds (validation.points in
 // [1, 65534]), more than 65535 training direction pairs per alpha (each point's random stream holds its index in 16
-// bits). The NDF families are
-// checked by the registry when the run prepares them.
-FitScene parse_fit_scene(const std::string& text, const std::string& source);
+// bits), an [[ndf]] whose family is not registered, a parameter the family does not have, or an axis for its
+// roughness (alpha is the training set's). Each NDF's values are checked by the registry when the run prepares them.
+FitScene parse_fit_scene(const std::string& text, const std::string& source, const NdfRegistry& registry);
 
 const std::string& default_fit_scene_text();
 
-// An NDF of the scene as text: "ggx", "gtr(gamma=1.5)".
+// An NDF of the scene as text: "ggx", "gtr(gamma=1.5)" (its parameters but alpha).
 std::string family_label(const FitFamily& f);
 
 }  // namespace smithlab::fitrun

@@ -1,6 +1,7 @@
 #include "fit_trends.hpp"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -43,49 +44,45 @@ std::optional<Trend> polynomial_trend(const std::vector<double>& g, const std::v
 }
 
 // "0.122 (+-0.002) - 0.0082 (+-0.0007) gamma"
-std::string formula(const Trend& t) {
+std::string formula(const Trend& t, const std::string& x) {
     std::string out;
     for (Eigen::Index d = 0; d < t.p.size(); ++d) {
         char term[96];
-        std::snprintf(term, sizeof term, "%s%.4g (+-%.2g)%s", d == 0 ? "" : t.p(d) < 0.0 ? " - " : " + ",
-                      d == 0 ? t.p(d) : std::abs(t.p(d)), t.stderr_(d), d == 0 ? "" : d == 1 ? " gamma" : " gamma^2");
-        out += term;
+        std::snprintf(term, sizeof term, "%s%.4g (+-%.2g)", d == 0 ? "" : t.p(d) < 0.0 ? " - " : " + ",
+                      d == 0 ? t.p(d) : std::abs(t.p(d)), t.stderr_(d));
+        out += term + (d == 0 ? "" : d == 1 ? " " + x : " " + x + "^2");
     }
     return out;
 }
 
-}  // namespace
-
-std::string write_gamma_trends(const fs::path& dir, const Results& r) {
-    std::vector<std::size_t> gtr;
-    for (std::size_t n = 0; n < r.data.size(); ++n)
-        if (r.data[n].family.family == "gtr" && r.data[n].family.gamma) gtr.push_back(n);
-    if (gtr.size() < 3) return "";
-    std::ofstream csv(dir / "gamma_trends.csv", std::ios::binary);
+std::string write_trends(const fs::path& dir, const Results& r, const ParameterSweep& sweep) {
+    const std::string name = sweep.family + "_" + sweep.parameter + "_trends.csv";
+    std::ofstream csv(dir / name, std::ios::binary);
     write_csv_record(csv, {"model", "parameter", "form", "c0", "c1", "c2", "c0_stderr", "c1_stderr", "c2_stderr",
                            "chi2_dof", "max_deviation"});
+    const std::string x = sweep.parameter;
     std::ostringstream md;
-    md << "\n## The fitted constants against GTR's gamma\n\nEach constant of each fitted model as a line and as a "
-          "parabola in gamma, by weighted least squares against the constants' standard errors (their spread over "
-          "independent traces), with the coefficients' standard errors; chi^2 / dof near 1 where the form holds "
-          "within that noise, and the form's largest deviation from the fitted constants, its error as a closed "
-          "expression (gamma_trends.csv, and the plot pictures/constants_vs_gamma.png where drawn):\n\n"
-          "| model | constant | line | chi^2/dof / max dev. | parabola | chi^2/dof / max dev. |\n"
-          "|---|---|---|---:|---|---:|\n";
-    for (std::size_t k = 0; k < r.fits[gtr[0]].size(); ++k) {
-        const Measured& m0 = r.fits[gtr[0]][k];
+    md << "\n## The fitted constants against " << sweep.family << "'s " << x << "\n\nEach constant of each fitted "
+       << "model as a line and as a parabola in " << x << ", by weighted least squares against the constants' "
+       << "standard errors (their spread over independent traces), with the coefficients' standard errors; chi^2 / dof "
+       << "near 1 where the form holds within that noise, and the form's largest deviation from the fitted constants, "
+       << "its error as a closed expression (" << name << ", and the plot pictures/constants_vs_" << sweep.family
+       << "_" << x << ".png where drawn):\n\n"
+       << "| model | constant | line | chi^2/dof / max dev. | parabola | chi^2/dof / max dev. |\n"
+       << "|---|---|---|---:|---|---:|\n";
+    for (std::size_t k = 0; k < r.fits[sweep.fits[0]].size(); ++k) {
+        const Measured& m0 = r.fits[sweep.fits[0]][k];
         if (!m0.fitted()) continue;
         for (std::size_t i = 0; i < m0.params.size(); ++i) {
-            std::vector<double> g, c, e;
-            for (std::size_t n : gtr) {
-                g.push_back(*r.data[n].family.gamma);
+            std::vector<double> c, e;
+            for (std::size_t n : sweep.fits) {
                 c.push_back(r.fits[n][k].params[i]);
                 e.push_back(r.fits[n][k].stderr_[i]);
             }
             const std::string param(m0.model->parameters[i]);
             md << "| " << m0.name << " | " << param << " |";
             for (int degree : {1, 2}) {
-                const std::optional<Trend> t = polynomial_trend(g, c, e, degree);
+                const std::optional<Trend> t = polynomial_trend(sweep.values, c, e, degree);
                 std::vector<std::string> row{m0.name, param, degree == 1 ? "line" : "parabola"};
                 for (int part = 0; part < 2; ++part)
                     for (Eigen::Index d = 0; d < 3; ++d)
@@ -95,14 +92,51 @@ std::string write_gamma_trends(const fs::path& dir, const Results& r) {
                 write_csv_record(csv, row);
                 char fit[48];
                 std::snprintf(fit, sizeof fit, "%.3g / %.2g", t ? t->chi2_dof : 0.0, t ? t->deviation : 0.0);
-                md << " " << (t ? formula(*t) : std::string("(too few gammas, or an error of 0)")) << " | "
+                md << " " << (t ? formula(*t, x) : "(too few values of " + x + ", or an error of 0)") << " | "
                    << (t ? fit : "") << " |";
             }
             md << "\n";
         }
     }
-    output::finish(csv, dir / "gamma_trends.csv");
+    output::finish(csv, dir / name);
     return md.str();
+}
+
+}  // namespace
+
+std::vector<ParameterSweep> parameter_sweeps(const Results& r, std::size_t min_fits) {
+    std::vector<ParameterSweep> out;
+    std::vector<std::string> seen;
+    for (const NdfData& first : r.data) {
+        const std::string& family = first.family.family();
+        if (std::find(seen.begin(), seen.end(), family) != seen.end()) continue;
+        seen.push_back(family);
+        std::vector<std::size_t> fits;
+        for (std::size_t n = 0; n < r.data.size(); ++n)
+            if (r.data[n].family.family() == family) fits.push_back(n);
+        // The one parameter in which they differ: every other one equal across the fits.
+        const report::ParamPoint& p0 = r.data[fits[0]].family.params;
+        std::vector<std::size_t> varying;
+        for (std::size_t i = 0; i < p0.size(); ++i)
+            for (std::size_t n : fits) {
+                const report::ParamPoint& p = r.data[n].family.params;
+                if (p.size() != p0.size() || p[i] != p0[i]) {
+                    varying.push_back(i);
+                    break;
+                }
+            }
+        if (fits.size() < min_fits || varying.size() != 1) continue;
+        ParameterSweep s{family, p0[varying[0]].first, fits, {}};
+        for (std::size_t n : fits) s.values.push_back(r.data[n].family.params[varying[0]].second);
+        out.push_back(std::move(s));
+    }
+    return out;
+}
+
+std::string write_parameter_trends(const fs::path& dir, const Results& r) {
+    std::string md;
+    for (const ParameterSweep& s : parameter_sweeps(r, 3)) md += write_trends(dir, r, s);
+    return md;
 }
 
 }  // namespace smithlab::fitrun

@@ -6,9 +6,10 @@ Needs Debian's python3-matplotlib (installed by .ci/deps). experiments/fit/fit_p
   spheres.csv              ndf,source,alpha,light_deg,albedo,px,py,value: radiance f(l, v) cos theta_l per lit pixel
   slices.csv               ndf,source,alpha,theta_h,theta_d,value,stderr: the BRDF f at phi_d = 90 degrees
   missing.csv              ndf,alpha,theta,albedo,E,E1,missing,stderr: Lambertian facets, 1 - E_1/E
-  constants_vs_gamma.csv   ndf,model,parameter,gamma,value,stderr (with two GTR gammas or more; GGX at gamma 2)
+  constants_vs_FAMILY_PARAMETER.csv   ndf,model,parameter,PARAMETER,value,stderr (a family fitted at two values or
+                           more of one parameter, e.g. constants_vs_gtr_gamma.csv)
 and this script draws spheres_STEM.png, lambert_spheres_STEM.png, slices_STEM.png, missing_STEM.png and
-constants_vs_gamma.png. Each figure is drawn only if its data is there.
+constants_vs_FAMILY_PARAMETER.png. Each figure is drawn only if its data is there.
 """
 import math
 import os
@@ -231,8 +232,10 @@ def missing(d, ndf, stem, table):
     plt.close(fig)
 
 
-def constants_vs_gamma(d):
-    table = rows(os.path.join(d, "constants_vs_gamma.csv"))
+def constants_vs_parameter(d, stem):
+    table = rows(os.path.join(d, stem + ".csv"))
+    x = list(table[0].keys())[3] if table else "value"
+    family = table[0]["ndf"].split("(")[0] if table else ""
     keys = []
     for r in table:
         if (r["model"], r["parameter"]) not in keys:
@@ -243,23 +246,19 @@ def constants_vs_gamma(d):
     for ax in axes.flat[len(keys):]:
         ax.axis("off")
     for ax, (model, param) in zip(axes.flat, keys):
-        mine = [r for r in table if r["model"] == model and r["parameter"] == param]
-        pts = sorted((num(r["gamma"]), num(r["value"]), num(r["stderr"])) for r in mine if r["ndf"].startswith("gtr"))
+        pts = sorted((num(r[x]), num(r["value"]), num(r["stderr"]))
+                     for r in table if r["model"] == model and r["parameter"] == param)
         if pts:
             g, v, e = zip(*pts)
-            ax.errorbar(g, v, yerr=e, marker="o", ms=4, capsize=3, label="GTR")
-        ggx = [r for r in mine if r["ndf"] == "ggx"]
-        if ggx:  # GTR at gamma 2 is GGX
-            ax.errorbar([num(ggx[0]["gamma"])], [num(ggx[0]["value"])], yerr=[num(ggx[0]["stderr"])], marker="s",
-                        ms=6, mfc="none", color="tab:red", capsize=3, ls="none", label="GGX (γ = 2)")
-            ax.legend(fontsize=6.5)
+            ax.errorbar(g, v, yerr=e, marker="o", ms=4, capsize=3)
         ax.set_title(f"{model}: {param}", fontsize=8.5)
-        ax.set_xlabel("GTR γ", fontsize=8)
+        ax.set_xlabel(f"{family} {x}", fontsize=8)
         ax.tick_params(labelsize=7)
         ax.grid(True, alpha=0.3)
-    fig.suptitle("Fitted constants against GTR γ (error bars: standard errors from the fit's covariance)", fontsize=10)
+    fig.suptitle(f"Fitted constants against {family}'s {x} (error bars: standard errors from the fit's covariance)",
+                 fontsize=10)
     fig.tight_layout()
-    fig.savefig(os.path.join(d, "constants_vs_gamma.png"), dpi=110)
+    fig.savefig(os.path.join(d, stem + ".png"), dpi=110)
     plt.close(fig)
 
 
@@ -281,8 +280,9 @@ def main():
             slices(d, ndf, stem, groups["slices"][ndf])
         if groups["missing"][ndf]:
             missing(d, ndf, stem, groups["missing"][ndf])
-    if os.path.exists(os.path.join(d, "constants_vs_gamma.csv")):
-        constants_vs_gamma(d)
+    for name in sorted(os.listdir(d)):
+        if name.startswith("constants_vs_") and name.endswith(".csv"):
+            constants_vs_parameter(d, name[:-len(".csv")])
 
 
 if __name__ == "__main__":

@@ -23,12 +23,13 @@ bool matches_any(const std::vector<std::string>& patterns, const std::string& na
 
 std::vector<AnyNdf> grid_ndfs(const Scene& scene, const NdfRegistry& ndfs) {
     std::vector<AnyNdf> out;
-    for (const NdfFamily& f : scene.ndfs) {
-        if (!ndfs.find(f.family)) throw input_error("scene: unknown ndf family '" + f.family + "'");
-        for (double a : scene.alphas) {
-            if (f.gammas.empty()) out.push_back(ndfs.make(f.family, {{"alpha", a}}));
-            for (double g : f.gammas) out.push_back(ndfs.make(f.family, {{"alpha", a}, {"gamma", g}}));
+    for (const NdfEntry& e : scene.ndfs) {
+        if (e.roughness_given) {
+            for (const ParamPoint& p : e.points()) out.push_back(make_entry_ndf(e, ndfs, p, std::nullopt));
+            continue;
         }
+        for (double a : scene.alphas)
+            for (const ParamPoint& p : e.points()) out.push_back(make_entry_ndf(e, ndfs, p, a));
     }
     return out;
 }
@@ -37,7 +38,8 @@ std::vector<AnyNdf> grid_ndfs(const Scene& scene, const NdfRegistry& ndfs) {
 void add_point(G1Row& row, const AnyNdf& ndf, double mu, double got, double want, bool keep_errors) {
     const double dG1 = std::abs(G1_of(got) - G1_of(want));
     if (keep_errors)
-        row.errors.push_back({ndf.param("alpha"), ndf.family() == "gtr" || ndf.family() == "student" ? ndf.param("gamma") : NAN, mu, dG1,
+        row.errors.push_back({ndf.has_param("alpha") ? ndf.param("alpha") : NAN,
+                              ndf.has_param("gamma") ? ndf.param("gamma") : NAN, mu, dG1,
                               want >= DBL_MIN ? std::abs(got - want) / want : NAN});
     ++row.points;
     row.sum_dG1 += dG1;

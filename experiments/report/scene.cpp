@@ -13,19 +13,18 @@ namespace smithlab::report {
 
 namespace {
 
-NdfFamily ndf_family(StrictTable& t) {
-    NdfFamily f{t.text("family"), {}, t.where("family")};
-    if (t.has("gamma")) f.gammas = read_axis(t, "gamma");
+NdfEntry ndf_entry(StrictTable& t, const NdfRegistry& registry) {
+    NdfEntry e = read_ndf_entry(t, registry);
     t.done();
-    return f;
+    return e;
 }
 
-void read_grid(StrictTable& doc, Scene& s) {
+void read_grid(StrictTable& doc, Scene& s, const NdfRegistry& registry) {
     StrictTable grid = doc.table("grid", {"alpha", "mu"});
     s.alphas = read_axis(grid, "alpha");
     s.mus = read_axis(grid, "mu");
     grid.done();
-    for (StrictTable& n : doc.tables("ndf", {"family", "gamma"})) s.ndfs.push_back(ndf_family(n));
+    for (StrictTable& n : doc.tables("ndf", ndf_table_keys(registry))) s.ndfs.push_back(ndf_entry(n, registry));
     if (s.ndfs.empty()) doc.fail("ndf", "is missing: no [[ndf]] table names an NDF family");
 }
 
@@ -65,11 +64,11 @@ void read_sampling(StrictTable& doc, Scene& s) {
     sm->done();
 }
 
-void read_walk(StrictTable& doc, Scene& s) {
+void read_walk(StrictTable& doc, Scene& s, const NdfRegistry& registry) {
     auto w = doc.optional_table("walk", {"ndf", "materials", "alpha", "theta_i", "walks", "seed"});
     if (!w) return;
     Scene::Walk& walk = s.walk;
-    for (StrictTable& n : w->tables("ndf", {"family", "gamma"})) walk.ndfs.push_back(ndf_family(n));
+    for (StrictTable& n : w->tables("ndf", ndf_table_keys(registry))) walk.ndfs.push_back(ndf_entry(n, registry));
     if (walk.ndfs.empty()) w->fail("ndf", "is missing: no [[walk.ndf]] table names an NDF family");
     walk.materials = w->texts("materials", walk.materials);
     if (walk.materials.empty()) w->fail("materials", "is an empty list");
@@ -102,17 +101,17 @@ void read_figures(StrictTable& doc, Scene& s) {
 
 }  // namespace
 
-Scene parse_scene(const std::string& text, const std::string& source) {
+Scene parse_scene(const std::string& text, const std::string& source, const NdfRegistry& registry) {
     const toml::value data = parse_toml(text, source);
     StrictTable doc(data, source, "", {"title", "grid", "ndf", "variants", "timing", "g2", "sampling", "walk", "figures"});
     Scene s;
     s.title = doc.text("title", "smithlab report");
-    read_grid(doc, s);
+    read_grid(doc, s, registry);
     read_variants(doc, s);
     read_timing(doc, s);
     read_g2(doc, s);
     read_sampling(doc, s);
-    read_walk(doc, s);
+    read_walk(doc, s, registry);
     read_figures(doc, s);
     doc.done();
     return s;

@@ -6,18 +6,15 @@
 #include <string>
 #include <vector>
 
-namespace smithlab::report {
+#include "scene_ndf.hpp"
+#include "smithlab/registry.hpp"
 
-struct NdfFamily {
-    std::string family;          // a registered NDF with an `alpha` parameter
-    std::vector<double> gammas;  // for gtr; empty otherwise
-    std::string where;           // "FILE:LINE: ndf.family", for the NDF parser's refusals
-};
+namespace smithlab::report {
 
 struct Scene {
     std::string title;
     std::vector<double> alphas, mus;
-    std::vector<NdfFamily> ndfs;
+    std::vector<NdfEntry> ndfs;                 // each swept over alphas unless it gives its own roughness axis
     std::vector<std::string> include, exclude;  // glob patterns over variant names
     double min_time = 0.05;                     // seconds of Google Benchmark per variant
     // The G2 table (Hammon's lerp and the uncorrelated forms against the exact height-correlated G2), over
@@ -38,7 +35,7 @@ struct Scene {
     // The walk section (walk_section.hpp): albedo by scattering order against alpha on the Smith microsurface,
     // traced for each family x material x alpha x theta_i. Absent (ndfs empty) unless named.
     struct Walk {
-        std::vector<NdfFamily> ndfs;
+        std::vector<NdfEntry> ndfs;
         std::vector<std::string> materials = {"mirror", "lambert(albedo=1)"};  // facet specs (walk/facets.hpp)
         std::vector<double> alphas;
         std::vector<double> theta_i = {45.0};  // degrees, in [0, 90)
@@ -57,9 +54,10 @@ struct Scene {
 // Read strictly (strict_table.hpp): an unknown key or section, a value of the wrong type (an integer is taken for
 // a real), an integer out of its bounds (an axis's n in [2, 1e7], sampling.samples in [100, 1e8], walk.walks in
 // [100, 1e9]), a walk material its parser refuses, a walk.theta_i outside [0, 90) are refused with an input_error
-// "SOURCE:LINE: key ..." naming the nearest known key or the expected type. The NDF families are checked with the
-// registry, and the size of the work is estimated (work_estimate.hpp), before anything is computed.
-Scene parse_scene(const std::string& text, const std::string& source);
+// "SOURCE:LINE: key ..." naming the nearest known key or the expected type. The [[ndf]] tables are read by
+// scene_ndf.hpp against the registry (a family it lacks, a parameter the family lacks); each NDF's values are checked
+// by the registry, and the size of the work is estimated (work_estimate.hpp), before anything is computed.
+Scene parse_scene(const std::string& text, const std::string& source, const NdfRegistry& registry);
 
 // The default scene, embedded at build time from experiments/scenes/g1_report.toml.
 const std::string& default_scene_text();

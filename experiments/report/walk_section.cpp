@@ -37,7 +37,9 @@ std::array<walk::Estimate, walk_orders.size()> by_order(const walk::AlbedoTally&
 
 // "ggx", "gtr (gamma 1.5)": the NDF as the table's rows name it, alpha apart.
 std::string family_label(const WalkCell& c) {
-    return std::isnan(c.gamma) ? c.family : c.family + " (gamma " + format_shortest(c.gamma) + ")";
+    std::string out;
+    for (const auto& [name, v] : c.params) out += (out.empty() ? "" : ", ") + name + " " + format_shortest(v);
+    return out.empty() ? c.family : c.family + " (" + out + ")";
 }
 
 }  // namespace
@@ -46,25 +48,29 @@ std::vector<WalkCell> walk_cells(const Scene::Walk& w, const NdfRegistry& regist
     std::vector<walk::Material> materials;
     for (const std::string& m : w.materials) materials.push_back(walk::parse_material(m));  // checked by the scene
     std::vector<WalkCell> cells;
-    for (const NdfFamily& f : w.ndfs) {
-        const std::vector<double> gammas = f.gammas.empty() ? std::vector<double>{NAN} : f.gammas;
-        for (double g : gammas)
-            for (double a : w.alphas) {
-                NdfSpec spec{f.family, {{"alpha", a}}};
-                if (!std::isnan(g)) spec.params.push_back({"gamma", g});
-                AnyNdf ndf = [&] {
-                    try {
-                        AnyNdf made = registry.make(spec.name, spec.params);
-                        trace::with_microsurface(made, {}, [](const auto&) { return 0; });  // its tables may refuse it
-                        return made;
-                    } catch (const input_error& e) {
-                        throw input_error(f.where + " '" + f.family + "' at " + format_spec(spec) + ": " + e.what());
-                    }
-                }();
+    for (const NdfEntry& e : w.ndfs)
+        for (const ParamPoint& p : e.points()) {
+            const std::vector<std::optional<double>> alphas =
+                e.roughness_given ? std::vector<std::optional<double>>{std::nullopt}
+                                  : std::vector<std::optional<double>>(w.alphas.begin(), w.alphas.end());
+            for (const std::optional<double>& a : alphas) {
+                const AnyNdf ndf = make_entry_ndf(e, registry, p, a);
+                try {
+                    make_surface(ndf);  // its tables may refuse it
+                } catch (const input_error& err) {
+                    throw input_error(e.where + " '" + e.family + "' at " + ndf.spec() + ": " + err.what());
+                }
+                // The label's parameters: all but alpha (its own column), and but the one alpha set.
+                const NdfInfo& info = *registry.find(e.family);
+                const std::string set_by_alpha = a && info.roughness ? info.roughness->parameter : "alpha";
+                ParamPoint shown;
+                for (const auto& [name, v] : ndf.parts().params)
+                    if (name != "alpha" && name != set_by_alpha) shown.emplace_back(name, v);
+                const double alpha = a ? *a : ndf.has_param("alpha") ? ndf.param("alpha") : NAN;
                 for (const walk::Material& m : materials)
-                    for (double t : w.theta_i) cells.push_back({cells.size(), f.family, g, a, ndf, m, t});
+                    for (double t : w.theta_i) cells.push_back({cells.size(), e.family, shown, alpha, ndf, m, t});
             }
-    }
+        }
     return cells;
 }
 
@@ -103,7 +109,8 @@ void write_walk_section(const std::vector<WalkResult>& results, const Scene::Wal
     for (const WalkResult& r : results) {
         const WalkCell& c = r.cell;
         for (std::size_t o = 0; o < walk_orders.size(); ++o)
-            write_csv_record(csv, {c.ndf.spec(), c.family, std::isnan(c.gamma) ? "" : format_g17(c.gamma), format_g17(c.alpha),
+            write_csv_record(csv, {c.ndf.spec(), c.family, c.ndf.has_param("gamma") ? format_g17(c.ndf.param("gamma")) : "",
+                                   format_g17(c.alpha),
                                    walk::format_material(c.material), format_shortest(c.theta_i), walk_orders[o],
                                    format_g17(r.albedo[o].value), format_g17(r.albedo[o].stderr_), std::to_string(w.walks)});
         events += r.events;

@@ -20,13 +20,13 @@
 
 namespace smithlab::report {
 
-// One cell of the sweep, checked: NDFs (families x gamma) x alpha outermost, then materials, then theta_i; its
+// One cell of the sweep, checked: NDFs (each [[walk.ndf]]'s points x alpha) outermost, then materials, then theta_i; its
 // place in that order keys its random stream (walk::WalkRng(seed, index, walk)).
 struct WalkCell {
     std::uint64_t index;
     std::string family;
-    double gamma;  // NaN for a family without one
-    double alpha;
+    ParamPoint params;  // the NDF's parameters but alpha (and but the one alpha sets, when swept over alpha)
+    double alpha;       // NaN for an NDF without one, not swept over alpha
     AnyNdf ndf;
     walk::Material material;
     double theta_i;  // degrees

@@ -29,8 +29,8 @@ double selected_g2_variants(const Scene& scene) {
 
 double grid_ndfs(const Scene& scene) {
     double n = 0.0;
-    for (const NdfFamily& f : scene.ndfs) n += static_cast<double>(std::max<std::size_t>(1, f.gammas.size()));
-    return n * static_cast<double>(scene.alphas.size());
+    for (const NdfEntry& e : scene.ndfs) n += static_cast<double>(e.count(scene.alphas.size()));
+    return n;
 }
 
 // Above x, with two significant digits: a limit that lets a scene of work x through.
@@ -63,7 +63,7 @@ Work estimate_work(const Scene& scene, const VariantRegistry& variants) {
     w.samples = static_cast<double>(scene.sampling.families.size() * scene.sampling.alphas.size() * sampling_strategies.size()) *
                 static_cast<double>(scene.sampling.samples);
     double walk_ndfs = 0.0, walk_alphas = 0.0;
-    for (const NdfFamily& f : scene.walk.ndfs) walk_ndfs += static_cast<double>(std::max<std::size_t>(1, f.gammas.size()));
+    for (const NdfEntry& e : scene.walk.ndfs) walk_ndfs += static_cast<double>(e.count(1));
     for (double a : scene.walk.alphas) walk_alphas += std::max(1.0, a);  // a walk's length grows like alpha above 1
     w.walks = walk_ndfs * walk_alphas * static_cast<double>(scene.walk.materials.size() * scene.walk.theta_i.size()) *
               static_cast<double>(scene.walk.walks);

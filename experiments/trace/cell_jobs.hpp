@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "block_jobs.hpp"
-#include "dispatch.hpp"
+#include "smithlab/surface.hpp"
 #include "smithlab/walk/trace.hpp"
 
 namespace smithlab::trace {
@@ -49,17 +49,12 @@ public:
     std::string name(std::size_t j) const { return cells_[j].name; }
     void finish(std::size_t j, Partial&& total) { finish_(j, std::move(total)); }
 
-    // Traces block b of any cell of j's NDF, on one microsurface built here (its concrete type: no virtual call in
-    // the walk) and shared by the threads that call it.
+    // Traces block b of any cell of j's NDF, on one microsurface built here (its NDF's concrete type: no virtual
+    // call in the walk, one per block) and shared by the threads that call it.
     cluster::Runner<Partial> runner(std::size_t j) const {
-        return with_microsurface(cells_[j].ndf, opts_, [&](const auto& ms) -> cluster::Runner<Partial> {
-            auto surface = std::make_shared<const std::decay_t<decltype(ms)>>(ms);
-            return [surface, this](std::size_t c, std::uint64_t b) {
-                const CellJob& cell = cells_[c];
-                return std::visit([&](const auto& m) { return walk::trace_block(*surface, m, cell.request, b); },
-                                  cell.material);
-            };
-        });
+        return [surface = make_surface(cells_[j].ndf, opts_), this](std::size_t c, std::uint64_t b) {
+            return surface->trace_block(cells_[c].material, cells_[c].request, b);
+        };
     }
 
     void put(std::vector<char>& out, const Partial& p) const;

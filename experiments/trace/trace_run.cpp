@@ -24,6 +24,7 @@
 #include "smithlab/csv.hpp"
 #include "smithlab/walk/trace.hpp"
 #include "staged_directory.hpp"
+#include "walk_options.hpp"
 
 namespace smithlab::trace {
 
@@ -211,7 +212,7 @@ RunSummary run_scene(const TraceScene& s, const std::string& source, const NdfRe
     for (const SceneNdf& n : s.ndfs)
         if (!ndfs.count(n.spec)) {
             const AnyNdf& ndf = ndfs.emplace(n.spec, n.make(registry)).first->second;
-            with_microsurface(ndf, opts, [](const auto&) { return 0; });
+            make_surface(ndf, opts);
         }
     std::map<std::string, walk::Material> materials;
     for (const std::string& spec : s.materials) materials.emplace(spec, walk::parse_material(spec));

@@ -5,6 +5,7 @@
 
 #include "smithlab/csv.hpp"
 #include "smithlab/spec.hpp"
+#include "scene_ndf.hpp"
 #include "strict_table.hpp"
 #include "walk_options.hpp"
 
@@ -14,24 +15,26 @@ namespace {
 
 using report::StrictTable;
 
-void read_ndfs(StrictTable& doc, const std::vector<double>& alphas, TraceScene& s) {
-    for (StrictTable& n : doc.tables("ndf", {"family", "gamma", "spec"})) {
+void read_ndfs(StrictTable& doc, const std::vector<double>& alphas, const NdfRegistry& registry, TraceScene& s) {
+    const std::vector<std::string> keys = report::ndf_table_keys(registry, {"spec"});
+    for (StrictTable& n : doc.tables("ndf", keys)) {
         if (n.has("spec") == n.has("family")) n.fail("spec", "or family: give exactly one of them");
         if (n.has("spec")) {
-            if (n.has("gamma")) n.fail("gamma", "goes with family, not with a fixed spec");
+            for (const std::string& k : keys)
+                if (k != "spec" && n.has(k)) n.fail(k, "goes with family, not with a fixed spec");
             s.ndfs.push_back({n.text("spec"), std::nullopt});
         } else {
-            const std::string family = n.text("family");
-            if (alphas.empty()) n.fail("family", "is swept over grid.alpha, which is missing");
-            const std::vector<double> gammas = n.has("gamma") ? report::read_axis(n, "gamma") : std::vector<double>{};
-            auto add = [&](NdfSpec point) {
-                std::string shown = format_spec(point);
-                s.ndfs.push_back({std::move(shown), std::move(point)});
+            const report::NdfEntry e = report::read_ndf_entry(n, registry);
+            if (!e.roughness_given && alphas.empty()) n.fail("family", "is swept over grid.alpha, which is missing");
+            auto add = [&](const report::ParamPoint& point, std::optional<double> alpha) {
+                const AnyNdf ndf = report::make_entry_ndf(e, registry, point, alpha);
+                s.ndfs.push_back({ndf.spec(), ndf.parts()});
             };
-            for (double a : alphas) {
-                if (gammas.empty()) add({family, {{"alpha", a}}});
-                for (double g : gammas) add({family, {{"alpha", a}, {"gamma", g}}});
-            }
+            if (e.roughness_given)
+                for (const report::ParamPoint& p : e.points()) add(p, std::nullopt);
+            else
+                for (double a : alphas)
+                    for (const report::ParamPoint& p : e.points()) add(p, a);
         }
         n.done();
     }
@@ -40,7 +43,7 @@ void read_ndfs(StrictTable& doc, const std::vector<double>& alphas, TraceScene& 
 
 }  // namespace
 
-TraceScene parse_trace_scene(const std::string& text, const std::string& source) {
+TraceScene parse_trace_scene(const std::string& text, const std::string& source, const NdfRegistry& registry) {
     const toml::value data = report::parse_toml(text, source);
     StrictTable doc(data, source, "", {"title", "materials", "walks", "grid", "ndf", "brdf"});
     TraceScene s;
@@ -71,7 +74,7 @@ TraceScene parse_trace_scene(const std::string& text, const std::string& source)
     s.phi_i = grid.has("phi_i") ? report::read_axis(grid, "phi_i") : std::vector<double>{0.0};
     for (double p : s.phi_i)
         if (!std::isfinite(p)) grid.fail("phi_i", "must be finite");
-    read_ndfs(doc, alphas, s);
+    read_ndfs(doc, alphas, registry, s);
     grid.done();
 
     if (auto b = doc.optional_table("brdf", {"theta_bins", "phi_bins"})) {

@@ -27,7 +27,7 @@ struct SceneNdf {
 
 struct TraceScene {
     std::string title = "smithlab trace";
-    std::vector<SceneNdf> ndfs;          // the families already expanded over alpha (and gamma)
+    std::vector<SceneNdf> ndfs;          // the families already expanded over their axes
     std::vector<std::string> materials;  // facet material specs
     std::vector<double> theta_i, phi_i;  // degrees
     std::int64_t walks = 200'000;        // per cell
@@ -49,7 +49,9 @@ struct TraceCell {
 // of its bounds (walks.n in [1, 1e12], walks.max_order in [0, 1e6], brdf bins in [1, 1e4]), a theta_i outside
 // [0, 180] or at 90 (grazing), or a non-finite phi_i; light from below (theta_i > 90) is checked against each
 // material when the cells are prepared (only a dielectric takes it). NDF and material specs are checked by their parsers when the cells are prepared.
-TraceScene parse_trace_scene(const std::string& text, const std::string& source);
+// [[ndf]] tables are read as every scene's (report/scene_ndf.hpp): a family with an axis for any of its parameters,
+// swept over grid.alpha unless it gives its own roughness axis; each point is made (checked) by the registry here.
+TraceScene parse_trace_scene(const std::string& text, const std::string& source, const NdfRegistry& registry);
 
 // The embedded default, from experiments/scenes/trace_default.toml.
 const std::string& default_trace_scene_text();

@@ -30,4 +30,10 @@ double AnyNdf::param(std::string_view key) const {
     throw input_error("ndf '" + spec_ + "' has no parameter '" + std::string(key) + "'");
 }
 
+bool AnyNdf::has_param(std::string_view key) const {
+    for (const auto& [k, v] : parts_.params)
+        if (k == key) return true;
+    return false;
+}
+
 }  // namespace smithlab

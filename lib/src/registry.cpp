@@ -33,6 +33,32 @@ std::vector<const NdfInfo*> NdfRegistry::list() const {
     return out;
 }
 
+namespace {
+std::string parameter_list(const NdfInfo& info) {
+    std::string out;
+    for (const std::string& p : info.parameters) out += (out.empty() ? "" : ", ") + p;
+    return out.empty() ? "none" : out;
+}
+}  // namespace
+
+AnyNdf NdfRegistry::make_at_alpha(std::string_view family, double alpha,
+                                  const std::vector<std::pair<std::string, double>>& others) const {
+    const NdfInfo* info = find(family);
+    if (!info) return make(family, others);  // refused there, naming the known NDFs
+    std::vector<std::pair<std::string, double>> params = others;
+    if (std::find(info->parameters.begin(), info->parameters.end(), "alpha") != info->parameters.end()) {
+        params.emplace_back("alpha", alpha);
+    } else if (info->roughness) {
+        std::map<std::string, double> given(others.begin(), others.end());
+        params.emplace_back(info->roughness->parameter,
+                            info->roughness->from_alpha(alpha, NdfParams(info->name, std::move(given))));
+    } else {
+        throw input_error("ndf '" + info->name + "' has no parameter 'alpha' and declares no roughness mapping to one " +
+                          "(its parameters: " + parameter_list(*info) + "): it cannot be swept over alpha");
+    }
+    return make(family, params);
+}
+
 AnyNdf NdfRegistry::make(std::string_view text) const {
     const NdfSpec spec = parse_spec(text);
     return make(spec.name, spec.params);
@@ -53,7 +79,8 @@ AnyNdf NdfRegistry::make(std::string_view family, const std::vector<std::pair<st
     std::vector<std::pair<std::string, double>> canonical;
     for (const auto& [key, v] : params) {
         if (std::find(info.parameters.begin(), info.parameters.end(), key) == info.parameters.end())
-            throw input_error("ndf '" + name + "': unknown parameter '" + key + "'");
+            throw input_error("ndf '" + name + "': unknown parameter '" + key + "' (its parameters: " +
+                              parameter_list(info) + ")");
         if (!values.emplace(key, v).second) throw input_error("ndf '" + name + "': parameter '" + key + "' given twice");
     }
     for (const auto& key : info.parameters) {
@@ -71,8 +98,11 @@ void register_core_ndfs(NdfRegistry& r) {
     r.add({"beckmann", {"alpha"}, "Beckmann (Walter 2007), closed-form Lambda",
            {"beckmann(alpha=1e-4)", "beckmann(alpha=0.05)", "beckmann(alpha=0.5)", "beckmann(alpha=1)"}},
           [](const NdfParams& p) { return beckmann(p.at("alpha")); });
+    // A roughness alpha sets n = 2 / alpha^2 - 2, the exponent at the Beckmann alpha it resembles (Walter et al.
+    // 2007, sec. 5.2).
     r.add({"blinn", {"n"}, "Blinn-Phong, D = (n+2)/(2 pi) cos^n; Lambda by quadrature",
-           {"blinn(n=0.5)", "blinn(n=20)", "blinn(n=1000)"}},
+           {"blinn(n=0.5)", "blinn(n=20)", "blinn(n=1000)"},
+           NdfInfo::Roughness{"n", [](double alpha, const NdfParams&) { return 2.0 / (alpha * alpha) - 2.0; }}},
           [](const NdfParams& p) { return blinn(p.at("n")); });
     r.add({"student", {"alpha", "gamma"},
            "Student's t-distribution of slopes (Ribardiere et al. 2017), gamma in [1.65, 1e6]: GGX at 2, Beckmann as "

@@ -16,6 +16,8 @@
 
 namespace smithlab {
 
+class NdfKernels;  // surface.hpp
+
 class AnyNdf {
 public:
     template <Ndf N>
@@ -49,6 +51,17 @@ public:
     // Its family name ("gtr") and a parameter by name (input_error if it has none such).
     const std::string& family() const { return parts_.name; }
     double param(std::string_view key) const;
+    bool has_param(std::string_view key) const;
+    // The parameters as the spec gives them, in the registration's order.
+    const NdfSpec& parts() const { return parts_; }
+
+    // The walk on the held NDF's concrete type (surface.hpp), attached by the registry that made it; null for an
+    // AnyNdf made outside a registry.
+    const std::shared_ptr<const NdfKernels>& kernels() const { return kernels_; }
+    AnyNdf& attach(std::shared_ptr<const NdfKernels> kernels) {
+        kernels_ = std::move(kernels);
+        return *this;
+    }
 
 private:
     struct Base {
@@ -99,6 +112,7 @@ private:
     std::shared_ptr<const Base> self_;
     NdfSpec parts_;
     std::string spec_;
+    std::shared_ptr<const NdfKernels> kernels_;
 };
 
 // Any NDF as an AnyNdf, an AnyNdf as itself: how the type-erased samplers (sampling.hpp) hold one. Spec "unnamed()".

@@ -6,17 +6,26 @@
 //                  [](const smithlab::NdfParams& p) { return MyNdf{p.at("alpha")}; });
 // `examples` are the parameter points the per-distribution tests and `smithlab check --all` run; put the stiff
 // corners of your NDF there.
+//
+// The registration sees the concrete type the factory returns and records, for it, the walk every command runs
+// (surface.hpp): a registered NDF is traced, fitted and reported as its own type, with no virtual call per bounce.
+// What the commands need to know of a family's parameters comes from its NdfInfo: their names (any of them can be a
+// scene's axis) and, for a family without a parameter `alpha`, how a roughness alpha sets one of them (roughness).
 #pragma once
 
 #include <functional>
 #include <map>
+#include <memory>
+#include <optional>
 #include <string>
+#include <type_traits>
 #include <string_view>
 #include <utility>
 #include <vector>
 
 #include "smithlab/any_ndf.hpp"
 #include "smithlab/spec.hpp"
+#include "smithlab/surface.hpp"
 
 namespace smithlab {
 
@@ -24,6 +33,7 @@ class NdfParams {
 public:
     NdfParams(std::string ndf, std::map<std::string, double> values) : ndf_(std::move(ndf)), values_(std::move(values)) {}
     double at(const std::string& key) const;  // throws input_error naming the missing key
+    const std::string& ndf() const { return ndf_; }
 private:
     std::string ndf_;
     std::map<std::string, double> values_;
@@ -34,6 +44,14 @@ struct NdfInfo {
     std::vector<std::string> parameters;  // in canonical order
     std::string description;
     std::vector<std::string> examples;  // spec strings, stiff corners included
+    // For a family without a parameter `alpha`: the parameter a roughness alpha sets (the fitter's alpha axis, a
+    // scene's grid.alpha) and its value at alpha given the family's other parameters, e.g. Blinn-Phong's
+    // n = 2 / alpha^2 - 2 (Walter et al. 2007, sec. 5.2). None: the family cannot be swept over alpha.
+    struct Roughness {
+        std::string parameter;
+        std::function<double(double alpha, const NdfParams& others)> from_alpha;
+    };
+    std::optional<Roughness> roughness = std::nullopt;
 };
 
 class NdfRegistry {
@@ -43,13 +61,22 @@ public:
     // Register an NDF type: the factory builds it from validated-present parameters and checks their ranges.
     template <class Make>
     void add(NdfInfo info, Make make) {
-        add_erased(std::move(info), [make](const NdfParams& p, NdfSpec spec) { return AnyNdf(make(p), std::move(spec)); });
+        using N = std::decay_t<std::invoke_result_t<const Make&, const NdfParams&>>;
+        add_erased(std::move(info), [make](const NdfParams& p, NdfSpec spec) {
+            N ndf = make(p);
+            AnyNdf any(ndf, std::move(spec));
+            return std::move(any.attach(std::make_shared<const KernelsOf<N>>(std::move(ndf))));
+        });
     }
 
     AnyNdf make(std::string_view spec) const;  // throws input_error: unknown NDF, unknown/missing parameter, bad value
     // The same without a spec string, make("gtr", {{"alpha", 0.3}, {"gamma", 1.5}}); also input_error for a
     // parameter given twice. A spec is text to show (AnyNdf::spec), not the way to build an NDF in code.
     AnyNdf make(std::string_view family, const std::vector<std::pair<std::string, double>>& params) const;
+    // The family at roughness alpha, its other parameters given: alpha itself where the family has that parameter,
+    // else the one its roughness sets; input_error where it has neither.
+    AnyNdf make_at_alpha(std::string_view family, double alpha,
+                         const std::vector<std::pair<std::string, double>>& others) const;
     const NdfInfo* find(std::string_view name) const;
     std::vector<const NdfInfo*> list() const;  // in registration order
 
