@@ -145,10 +145,10 @@ TEST_CASE("scenes: work beyond the limit is refused at once with the estimate, a
     CHECK_THAT(err, Catch::Contains((d / "huge.toml").string()) && Catch::Contains("above the limit of 1e+08 evaluations") &&
                         Catch::Contains("nothing was computed") && Catch::Contains("--max-work 1.8e+09"));
 
-    // The override lets it through the limit: it then stops at the scene's next error (an unknown family, checked
-    // before anything is computed), not at the limit.
+    // The override lets it through the limit: it then stops at the scene's next error (a value out of its family's
+    // domain, checked before anything is computed), not at the limit.
     write(d / "huge_bad.toml", "[grid]\nalpha = { log = [1e-4, 1.0], n = 3000 }\nmu = { log = [1e-4, 1e4], n = 3000 }\n"
-                               "[[ndf]]\nfamily = \"nosuch\"\n[[ndf]]\nfamily = \"gtr\"\ngamma = { lin = [0.0, 20.0], n = 100 }\n"
+                               "[[ndf]]\nfamily = \"gtr\"\ngamma = [-1.0]\n[[ndf]]\nfamily = \"gtr\"\ngamma = { lin = [0.0, 20.0], n = 100 }\n"
                                "[variants]\ninclude = [\"table\"]\n");
     const Run limited = run(report_args(d, "huge_bad.toml", "never"));
     CHECK(limited.rc == 2);
@@ -156,7 +156,7 @@ TEST_CASE("scenes: work beyond the limit is refused at once with the estimate, a
     const Run raised = run(report_args(d, "huge_bad.toml", "never") + " --max-work 2e9");
     INFO(raised.err);
     CHECK(raised.rc == 2);
-    CHECK_THAT(raised.err, Catch::Contains("unknown ndf family 'nosuch'"));
+    CHECK_THAT(raised.err, Catch::Contains("ndf.family 'gtr' at gtr(alpha=1e-04, gamma=-1): gtr: gamma must be"));
     CHECK_FALSE(fs::exists(d / "never"));
 
     // Samples and G2 count too; the sampling experiment alone can exceed the limit.
@@ -417,11 +417,16 @@ TEST_CASE("scenes: a malformed [walk] is refused naming FILE:LINE and the key, b
     bad("albedo.toml", walk_scene(11, "materials = [\"lambert(albedo=2)\"]"), 11, "walk.materials holds \"lambert(albedo=2)\": material 'lambert': albedo");
     bad("param.toml", walk_scene(11, "materials = [\"mirror(eta=1.5)\"]"), 11, "material 'mirror': unknown parameter 'eta'");
     // NDFs through the registry, checked before the first walk: the second family's refusal stops the run.
-    err = bad("family.toml", walk_scene(19, "family = \"nosuch\""), 19, "walk.ndf.family 'nosuch' at nosuch(alpha=0.2, gamma=1.5): ");
-    CHECK_THAT(err, Catch::Contains("unknown"));
+    err = bad("family.toml", walk_scene(19, "family = \"nosuch\""), 19, "walk.ndf.family names an unknown ndf family 'nosuch' (known: ");
+    CHECK_THAT(err, Catch::Contains("ggx") && Catch::Contains("gtr"));
+    // A parameter of another family: refused naming the family's own.
+    bad("ggx_gamma.toml", walk_scene(17, "family = \"ggx\"\ngamma = [2.0]"), 18,
+        "walk.ndf.gamma is not a parameter of 'ggx' (its parameters: alpha)");
+    bad("blinn_alpha.toml", walk_scene(17, "family = \"blinn\"\nalpha = [0.3]"), 18,
+        "walk.ndf.alpha is not a parameter of 'blinn' (its parameters: n)");
     bad("gamma.toml", walk_scene(20, "gamma = [-1.0]"), 19, "walk.ndf.family 'gtr' at gtr(alpha=0.2, gamma=-1): ");
     bad("alpha_range.toml", walk_scene(12, "alpha = [0.2, 1e-60]"), 17, "walk.ndf.family 'ggx' at ggx(alpha=1e-60): ggx: alpha must be in [1e-50, 1e50]");
-    bad("blinn.toml", walk_scene(17, "family = \"blinn\""), 17, "walk.ndf.family 'blinn' at blinn(alpha=0.2): ");
+    bad("blinn.toml", walk_scene(17, "family = \"blinn\"\nn = [-3]"), 17, "walk.ndf.family 'blinn' at blinn(n=-3): blinn: n must be");
     // The walks count in the work estimate: 16 cells of 1e9 walks are far above the default limit.
     err = check_bad_scene(d, "work.toml", walk_scene(14, "walks = 1000000000"), "walks 1.6e+10)");
     CHECK_THAT(err, Catch::Contains("above the limit of 1e+08 evaluations") && Catch::Contains("nothing was computed"));

@@ -25,7 +25,9 @@ std::string shell_quoted(const std::string& text) {
 
 bool run_plot_script(const std::string& name, const fs::path& fallback, const fs::path& dir, const std::string& who) {
     const fs::path exe = fs::canonical("/proc/self/exe");
+    // Beside an installed executable, else where this library was installed to, else the source tree's.
     fs::path script = exe.parent_path().parent_path() / "share" / "smithlab" / name;
+    if (!fs::exists(script)) script = fs::path(SMITHLAB_DATA_DIR) / name;
     if (!fs::exists(script)) script = fallback;
     const std::string cmd = "/usr/bin/python3 " + shell_quoted(script.string()) + " " + shell_quoted(dir.string());
     std::fprintf(stderr, "%s: drawing the figures (%s)\n", who.c_str(), cmd.c_str());
