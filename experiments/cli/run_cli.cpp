@@ -98,6 +98,8 @@ int run_cli(int argc, char** argv, const NdfRegistry& registry) {
             for (const NdfInfo* info : registry.list()) {
                 std::cout << info->name << "(";
                 for (std::size_t i = 0; i < info->parameters.size(); ++i) std::cout << (i ? ", " : "") << info->parameters[i];
+                for (std::size_t i = 0; i < info->text_parameters.size(); ++i)
+                    std::cout << (i || !info->parameters.empty() ? ", " : "") << info->text_parameters[i];
                 std::cout << ")\n    " << info->description << "\n    e.g.";
                 for (const auto& ex : info->examples) std::cout << "  " << ex;
                 std::cout << "\n";

@@ -88,7 +88,7 @@ std::string directory_name(const std::string& label) {
 
 std::string group_key(const FitScene& s, const AnyNdf& ndf, const Group& g, std::uint64_t ndf_index) {
     std::ostringstream k;
-    k << "smithlab " << SMITHLAB_VERSION << "|ndf=" << ndf.spec() << "|material=" << s.material
+    k << "smithlab " << SMITHLAB_VERSION << "|ndf=" << ndf.key() << "|material=" << s.material
       << "|set=" << set_name[g.set] << "|walks=" << g.walks << "|seed=" << s.seed
       << "|stream=" << stream(g.set, ndf_index, g.index, 0) << "|points=" << g.dirs.size();
     return k.str();

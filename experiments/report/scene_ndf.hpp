@@ -24,6 +24,7 @@ using ParamPoint = std::vector<std::pair<std::string, double>>;
 struct NdfEntry {
     std::string family;
     std::vector<std::pair<std::string, std::vector<double>>> axes;  // in the family's declared order
+    std::vector<std::pair<std::string, std::string>> texts;         // its text parameters (a file's path)
     bool roughness_given = false;  // an axis for alpha, or for the parameter the family's roughness sets
     std::string where;             // "FILE:LINE: ndf.family", for refusals of its points
 
@@ -33,12 +34,14 @@ struct NdfEntry {
     std::size_t count(std::size_t alphas) const;
 };
 
-// The keys an [[ndf]] table may hold: family, every parameter any registered family declares, and `extra`.
+// The keys an [[ndf]] table may hold: family, every parameter (numeric or text) any registered family declares, and
+// `extra`.
 std::vector<std::string> ndf_table_keys(const NdfRegistry& registry, const std::vector<std::string>& extra = {});
 
-// One [[ndf]] table (opened with ndf_table_keys): its family, which must be registered, and an axis per parameter key,
-// each a parameter of that family (else refused, naming the family's parameters). Keys in `extra` are left to the
-// caller. Does not call t.done().
+// One [[ndf]] table (opened with ndf_table_keys): its family, which must be registered, an axis per numeric parameter
+// key and a string per text parameter, each a parameter of that family (else refused, naming the family's
+// parameters). A path in a text parameter is as on the command line (relative to the working directory). Keys in
+// `extra` are left to the caller. Does not call t.done().
 NdfEntry read_ndf_entry(StrictTable& t, const NdfRegistry& registry);
 
 // The NDF at one point of the entry, at roughness `alpha` unless the entry gives its own: the registry's refusals

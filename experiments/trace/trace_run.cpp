@@ -66,7 +66,7 @@ std::string record(const std::vector<std::string>& fields) {
 
 std::string cell_key(const TraceScene& s, const TraceCell& c, const AnyNdf& ndf, const walk::Material& m) {
     std::ostringstream k;
-    k << "smithlab " << SMITHLAB_VERSION << "|ndf=" << ndf.spec() << "|material=" << walk::format_material(m)
+    k << "smithlab " << SMITHLAB_VERSION << "|ndf=" << ndf.key() << "|material=" << walk::format_material(m)
       << "|theta_i=" << format_g17(c.theta_i) << "|phi_i=" << format_g17(c.phi_i) << "|walks=" << s.walks
       << "|seed=" << s.seed << "|cell=" << c.index << "|max_order=" << s.max_order << "|downward=" << s.downward
       << "|hit_normal=" << s.hit_normal

@@ -21,7 +21,7 @@ struct SceneNdf {
     std::optional<NdfSpec> family;  // a family's name and parameters; none: the NDF is the spec given
     // Through the registry: a family from its parameters (no spec parsed), a given spec from its text.
     AnyNdf make(const NdfRegistry& registry) const {
-        return family ? registry.make(family->name, family->params) : registry.make(spec);
+        return family ? registry.make(family->name, family->params, family->texts) : registry.make(spec);
     }
 };
 

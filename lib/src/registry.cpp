@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 
+#include "smithlab/abc.hpp"
 #include "smithlab/errors.hpp"
 #include "smithlab/ndfs.hpp"
 #include "smithlab/student_t.hpp"
@@ -12,6 +13,12 @@ namespace smithlab {
 double NdfParams::at(const std::string& key) const {
     const auto it = values_.find(key);
     if (it == values_.end()) throw input_error("ndf '" + ndf_ + "': missing parameter '" + key + "'");
+    return it->second;
+}
+
+const std::string& NdfParams::text(const std::string& key) const {
+    const auto it = texts_.find(key);
+    if (it == texts_.end()) throw input_error("ndf '" + ndf_ + "': missing parameter '" + key + "'");
     return it->second;
 }
 
@@ -37,34 +44,46 @@ namespace {
 std::string parameter_list(const NdfInfo& info) {
     std::string out;
     for (const std::string& p : info.parameters) out += (out.empty() ? "" : ", ") + p;
+    for (const std::string& p : info.text_parameters) out += (out.empty() ? "" : ", ") + p;
     return out.empty() ? "none" : out;
 }
 }  // namespace
 
+std::vector<std::string> NdfRegistry::text_keys() const {
+    std::vector<std::string> keys;
+    for (const auto& [info, make] : entries_)
+        for (const std::string& k : info.text_parameters)
+            if (std::find(keys.begin(), keys.end(), k) == keys.end()) keys.push_back(k);
+    return keys;
+}
+
 AnyNdf NdfRegistry::make_at_alpha(std::string_view family, double alpha,
-                                  const std::vector<std::pair<std::string, double>>& others) const {
+                                  const std::vector<std::pair<std::string, double>>& others,
+                                  const std::vector<std::pair<std::string, std::string>>& texts) const {
     const NdfInfo* info = find(family);
-    if (!info) return make(family, others);  // refused there, naming the known NDFs
+    if (!info) return make(family, others, texts);  // refused there, naming the known NDFs
     std::vector<std::pair<std::string, double>> params = others;
     if (std::find(info->parameters.begin(), info->parameters.end(), "alpha") != info->parameters.end()) {
         params.emplace_back("alpha", alpha);
     } else if (info->roughness) {
         std::map<std::string, double> given(others.begin(), others.end());
         params.emplace_back(info->roughness->parameter,
-                            info->roughness->from_alpha(alpha, NdfParams(info->name, std::move(given))));
+                            info->roughness->from_alpha(alpha, NdfParams(info->name, std::move(given),
+                                                                         {texts.begin(), texts.end()})));
     } else {
         throw input_error("ndf '" + info->name + "' has no parameter 'alpha' and declares no roughness mapping to one " +
                           "(its parameters: " + parameter_list(*info) + "): it cannot be swept over alpha");
     }
-    return make(family, params);
+    return make(family, params, texts);
 }
 
 AnyNdf NdfRegistry::make(std::string_view text) const {
-    const NdfSpec spec = parse_spec(text);
-    return make(spec.name, spec.params);
+    const NdfSpec spec = parse_spec(text, "ndf spec", text_keys());
+    return make(spec.name, spec.params, spec.texts);
 }
 
-AnyNdf NdfRegistry::make(std::string_view family, const std::vector<std::pair<std::string, double>>& params) const {
+AnyNdf NdfRegistry::make(std::string_view family, const std::vector<std::pair<std::string, double>>& params,
+                         const std::vector<std::pair<std::string, std::string>>& texts) const {
     const std::string name(family);
     if (!is_spec_name(name))  // as the parser says it of the spec these would spell
         throw input_error("ndf spec '" + format_spec({name, params}) + "': " + std::string(spec_name_rule));
@@ -76,7 +95,20 @@ AnyNdf NdfRegistry::make(std::string_view family, const std::vector<std::pair<st
     }
     const NdfInfo& info = it->first;
     std::map<std::string, double> values;
+    std::map<std::string, std::string> text_values;
     std::vector<std::pair<std::string, double>> canonical;
+    std::vector<std::pair<std::string, std::string>> canonical_texts;
+    for (const auto& [key, v] : texts) {
+        if (std::find(info.text_parameters.begin(), info.text_parameters.end(), key) == info.text_parameters.end())
+            throw input_error("ndf '" + name + "': unknown parameter '" + key + "' (its parameters: " +
+                              parameter_list(info) + ")");
+        if (!text_values.emplace(key, v).second) throw input_error("ndf '" + name + "': parameter '" + key + "' given twice");
+    }
+    for (const auto& key : info.text_parameters) {
+        const auto v = text_values.find(key);
+        if (v == text_values.end()) throw input_error("ndf '" + name + "': missing parameter '" + key + "'");
+        canonical_texts.emplace_back(key, v->second);
+    }
     for (const auto& [key, v] : params) {
         if (std::find(info.parameters.begin(), info.parameters.end(), key) == info.parameters.end())
             throw input_error("ndf '" + name + "': unknown parameter '" + key + "' (its parameters: " +
@@ -88,7 +120,8 @@ AnyNdf NdfRegistry::make(std::string_view family, const std::vector<std::pair<st
         if (v == values.end()) throw input_error("ndf '" + name + "': missing parameter '" + key + "'");
         canonical.emplace_back(key, v->second);
     }
-    return it->second(NdfParams(name, std::move(values)), NdfSpec{name, std::move(canonical)});
+    return it->second(NdfParams(name, std::move(values), std::move(text_values)),
+                      NdfSpec{name, std::move(canonical), std::move(canonical_texts)});
 }
 
 void register_core_ndfs(NdfRegistry& r) {
@@ -111,6 +144,7 @@ void register_core_ndfs(NdfRegistry& r) {
             "student(alpha=1, gamma=3)", "student(alpha=0.05, gamma=7.5)", "student(alpha=0.5, gamma=30)",
             "student(alpha=0.2, gamma=1e6)"}},
           [](const NdfParams& p) { return student(p.at("alpha"), p.at("gamma")); });
+    register_abc(r);
 }
 
 }  // namespace smithlab

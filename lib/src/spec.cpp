@@ -39,9 +39,16 @@ bool is_spec_name(std::string_view s) {
 
 namespace {
 
+// A bare text value holds no blank, comma, parenthesis or double quote (it must read back as one item).
+bool is_bare_text(std::string_view v) {
+    return !v.empty() && std::none_of(v.begin(), v.end(), [](char c) {
+        return std::isspace(static_cast<unsigned char>(c)) || c == ',' || c == '(' || c == ')' || c == '"';
+    });
+}
+
 }  // namespace
 
-NdfSpec parse_spec(std::string_view text, std::string_view what) {
+NdfSpec parse_spec(std::string_view text, std::string_view what, const std::vector<std::string>& text_keys) {
     const std::string_view s = trim(text);
     NdfSpec spec;
     const auto open = s.find('(');
@@ -53,23 +60,37 @@ NdfSpec parse_spec(std::string_view text, std::string_view what) {
     if (body.empty()) return spec;
     std::set<std::string, std::less<>> seen;
     while (true) {
-        const auto comma = body.find(',');
-        const std::string_view item = trim(body.substr(0, comma));
+        // The item ends at the first comma outside double quotes.
+        std::size_t end = 0;
+        for (bool quoted = false; end < body.size() && (quoted || body[end] != ','); ++end)
+            if (body[end] == '"') quoted = !quoted;
+        const std::string_view item = trim(body.substr(0, end));
         const auto eq = item.find('=');
         if (eq == std::string_view::npos) bad_spec(what, text, "parameter '" + std::string(item) + "' is not key=value");
         const std::string key(trim(item.substr(0, eq)));
         const std::string value(trim(item.substr(eq + 1)));
         if (!is_identifier(key)) bad_spec(what, text, "bad parameter name '" + key + "'");
         if (!seen.insert(key).second) bad_spec(what, text, "parameter '" + key + "' given twice");
-        double v = 0.0;
-        try {
-            v = parse_double(value, "value of '" + key + "'");
-        } catch (const input_error& e) {
-            bad_spec(what, text, e.what());
+        if (std::find(text_keys.begin(), text_keys.end(), key) != text_keys.end()) {
+            const bool quoted = value.size() >= 2 && value.front() == '"' && value.back() == '"' &&
+                                value.find('"', 1) == value.size() - 1;
+            if (!quoted && !is_bare_text(value))
+                bad_spec(what, text, "value of '" + key + "' must be text, bare (no blank, comma, parenthesis or "
+                                     "quote) or in double quotes, got '" + value + "'");
+            const std::string v = quoted ? value.substr(1, value.size() - 2) : value;
+            if (v.empty()) bad_spec(what, text, "value of '" + key + "' is empty");
+            spec.texts.emplace_back(key, v);
+        } else {
+            double v = 0.0;
+            try {
+                v = parse_double(value, "value of '" + key + "'");
+            } catch (const input_error& e) {
+                bad_spec(what, text, e.what());
+            }
+            spec.params.emplace_back(key, v);
         }
-        spec.params.emplace_back(key, v);
-        if (comma == std::string_view::npos) break;
-        body.remove_prefix(comma + 1);
+        if (end == body.size()) break;
+        body.remove_prefix(end + 1);
     }
     return spec;
 }
@@ -79,6 +100,10 @@ std::string format_spec(const NdfSpec& spec) {
     std::string out = spec.name + "(";
     for (std::size_t i = 0; i < params.size(); ++i) {
         out += (i ? ", " : "") + params[i].first + "=" + format_shortest(params[i].second);
+    }
+    for (std::size_t i = 0; i < spec.texts.size(); ++i) {
+        const std::string& v = spec.texts[i].second;
+        out += (i || !params.empty() ? ", " : "") + spec.texts[i].first + "=" + (is_bare_text(v) ? v : '"' + v + '"');
     }
     return out + ")";
 }

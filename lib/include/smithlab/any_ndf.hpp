@@ -48,6 +48,10 @@ public:
 
     // The canonical spec string, e.g. "gtr(alpha=0.3, gamma=1.5)".
     const std::string& spec() const { return spec_; }
+    // What identifies the NDF in a cache's key: its spec, but for an NDF read from a file, whose file is named by its
+    // contents ("tabulated(file=fnv1a64:...)"): editing the file changes it, moving the file does not.
+    const std::string& key() const { return key_.empty() ? spec_ : key_; }
+    void set_key(std::string key) { key_ = std::move(key); }
     // Its family name ("gtr") and a parameter by name (input_error if it has none such).
     const std::string& family() const { return parts_.name; }
     double param(std::string_view key) const;
@@ -111,7 +115,7 @@ private:
 
     std::shared_ptr<const Base> self_;
     NdfSpec parts_;
-    std::string spec_;
+    std::string spec_, key_;
     std::shared_ptr<const NdfKernels> kernels_;
 };
 

@@ -31,12 +31,15 @@ namespace smithlab {
 
 class NdfParams {
 public:
-    NdfParams(std::string ndf, std::map<std::string, double> values) : ndf_(std::move(ndf)), values_(std::move(values)) {}
-    double at(const std::string& key) const;  // throws input_error naming the missing key
+    NdfParams(std::string ndf, std::map<std::string, double> values, std::map<std::string, std::string> texts = {})
+        : ndf_(std::move(ndf)), values_(std::move(values)), texts_(std::move(texts)) {}
+    double at(const std::string& key) const;              // throws input_error naming the missing key
+    const std::string& text(const std::string& key) const;  // a text parameter (NdfInfo::text_parameters)
     const std::string& ndf() const { return ndf_; }
 private:
     std::string ndf_;
     std::map<std::string, double> values_;
+    std::map<std::string, std::string> texts_;
 };
 
 struct NdfInfo {
@@ -52,6 +55,9 @@ struct NdfInfo {
         std::function<double(double alpha, const NdfParams& others)> from_alpha;
     };
     std::optional<Roughness> roughness = std::nullopt;
+    // Parameters whose values are text, after the numbers in the canonical spec: a file's path
+    // ("tabulated(file=ndf.csv)"; spec.hpp's grammar).
+    std::vector<std::string> text_parameters = {};
 };
 
 class NdfRegistry {
@@ -64,19 +70,32 @@ public:
         using N = std::decay_t<std::invoke_result_t<const Make&, const NdfParams&>>;
         add_erased(std::move(info), [make](const NdfParams& p, NdfSpec spec) {
             N ndf = make(p);
+            // An NDF read from a file is known by the file's contents (its content_id), not by its path.
+            std::string key;
+            if constexpr (requires { ndf.content_id(); }) {
+                NdfSpec by_contents = spec;
+                for (auto& [k, v] : by_contents.texts) v = ndf.content_id();
+                key = format_spec(by_contents);
+            }
             AnyNdf any(ndf, std::move(spec));
-            return std::move(any.attach(std::make_shared<const KernelsOf<N>>(std::move(ndf))));
+            any.attach(std::make_shared<const KernelsOf<N>>(std::move(ndf)));
+            if (!key.empty()) any.set_key(std::move(key));
+            return any;
         });
     }
 
     AnyNdf make(std::string_view spec) const;  // throws input_error: unknown NDF, unknown/missing parameter, bad value
     // The same without a spec string, make("gtr", {{"alpha", 0.3}, {"gamma", 1.5}}); also input_error for a
     // parameter given twice. A spec is text to show (AnyNdf::spec), not the way to build an NDF in code.
-    AnyNdf make(std::string_view family, const std::vector<std::pair<std::string, double>>& params) const;
+    AnyNdf make(std::string_view family, const std::vector<std::pair<std::string, double>>& params,
+                const std::vector<std::pair<std::string, std::string>>& texts = {}) const;
     // The family at roughness alpha, its other parameters given: alpha itself where the family has that parameter,
     // else the one its roughness sets; input_error where it has neither.
     AnyNdf make_at_alpha(std::string_view family, double alpha,
-                         const std::vector<std::pair<std::string, double>>& others) const;
+                         const std::vector<std::pair<std::string, double>>& others,
+                         const std::vector<std::pair<std::string, std::string>>& texts = {}) const;
+    // Every text parameter any registered NDF declares (for a spec parser, spec.hpp).
+    std::vector<std::string> text_keys() const;
     const NdfInfo* find(std::string_view name) const;
     std::vector<const NdfInfo*> list() const;  // in registration order
 
@@ -85,7 +104,7 @@ private:
     std::vector<std::pair<NdfInfo, Factory>> entries_;
 };
 
-// ggx, beckmann, blinn, student.
+// ggx, beckmann, blinn, student, abc.
 void register_core_ndfs(NdfRegistry& registry);
 
 }  // namespace smithlab
