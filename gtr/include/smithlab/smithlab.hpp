@@ -17,6 +17,7 @@
 #include "smithlab/smith.hpp"
 #include "smithlab/spec.hpp"
 #include "smithlab/student_t.hpp"
+#include "smithlab/tabulated.hpp"
 #include "smithlab/variants.hpp"
 #include "smithlab/gtr/closed_forms.hpp"
 #include "smithlab/gtr/gtr.hpp"
