@@ -72,7 +72,7 @@ std::string ggx_table(double scale = 1.0) {
 
 }  // namespace
 
-TEST_CASE("tabulated: Lambda of sampled GGX, Beckmann and GTR 1.5 against their own, by number of rows", "[tabulated]") {
+TEST_CASE("tabulated: Lambda of sampled GGX, Beckmann and GTR 1.5 against their own, by number of rows", "[tabulated][sweep]") {
     const smithlab::Ggx g01 = smithlab::ggx(0.1), g05 = smithlab::ggx(0.5);
     const smithlab::Beckmann b03 = smithlab::beckmann(0.3);
     const smithlab::Gtr gt = smithlab::gtr(0.3, 1.5);
@@ -186,10 +186,10 @@ TEST_CASE("tabulated: D and P22 are finite, >= 0, agree, and reproduce the rows"
     CHECK(tab.D(1e-200) == Approx(tab.horizon_D()).epsilon(1e-12));
 }
 
-TEST_CASE("tabulated: a cos_theta column, comments, CRLF and a first angle above 0", "[tabulated]") {
+TEST_CASE("tabulated: a cos_theta column, a byte order mark, comments, CRLF and a first angle above 0", "[tabulated]") {
     const smithlab::Ggx g = smithlab::ggx(0.4);
     const std::vector<double> th = jittered_angles(80, 0.5, 88.0, 21);
-    std::string text = "# GGX(0.4), by cos theta\r\nD,cos_theta\r\n";
+    std::string text = "\xEF\xBB\xBF# GGX(0.4), by cos theta, after a UTF-8 byte order mark\r\nD,cos_theta\r\n";
     for (double t : th) {
         const double c = std::cos(t * pi / 180.0);
         text += smithlab::format_g17(g.D(c)) + "," + smithlab::format_g17(c) + "\r\n";
@@ -361,7 +361,7 @@ TEST_CASE("tabulated: the example table experiments/ndfs/two_lobe.csv", "[tabula
     CHECK(n.content_id() == tab.content_id());
 }
 
-TEST_CASE("tabulated: a walk on the table's microsurface scatters as on GGX's, order by order", "[tabulated][walk]") {
+TEST_CASE("tabulated: a walk on the table's microsurface scatters as on GGX's, order by order", "[tabulated][walk][slow]") {
     const smithlab::Ggx g = smithlab::ggx(0.5);
     const TabulatedNdf tab = smithlab::tabulated_ndf_from_csv(
         csv_of(jittered_angles(200, 0.0, 89.0, 13), [&](double c) { return g.D(c); }), "ggx.csv");

@@ -77,12 +77,13 @@ double gauss_legendre(const F& f, double a, double b) {
 
 // The text with its comment lines emptied: a line whose first character is '#', where a record starts (not inside a
 // quoted field, tracked as read_csv does: a quote opens one only at the start of a field). Every line end is kept,
-// so that read_csv skips the emptied lines as blank and the line numbers stay the file's.
+// so that read_csv skips the emptied lines as blank and the line numbers stay the file's. A UTF-8 byte order mark
+// (spreadsheets write one) is dropped.
 std::string blank_comments(const std::string& text) {
     std::string out;
     out.reserve(text.size());
     bool quoted = false, line_start = true, field_start = true;
-    for (std::size_t i = 0; i < text.size(); ++i) {
+    for (std::size_t i = text.rfind("\xEF\xBB\xBF", 0) == 0 ? 3 : 0; i < text.size(); ++i) {
         const char ch = text[i];
         if (line_start && ch == '#') {
             while (i < text.size() && text[i] != '\n') ++i;

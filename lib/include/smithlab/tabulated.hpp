@@ -5,7 +5,7 @@
 // `cos_theta` (in (0, 1]), and `D` (per steradian of m, normalized so that the integral of D(m) cos(theta_m) over the
 // hemisphere is 1, Walter et al. 2007 eq. 4); other columns are ignored. Then one row per angle, theta_m strictly
 // increasing (cos_theta strictly decreasing), D finite and >= 0. RFC 4180 as csv.hpp reads it; a line whose first
-// character is '#' (outside a quoted field) is a comment. Every refusal is an input_error "FILE:LINE: ..." naming the
+// character is '#' (outside a quoted field) is a comment, and a leading UTF-8 byte order mark is skipped. Every refusal is an input_error "FILE:LINE: ..." naming the
 // value (the area's names the rows' lines), and comes before any TabulatedNdf exists.
 //
 // The interpolation, chosen by measurement (tests/test_tabulated.cpp prints the table; see "Measured" below):
