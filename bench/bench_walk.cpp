@@ -1,12 +1,16 @@
 // Walks per second of the microsurface walk (sample estimator, one thread unless the name says threads:2), each
 // benchmark named by its NDF and facet material, at theta_i = 45 degrees; items_per_second = walks/s, and the
 // counters bounces = hits per walk and bounces_per_second = hits/s. "[hit_normal=hammon]": Hammon's D cos hit
-// normals (walk::HitNormal) instead of visible normals. The yardstick: Heitz et al. 2016's public code,
+// normals (walk::HitNormal) instead of visible normals. The yardstick: Heitz et al. 2016's public code,
 // ~2.4-2.7 M walks/s per core here on GGX mirror alpha = 0.5 (float, global mt19937, virtual calls per bounce).
+// The block/ rows time what a command runs, a block of 4096 walks: the D-only GGX on its own type (walk::trace_block),
+// the same D registered as a plug-in and run through the surface its registration records (smithlab/surface.hpp: one
+// virtual call a block), and through AnyNdf itself (a virtual D and Lambda a call: what an unregistered NDF gets).
 // Run: build/bench/bench_walk --benchmark_repetitions=7 --benchmark_report_aggregates_only
 #include <benchmark/benchmark.h>
 
 #include <smithlab/smithlab.hpp>
+#include <smithlab/surface.hpp>
 #include <smithlab/walk/trace.hpp>
 #include <memory>
 #include <string>
@@ -58,6 +62,43 @@ void add_cell(const std::string& name, const N& ndf, const M& material, unsigned
         ->Unit(benchmark::kMillisecond);
 }
 
+// A plug-in's D, written as a user would: GGX's D and nothing else.
+struct PlugInGgx {
+    smithlab::Ggx ggx;
+    double D(double c) const { return ggx.D(c); }
+};
+
+walk::CellRequest block_request() {
+    walk::CellRequest r;
+    r.wi = smithlab::direction_from_theta_deg(45.0);
+    r.walks = std::int64_t{1} << 40;  // blocks of 4096 from an unbounded cell: block b is walks [4096 b, 4096 (b + 1))
+    return r;
+}
+
+template <class Run>
+void add_block(const std::string& name, Run run) {
+    benchmark::RegisterBenchmark(("block/" + name).c_str(), [run](benchmark::State& s) {
+        const walk::CellRequest r = block_request();
+        std::uint64_t b = 0;
+        std::int64_t bounces = 0;
+        for (auto _ : s) bounces += run(r, b++).albedo.events;
+        s.SetItemsProcessed(s.iterations() * r.block);
+        s.counters["bounces_per_second"] = benchmark::Counter(static_cast<double>(bounces), benchmark::Counter::kIsRate);
+    })->Unit(benchmark::kMicrosecond);
+}
+
+template <class N>
+void add_block_of(const std::string& name, const N& ndf) {
+    auto ms = std::make_shared<const walk::Microsurface<N>>(ndf);
+    add_block(name, [ms](const walk::CellRequest& r, std::uint64_t b) { return walk::trace_block(*ms, walk::Mirror{}, r, b); });
+}
+
+void add_block_of(const std::string& name, const smithlab::AnyNdf& ndf) {
+    const std::shared_ptr<const smithlab::AnySurface> surface = smithlab::make_surface(ndf);
+    const walk::Material mirror = walk::Mirror{};
+    add_block(name, [surface, mirror](const walk::CellRequest& r, std::uint64_t b) { return surface->trace_block(mirror, r, b); });
+}
+
 const bool registered = [] {
     add("ggx(alpha=0.5)/mirror", smithlab::ggx(0.5), walk::Mirror{});
     add("ggx(alpha=0.5)/lambert(albedo=1)", smithlab::ggx(0.5), walk::Lambert{1.0});
@@ -70,6 +111,14 @@ const bool registered = [] {
     add("gtr(alpha=0.5, gamma=1.5)/lambert(albedo=1)", smithlab::gtr(0.5, 1.5), walk::Lambert{1.0});
     add("D-only ggx(alpha=0.5)/mirror", smithlab::DOnly<smithlab::Ggx>{smithlab::ggx(0.5)}, walk::Mirror{});
     for (unsigned t : {1u, 2u}) add_cell("ggx(alpha=0.5)/mirror", smithlab::ggx(0.5), walk::Mirror{}, t);
+
+    smithlab::NdfRegistry registry;
+    registry.add({"plugin_ggx", {"alpha"}, "GGX's D alone, registered", {}},
+                 [](const smithlab::NdfParams& p) { return PlugInGgx{smithlab::ggx(p.at("alpha"))}; });
+    const smithlab::AnyNdf plugin = registry.make("plugin_ggx(alpha=0.5)");
+    add_block_of("D-only ggx(alpha=0.5)/mirror", smithlab::DOnly<smithlab::Ggx>{smithlab::ggx(0.5)});
+    add_block_of("plug-in ggx(alpha=0.5), registered/mirror", plugin);
+    add_block_of("plug-in ggx(alpha=0.5), through AnyNdf/mirror", smithlab::as_any(PlugInGgx{smithlab::ggx(0.5)}));
     return true;
 }();
 

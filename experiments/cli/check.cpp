@@ -31,6 +31,8 @@ int run_check(const CheckArgs& a, const NdfRegistry& registry) {
     if (specs.empty()) throw input_error("check needs --ndf SPEC or --all (see smithlab check --help)");
     std::vector<AnyNdf> ndfs;
     for (const auto& s : specs) ndfs.push_back(registry.make(s));  // validate every spec before any work
+    for (const AnyNdf& n : ndfs)
+        if (!n.note().empty()) std::fprintf(stderr, "smithlab: note: %s\n", n.note().c_str());
 
     CheckOptions opts;
     opts.backend = parse_backend(a.backend);

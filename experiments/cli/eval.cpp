@@ -64,6 +64,7 @@ std::pair<double, double> lambda_g1(const Prepared& p, double mu, Downward downw
 
 Prepared prepare(const std::string& spec, const NdfRegistry& registry, const Route& r) {
     AnyNdf ndf = registry.make(spec);
+    if (!ndf.note().empty()) std::fprintf(stderr, "smithlab: note: %s\n", ndf.note().c_str());
     try {
         LambdaOfMu up = r.prepare(ndf);
         return {std::move(ndf), std::move(up)};

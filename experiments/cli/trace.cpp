@@ -153,6 +153,7 @@ int run_brdf(const BrdfArgs& a, const NdfRegistry& registry) {
     const unsigned long long seed = parse_seed(a.seed, "--seed");
     require(a.n > 0, "--n", "> 0", static_cast<double>(a.n));
     const AnyNdf ndf = registry.make(a.ndf);
+    if (!ndf.note().empty()) std::fprintf(stderr, "smithlab: note: %s\n", ndf.note().c_str());
     const walk::Material material = walk::parse_material(a.material);
     walk::EvalRequest r{.wi = parse_direction(a.wi, "--wi", &material), .wo = parse_direction(a.wo, "--wo", nullptr)};
     r.seed = seed;

@@ -212,6 +212,7 @@ RunSummary run_scene(const TraceScene& s, const std::string& source, const NdfRe
     for (const SceneNdf& n : s.ndfs)
         if (!ndfs.count(n.spec)) {
             const AnyNdf& ndf = ndfs.emplace(n.spec, n.make(registry)).first->second;
+            if (!ndf.note().empty() && mpi::rank() == 0) std::fprintf(stderr, "trace: note: %s\n", ndf.note().c_str());
             make_surface(ndf, opts);
         }
     std::map<std::string, walk::Material> materials;

@@ -7,6 +7,7 @@
 #include "smithlab/errors.hpp"
 #include "smithlab/ndfs.hpp"
 #include "smithlab/student_t.hpp"
+#include "smithlab/tabulated.hpp"
 
 namespace smithlab {
 
@@ -116,9 +117,13 @@ AnyNdf NdfRegistry::make(std::string_view family, const std::vector<std::pair<st
         if (!values.emplace(key, v).second) throw input_error("ndf '" + name + "': parameter '" + key + "' given twice");
     }
     for (const auto& key : info.parameters) {
-        const auto v = values.find(key);
-        if (v == values.end()) throw input_error("ndf '" + name + "': missing parameter '" + key + "'");
-        canonical.emplace_back(key, v->second);
+        const auto d = std::find_if(info.defaults.begin(), info.defaults.end(), [&](const auto& x) { return x.first == key; });
+        auto v = values.find(key);
+        if (v == values.end()) {
+            if (d == info.defaults.end()) throw input_error("ndf '" + name + "': missing parameter '" + key + "'");
+            v = values.emplace(key, d->second).first;
+        }
+        if (d == info.defaults.end() || !(v->second == d->second)) canonical.emplace_back(key, v->second);
     }
     return it->second(NdfParams(name, std::move(values), std::move(text_values)),
                       NdfSpec{name, std::move(canonical), std::move(canonical_texts)});
@@ -144,6 +149,25 @@ void register_core_ndfs(NdfRegistry& r) {
             "student(alpha=1, gamma=3)", "student(alpha=0.05, gamma=7.5)", "student(alpha=0.5, gamma=30)",
             "student(alpha=0.2, gamma=1e6)"}},
           [](const NdfParams& p) { return student(p.at("alpha"), p.at("gamma")); });
+    // A measured NDF from a CSV table (tabulated.hpp), its slopes stretched by `scale`; a roughness alpha sets the scale
+    // that makes its core slope scale (ndf.hpp) alpha: at alpha, a GGX or Beckmann table is that family's of alpha.
+    const auto read = [](const NdfParams& p) {
+        const double normalize = p.at("normalize");
+        require(normalize == 0.0 || normalize == 1.0, "tabulated: normalize", "0 or 1", normalize);
+        return read_tabulated_ndf(p.text("file"), {.normalize = normalize == 1.0});
+    };
+    r.add({.name = "tabulated",
+           .parameters = {"scale", "normalize"},
+           .description = "a measured D(theta_m) from a CSV file (columns theta_deg or cos_theta, and D), interpolated "
+                          "(tabulated.hpp); scale stretches its slopes (default 1), normalize=1 divides D by its "
+                          "projected area; Lambda by quadrature",
+           .examples = {},
+           .roughness = NdfInfo::Roughness{"scale", [read](double alpha, const NdfParams& p) {
+               return alpha / core_slope_scale(read(p));
+           }},
+           .text_parameters = {"file"},
+           .defaults = {{"scale", 1.0}, {"normalize", 0.0}}},
+          [read](const NdfParams& p) { return read(p).scaled(p.at("scale")); });
     register_abc(r);
 }
 

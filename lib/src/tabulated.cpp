@@ -276,7 +276,9 @@ TabulatedNdf tabulated_ndf_from_csv(const std::string& text, const std::string& 
             throw input_error(source + ": the projected area of D is " + format_value(t.area) +
                               "; there is no scale to normalize it by");
     }
-    if (opts.normalize) {
+    // Within the tolerance (or with normalize) D is divided by its area: the Smith model holds only for a normalized D
+    // (the checks, G1's visible-area identity, hold it to 1e-8), and the factor is reported (TabulatedNdf::note).
+    {
         t.factor = 1.0 / t.area;
         const double ln_f = std::log(t.factor);
         for (std::size_t i = 0; i < n; ++i) {
@@ -307,16 +309,39 @@ TabulatedNdf read_tabulated_ndf(const std::filesystem::path& path, const Tabulat
 double TabulatedNdf::D(double c) const {
     if (!(c > 0.0)) return std::isnan(c) ? c : 0.0;
     if (c > 1.0) c = 1.0;
-    const double s = std::sqrt((1.0 - c) * (1.0 + c));
-    return t_->D_at(std::atan2(s, c), c * c);
+    const double s2 = (1.0 - c) * (1.0 + c);
+    if (scale_ == 1.0) return t_->D_at(std::atan2(std::sqrt(s2), c), c * c);
+    const double c2 = c * c;
+    return slope_density(s2 / c2) / (c2 * c2);  // D = P22 / cos^4 (Walter 2007 eq. 42)
 }
 
-double TabulatedNdf::slope_density(double r2) const {
+double TabulatedNdf::table_P22(double r2) const {
     if (!(r2 < INFINITY)) return std::isnan(r2) ? r2 : 0.0;
     if (r2 < 0.0) r2 = 0.0;
     const double c2 = 1.0 / (1.0 + r2);
     const double d = t_->D_at(std::atan(std::sqrt(r2)), c2);
     return d * c2 * c2;
+}
+
+double TabulatedNdf::slope_density(double r2) const {
+    if (scale_ == 1.0) return table_P22(r2);
+    const double s2 = scale_ * scale_;
+    return table_P22(r2 / s2) / s2;
+}
+
+std::string TabulatedNdf::note() const {
+    if (normalization_factor() == 1.0) return "";
+    char text[160];
+    std::snprintf(text, sizeof text, "D multiplied by %.6g (its projected area was %.6g, not 1)", normalization_factor(),
+                  area_as_read());
+    return source() + ": " + text;
+}
+
+TabulatedNdf TabulatedNdf::scaled(double s) const {
+    require(s >= 1e-4 && s <= 1e4, "tabulated: scale", "in [1e-4, 1e4]", s);
+    TabulatedNdf out = *this;
+    out.scale_ = s;
+    return out;
 }
 
 std::size_t TabulatedNdf::points() const { return t_->theta.size(); }

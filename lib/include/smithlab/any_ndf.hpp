@@ -52,6 +52,9 @@ public:
     // contents ("tabulated(file=fnv1a64:...)"): editing the file changes it, moving the file does not.
     const std::string& key() const { return key_.empty() ? spec_ : key_; }
     void set_key(std::string key) { key_ = std::move(key); }
+    // What the user should know of how the NDF was built ("" mostly): a measured table rescaled to its normalization.
+    const std::string& note() const { return note_; }
+    void set_note(std::string note) { note_ = std::move(note); }
     // Its family name ("gtr") and a parameter by name (input_error if it has none such).
     const std::string& family() const { return parts_.name; }
     double param(std::string_view key) const;
@@ -115,7 +118,7 @@ private:
 
     std::shared_ptr<const Base> self_;
     NdfSpec parts_;
-    std::string spec_, key_;
+    std::string spec_, key_, note_;
     std::shared_ptr<const NdfKernels> kernels_;
 };
 

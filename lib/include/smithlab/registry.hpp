@@ -58,6 +58,8 @@ struct NdfInfo {
     // Parameters whose values are text, after the numbers in the canonical spec: a file's path
     // ("tabulated(file=ndf.csv)"; spec.hpp's grammar).
     std::vector<std::string> text_parameters = {};
+    // Values of parameters that a spec may leave out (left out of the canonical spec where they hold).
+    std::vector<std::pair<std::string, double>> defaults = {};
 };
 
 class NdfRegistry {
@@ -71,15 +73,17 @@ public:
         add_erased(std::move(info), [make](const NdfParams& p, NdfSpec spec) {
             N ndf = make(p);
             // An NDF read from a file is known by the file's contents (its content_id), not by its path.
-            std::string key;
+            std::string key, note;
             if constexpr (requires { ndf.content_id(); }) {
                 NdfSpec by_contents = spec;
                 for (auto& [k, v] : by_contents.texts) v = ndf.content_id();
                 key = format_spec(by_contents);
             }
+            if constexpr (requires { ndf.note(); }) note = ndf.note();
             AnyNdf any(ndf, std::move(spec));
             any.attach(std::make_shared<const KernelsOf<N>>(std::move(ndf)));
             if (!key.empty()) any.set_key(std::move(key));
+            any.set_note(std::move(note));
             return any;
         });
     }

@@ -48,7 +48,8 @@
 // The normalization: the projected area A = 2 pi integral_0^{pi/2} D sin cos dtheta = pi integral_0^inf P22 d(r^2)
 // (Walter 2007 eq. 4 and 42) of the interpolant itself, by 8-point Gauss-Legendre on each piece (the pole's too) and
 // the tail in closed form, pi D_0 c_n^2 + pi D_1 c_n^4 / 2. A table with |A - 1| > tabulated_area_tolerance is
-// refused, unless TabulatedOptions::normalize, which divides D by A (normalization_factor() = 1 / A).
+// refused, unless TabulatedOptions::normalize; within it, or with normalize, D is divided by A (normalization_factor()
+// = 1 / A, reported by note()): the Smith model holds only for a normalized D.
 //
 // The identity: content_hash() is FNV-1a 64 (Fowler, Noll, Vo) of the bytes of the CSV text as read, comments and
 // line ends included, the source name not: a cache keyed on it follows the contents, not the path.
@@ -93,15 +94,25 @@ public:
     double theta_max_deg() const;
     double horizon_D() const;           // D_0: D at theta_m = 90 degrees, from the tail law
     double area_as_read() const;        // A before any rescaling
-    double normalization_factor() const;  // 1 / A when rescaled (TabulatedOptions::normalize), else 1
+    double normalization_factor() const;  // 1 / A: what D was multiplied by
     std::uint64_t content_hash() const;   // FNV-1a 64 of the CSV bytes as read
     std::string content_id() const;       // "fnv1a64:" and the hash as 16 hex digits
     const std::string& source() const;    // the name the table was read under (a path, or the caller's)
 
+    // The table's distribution with its slopes stretched by s: P22_s(r^2) = P22(r^2 / s^2) / s^2 (a distribution of
+    // slopes scaled by s; still normalized), s in [1e-4, 1e4] (input_error otherwise). Its core slope scale
+    // (ndf.hpp, core_slope_scale) is s times the table's: what a roughness alpha sets (the registry's "tabulated").
+    TabulatedNdf scaled(double s) const;
+    double scale() const { return scale_; }
+    // "" unless D was rescaled (A != 1): then the factor and the area it came from.
+    std::string note() const;
+
 private:
     explicit TabulatedNdf(std::shared_ptr<const detail::TabulatedTable> table) : t_(std::move(table)) {}
     friend TabulatedNdf tabulated_ndf_from_csv(const std::string&, const std::string&, const TabulatedOptions&);
+    double table_P22(double r2) const;
     std::shared_ptr<const detail::TabulatedTable> t_;
+    double scale_ = 1.0;
 };
 
 // The NDF of CSV `text`; `source` names it in messages ("SOURCE:LINE: ...") and in source(). input_error on any
