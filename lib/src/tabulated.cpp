@@ -271,7 +271,7 @@ TabulatedNdf tabulated_ndf_from_csv(const std::string& text, const std::string& 
                               "interpolant's) must be within " + format_value(tabulated_area_tolerance) +
                               " of 1, got " + format_value(t.area) + " (rows at lines " +
                               std::to_string(records[1].line) + "-" + std::to_string(records.back().line) +
-                              "); to divide D by it, read the table with normalize");
+                              "); to divide D by it, give normalize=1 (tabulated(file=..., normalize=1))");
         if (!(t.area > 0.0 && t.area < INFINITY))
             throw input_error(source + ": the projected area of D is " + format_value(t.area) +
                               "; there is no scale to normalize it by");

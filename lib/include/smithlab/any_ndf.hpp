@@ -7,11 +7,13 @@
 
 #include <concepts>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
 
 #include "smithlab/ndf.hpp"
+#include "smithlab/quadrature.hpp"
 #include "smithlab/spec.hpp"
 
 namespace smithlab {
@@ -41,6 +43,9 @@ public:
     // Throw input_error when the held NDF has no analytic D cos sampler.
     double Dcos_sf(double r2) const;
     double Dcos_r2(double v) const;
+
+    // The quadrature the held NDF's integrals need, where it names one (tabulated.hpp), else none.
+    std::optional<Backend> quadrature_backend() const { return self_->quadrature_backend(); }
 
     // The alpha of the GGX (Beckmann) distribution the held NDF is, or NaN (ndf.hpp).
     double ggx_alpha() const { return self_->ggx_alpha(); }
@@ -85,6 +90,7 @@ private:
         virtual double Dcos_r2(double v) const = 0;
         virtual double ggx_alpha() const = 0;
         virtual double beckmann_alpha() const = 0;
+        virtual std::optional<Backend> quadrature_backend() const = 0;
     };
     template <Ndf N>
     struct Model final : Base {
@@ -113,6 +119,10 @@ private:
         }
         double ggx_alpha() const override { return smithlab::ggx_alpha(ndf); }
         double beckmann_alpha() const override { return smithlab::beckmann_alpha(ndf); }
+        std::optional<Backend> quadrature_backend() const override {
+            if constexpr (requires { ndf.quadrature_backend(); }) return ndf.quadrature_backend();
+            else return std::nullopt;
+        }
         N ndf;
     };
 

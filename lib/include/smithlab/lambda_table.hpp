@@ -29,6 +29,7 @@
 #include <array>
 #include <cmath>
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "smithlab/ndf.hpp"
@@ -83,7 +84,12 @@ private:
 
 template <Ndf N>
 LambdaTable tabulate_Lambda(const N& ndf, const LambdaTableOptions& opts = {}) {
-    return LambdaTable([&ndf, e = opts.exact](double mu) { return smithlab::Lambda(ndf, mu, e); }, opts);
+    LambdaOptions e = opts.exact;
+    // An NDF whose slope density is only piecewise smooth (a tabulated D: tabulated.hpp) names the quadrature its
+    // integrals need: Boost's tanh-sinh, made for analytic integrands, crawls and misses on its kinks.
+    if constexpr (requires { ndf.quadrature_backend(); })
+        if (const std::optional<Backend> b = ndf.quadrature_backend()) e.backend = *b;
+    return LambdaTable([&ndf, e](double mu) { return smithlab::Lambda(ndf, mu, e); }, opts);
 }
 
 }  // namespace smithlab

@@ -59,9 +59,12 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
+
+#include "smithlab/quadrature.hpp"
 
 namespace smithlab {
 
@@ -106,6 +109,9 @@ public:
     double scale() const { return scale_; }
     // "" unless D was rescaled (A != 1): then the factor and the area it came from.
     std::string note() const;
+    // The quadrature its integrals need (lambda_table.hpp: the walk's and the samplers' Lambda table): GSL's adaptive
+    // Gauss-Kronrod, which resolves the interpolant's kinks (tanh-sinh spent minutes on one table of the example).
+    static std::optional<Backend> quadrature_backend() { return Backend::gsl; }
 
 private:
     explicit TabulatedNdf(std::shared_ptr<const detail::TabulatedTable> table) : t_(std::move(table)) {}
