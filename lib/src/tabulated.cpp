@@ -330,9 +330,9 @@ double TabulatedNdf::slope_density(double r2) const {
 }
 
 std::string TabulatedNdf::note() const {
-    if (normalization_factor() == 1.0) return "";
+    if (std::abs(area_as_read() - 1.0) < 1e-9) return "";  // as normalized as its rows' digits carry: nothing to say
     char text[160];
-    std::snprintf(text, sizeof text, "D multiplied by %.6g (its projected area was %.6g, not 1)", normalization_factor(),
+    std::snprintf(text, sizeof text, "D multiplied by %.9g (its projected area was %.9g, not 1)", normalization_factor(),
                   area_as_read());
     return source() + ": " + text;
 }

@@ -107,7 +107,7 @@ public:
     // (ndf.hpp, core_slope_scale) is s times the table's: what a roughness alpha sets (the registry's "tabulated").
     TabulatedNdf scaled(double s) const;
     double scale() const { return scale_; }
-    // "" unless D was rescaled (A != 1): then the factor and the area it came from.
+    // "" unless D was rescaled by more than 1e-9 (|A - 1| >= 1e-9): then the factor and the area it came from.
     std::string note() const;
     // The quadrature its integrals need (lambda_table.hpp: the walk's and the samplers' Lambda table): GSL's adaptive
     // Gauss-Kronrod, which resolves the interpolant's kinks (tanh-sinh spent minutes on one table of the example).
