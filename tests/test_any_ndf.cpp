@@ -240,6 +240,21 @@ TEST_CASE("tabulated: a GGX table through eval, check and trace, keyed by its co
     INFO(edited.err);
     REQUIRE(edited.rc == 0);
     CHECK_THAT(edited.out, Contains("traced 1") && Contains("reused 0"));
+    // Swept over alpha (its scale set so that its core slope scale is alpha), in a trace and in a fit.
+    write(d / "sweep.toml", "materials = [\"mirror\"]\n[walks]\nn = 2000\n[grid]\nalpha = [0.25, 0.5]\ntheta_i = [30]\n"
+                            "[[ndf]]\nfamily = \"tabulated\"\nfile = \"" + file.string() + "\"\n");
+    const Run sweep = run("trace " + q(d / "sweep.toml") + " --output " + q(d / "sweep"));
+    INFO(sweep.err);
+    REQUIRE(sweep.rc == 0);
+    CHECK_THAT(slurp(d / "sweep" / "albedo.csv"), Contains("tabulated(scale=0.4999999") && Contains("tabulated(scale=0.9999999"));
+    write(d / "fit.toml", "material = \"lambert(albedo=1)\"\nalbedos = [1.0]\nmodels = [\"fujii\"]\n[[ndf]]\n"
+                          "family = \"tabulated\"\nfile = \"" + file.string() + "\"\n[training]\nalpha = [0.3, 0.6]\n"
+                          "theta = [0.0, 60.0]\nphi = [0.0]\nwalks = 200\n[validation]\npoints = 2\nwalks = 200\n"
+                          "albedo_theta = [0.0]\nalbedo_walks = 200\n");
+    const Run fit = run("fit " + q(d / "fit.toml") + " --output " + q(d / "fit"));
+    INFO(fit.err);
+    CHECK(fit.rc == 0);
+    CHECK_THAT(slurp(d / "fit" / "constants.csv"), Contains("fujii-fitted,\"tabulated(file="));
 }
 
 TEST_CASE("tabulated: a bad file is refused naming it, its line and the value, before anything is written", "[any_ndf][tabulated]") {

@@ -27,8 +27,9 @@ void add_fit(CLI::App& app, FitArgs& a) {
         "errors.csv (model,ndf,rms_rel,max_rel,albedo_rms,chi2_dof: on the validation set, chi2_dof per value with the\n"
         "fit's weights; '<model>' at its published constants, '<model>-fitted' refitted); training.csv and\n"
         "validation.csv (the traced values beside every model's); with [compensation] compensation.csv,\n"
-        "compensation_avg.csv and a C header per NDF family; models.glsl and brdf/*.brdf (BRDF Explorer); with three\n"
-        "or more GTR gammas gamma_trends.csv; with [pictures] pictures/ (PNG and CSV); report.md; meta.json; all only\n"
+        "compensation_avg.csv and a C header per NDF family; models.glsl and brdf/*.brdf (BRDF Explorer); for a family\n"
+        "fitted at three or more values of one parameter FAMILY_PARAMETER_trends.csv (gtr_gamma_trends.csv); with\n"
+        "[pictures] pictures/ (PNG and CSV); report.md; meta.json; all only\n"
         "when complete. Traced points are cached in DIR/cache/ as they finish: a killed run resumes, and refitting the\n"
         "same data (other models, albedos, floor) traces nothing.");
     c->add_option("scene", a.scene, "scene file (TOML); none: the embedded default");

@@ -51,7 +51,7 @@ std::vector<double> read_bounded(StrictTable& t, const std::string& key, double 
 }  // namespace
 
 std::string family_label(const FitFamily& f) {
-    return f.params.empty() ? f.family() : format_spec({f.family(), f.params});
+    return f.params.empty() && f.entry.texts.empty() ? f.family() : format_spec({f.family(), f.params, f.entry.texts});
 }
 
 FitScene parse_fit_scene(const std::string& text, const std::string& source, const NdfRegistry& registry) {

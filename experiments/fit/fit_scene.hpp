@@ -64,7 +64,7 @@ FitScene parse_fit_scene(const std::string& text, const std::string& source, con
 
 const std::string& default_fit_scene_text();
 
-// An NDF of the scene as text: "ggx", "gtr(gamma=1.5)" (its parameters but alpha).
+// An NDF of the scene as text: "ggx", "gtr(gamma=1.5)", "tabulated(file=ndf.csv)" (its parameters but alpha).
 std::string family_label(const FitFamily& f);
 
 }  // namespace smithlab::fitrun

@@ -72,7 +72,8 @@ std::string write_trends(const fs::path& dir, const Results& r, const ParameterS
        << "|---|---|---|---:|---|---:|\n";
     for (std::size_t k = 0; k < r.fits[sweep.fits[0]].size(); ++k) {
         const Measured& m0 = r.fits[sweep.fits[0]][k];
-        if (!m0.fitted()) continue;
+        if (!std::all_of(sweep.fits.begin(), sweep.fits.end(), [&](std::size_t n) { return r.fits[n][k].fitted(); }))
+            continue;
         for (std::size_t i = 0; i < m0.params.size(); ++i) {
             std::vector<double> c, e;
             for (std::size_t n : sweep.fits) {
@@ -120,7 +121,11 @@ std::vector<ParameterSweep> parameter_sweeps(const Results& r, std::size_t min_f
         for (std::size_t i = 0; i < p0.size(); ++i)
             for (std::size_t n : fits) {
                 const report::ParamPoint& p = r.data[n].family.params;
-                if (p.size() != p0.size() || p[i] != p0[i]) {
+                if (p.size() != p0.size() || p[i].first != p0[i].first) {
+                    varying.assign(p0.size() + 1, 0);  // not one family's sweep of one parameter
+                    break;
+                }
+                if (p[i] != p0[i]) {
                     varying.push_back(i);
                     break;
                 }

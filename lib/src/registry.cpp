@@ -68,6 +68,7 @@ AnyNdf NdfRegistry::make_at_alpha(std::string_view family, double alpha,
         params.emplace_back("alpha", alpha);
     } else if (info->roughness) {
         std::map<std::string, double> given(others.begin(), others.end());
+        for (const auto& [key, v] : info->defaults) given.emplace(key, v);  // what the spec may leave out
         params.emplace_back(info->roughness->parameter,
                             info->roughness->from_alpha(alpha, NdfParams(info->name, std::move(given),
                                                                          {texts.begin(), texts.end()})));

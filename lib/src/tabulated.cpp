@@ -311,8 +311,11 @@ double TabulatedNdf::D(double c) const {
     if (c > 1.0) c = 1.0;
     const double s2 = (1.0 - c) * (1.0 + c);
     if (scale_ == 1.0) return t_->D_at(std::atan2(std::sqrt(s2), c), c * c);
-    const double c2 = c * c;
-    return slope_density(s2 / c2) / (c2 * c2);  // D = P22 / cos^4 (Walter 2007 eq. 42)
+    // D_s(c) = P22_s(tan^2) / c^4 with P22_s(r^2) = P22(r^2 / s^2) / s^2 (Walter 2007 eq. 42): the table's D at the
+    // direction c' of slope r / s, cos^2 c' = s^2 c^2 / (s^2 c^2 + sin^2), times s^2 / (s^2 c^2 + sin^2)^2 (no 0/0
+    // where c^4 underflows).
+    const double sc = scale_ * c, w = sc * sc + s2;
+    return t_->D_at(std::atan2(std::sqrt(s2), sc), sc * sc / w) * (scale_ * scale_) / (w * w);
 }
 
 double TabulatedNdf::table_P22(double r2) const {
