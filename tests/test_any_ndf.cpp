@@ -210,7 +210,9 @@ TEST_CASE("tabulated: a GGX table through eval, check and trace, keyed by its co
         REQUIRE(e.rc == 0);
         CHECK(std::abs(field(e.out, "lambda") / smithlab::ggx(0.5).Lambda(mu) - 1.0) < 2e-5);
     }
-    const Run c = run("check --ndf " + spec + " --no-2d --backend gsl");
+    // The NDF names its quadrature (GSL): no --backend needed. The nested 2D route misses 1D by 1.9e-8 at mu = 0.1 on
+    // the kinks of the C1 interpolant (the checks ask 1e-8): left out.
+    const Run c = run("check --ndf " + spec + " --no-2d");
     INFO(c.out << c.err);
     CHECK(c.rc == 0);
     // trace: the table's albedo by order against GGX's own, within 5 combined standard errors.

@@ -21,7 +21,11 @@ void add_check(CLI::App& app, CheckArgs& a) {
     c->add_option("--ndf", a.ndfs, "NDF spec (repeatable)");
     c->add_flag("--all", a.all, "check every registered NDF at its example parameters (stiff corners included)");
     c->add_flag("--no-2d", a.no_2d, "skip the nested 2D checks (milliseconds per Lambda)");
-    add_backend_option(*c, a.backend);
+    c->add_option("--backend", a.backend,
+                  "quadrature backend: " + join_names(backend_names, " | ", " | ") +
+                      " (default: the one the NDF names, gsl for a tabulated D, whose kinks tanh-sinh does not resolve; "
+                      "else boost)")
+        ->check(CLI::IsMember(names_of(backend_names)));
 }
 
 int run_check(const CheckArgs& a, const NdfRegistry& registry) {
@@ -35,12 +39,12 @@ int run_check(const CheckArgs& a, const NdfRegistry& registry) {
         if (!n.note().empty()) std::fprintf(stderr, "smithlab: note: %s\n", n.note().c_str());
 
     CheckOptions opts;
-    opts.backend = parse_backend(a.backend);
     opts.with_2d = !a.no_2d;
     int failed = 0, total = 0;
     std::printf("%-44s %-40s %-16s %-10s %-9s %s\n", "ndf", "check", "at", "residual", "tolerance", "");
     for (std::size_t i = 0; i < ndfs.size(); ++i) {
         if (ndfs.size() > 1) std::fprintf(stderr, "check: [%zu/%zu] %s\n", i + 1, ndfs.size(), ndfs[i].spec().c_str());
+        opts.backend = a.backend.empty() ? ndfs[i].quadrature_backend().value_or(Backend::boost) : parse_backend(a.backend);
         for (const CheckResult& r : run_checks(ndfs[i], opts)) {
             ++total;
             failed += !r.passed();

@@ -28,7 +28,7 @@ struct CheckArgs {
     std::vector<std::string> ndfs;
     bool all = false;
     bool no_2d = false;
-    std::string backend = "boost";
+    std::string backend;  // empty: the NDF's own (AnyNdf::quadrature_backend), else boost
 };
 void add_check(CLI::App& app, CheckArgs& args);
 int run_check(const CheckArgs& args, const NdfRegistry& registry);
