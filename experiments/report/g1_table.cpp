@@ -21,25 +21,28 @@ bool matches_any(const std::vector<std::string>& patterns, const std::string& na
     return std::any_of(patterns.begin(), patterns.end(), [&](const std::string& p) { return glob_match(p, name); });
 }
 
-std::vector<AnyNdf> grid_ndfs(const Scene& scene, const NdfRegistry& ndfs) {
-    std::vector<AnyNdf> out;
+void add_grid_ndfs(const Scene& scene, const NdfRegistry& ndfs, G1Table& table) {
     for (const NdfEntry& e : scene.ndfs) {
         if (e.roughness_given) {
-            for (const ParamPoint& p : e.points()) out.push_back(make_entry_ndf(e, ndfs, p, std::nullopt));
+            for (const ParamPoint& p : e.points()) {
+                table.ndfs.push_back(make_entry_ndf(e, ndfs, p, std::nullopt));
+                table.alphas.push_back(table.ndfs.back().has_param("alpha") ? table.ndfs.back().param("alpha") : NAN);
+            }
             continue;
         }
         for (double a : scene.alphas)
-            for (const ParamPoint& p : e.points()) out.push_back(make_entry_ndf(e, ndfs, p, a));
+            for (const ParamPoint& p : e.points()) {
+                table.ndfs.push_back(make_entry_ndf(e, ndfs, p, a));
+                table.alphas.push_back(a);
+            }
     }
-    return out;
 }
 
 // One point's |dG1| and relative error of Lambda, folded into its row.
-void add_point(G1Row& row, const AnyNdf& ndf, double mu, double got, double want, bool keep_errors) {
+void add_point(G1Row& row, const AnyNdf& ndf, double alpha, double mu, double got, double want, bool keep_errors) {
     const double dG1 = std::abs(G1_of(got) - G1_of(want));
     if (keep_errors)
-        row.errors.push_back({ndf.has_param("alpha") ? ndf.param("alpha") : NAN,
-                              ndf.has_param("gamma") ? ndf.param("gamma") : NAN, mu, dG1,
+        row.errors.push_back({alpha, ndf.has_param("gamma") ? ndf.param("gamma") : NAN, mu, dG1,
                               want >= DBL_MIN ? std::abs(got - want) / want : NAN});
     ++row.points;
     row.sum_dG1 += dG1;
@@ -52,14 +55,15 @@ void add_point(G1Row& row, const AnyNdf& ndf, double mu, double got, double want
     }
 }
 
-void measure_on(G1Row& row, const AnyNdf& ndf, const std::vector<double>& mus, ReferenceCache& cache, bool keep_errors) {
+void measure_on(G1Row& row, const AnyNdf& ndf, double alpha, const std::vector<double>& mus, ReferenceCache& cache,
+                bool keep_errors) {
     const LambdaRoute route = route_for(*row.variant, ndf);
     const auto prepared = std::make_shared<const LambdaOfMu>(prepare(*row.variant, ndf));
     for (double mu : mus) {
         row.grid.push_back({prepared, mu});
         const double want = cache.get(ndf, mu, route);
         const double got = (*prepared)(mu);
-        add_point(row, ndf, mu, got, want, keep_errors);
+        add_point(row, ndf, alpha, mu, got, want, keep_errors);
     }
 }
 
@@ -99,7 +103,8 @@ void write_markdown(const G1Table& table, const Scene& scene, const fs::path& di
 }  // namespace
 
 G1Table g1_table(const Scene& scene, const NdfRegistry& ndfs, const VariantRegistry& variants) {
-    G1Table table{.ndfs = grid_ndfs(scene, ndfs), .rows = {}};
+    G1Table table;
+    add_grid_ndfs(scene, ndfs, table);
     for (const LambdaVariant& v : variants.list())
         if (matches_any(scene.include, v.name) && !matches_any(scene.exclude, v.name))
             table.rows.push_back(G1Row{.variant = &v, .grid = {}, .errors = {}, .worst_at = {}});
@@ -123,8 +128,8 @@ void measure_g1(G1Table& table, const std::vector<double>& mus, ReferenceCache& 
     for (std::size_t i = 0; i < table.rows.size(); ++i) {
         G1Row& row = table.rows[i];
         std::fprintf(stderr, "report: [%zu/%zu] %s\n", i + 1, table.rows.size(), row.variant->name.c_str());
-        for (const AnyNdf& ndf : table.ndfs)
-            if (row.variant->applies(ndf)) measure_on(row, ndf, mus, cache, keep_errors);
+        for (std::size_t n = 0; n < table.ndfs.size(); ++n)
+            if (row.variant->applies(table.ndfs[n])) measure_on(row, table.ndfs[n], table.alphas[n], mus, cache, keep_errors);
     }
 }
 

@@ -38,7 +38,8 @@ struct G1Row {
 };
 
 struct G1Table {
-    std::vector<AnyNdf> ndfs;  // families x alpha x gamma
+    std::vector<AnyNdf> ndfs;     // each [[ndf]]'s points x alpha
+    std::vector<double> alphas;   // the roughness each was made at (NaN: none, an entry that gives its own)
     std::vector<G1Row> rows;   // one per selected variant
 };
 

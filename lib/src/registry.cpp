@@ -26,6 +26,20 @@ const std::string& NdfParams::text(const std::string& key) const {
 void NdfRegistry::add_erased(NdfInfo info, Factory make) {
     if (!is_identifier(info.name)) throw input_error("cannot register ndf with name '" + info.name + "'");
     if (find(info.name)) throw input_error("ndf '" + info.name + "' is already registered");
+    // What the registration declares of its parameters must name them: a slip here would surface as a user's error.
+    auto declared = [&](const std::string& key) {
+        return std::find(info.parameters.begin(), info.parameters.end(), key) != info.parameters.end();
+    };
+    for (const std::string& key : info.parameters)
+        if (!is_identifier(key)) throw input_error("ndf '" + info.name + "': cannot register parameter '" + key + "'");
+    for (const std::string& key : info.text_parameters)
+        if (!is_identifier(key) || declared(key))
+            throw input_error("ndf '" + info.name + "': cannot register text parameter '" + key + "'");
+    if (info.roughness && !declared(info.roughness->parameter))
+        throw input_error("ndf '" + info.name + "': its roughness sets '" + info.roughness->parameter +
+                          "', which is not one of its parameters");
+    for (const auto& [key, v] : info.defaults)
+        if (!declared(key)) throw input_error("ndf '" + info.name + "': a default for '" + key + "', not one of its parameters");
     entries_.emplace_back(std::move(info), std::move(make));
 }
 
