@@ -276,8 +276,9 @@ std::vector<WalkRow> walk_rows(const fs::path& csv, std::string& header) {
     for (std::size_t i = 1; i < records.size(); ++i) {
         const std::vector<std::string>& f = records[i].fields;
         REQUIRE(records[i].error.empty());
-        REQUIRE(f.size() == 10);
+        REQUIRE(f.size() == 11);
         CHECK(f[9] == "2000");
+        CHECK(f[10] == (f[1] == "gtr" ? "gtr (gamma 1.5)" : f[1]));
         out.push_back({f[0], f[1], f[2], f[4], f[5], f[6], std::stod(f[3]), std::stod(f[7]), std::stod(f[8])});
     }
     return out;
@@ -296,7 +297,7 @@ TEST_CASE("scenes: [walk] writes albedo by scattering order per NDF x material x
 
     std::string header;
     const std::vector<WalkRow> rows = walk_rows(d / "rep" / "walk_albedo.csv", header);
-    CHECK(header == "ndf,family,gamma,alpha,material,theta_i,order,albedo,stderr,walks");
+    CHECK(header == "ndf,family,gamma,alpha,material,theta_i,order,albedo,stderr,walks,label");
     REQUIRE(rows.size() == 16 * 6);
     std::map<std::string, std::map<std::string, WalkRow>> cells;  // cell -> order -> row
     for (const WalkRow& w : rows) {

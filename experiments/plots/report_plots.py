@@ -159,7 +159,7 @@ def walk_albedo(d):
     table = rows(os.path.join(d, "walk_albedo.csv"))
     label = {}
     for r in table:
-        label[r["ndf"]] = r["family"] + (f" (gamma {num(r['gamma']):g})" if r["gamma"] else "")
+        label[r["ndf"]] = r["label"]
     pairs = list(dict.fromkeys((label[r["ndf"]], r["material"]) for r in table))
     thetas = sorted({num(r["theta_i"]) for r in table})
     value = {(label[r["ndf"]], r["material"], num(r["theta_i"]), r["order"]): [] for r in table}

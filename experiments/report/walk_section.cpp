@@ -104,7 +104,8 @@ std::vector<WalkResult> trace_walk_cells(const std::vector<WalkCell>& cells, con
 
 void write_walk_section(const std::vector<WalkResult>& results, const Scene::Walk& w, double seconds, const fs::path& dir) {
     std::ofstream csv(dir / "walk_albedo.csv");
-    write_csv_record(csv, {"ndf", "family", "gamma", "alpha", "material", "theta_i", "order", "albedo", "stderr", "walks"});
+    write_csv_record(csv, {"ndf", "family", "gamma", "alpha", "material", "theta_i", "order", "albedo", "stderr", "walks",
+                           "label"});
     std::int64_t events = 0, capped = 0;
     for (const WalkResult& r : results) {
         const WalkCell& c = r.cell;
@@ -112,7 +113,8 @@ void write_walk_section(const std::vector<WalkResult>& results, const Scene::Wal
             write_csv_record(csv, {c.ndf.spec(), c.family, c.ndf.has_param("gamma") ? format_g17(c.ndf.param("gamma")) : "",
                                    format_g17(c.alpha),
                                    walk::format_material(c.material), format_shortest(c.theta_i), walk_orders[o],
-                                   format_g17(r.albedo[o].value), format_g17(r.albedo[o].stderr_), std::to_string(w.walks)});
+                                   format_g17(r.albedo[o].value), format_g17(r.albedo[o].stderr_), std::to_string(w.walks),
+                                   family_label(c)});
         events += r.events;
         capped += r.capped;
     }
