@@ -79,6 +79,9 @@ FitScene parse_fit_scene(const std::string& text, const std::string& source, con
 
     for (StrictTable& n : doc.tables("ndf", report::ndf_table_keys(registry))) {
         const report::NdfEntry e = report::read_ndf_entry(n, registry);
+        if (!e.takes_alpha)
+            n.fail("family", "'" + e.family + "' has no parameter alpha and declares no roughness mapping to one: the "
+                             "fit sweeps alpha over training.alpha");
         if (e.roughness_given)
             n.fail("family", "'" + e.family + "' is given its roughness here: the fit sweeps alpha over training.alpha");
         for (const report::ParamPoint& p : e.points()) s.ndfs.push_back({e, p});

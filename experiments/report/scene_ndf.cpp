@@ -51,7 +51,7 @@ std::vector<std::string> ndf_table_keys(const NdfRegistry& registry, const std::
 }
 
 NdfEntry read_ndf_entry(StrictTable& t, const NdfRegistry& registry) {
-    NdfEntry e{t.text("family"), {}, {}, false, t.where("family")};
+    NdfEntry e{t.text("family"), {}, {}, false, true, t.where("family")};
     const NdfInfo* info = registry.find(e.family);
     if (!info) {
         std::string known;
@@ -72,6 +72,8 @@ NdfEntry read_ndf_entry(StrictTable& t, const NdfRegistry& registry) {
             e.axes.emplace_back(p, read_axis(t, p));
             if (p == "alpha" || (info->roughness && info->roughness->parameter == p)) e.roughness_given = true;
         }
+    e.takes_alpha = info->roughness || std::find(own.begin(), own.end(), "alpha") != own.end();
+    if (!e.takes_alpha) e.roughness_given = true;
     return e;
 }
 

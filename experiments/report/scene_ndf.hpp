@@ -25,7 +25,9 @@ struct NdfEntry {
     std::string family;
     std::vector<std::pair<std::string, std::vector<double>>> axes;  // in the family's declared order
     std::vector<std::pair<std::string, std::string>> texts;         // its text parameters (a file's path)
-    bool roughness_given = false;  // an axis for alpha, or for the parameter the family's roughness sets
+    bool roughness_given = false;  // its own axes make its NDFs: an axis for alpha or for the parameter the family's
+                                   // roughness sets, or a family alpha cannot reach (takes_alpha false)
+    bool takes_alpha = true;       // the family has a parameter alpha or a roughness mapping
     std::string where;             // "FILE:LINE: ndf.family", for refusals of its points
 
     // The cross product of the axes (one empty point when there are none), the first axis outermost.
