@@ -14,16 +14,8 @@ function(run)
   endif()
 endfunction()
 
-# Open MPI: more ranks than cores (--oversubscribe), and the CI's root (--allow-run-as-root).
-set(launcher ${MPIEXEC})
-execute_process(COMMAND ${MPIEXEC} --version OUTPUT_VARIABLE version ERROR_QUIET)
-if(version MATCHES "Open MPI|OpenRTE")
-  list(APPEND launcher --oversubscribe)
-  execute_process(COMMAND id -u OUTPUT_VARIABLE uid OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET)
-  if(uid STREQUAL "0")
-    list(APPEND launcher --allow-run-as-root)
-  endif()
-endif()
+include(${CMAKE_CURRENT_LIST_DIR}/mpi_launcher.cmake)
+mpi_launcher(launcher)
 
 function(meta_head file var)
   file(READ ${file} text)
