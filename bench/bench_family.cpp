@@ -1,4 +1,4 @@
-// G1 of GTR for random (alpha, gamma, mu) streams (issue 14, item 1): the family evaluator (gtr/family.hpp, two charts
+// G1 of GTR for random (alpha, gamma, mu) streams: the family evaluator (gtr/family.hpp, two charts
 // for every material) beside the routes a renderer has on the same inputs: the per-material LambdaTable (built once
 // per (alpha, gamma): its build is not timed), Dimov's spline (dimov-spline), and the exact 1D quadrature (the fixed
 // rule of lambda_fixed.hpp, and the adaptive GSL route). 64 materials (alpha log-uniform in [1e-4, 1], gamma uniform

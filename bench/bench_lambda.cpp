@@ -79,7 +79,7 @@ void register_all() {
         }
 }
 
-// The fast evaluator against the issue's yardstick, the closed-form GGX G1: G1 = 1/(1 + Lambda) by each, on the
+// The fast evaluator against the yardstick, the closed-form GGX G1: G1 = 1/(1 + Lambda) by each, on the
 // concrete types; and what building a table costs (once per NDF).
 void register_table() {
     auto g1 = [](benchmark::State& state, const auto& Lambda_of) {
@@ -106,7 +106,7 @@ void register_table() {
             g1(s, [&](double mu) { return t.Lambda(mu); });
         });
         // the default route (auto: the closed form at integer gamma, else the fixed rule) beside the adaptive one
-        // `auto` took before issue 14 where there is no closed form
+        // that `auto` does not take
         for (const auto& [route, method] : {std::pair{"", smithlab::Method::automatic}, std::pair{"/adaptive", smithlab::Method::quadrature}})
             if (method == smithlab::Method::automatic || !smithlab::gtr_has_closed_form(gamma))
                 benchmark::RegisterBenchmark(("table-build/" + name + route).c_str(), [gamma, method](benchmark::State& s) {

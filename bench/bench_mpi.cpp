@@ -1,4 +1,4 @@
-// Strong scaling of `mpirun -np N smithlab trace` (issue 13) on a deliberately skewed scene, bench/mpi_skewed_scene.toml
+// Strong scaling of `mpirun -np N smithlab trace` on a deliberately skewed scene, bench/mpi_skewed_scene.toml
 // (GGX mirror cells at alpha = 0.01 beside D-only Blinn-Phong lambert cells, an order of magnitude apart in cost; the
 // costliest last), and what rank 0 communicates.
 //

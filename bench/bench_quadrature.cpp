@@ -1,4 +1,4 @@
-// The exact 1D route, issue 14 item 4: Lambda by the reduced 1D integral at relative tolerance 1e-12, the fixed
+// The exact 1D route: Lambda by the reduced 1D integral at relative tolerance 1e-12, the fixed
 // Gauss-Kronrod rule (lambda_fixed.hpp, method `fixed`) beside the adaptive routes it replaces (Lambda_1d with GSL
 // QAG and with Boost tanh-sinh), on the same inputs in the same run, on the concrete NDF types (no virtual call).
 // Cases: GGX, Beckmann, Blinn-Phong and GTR at ordinary (alpha, mu) and at stiff ones (mu ~ alpha = 1e-4, grazing

@@ -1,4 +1,4 @@
-// tests/grid.hpp -- the parameter grids the accuracy tests sweep: the domain of the core issue, stiff corners included.
+// tests/grid.hpp -- the parameter grids the accuracy tests sweep: the accepted domain, stiff corners included.
 #pragma once
 
 #include <cmath>

@@ -1,4 +1,4 @@
-# `mpirun -np N smithlab trace | fit | report` against the plain run (issue 13): every file the plain run writes, byte
+# `mpirun -np N smithlab trace | fit | report` against the plain run: every file the plain run writes, byte
 # for byte, at N = 1, 2, 3 and different --threads per rank; meta.json may differ only in its last keys (seconds,
 # threads, mpi). The report's timings differ from run to run: of its outputs, walk_albedo.csv (the traced part) is
 # compared. ctest -P args: EXE, SOURCE (the tests' directory), WORK_DIR, MPIEXEC, NP_FLAG.

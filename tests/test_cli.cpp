@@ -118,7 +118,7 @@ TEST_CASE("sample: CSV of unit normals and their pdfs, reproducible by seed, bad
     }
     CHECK(n == 500);
     CHECK_THAT(run("sample --list-samplers").out, Catch::Contains("vndf-ggx") && Catch::Contains("hammon"));
-    // Visible normals of a direction below the horizon (issue 10) are drawn; --theta-i stays in [0, 180).
+    // Visible normals of a direction below the horizon are drawn; --theta-i stays in [0, 180).
     const Run below = run("sample --ndf 'ggx(alpha=0.3)' --sampler vndf --theta-i 135 --n 3 --seed 1");
     CHECK(below.rc == 0);
     CHECK(std::count(below.out.begin(), below.out.end(), '\n') == 4);

@@ -93,7 +93,7 @@ TEST_CASE("generated closed forms for integer gamma up to 31 against the 50-digi
     CHECK_THROWS_AS(smithlab::Lambda_gtr_integer_sum(0.3, 32, 1.0), smithlab::input_error);
 }
 
-// Issue 14: G1 directly (one division fewer than through Lambda), and Lambda and G1 from c = cos(theta) rather than
+// G1 directly (one division fewer than through Lambda), and Lambda and G1 from c = cos(theta) rather than
 // mu = cot(theta), against the same 50-digit references. The reference is taken at mu = c / sqrt((1 - c)(1 + c))
 // rounded to double (a few ulp off the exact cot; Lambda's relative sensitivity to mu is at most 2, so the reference
 // moves by ~1e-15, far inside 1e-13). The stiff corners: c -> 0 (grazing, Lambda -> inf), c -> 1 (normal, s2 -> 0),

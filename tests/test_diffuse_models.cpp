@@ -1,4 +1,4 @@
-// The diffuse models of issue 12 (fit/diffuse_models.hpp), each against something independent of its code: the
+// The diffuse models (fit/diffuse_models.hpp), each against something independent of its code: the
 // symmetry every BRDF owes, limits derived by hand (Lambert at zero roughness), values derived by hand from the
 // papers' formulas at convenient angles, and hemisphere integrals by a 2D Gauss-Legendre rule written here.
 #include <catch2/catch.hpp>

@@ -1,4 +1,4 @@
-// The property test of issue 9, "accepted means right": for every registered NDF and every method (the core
+// The property test "accepted means right": for every registered NDF and every method (the core
 // Methods and every variant of builtin_variants()), at points drawn by a seeded generator over the whole accepted
 // domain (parameters and mu log-uniform over their decades, their extremes included), the answer is finite and agrees
 // with an independent route to the method's stated accuracy -- or the input is refused with input_error. Never NaN,
@@ -362,7 +362,7 @@ TEST_CASE("factories refuse what lies beyond the accepted domain, naming it", "[
     CHECK(smithlab::Lambda(big, 0.5) == Approx(1e49).epsilon(1e-15));
 }
 
-TEST_CASE("the issue's reproducers: right or refused", "[domain]") {
+TEST_CASE("known hard inputs: right or refused", "[domain]") {
     const smithlab::NdfRegistry r = smithlab::builtin_registry();
     CHECK(smithlab::Lambda(r.make("beckmann(alpha=0.3)"), 1e154) == 0.0);
     // gtr(1e-15, 0.5) at mu = 1 by quadrature, against the 50-digit reference
@@ -461,7 +461,7 @@ TEST_CASE("the per-distribution checks pass over the accepted domain, or refuse"
 
 // ---- samplers ----------------------------------------------------------------------------------------------
 
-// A hang (the unbounded rejection loop of the issue) is caught by ctest's timeout; no run time is asserted here.
+// A hang (an unbounded rejection loop) is caught by ctest's timeout; no run time is asserted here.
 TEST_CASE("samplers at extreme incidence: a finite sample with its finite pdf, or a refusal", "[domain][sampling]") {
     const smithlab::NdfRegistry registry = smithlab::builtin_registry();
     const std::vector<smithlab::SamplerInfo> samplers = smithlab::builtin_samplers();

@@ -41,7 +41,7 @@ TEST_CASE("family: the stated bound holds on random points over the whole domain
     WARN("family trees: " << d.n_leaves << " leaves of degree " << GtrFamily::degree << ", " << t.bytes() / 1e6
                          << " MB, depth <= " << d.max_depth << "; stated bounds " << t.error_bound() << " (relative dLambda), " << t.G1_error_bound()
                          << " (|dG1|)");
-    CHECK(t.error_bound() <= 1e-5);     // the issue's targets
+    CHECK(t.error_bound() <= 1e-5);     // the stated targets
     CHECK(t.G1_error_bound() <= 1e-6);
     std::mt19937_64 rng(14);
     std::uniform_real_distribution<double> log_alpha(std::log(1e-4), 0.0), gamma_u(0.0, 20.0), gamma_low(0.0, 3.0),

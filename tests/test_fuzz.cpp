@@ -1,6 +1,6 @@
 // Fuzz test of everything smithlab parses: NDF specs, CSV, TOML scenes and option values.
 //
-// The contract (README, issue 9): every input ends as exit 0 with a finite answer (no NaN in stdout or in any file
+// The contract: every input ends as exit 0 with a finite answer (no NaN in stdout or in any file
 // written), or as exit 2 with a message on stderr and nothing written. Never a crash (a signal, a sanitizer
 // report), a hang (each run is wrapped in `timeout 30`; 124 fails), exit 1 (reserved for a failed check) or an
 // "internal error". Where the input is known to lie outside the accepted domain (a NaN, an option value out of its

@@ -52,7 +52,7 @@ TEST_CASE("table: the fast-evaluator target over alpha in [1e-4, 1], mu in [1e-4
         all.dG1 = std::max(all.dG1, w.dG1);
     }
     WARN("table: worst relative dLambda " << all.rel << ", worst |dG1| " << all.dG1);
-    CHECK(all.rel <= 1e-5);  // the issue's target
+    CHECK(all.rel <= 1e-5);  // the table's stated accuracy
     CHECK(all.dG1 <= 1e-6);
     CHECK(all.rel > 1e-10);  // a table, not the exact route in disguise
 }

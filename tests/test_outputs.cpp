@@ -1,4 +1,4 @@
-// Outputs that never clobber and never leave debris (issue 9): what `--output` may replace, what a kill leaves,
+// Outputs that never clobber and never leave debris: what `--output` may replace, what a kill leaves,
 // and the report's reference cache checked record by record. The executable is driven as a user would.
 #include <fcntl.h>
 #include <signal.h>

@@ -1,5 +1,5 @@
 // Quadrature Lambda (reduced 1D and nested 2D routes, Boost and GSL backends) against the 50-digit r-form reference.
-// Domain of the core issue: alpha in [1e-4, 1], mu in [1e-4, 1e4], gamma in [0, 10], Blinn n in [0.5, 1000].
+// The accepted domain: alpha in [1e-4, 1], mu in [1e-4, 1e4], gamma in [0, 10], Blinn n in [0.5, 1000].
 // Required: 1D <= 1e-10 everywhere; 2D <= 1e-8 for alpha >= 0.01, mu in [0.01, 100], gamma <= 4.
 #include <gsl/gsl_errno.h>
 

@@ -1,4 +1,4 @@
-// Strict scenes (issue 9): a report scene with an unknown key, a value of the wrong type, an integer out of its
+// Strict scenes: a report scene with an unknown key, a value of the wrong type, an integer out of its
 // bounds, or more work than the stated limit is refused before anything is computed: exit 2, a message naming the
 // key with FILE:LINE (and the nearest known key, the expected type, or the estimate and how to raise the limit),
 // and no output directory.
@@ -233,7 +233,7 @@ TEST_CASE("scenes: --scene naming a directory, a missing or an unreadable file i
     CHECK_FALSE(fs::exists(d / "never"));
 }
 
-// ---- the walk section (issue 10) ------------------------------------------------------------------------------------
+// ---- the walk section ------------------------------------------------------------------------------------
 
 namespace {
 

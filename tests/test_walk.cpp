@@ -407,7 +407,7 @@ double ggx_single_albedo(double alpha, double theta_i_deg) {
 }  // namespace
 
 TEST_CASE("single scattering, exactly: the order-1 albedo of GGX mirror facets equals its quadrature at 1e7 walks", "[walk][slow]") {
-    // The reference code's rational GGX visible-normal fit biases this by up to 5e-4 at alpha = 0.1 (issue 10);
+    // The reference code's rational GGX visible-normal fit biases this by up to 5e-4 at alpha = 0.1;
     // smithlab's sampler is exact: the difference is within the walk's standard error (a few 1e-5 here).
     for (double alpha : {0.1, 0.01}) {
         for (double theta : {45.0, 80.0}) {
@@ -464,7 +464,7 @@ TEST_CASE("single scattering, bin by bin: the order-1 brdf tally equals the anal
     CHECK(checked == 48);
 }
 
-// ---- The walk's fast paths (issue 10, speed): each against the form it replaces, to rounding. ----
+// ---- The walk's fast paths: each against the form it replaces, to rounding. ----
 
 TEST_CASE("cos_sin_turn: cos and sin of 2 pi u within 2 ulp, the quadrants exact", "[walk]") {
     smithlab::Rng g = smithlab::make_rng(11);

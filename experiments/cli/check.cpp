@@ -2,7 +2,7 @@
 #include <cstdio>
 #include <iostream>
 
-#include "commands.hpp"
+#include "cli/commands.hpp"
 #include "smithlab/checks.hpp"
 #include "smithlab/errors.hpp"
 

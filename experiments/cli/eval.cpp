@@ -12,9 +12,9 @@
 #include <optional>
 #include <sstream>
 
-#include "commands.hpp"
+#include "cli/commands.hpp"
 #include "smithlab/csv.hpp"
-#include "output_file.hpp"
+#include "output/output_file.hpp"
 #include "smithlab/errors.hpp"
 
 namespace smithlab::cli {

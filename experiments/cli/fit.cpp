@@ -2,10 +2,10 @@
 #include <cstdio>
 #include <iostream>
 
-#include "commands.hpp"
-#include "fit_run.hpp"
-#include "fit_scene.hpp"
-#include "mpi_world.hpp"
+#include "cli/commands.hpp"
+#include "fit/fit_run.hpp"
+#include "fit/fit_scene.hpp"
+#include "cluster/mpi_world.hpp"
 #include "smithlab/errors.hpp"
 #include "smithlab/fit/diffuse_models.hpp"
 

@@ -8,7 +8,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "commands.hpp"
+#include "cli/commands.hpp"
 #include "smithlab/errors.hpp"
 
 namespace smithlab::cli {

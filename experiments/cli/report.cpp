@@ -3,12 +3,12 @@
 #include <cstdio>
 #include <iostream>
 
-#include "commands.hpp"
-#include "mpi_world.hpp"
-#include "report.hpp"
-#include "scene.hpp"
+#include "cli/commands.hpp"
+#include "cluster/mpi_world.hpp"
+#include "report/report.hpp"
+#include "report/scene.hpp"
 #include "smithlab/errors.hpp"
-#include "work_estimate.hpp"
+#include "report/work_estimate.hpp"
 
 namespace smithlab::cli {
 

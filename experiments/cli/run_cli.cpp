@@ -4,9 +4,9 @@
 #include <filesystem>
 #include <iostream>
 
-#include "commands.hpp"
-#include "mpi_world.hpp"
-#include "signal_cleanup.hpp"
+#include "cli/commands.hpp"
+#include "cluster/mpi_world.hpp"
+#include "output/signal_cleanup.hpp"
 #include "smithlab/cli.hpp"
 #include "smithlab/errors.hpp"
 #include "smithlab/gtr/registry.hpp"

@@ -4,8 +4,8 @@
 #include <iostream>
 #include <optional>
 
-#include "commands.hpp"
-#include "output_file.hpp"
+#include "cli/commands.hpp"
+#include "output/output_file.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
 #include "smithlab/samplers.hpp"

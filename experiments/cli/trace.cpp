@@ -6,14 +6,14 @@
 #include <cstdio>
 #include <iostream>
 
-#include "commands.hpp"
-#include "walk_options.hpp"
-#include "mpi_world.hpp"
+#include "cli/commands.hpp"
+#include "scene/walk_options.hpp"
+#include "cluster/mpi_world.hpp"
 #include "smithlab/errors.hpp"
 #include "smithlab/single_scattering.hpp"
 #include "smithlab/walk/trace.hpp"
-#include "trace_run.hpp"
-#include "trace_scene.hpp"
+#include "trace/trace_run.hpp"
+#include "trace/trace_scene.hpp"
 
 namespace smithlab::cli {
 

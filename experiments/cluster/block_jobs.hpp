@@ -1,5 +1,5 @@
 // cluster/block_jobs.hpp -- jobs made of numbered blocks, traced on the threads of every MPI rank and merged on rank 0
-// in block order (issue 13): the same bits as one process on any number of threads, for any number of ranks.
+// in block order: the same bits as one process on any number of threads, for any number of ranks.
 //
 // A plan says what the jobs are; every rank builds the same plan from the same input:
 //   using Partial;                                     what a block leaves (a tally); a job's total is one too
@@ -42,9 +42,9 @@
 #include <thread>
 #include <vector>
 
-#include "mpi_world.hpp"
-#include "signal_cleanup.hpp"
-#include "smithlab/walk/parallel.hpp"
+#include "cluster/mpi_world.hpp"
+#include "output/signal_cleanup.hpp"
+#include "smithlab/util/parallel.hpp"
 
 namespace smithlab::cluster {
 
@@ -120,7 +120,7 @@ inline std::uint64_t rounds_for(double seconds, std::uint64_t rounds) {
 template <class Plan>
 void serve(const Plan& plan, unsigned threads) {
     RunnerCache<Plan> cache(plan);
-    const auto capacity = static_cast<std::int64_t>(walk::thread_count(threads));
+    const auto capacity = static_cast<std::int64_t>(util::thread_count(threads));
     std::vector<char> msg;
     mpi::put(msg, capacity);
     mpi::put(msg, std::int64_t{0});
@@ -137,7 +137,7 @@ void serve(const Plan& plan, unsigned threads) {
         const auto t0 = std::chrono::steady_clock::now();
         try {
             const auto run = cache.get(c.job);
-            walk::reduce_blocks(
+            util::reduce_blocks(
                 c.count, threads, 0,
                 [&](std::uint64_t b) {
                     parts[b] = (*run)(c.job, c.first + b);
@@ -181,7 +181,7 @@ Traffic run_jobs(Plan& plan, unsigned threads, Progress&& progress) {
     std::mutex finish_lock;  // the plan's finish (writing a cell file): one at a time, not holding up the hand-out
     std::size_t job = 0;
     std::uint64_t next = 0, merged = 0;
-    std::map<std::size_t, walk::InOrder<Partial>> open;
+    std::map<std::size_t, util::InOrder<Partial>> open;
     Traffic traffic;
     std::exception_ptr error;
     std::atomic<bool> failed{false};
@@ -191,7 +191,7 @@ Traffic run_jobs(Plan& plan, unsigned threads, Progress&& progress) {
             next = 0;
         }
         if (job == n) return detail::Chunk{n, 0, 0};
-        if (next == 0) open.emplace(job, walk::InOrder<Partial>(plan.empty(job)));
+        if (next == 0) open.emplace(job, util::InOrder<Partial>(plan.empty(job)));
         const detail::Chunk c{job, next, std::min(most, blocks[job] - next)};
         next += c.count;
         return c;
@@ -248,7 +248,7 @@ Traffic run_jobs(Plan& plan, unsigned threads, Progress&& progress) {
 
     if (mpi::size() == 1) {
         std::vector<std::jthread> pool;
-        for (std::uint64_t t = 1; t < std::min<std::uint64_t>(walk::thread_count(threads), std::max<std::uint64_t>(all, 1)); ++t)
+        for (std::uint64_t t = 1; t < std::min<std::uint64_t>(util::thread_count(threads), std::max<std::uint64_t>(all, 1)); ++t)
             pool.emplace_back(trace_here);
         trace_here();
     } else {
@@ -266,7 +266,7 @@ Traffic run_jobs(Plan& plan, unsigned threads, Progress&& progress) {
         std::vector<std::uint64_t> rounds(static_cast<std::size_t>(mpi::size()), 1);  // per rank, its next chunk's
         std::vector<std::pair<std::size_t, Partial>> finished;
         std::vector<std::jthread> pool;
-        for (std::uint64_t t = 0; t < walk::thread_count(threads); ++t) pool.emplace_back(trace_here);
+        for (std::uint64_t t = 0; t < util::thread_count(threads); ++t) pool.emplace_back(trace_here);
         try {
             // Polls, sleeping between probes: 20 us after a message, doubling to 1 ms while none comes (the other
             // ranks hold their next chunk already, so an answer 1 ms late costs them nothing, and rank 0's own

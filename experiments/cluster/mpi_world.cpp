@@ -1,4 +1,4 @@
-#include "mpi_world.hpp"
+#include "cluster/mpi_world.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <thread>
 
-#include "signal_cleanup.hpp"
+#include "output/signal_cleanup.hpp"
 
 #ifdef SMITHLAB_MPI
 #include <mpi.h>

@@ -1,4 +1,4 @@
-// cluster/mpi_world.hpp -- the executable's only view of MPI (issue 13): lib/ stays MPI-free, and without SMITHLAB_MPI
+// cluster/mpi_world.hpp -- the executable's only view of MPI: lib/ stays MPI-free, and without SMITHLAB_MPI
 // (or when not started by a launcher such as mpirun) the world is one rank and nothing here talks to anyone.
 //
 // Only the thread that called init() calls MPI (MPI_THREAD_FUNNELED): a rank's worker threads trace, its main thread

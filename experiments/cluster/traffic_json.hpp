@@ -3,8 +3,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "block_jobs.hpp"
-#include "mpi_world.hpp"
+#include "cluster/block_jobs.hpp"
+#include "cluster/mpi_world.hpp"
 
 namespace smithlab::cluster {
 

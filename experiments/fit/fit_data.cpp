@@ -1,4 +1,4 @@
-#include "fit_data.hpp"
+#include "fit/fit_data.hpp"
 
 #include <cmath>
 #include <fstream>
@@ -9,9 +9,9 @@
 #include <numbers>
 #include <sstream>
 
-#include "block_jobs.hpp"
-#include "mpi_world.hpp"
-#include "output_file.hpp"
+#include "cluster/block_jobs.hpp"
+#include "cluster/mpi_world.hpp"
+#include "output/output_file.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
 #include "smithlab/rng.hpp"
@@ -211,7 +211,7 @@ std::vector<fit::SplitMoments> trace_points(const AnyNdf& ndf, const walk::Mater
                                             std::uint64_t seed, std::int64_t walks, unsigned threads,
                                             const std::function<void(std::uint64_t)>& done) {
     const std::shared_ptr<const AnySurface> surface = make_surface(ndf);
-    return walk::reduce_blocks(
+    return util::reduce_blocks(
         points.size(), threads, std::vector<fit::SplitMoments>{},
         [&](std::uint64_t j) {
             return std::vector<fit::SplitMoments>{trace_point(*surface, material, points[j], estimator, seed, walks)};

@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "block_jobs.hpp"
-#include "fit_scene.hpp"
+#include "cluster/block_jobs.hpp"
+#include "fit/fit_scene.hpp"
 #include "smithlab/fit/dataset.hpp"
 #include "smithlab/registry.hpp"
 #include "smithlab/walk/facets.hpp"

@@ -1,4 +1,4 @@
-#include "fit_pictures.hpp"
+#include "fit/fit_pictures.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -9,11 +9,11 @@
 #include <numbers>
 #include <sstream>
 
-#include "fit_data.hpp"
-#include "fit_trends.hpp"
-#include "plot_script.hpp"
-#include "progress.hpp"
-#include "staged_directory.hpp"
+#include "fit/fit_data.hpp"
+#include "fit/fit_trends.hpp"
+#include "output/plot_script.hpp"
+#include "output/progress.hpp"
+#include "output/staged_directory.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
 

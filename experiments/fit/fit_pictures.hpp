@@ -5,8 +5,8 @@
 #include <filesystem>
 #include <string>
 
-#include "fit_results.hpp"
-#include "fit_scene.hpp"
+#include "fit/fit_results.hpp"
+#include "fit/fit_scene.hpp"
 #include "smithlab/registry.hpp"
 
 namespace smithlab::fitrun {

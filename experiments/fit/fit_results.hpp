@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "fit_data.hpp"
+#include "fit/fit_data.hpp"
 #include "smithlab/fit/diffuse_models.hpp"
 
 namespace smithlab::fitrun {

@@ -1,4 +1,4 @@
-#include "fit_run.hpp"
+#include "fit/fit_run.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -10,20 +10,20 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
-#include "fit_data.hpp"
-#include "fit_pictures.hpp"
-#include "fit_results.hpp"
-#include "fit_shaders.hpp"
-#include "fit_trends.hpp"
-#include "mpi_world.hpp"
-#include "traffic_json.hpp"
-#include "progress.hpp"
+#include "fit/fit_data.hpp"
+#include "fit/fit_pictures.hpp"
+#include "fit/fit_results.hpp"
+#include "fit/fit_shaders.hpp"
+#include "fit/fit_trends.hpp"
+#include "cluster/mpi_world.hpp"
+#include "cluster/traffic_json.hpp"
+#include "output/progress.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
 #include "smithlab/fit/compensation.hpp"
 #include "smithlab/fit/fit_model.hpp"
-#include "smithlab/walk/parallel.hpp"
-#include "staged_directory.hpp"
+#include "smithlab/util/parallel.hpp"
+#include "output/staged_directory.hpp"
 
 namespace smithlab::fitrun {
 
@@ -267,7 +267,7 @@ FitSummary run_fit(const FitScene& s, const std::string& source, const std::stri
         std::fprintf(stderr, "fit: traced %lld points, %.4g walks, in %.1f s (%.0f ns a walk on %u threads x %d ranks)\n",
                      static_cast<long long>(sum.traced), static_cast<double>(walks), trace_seconds,
                      trace_seconds / static_cast<double>(walks) * 1e9,
-                     walk::thread_count(threads), mpi::size());
+                     util::thread_count(threads), mpi::size());
     write_constants(stage->path(), r);
     write_errors(stage->path(), sum.errors);
     write_values(stage->path() / "training.csv", s, r, false);
@@ -282,7 +282,7 @@ FitSummary run_fit(const FitScene& s, const std::string& source, const std::stri
         {"title", s.title},      {"source", source},         {"scene", scene_text},
         {"version", SMITHLAB_VERSION}, {"seed", s.seed},      {"points_traced", sum.traced},
         {"points_reused", sum.reused}, {"walks_traced", walks}, {"seconds", sum.seconds}, {"trace_seconds", trace_seconds},
-        {"threads", walk::thread_count(threads)}};
+        {"threads", util::thread_count(threads)}};
     if (mpi::size() > 1) meta["mpi"] = cluster::traffic_json(traffic);  // and threads is per rank
     output::write_file(stage->path() / "meta.json", meta.dump(2) + "\n");
     stage->publish();

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "fit_scene.hpp"
+#include "fit/fit_scene.hpp"
 #include "smithlab/fit/fit_model.hpp"
 #include "smithlab/registry.hpp"
 

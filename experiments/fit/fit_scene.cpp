@@ -1,4 +1,4 @@
-#include "fit_scene.hpp"
+#include "fit/fit_scene.hpp"
 
 #include <cmath>
 #include <limits>
@@ -8,7 +8,7 @@
 #include "smithlab/fit/diffuse_models.hpp"
 #include "smithlab/spec.hpp"
 #include "smithlab/walk/facets.hpp"
-#include "strict_table.hpp"
+#include "scene/strict_table.hpp"
 
 namespace smithlab::fitrun {
 

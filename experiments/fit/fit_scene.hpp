@@ -1,4 +1,4 @@
-// The diffuse fitter's scene file (TOML, read strictly: report/strict_table.hpp): the facets traced, the NDF families,
+// The diffuse fitter's scene file (TOML, read strictly: scene/strict_table.hpp): the facets traced, the NDF families,
 // the training and validation sets, the albedos, models and weights of the fit, and the compensation tables.
 // experiments/scenes/fit_default.toml documents every key and is the embedded default.
 #pragma once
@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "scene_ndf.hpp"
+#include "scene/scene_ndf.hpp"
 #include "smithlab/registry.hpp"
 
 namespace smithlab::fitrun {

@@ -1,4 +1,4 @@
-#include "fit_shaders.hpp"
+#include "fit/fit_shaders.hpp"
 
 #include <fstream>
 #include <set>
@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "smithlab/errors.hpp"
-#include "staged_directory.hpp"
+#include "output/staged_directory.hpp"
 #include "smithlab/fit/glsl.hpp"
 
 namespace smithlab::fitrun {

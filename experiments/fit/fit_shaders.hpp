@@ -5,7 +5,7 @@
 
 #include <filesystem>
 
-#include "fit_results.hpp"
+#include "fit/fit_results.hpp"
 
 namespace smithlab::fitrun {
 

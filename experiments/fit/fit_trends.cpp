@@ -1,4 +1,4 @@
-#include "fit_trends.hpp"
+#include "fit/fit_trends.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "smithlab/csv.hpp"
-#include "staged_directory.hpp"
+#include "output/staged_directory.hpp"
 
 namespace smithlab::fitrun {
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "fit_results.hpp"
+#include "fit/fit_results.hpp"
 
 namespace smithlab::fitrun {
 

@@ -1,4 +1,4 @@
-#include "output_file.hpp"
+#include "output/output_file.hpp"
 
 #include <signal.h>
 #include <sys/stat.h>
@@ -8,7 +8,7 @@
 #include <cstring>
 #include <fstream>
 
-#include "signal_cleanup.hpp"
+#include "output/signal_cleanup.hpp"
 #include "smithlab/errors.hpp"
 
 namespace smithlab::output {

@@ -1,4 +1,4 @@
-#include "plot_script.hpp"
+#include "output/plot_script.hpp"
 
 #include <sys/wait.h>
 
@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "signal_cleanup.hpp"
+#include "output/signal_cleanup.hpp"
 
 namespace smithlab::output {
 

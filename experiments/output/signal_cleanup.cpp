@@ -1,4 +1,4 @@
-#include "signal_cleanup.hpp"
+#include "output/signal_cleanup.hpp"
 
 #include <pthread.h>
 #include <signal.h>

@@ -1,8 +1,8 @@
-#include "staged_directory.hpp"
+#include "output/staged_directory.hpp"
 
 #include <stdexcept>
 
-#include "output_file.hpp"
+#include "output/output_file.hpp"
 #include "smithlab/errors.hpp"
 
 namespace smithlab::output {

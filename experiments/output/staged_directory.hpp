@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "signal_cleanup.hpp"
+#include "output/signal_cleanup.hpp"
 
 namespace smithlab::output {
 

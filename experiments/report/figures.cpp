@@ -1,4 +1,4 @@
-#include "figures.hpp"
+#include "report/figures.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,7 @@
 
 
 
-#include "plot_script.hpp"
+#include "output/plot_script.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/gtr/gtr.hpp"
 #include "smithlab/smith.hpp"

@@ -4,7 +4,7 @@
 
 #include <filesystem>
 
-#include "scene.hpp"
+#include "report/scene.hpp"
 
 namespace smithlab::report {
 

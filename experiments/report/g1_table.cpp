@@ -1,4 +1,4 @@
-#include "g1_table.hpp"
+#include "report/g1_table.hpp"
 
 #include <algorithm>
 #include <cfloat>

@@ -1,4 +1,4 @@
-#include "g2_table.hpp"
+#include "report/g2_table.hpp"
 
 #include <algorithm>
 #include <cmath>

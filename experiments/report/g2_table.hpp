@@ -7,11 +7,11 @@
 #include <string>
 #include <vector>
 
-#include "references.hpp"
-#include "scene.hpp"
+#include "report/references.hpp"
+#include "report/scene.hpp"
 #include "smithlab/registry.hpp"
 #include "smithlab/variants.hpp"
-#include "timing.hpp"
+#include "report/timing.hpp"
 
 namespace smithlab::report {
 

@@ -1,4 +1,4 @@
-#include "references.hpp"
+#include "report/references.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -6,7 +6,7 @@
 #include <cstdlib>
 #include <fstream>
 
-#include "output_file.hpp"
+#include "output/output_file.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
 #include "smithlab/smith.hpp"

@@ -1,4 +1,4 @@
-#include "report.hpp"
+#include "report/report.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -7,16 +7,16 @@
 #include <filesystem>
 #include <fstream>
 
-#include "figures.hpp"
-#include "g1_table.hpp"
-#include "g2_table.hpp"
-#include "references.hpp"
-#include "sampling_experiment.hpp"
+#include "report/figures.hpp"
+#include "report/g1_table.hpp"
+#include "report/g2_table.hpp"
+#include "report/references.hpp"
+#include "report/sampling_experiment.hpp"
 #include "smithlab/errors.hpp"
-#include "staged_directory.hpp"
-#include "timing.hpp"
-#include "mpi_world.hpp"
-#include "walk_section.hpp"
+#include "output/staged_directory.hpp"
+#include "report/timing.hpp"
+#include "cluster/mpi_world.hpp"
+#include "report/walk_section.hpp"
 
 namespace smithlab::report {
 

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "scene.hpp"
+#include "report/scene.hpp"
 #include "smithlab/registry.hpp"
 #include "smithlab/variants.hpp"
 

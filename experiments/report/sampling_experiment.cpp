@@ -1,4 +1,4 @@
-#include "sampling_experiment.hpp"
+#include "report/sampling_experiment.hpp"
 
 #include <algorithm>
 #include <cmath>

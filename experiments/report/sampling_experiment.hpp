@@ -1,4 +1,4 @@
-// The sampling-efficiency experiment (issue: reproduce the blog's point quantitatively). The directional albedo
+// The sampling-efficiency experiment (the sampling blog's point, made quantitative). The directional albedo
 // of a white conductor (F = 1, height-correlated G2) seen from theta_o under a uniform white environment,
 //     A = integral f(wi, wo) cos(theta_i) d wi,   f = G2 D(h) / (4 cos_i cos_o)    (Walter 2007 eq. 20),
 // estimated by sampling wi three ways; each weight f cos_i / pdf(wi):
@@ -16,10 +16,10 @@
 #include <string_view>
 #include <vector>
 
-#include "scene.hpp"
+#include "report/scene.hpp"
 #include "smithlab/registry.hpp"
 #include "smithlab/rng.hpp"
-#include "timing.hpp"
+#include "report/timing.hpp"
 
 namespace smithlab::report {
 

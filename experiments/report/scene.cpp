@@ -1,4 +1,4 @@
-#include "scene.hpp"
+#include "report/scene.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -7,7 +7,7 @@
 #include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
 #include "smithlab/walk/facets.hpp"
-#include "strict_table.hpp"
+#include "scene/strict_table.hpp"
 
 namespace smithlab::report {
 

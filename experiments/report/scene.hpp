@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "scene_ndf.hpp"
+#include "scene/scene_ndf.hpp"
 #include "smithlab/registry.hpp"
 
 namespace smithlab::report {

@@ -1,4 +1,4 @@
-#include "timing.hpp"
+#include "report/timing.hpp"
 
 #include <benchmark/benchmark.h>
 

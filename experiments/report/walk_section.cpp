@@ -1,4 +1,4 @@
-#include "walk_section.hpp"
+#include "report/walk_section.hpp"
 
 #include <cmath>
 #include <optional>
@@ -7,8 +7,8 @@
 #include <thread>
 #include <variant>
 
-#include "cell_jobs.hpp"
-#include "progress.hpp"
+#include "trace/cell_jobs.hpp"
+#include "output/progress.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
 #include "smithlab/spec.hpp"
@@ -120,7 +120,7 @@ void write_walk_section(const std::vector<WalkResult>& results, const Scene::Wal
     }
 
     std::ofstream md(dir / "report.md", std::ios::app);
-    const std::string threads = std::to_string(walk::thread_count(0)) + " threads",
+    const std::string threads = std::to_string(util::thread_count(0)) + " threads",
                       where = mpi::size() > 1 ? std::to_string(mpi::size()) + " MPI ranks x " + threads : threads;
     char head[1200];
     std::snprintf(head, sizeof head,

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "scene.hpp"
+#include "report/scene.hpp"
 #include "smithlab/any_ndf.hpp"
 #include "smithlab/registry.hpp"
 #include "smithlab/walk/facets.hpp"

@@ -1,10 +1,10 @@
-#include "work_estimate.hpp"
+#include "report/work_estimate.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
-#include "sampling_experiment.hpp"
+#include "report/sampling_experiment.hpp"
 #include "smithlab/errors.hpp"
 
 namespace smithlab::report {

@@ -16,7 +16,7 @@
 
 #include <string>
 
-#include "scene.hpp"
+#include "report/scene.hpp"
 #include "smithlab/variants.hpp"
 
 namespace smithlab::report {

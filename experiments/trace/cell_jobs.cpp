@@ -1,4 +1,4 @@
-#include "cell_jobs.hpp"
+#include "trace/cell_jobs.hpp"
 
 #include <stdexcept>
 

@@ -13,7 +13,7 @@
 #include <variant>
 #include <vector>
 
-#include "block_jobs.hpp"
+#include "cluster/block_jobs.hpp"
 #include "smithlab/surface.hpp"
 #include "smithlab/walk/trace.hpp"
 

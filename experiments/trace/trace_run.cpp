@@ -1,4 +1,4 @@
-#include "trace_run.hpp"
+#include "trace/trace_run.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -16,15 +16,15 @@
 #include <thread>
 #include <toml.hpp>
 
-#include "cell_jobs.hpp"
-#include "mpi_world.hpp"
-#include "traffic_json.hpp"
-#include "output_file.hpp"
-#include "progress.hpp"
+#include "trace/cell_jobs.hpp"
+#include "cluster/mpi_world.hpp"
+#include "cluster/traffic_json.hpp"
+#include "output/output_file.hpp"
+#include "output/progress.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/walk/trace.hpp"
-#include "staged_directory.hpp"
-#include "walk_options.hpp"
+#include "output/staged_directory.hpp"
+#include "scene/walk_options.hpp"
 
 namespace smithlab::trace {
 
@@ -318,7 +318,7 @@ RunSummary run_scene(const TraceScene& s, const std::string& source, const NdfRe
                                  {"cells_reused", sum.reused},
                                  {"bounces", sum.bounces},
                                  {"seconds", sum.seconds},
-                                 {"threads", walk::thread_count(threads)}};
+                                 {"threads", util::thread_count(threads)}};
     if (distributed) meta["mpi"] = cluster::traffic_json(traffic);  // threads is then per rank
     std::ofstream(stage->path() / "meta.json") << meta.dump(2) << "\n";
     stage->publish();

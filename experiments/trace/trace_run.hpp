@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "smithlab/registry.hpp"
-#include "trace_scene.hpp"
+#include "trace/trace_scene.hpp"
 
 namespace smithlab::trace {
 

@@ -1,13 +1,13 @@
-#include "trace_scene.hpp"
+#include "trace/trace_scene.hpp"
 
 #include <cmath>
 #include <limits>
 
 #include "smithlab/csv.hpp"
 #include "smithlab/spec.hpp"
-#include "scene_ndf.hpp"
-#include "strict_table.hpp"
-#include "walk_options.hpp"
+#include "scene/scene_ndf.hpp"
+#include "scene/strict_table.hpp"
+#include "scene/walk_options.hpp"
 
 namespace smithlab::trace {
 

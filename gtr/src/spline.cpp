@@ -13,7 +13,7 @@ namespace {
 // G1 at the knots gamma = 0..4 for mu in [1e-100, 1e100]: G1 = 1 / (1 + Lambda_gtr_closed(alpha, k, mu)) to a few ulp,
 // by the forms of closed_forms.hpp (ratio0..ratio4, their derivations there) sharing their roots A = sqrt(mu^2 +
 // alpha^2), B = sqrt(mu^2 + 1) and their reciprocals: two roots, two logs and four divisions for the five knots
-// (issue 14: the spline cost 151 ns, nearly all of it five separate closed forms with hypot and log1pmx).
+// (five separate closed forms, each with its own hypot and log1pmx, would cost about three times as much).
 // gamma = 0 and 2 as 2 mu / (mu + B), 2 mu / (mu + A) (Walter 2007 eq. 34 times mu / mu; B^2 = mu^2 + 1 makes
 // 1 + 1 / (2 mu (mu + B)) = (mu + B)^2 / (2 mu (mu + B))). Beyond mu_big = 1e50 (where G1 = 1 to 1e-100) the forms'
 // own asymptote, through Lambda_gtr_closed.

@@ -15,7 +15,7 @@
 
 #include "smithlab/gtr/family.hpp"
 #include "smithlab/gtr/gtr.hpp"
-#include "smithlab/walk/parallel.hpp"
+#include "smithlab/util/parallel.hpp"
 
 namespace {
 
@@ -195,7 +195,7 @@ template <class Fn>
 void parallel_for(std::size_t n, const Fn& fn) {
     std::atomic<std::size_t> next{0};
     std::vector<std::thread> pool;
-    const unsigned threads = smithlab::walk::thread_count(0);  // every core
+    const unsigned threads = smithlab::util::thread_count(0);  // every core
     for (unsigned t = 0; t < threads; ++t)
         pool.emplace_back([&] {
             for (std::size_t i; (i = next++) < n;) fn(i);

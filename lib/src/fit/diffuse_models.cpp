@@ -1,4 +1,4 @@
-// The diffuse models of issue 12 (fit/diffuse_models.hpp has each formula and its source).
+// The diffuse models (fit/diffuse_models.hpp has each formula and its source).
 //
 // Symmetry in wi and wo is kept to the last bit wherever it is cheap: every quantity is built from symmetric pieces
 // (wi.wo, wi + wo, min and max of the two cosines, the products of the two Schlick factors), so f(wi, wo) and

@@ -307,7 +307,7 @@ std::string glsl_function(const ShaderModel& m) {
 
 std::string glsl_library(std::span<const ShaderModel> models) {
     std::string out =
-        "// smithlab's diffuse models (issue 12) at the constants `smithlab fit` measured, transcribed from\n"
+        "// smithlab's diffuse models at the constants `smithlab fit` measured, transcribed from\n"
         "// lib/src/fit/diffuse_models.cpp. One function per model and NDF family:\n"
         "//     float smithlab_<model>_<ndf>(vec3 L, vec3 V, vec3 N, float alpha, float albedo)\n"
         "// returns the BRDF f without the cosine; L toward the light, V toward the viewer, N the normal, unit\n"

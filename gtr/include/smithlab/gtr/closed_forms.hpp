@@ -6,7 +6,7 @@
 //
 // The forms for gamma = 0..4 are inline here (a renderer calls them per sample): each is a ratio num / den of positive
 // terms, so that Lambda = num / den and G1 = 1 / (1 + Lambda) = den / (den + num) cost one division each, built from
-// sqrt, log and log1p only (no hypot, no log1pmx: issue 14). Each is given twice, in mu = cot(theta) and in
+// sqrt, log and log1p only (no hypot, no log1pmx). Each is given twice, in mu = cot(theta) and in
 // c = cos(theta) (what a renderer holds; s2 = sin^2 = (1 - c)(1 + c)), the second obtained from the first by
 // mu = c / s, A = Ac / s, B = 1 / s with Ac = sqrt(c^2 + alpha^2 s2) (B s = sqrt(c^2 + s2) = 1) and cleared of s.
 #pragma once
@@ -84,7 +84,7 @@ inline Ratio ratio3(double a2, double mu, double A) {
 }
 
 // gamma = 4, Dimov 2015 sec. 3.5, printed as a sum over 16 (a^4 + a^2 + 1) mu A^3 with differences mu - A. With
-// mu - A = -a2 / s again, every difference cleared (the form of smithlab before issue 14,
+// mu - A = -a2 / s again, every difference cleared (the form as first derived,
 //     Lambda = v^3/(16 k) [48 mu p^2 + 12 p^2/mu (1 + a2 (5A + 7mu)/s) + N / (mu s^3)],  v = a2/A, p = mu/s,
 // N = 3A + mu + 2 a2 (3A + 5mu) + a2^2 (15A + 37mu), k = a2^2 + a2 + 1), put over one denominator:
 //     Lambda = v^3 P / (16 k mu s^3),   P = 48 mu^4 s + 12 mu^2 (s + a2 (5A + 7mu)) + N,

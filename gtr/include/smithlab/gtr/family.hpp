@@ -1,6 +1,6 @@
 // smithlab/gtr/family.hpp -- Lambda and G1 of every GTR at once: piecewise polynomials over (alpha, gamma, mu),
-// generated at build time (gtr/tools/family_gen.cpp) and compiled in, read-only, shared by every material and thread
-// (issue 14). No per-material work and no first-use build.
+// generated at build time (gtr/tools/family_gen.cpp) and compiled in, read-only, shared by every material and thread.
+// No per-material work and no first-use build.
 //
 // Domain: alpha in [1e-4, 1], gamma in [0, 20], any mu. The function held is f = ln(mu Lambda) (Lambda: Walter 2007
 // eq. 48, the reduced 1D form of smith.hpp) over (a = ln alpha, gamma, z), in two charts that meet at mu = sqrt(alpha):

@@ -1,5 +1,5 @@
 // smithlab/gtr/family_stream.hpp -- G1 of GTR for a stream of (alpha, gamma, mu) points: the family evaluator of
-// family.hpp, eight points at a time (issue 14, item 1: <= 30 ns a G1 on random streams; one call of
+// family.hpp, eight points at a time (<= 30 ns a G1 on random streams; one call of
 // GtrFamily::G1_up is ~62 ns, a chain of dependent steps that a core cannot overlap with the next call's).
 //
 // Same leaves and the same stated bounds as GtrFamily (error_bound(), G1_error_bound()); what differs is the route

@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "smithlab/geometry.hpp"
-#include "smithlab/walk/parallel.hpp"
+#include "smithlab/util/parallel.hpp"
 #include "smithlab/walk/tally.hpp"
 #include "smithlab/walk/walk.hpp"
 

@@ -1,4 +1,4 @@
-// smithlab/fit/diffuse_models.hpp -- the diffuse BRDFs the fitter fits and compares (issue 12): each model as a free
+// smithlab/fit/diffuse_models.hpp -- the diffuse BRDFs the fitter fits and compares: each model as a free
 // function of its own physical parameters, with its source, and a table of them in the fitter's one shape
 // (DiffuseModel: f(wi, wo, alpha, albedo, constants)).
 //

@@ -1,4 +1,4 @@
-// smithlab/fit/glsl.hpp -- the diffuse models (fit/diffuse_models.hpp) as GLSL at given constants (issue 12): a
+// smithlab/fit/glsl.hpp -- the diffuse models (fit/diffuse_models.hpp) as GLSL at given constants: a
 // library a renderer pastes in (one function per model and NDF family, the constants inlined) and Disney's BRDF
 // Explorer's analytic .brdf format. Pure text: nothing is written here.
 //

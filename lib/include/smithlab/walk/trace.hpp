@@ -7,7 +7,7 @@
 #include <functional>
 #include <optional>
 
-#include "smithlab/walk/parallel.hpp"
+#include "smithlab/util/parallel.hpp"
 #include "smithlab/walk/tally.hpp"
 #include "smithlab/walk/walk.hpp"
 
@@ -72,7 +72,7 @@ template <class Microsurface, class M>
 CellResult trace_cell(const Microsurface& ms, const M& material, const CellRequest& r,
                       const std::function<void(double)>& progress = {}) {
     const std::uint64_t blocks = block_count(r.walks, r.block);
-    CellPartial total = reduce_blocks(
+    CellPartial total = util::reduce_blocks(
         blocks, r.threads, empty_partial(r), [&](std::uint64_t b) { return trace_block(ms, material, r, b); },
         merge_partial,
         [&](std::uint64_t merged) {
@@ -92,7 +92,7 @@ struct EvalRequest {
 
 template <class Microsurface, class M>
 EvalTally eval_cell(const Microsurface& ms, const M& material, const EvalRequest& r) {
-    return reduce_blocks(
+    return util::reduce_blocks(
         block_count(r.walks, r.block), r.threads, EvalTally{},
         [&](std::uint64_t b) {
             EvalTally p;

@@ -1,11 +1,11 @@
-#include "strict_table.hpp"
+#include "scene/strict_table.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <utility>
 
-#include "nearest_name.hpp"
+#include "scene/nearest_name.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
 

@@ -1,4 +1,4 @@
-#include "nearest_name.hpp"
+#include "scene/nearest_name.hpp"
 
 #include <algorithm>
 

@@ -1,8 +1,7 @@
-// bench/closed_forms_before.hpp -- the closed forms, GGX's Lambda and Dimov's spline as they were before issue 14
-// (smithlab commit beca50c, gtr/src/closed_forms.cpp, gtr/src/spline.cpp, lib/src/ndfs.cpp), kept verbatim as the
-// 'before' baseline: bench_closed_forms times them beside the new code on the same inputs, and test_gtr checks that
-// the new Dimov spline gives their values to a few ulp. Only the throw of the generated form became a NaN, and the
-// names moved into namespace smithlab_before. Not part of the library: nothing else includes it.
+// tests/closed_forms_plain.hpp -- the closed forms, GGX's Lambda and Dimov's spline evaluated straightforwardly (the
+// formulas as the papers print them: hypot, log, a Gauss rule where the spline integrates), a second route beside the
+// library's rewritten ones: test_gtr checks that Dimov's spline gives their values to a few ulp, and
+// bench_closed_forms times both on the same inputs. Not part of the library.
 #pragma once
 
 #include <algorithm>
@@ -14,7 +13,7 @@
 #include <numbers>
 #include <smithlab/gtr/gtr.hpp>
 
-namespace smithlab_before {
+namespace smithlab_plain {
 
 inline double Ggx_Lambda(double alpha, double mu) { return alpha / (mu + std::hypot(mu, alpha)) * (alpha / (2.0 * mu)); }
 
@@ -177,4 +176,4 @@ inline double G1_gtr_dimov_spline(double alpha, double gamma, double mu) {
     return M[i] * a * a * a / 6.0 + M[i + 1] * b * b * b / 6.0 + (y[i] - M[i] / 6.0) * a + (y[i + 1] - M[i + 1] / 6.0) * b;
 }
 
-}  // namespace smithlab_before
+}  // namespace smithlab_plain

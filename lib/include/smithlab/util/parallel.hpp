@@ -1,4 +1,4 @@
-// smithlab/walk/parallel.hpp -- a cell's walks in fixed blocks over threads, reduced in block order.
+// smithlab/util/parallel.hpp -- numbered blocks of work over threads, reduced in block order.
 //
 // Block b is a pure function of b (its walks draw from WalkRng(seed, cell, walk)), and the partial sums are merged in
 // the order 0, 1, 2, ... whatever thread finished first, so the result is the same bits for any number of threads.
@@ -15,7 +15,7 @@
 #include <utility>
 #include <vector>
 
-namespace smithlab::walk {
+namespace smithlab::util {
 
 // The threads a run uses: `threads`, or all cores for 0.
 inline unsigned thread_count(unsigned threads) { return threads ? threads : std::max(1u, std::thread::hardware_concurrency()); }
@@ -79,4 +79,4 @@ Partial reduce_blocks(std::uint64_t blocks, unsigned threads, Partial total, Run
     return std::move(sum.total());
 }
 
-}  // namespace smithlab::walk
+}  // namespace smithlab::util

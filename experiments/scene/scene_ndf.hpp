@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "smithlab/registry.hpp"
-#include "strict_table.hpp"
+#include "scene/strict_table.hpp"
 
 namespace smithlab::report {
 

@@ -1,4 +1,4 @@
-#include "scene_ndf.hpp"
+#include "scene/scene_ndf.hpp"
 
 #include <algorithm>
 
