@@ -9,7 +9,8 @@ Needs Debian's python3-matplotlib (installed by .ci/deps). experiments/fit/fit_p
   constants_vs_FAMILY_PARAMETER.csv   ndf,model,parameter,PARAMETER,value,stderr (a family fitted at two values or
                            more of one parameter, e.g. constants_vs_gtr_gamma.csv)
 and this script draws spheres_STEM.png, lambert_spheres_STEM.png, slices_STEM.png, missing_STEM.png and
-constants_vs_FAMILY_PARAMETER.png. Each figure is drawn only if its data is there.
+constants_vs_FAMILY_PARAMETER.png. Each figure is drawn only if its data is there. Columns are read by name: a CSV
+may carry more columns (one per NDF parameter beside ndf, say) than the ones read here.
 """
 import math
 import os
@@ -24,7 +25,7 @@ from matplotlib.colors import PowerNorm  # noqa: E402
 import numpy as np  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from plot_common import num, rows  # noqa: E402
+from plot_common import num, rows, save, use_style  # noqa: E402
 
 # Hammon 2017's layout (slides "Direct only" ... "Approximate diffuse only"): rows the light at 0, 90, 135 degrees
 # from the viewer, each row three spheres at albedo 0.75, 0.5, 0.25; columns alpha.
@@ -103,27 +104,29 @@ def draw_sources(path, title, sources, values, P, ncols):
     nrows = (len(sources) + ncols - 1) // ncols
     img0, _, _ = composite(values[sources[0]], alphas, P)
     h, w = img0.shape[:2]
-    panel_w = 7.8
-    panel_h = panel_w * h / w + 0.95
-    fig, axes = plt.subplots(nrows, ncols, figsize=(panel_w * ncols + 0.6, panel_h * nrows + 0.7), squeeze=False)
-    fig.patch.set_facecolor("white")
+    # Inches: a picture's width, the room left of each (light labels), under each (alpha labels, the next title),
+    # above all (the two-line title); the figure is sized so that the pictures fill it.
+    pic_w, left, gap, top = 6.0, 1.05, 1.0, 0.95
+    pic_h = pic_w * h / w
+    fig_w, fig_h = ncols * (pic_w + left) + 0.1, nrows * pic_h + (nrows - 1) * gap + top + 0.6
+    fig, axes = plt.subplots(nrows, ncols, figsize=(fig_w, fig_h), squeeze=False)
+    fig.subplots_adjust(left=left / fig_w, right=1 - 0.1 / fig_w, top=1 - top / fig_h, bottom=0.6 / fig_h,
+                        wspace=left / pic_w, hspace=gap / pic_h)
     for ax in axes.flat[len(sources):]:
         ax.axis("off")
     for ax, s in zip(axes.flat, sources):
         img, tx, ty = composite(values[s], alphas, P)
         ax.imshow(img, interpolation="nearest")
         ax.set_xticks(tx)
-        ax.set_xticklabels([alpha_label(a) for a in alphas], fontsize=7.5)
+        ax.set_xticklabels([alpha_label(a) for a in alphas], fontsize=8.5)
         ax.set_yticks(ty)
-        ax.set_yticklabels([f"light {lt:g}°" for lt in LIGHTS], fontsize=8)
+        ax.set_yticklabels([f"light {lt:g}°" for lt in LIGHTS], fontsize=9)
         ax.tick_params(length=0)
         for sp in ax.spines.values():
             sp.set_visible(False)
-        ax.set_title(s, fontsize=10, loc="left")
+        ax.set_title(s, fontsize=10.5, loc="left")
     fig.suptitle(title, fontsize=11)
-    fig.tight_layout(rect=(0, 0, 1, 1 - 0.55 / fig.get_figheight()))  # 0.55 in for the two-line title
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    save(fig, path, dpi=120)
 
 
 def spheres(d, ndf, stem, P, table):
@@ -145,64 +148,98 @@ def spheres(d, ndf, stem, P, table):
                      lam, values, P, 2)
 
 
-def slices(d, ndf, stem, table):
+SLICE_COLUMNS = 5  # sources per row of slices_STEM.png
+SLICE_ALBEDO = 0.75  # fit_pictures.cpp's slice_albedo
+
+
+def slice_grids(table):
+    """(alphas, sources, {(alpha, source): theta_d x theta_h array of pi f / albedo}) from slices.csv's rows of one
+    NDF; the simulation first among the sources."""
     by = defaultdict(dict)  # (alpha, source) -> {(theta_h, theta_d): f}
     for r in table:
         by[(num(r["alpha"]), r["source"])][(num(r["theta_h"]), num(r["theta_d"]))] = num(r["value"])
     alphas = sorted({k[0] for k in by})
-    sources = []
-    for k in by:
-        if k[1] not in sources:
-            sources.append(k[1])
+    sources = list(dict.fromkeys(k[1] for k in by))
     sim = SIM_SOURCES[0]
     sources = [sim] + [s for s in sources if s != sim]
     th = sorted({k[0] for v in by.values() for k in v})
     td = sorted({k[1] for v in by.values() for k in v})
-    albedo = 0.75  # fit_pictures.cpp's slice_albedo
-    ncol = len(sources)
-    fig, axes = plt.subplots(2 * len(alphas), ncol, figsize=(1.75 * ncol + 1.2, 3.7 * len(alphas) + 0.6),
-                             squeeze=False)
-    # Before the colorbars, which take their room from the axes as they stand.
-    fig.subplots_adjust(top=1 - 0.7 / fig.get_figheight(), bottom=0.45 / fig.get_figheight(), left=0.06, right=0.93,
-                        wspace=0.25, hspace=0.35)
+    grids = {k: np.array([[v.get((h, dd), np.nan) for h in th] for dd in td]) * math.pi / SLICE_ALBEDO
+             for k, v in by.items()}
+    return alphas, sources, grids
+
+
+def slice_pair(ax, axd, grid, ref, norm, is_ref):
+    """One source at one alpha: its slice (ax) and, below, its relative difference to the simulation (axd)."""
     ext = (0, 90, 90, 0)
+    im = ax.imshow(grid, extent=ext, cmap="magma", norm=norm, interpolation="nearest")
+    if ref is None or is_ref:
+        axd.axis("off")
+        if is_ref:
+            axd.text(0.5, 0.5, "the reference\nof the differences", ha="center", va="center", fontsize=9,
+                     transform=axd.transAxes)
+        return im, None
+    rel = grid / ref - 1.0
+    imd = axd.imshow(rel, extent=ext, cmap="RdBu_r", vmin=-0.5, vmax=0.5, interpolation="nearest")
+    axd.set_title(f"median |rel. diff| {np.nanmedian(np.abs(rel)):.3f}", fontsize=8.5)
+    return im, imd
+
+
+def slice_colorbar(fig, axes_row, mappable, label, extend):
+    """A colorbar right of one row of panels, as tall as the row."""
+    top = axes_row[0].get_position()
+    cax = fig.add_axes((0.915, top.y0, 0.012, top.height))
+    fig.colorbar(mappable, cax=cax, extend=extend).set_label(label, fontsize=8.5)
+    cax.tick_params(labelsize=8)
+
+
+def slices(d, ndf, stem, table):
+    """Burley's slices: per alpha, rows of up to SLICE_COLUMNS sources, each slice above its relative difference to
+    the simulation; one colour scale per alpha (the simulation's 99th percentile, display gamma 2.2)."""
+    alphas, sources, grids = slice_grids(table)
+    ncol = min(SLICE_COLUMNS, len(sources))
+    chunks = [sources[i:i + ncol] for i in range(0, len(sources), ncol)]
+    nrows = 2 * len(alphas) * len(chunks)
+    fig, axes = plt.subplots(nrows, ncol, figsize=(1.85 * ncol + 1.6, 2.05 * nrows + 0.9), squeeze=False)
+    fig.subplots_adjust(top=1 - 1.0 / fig.get_figheight(), bottom=0.55 / fig.get_figheight(), left=0.1,
+                        right=0.9, wspace=0.12, hspace=0.42)
+    sim = SIM_SOURCES[0]
     for ia, a in enumerate(alphas):
-        grid = {s: np.array([[by[(a, s)].get((h, dd), np.nan) for h in th] for dd in td]) * math.pi / albedo
-                for s in sources if (a, s) in by}
-        ref = grid.get(sim)
-        vmax = np.nanpercentile(ref, 99) if ref is not None else max(np.nanmax(g) for g in grid.values())
+        ref = grids.get((a, sim))
+        vmax = np.nanpercentile(ref, 99) if ref is not None else max(np.nanmax(g) for k, g in grids.items()
+                                                                       if k[0] == a)
         norm = PowerNorm(1 / 2.2, vmin=0.0, vmax=vmax)  # display gamma: the dim grazing rows stay readable
-        for j, s in enumerate(sources):
-            ax, axd = axes[2 * ia, j], axes[2 * ia + 1, j]
-            for x in (ax, axd):
-                x.set_xticks([0, 45, 90])
-                x.set_yticks([0, 45, 90])
-                x.tick_params(labelsize=6)
-            if s not in grid:
-                ax.axis("off")
-                axd.axis("off")
-                continue
-            im = ax.imshow(grid[s], extent=ext, cmap="magma", norm=norm, interpolation="nearest")
-            ax.set_title(s.replace("simulation, ", "simulation\n") if s == sim else s, fontsize=7)
-            if ref is not None and s != sim:
-                rel = grid[s] / ref - 1.0
-                imd = axd.imshow(rel, extent=ext, cmap="RdBu_r", vmin=-0.5, vmax=0.5, interpolation="nearest")
-                axd.set_title(f"rel. diff, median |.| {np.nanmedian(np.abs(rel)):.3f}", fontsize=6.5)
-            else:
-                axd.axis("off")
-            if j == 0:
-                ax.set_ylabel(f"α = {a:g}\nθ_d (deg)", fontsize=8)
-                axd.set_ylabel("θ_d (deg)", fontsize=7)
-            if ia == len(alphas) - 1:
-                axd.set_xlabel("θ_h (deg)", fontsize=7)
-        fig.colorbar(im, ax=list(axes[2 * ia]), fraction=0.012, pad=0.01).set_label("π f / albedo", fontsize=7)
-        if ref is not None and ncol > 1:
-            fig.colorbar(imd, ax=list(axes[2 * ia + 1]), fraction=0.012, pad=0.01).set_label(
-                "model / simulation - 1", fontsize=7)
-    fig.suptitle(f"{ndf}: BRDF slices after Burley 2012 (θ_h across, θ_d down, φ_d = 90°), albedo {albedo:g}; "
-                 "simulation: the diffuse part (k ≥ 1)", fontsize=10)
-    fig.savefig(os.path.join(d, f"slices_{stem}.png"), dpi=100)
-    plt.close(fig)
+        for ic, chunk in enumerate(chunks):
+            row = 2 * (ia * len(chunks) + ic)
+            imd = None
+            for j in range(ncol):
+                ax, axd = axes[row, j], axes[row + 1, j]
+                if j >= len(chunk) or (a, chunk[j]) not in grids:
+                    ax.axis("off")
+                    axd.axis("off")
+                    continue
+                s = chunk[j]
+                im, diff = slice_pair(ax, axd, grids[(a, s)], ref, norm, s == sim)
+                imd = diff or imd
+                ax.set_title(s.replace("simulation, ", "simulation,\n") if s == sim else s, fontsize=9)
+                for x in (ax, axd):
+                    x.set_xticks([0, 45, 90])
+                    x.set_yticks([0, 45, 90])
+                    x.tick_params(labelsize=8)
+                    if j > 0:
+                        x.set_yticklabels([])
+                ax.set_xticklabels([])
+                if j == 0:
+                    ax.set_ylabel(f"α = {a:g}\nθ_d (deg)", fontsize=9)
+                    axd.set_ylabel("θ_d (deg)", fontsize=9)
+            slice_colorbar(fig, axes[row], im, "π f / albedo", "max")
+            if imd is not None:
+                slice_colorbar(fig, axes[row + 1], imd, "model / simulation − 1", "both")
+    fig.supxlabel("θ_h (deg) across every panel, θ_d (deg) down", fontsize=9.5, y=0.1 / fig.get_figheight())
+    fig.suptitle(f"{ndf}: BRDF slices after Burley 2012 (θ_h across, θ_d down, φ_d = 90°), albedo "
+                 f"{SLICE_ALBEDO:g}\nsimulation: the diffuse part (k ≥ 1); below each model: its relative difference",
+                 fontsize=10.5)
+    save(fig, os.path.join(d, f"slices_{stem}.png"), dpi=110)
 
 
 def missing(d, ndf, stem, table):
@@ -218,31 +255,41 @@ def missing(d, ndf, stem, table):
             ax.errorbar(t, m, yerr=e, marker="o", ms=4, capsize=2, color=cmap(i / max(1, len(alphas) - 1)),
                         label=alpha_label(a).replace("\n", " "))
         ax.axhline(0.5, color="tab:red", ls="--", lw=1)
-        ax.text(1, 0.505, "Hammon 2017: \"up to half the light was missing\"", color="tab:red", fontsize=7.5,
+        ax.text(1, 0.505, "Hammon 2017: \"up to half the light was missing\"", color="tab:red", fontsize=8.5,
                 va="bottom")
         ax.set_xlabel("θ_i (deg)")
         ax.set_title(f"albedo {alb:g}", fontsize=10)
-        ax.set_ylim(0, 0.6)
+        ax.set_ylim(-0.01, 0.6)  # a line at 0 (alpha 0) stays above the axis
         ax.grid(True, alpha=0.3)
     axes[0][0].set_ylabel("1 - E₁/E: the share of the directional albedo\nthat single scattering misses")
-    axes[0][-1].legend(fontsize=7.5, loc="upper left", bbox_to_anchor=(1.02, 1.0))
+    axes[0][-1].legend(loc="upper left", bbox_to_anchor=(1.02, 1.0))
     fig.suptitle(f"{ndf}, Lambertian facets, traced: light single scattering misses (sample estimator)", fontsize=10)
     fig.tight_layout()
-    fig.savefig(os.path.join(d, f"missing_{stem}.png"), dpi=110)
-    plt.close(fig)
+    save(fig, os.path.join(d, f"missing_{stem}.png"), dpi=120)
+
+
+def swept_column(stem, header):
+    """(family, parameter column) of constants_vs_FAMILY_PARAMETER: the column that the stem ends with."""
+    named = [c for c in header if c not in ("ndf", "model", "parameter", "value", "stderr") and
+             stem.endswith("_" + c)]
+    if not named:
+        raise SystemExit(f"fit_plots: {stem}.csv has no column named after its swept parameter")
+    x = max(named, key=len)
+    return stem[len("constants_vs_"):-len(x) - 1], x
 
 
 def constants_vs_parameter(d, stem):
     table = rows(os.path.join(d, stem + ".csv"))
-    x = list(table[0].keys())[3] if table else "value"
-    family = table[0]["ndf"].split("(")[0] if table else ""
+    if not table:
+        return
+    family, x = swept_column(stem, list(table[0].keys()))
     keys = []
     for r in table:
         if (r["model"], r["parameter"]) not in keys:
             keys.append((r["model"], r["parameter"]))
     cols = min(4, len(keys))
     nrows = (len(keys) + cols - 1) // cols
-    fig, axes = plt.subplots(nrows, cols, figsize=(3.6 * cols, 2.8 * nrows), squeeze=False)
+    fig, axes = plt.subplots(nrows, cols, figsize=(2.9 * cols + 0.4, 2.5 * nrows + 0.7), squeeze=False)
     for ax in axes.flat[len(keys):]:
         ax.axis("off")
     for ax, (model, param) in zip(axes.flat, keys):
@@ -251,19 +298,17 @@ def constants_vs_parameter(d, stem):
         if pts:
             g, v, e = zip(*pts)
             ax.errorbar(g, v, yerr=e, marker="o", ms=4, capsize=3)
-        ax.set_title(f"{model}: {param}", fontsize=8.5)
-        ax.set_xlabel(f"{family} {x}", fontsize=8)
-        ax.tick_params(labelsize=7)
+        ax.set_title(f"{model}: {param}", fontsize=9.5)
+        ax.set_xlabel(f"{family}'s {x}")
         ax.grid(True, alpha=0.3)
-    fig.suptitle(f"Fitted constants against {family}'s {x} (error bars: standard errors from the fit's covariance)",
-                 fontsize=10)
+    fig.suptitle(f"Fitted constants against {family}'s {x}\n(error bars: one standard error, from the fit's covariance)")
     fig.tight_layout()
-    fig.savefig(os.path.join(d, stem + ".png"), dpi=110)
-    plt.close(fig)
+    save(fig, os.path.join(d, stem + ".png"), dpi=120)
 
 
 def main():
     d = sys.argv[1]
+    use_style()
     ndfs = rows(os.path.join(d, "ndfs.csv"))
     groups = {}
     for name in ("spheres", "slices", "missing"):
