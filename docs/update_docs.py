@@ -14,7 +14,8 @@ Two kinds of block, each between a start and an end marker on lines of their own
     <!-- end quoted -->                      comment lines "[docs: NAME]" and "[end docs]", in a fence named
                                              after PATH's extension; without NAME, the whole file
 
-Everything outside the markers is left as it is.
+Everything outside the markers is left as it is. CITATION.cff's `version:` is kept equal to the version in
+CMakeLists.txt's project().
 """
 import difflib
 import pathlib
@@ -79,6 +80,13 @@ def rewrite(path, build_dir):
     return "\n".join(out)
 
 
+def citation(old):
+    project = re.search(r"project\(smithlab VERSION ([0-9.]+)", (ROOT / "CMakeLists.txt").read_text())
+    if not project:
+        raise SystemExit("CMakeLists.txt: no 'project(smithlab VERSION X.Y.Z' found")
+    return re.sub(r"(?m)^version: .*$", "version: " + project.group(1), old)
+
+
 def main(argv):
     check = "--check" in argv
     rest = [a for a in argv if a != "--check"]
@@ -86,9 +94,9 @@ def main(argv):
         raise SystemExit(__doc__)
     build_dir = rest[0]
     stale = []
-    for path in [ROOT / "README.md"] + sorted((ROOT / "docs").glob("*.md")):
+    for path in [ROOT / "README.md"] + sorted((ROOT / "docs").glob("*.md")) + [ROOT / "CITATION.cff"]:
         old = path.read_text()
-        new = rewrite(path, build_dir)
+        new = citation(old) if path.suffix == ".cff" else rewrite(path, build_dir)
         if new == old:
             continue
         stale.append(path)
