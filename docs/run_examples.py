@@ -9,16 +9,31 @@ A block is checked when the line before its opening ```sh fence is
 
 Each such block runs as one bash script (bash -e: the first failing line fails the block) in WORK_DIR, made afresh,
 where `build` links to BUILD_DIR and `experiments` and `tests` to the repository's, so that the commands run as
-written from a checkout's root and what they write stays in WORK_DIR. A block that writes nothing on failure and
-shows an exit code does so with `|| echo "exit $?"`.
+written from a checkout's root and what they write stays in WORK_DIR. A line whose comment starts with `exit N`
+(`$S eval --ndf 'ggx(alpha=-1)' --mu 1   # exit 2: ...`) must end with exit code N.
 """
 import pathlib
+import re
 import shutil
 import subprocess
 import sys
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 MARK = "<!-- checked by docs/run_examples.py -->"
+EXPECTED_EXIT = re.compile(r"^(.*?)\s+#\s*exit (\d+)\b")
+
+
+def with_exit_checks(script):
+    """Each line that says `# exit N` runs so that any other exit code fails the block."""
+    out = []
+    for line in script.split("\n"):
+        m = EXPECTED_EXIT.match(line)
+        if m:
+            command, code = m.groups()
+            line = (f"if {command}; then rc=0; else rc=$?; fi; "
+                    f"[ $rc = {code} ] || {{ echo \"expected exit {code}, got $rc\" >&2; false; }}")
+        out.append(line)
+    return "\n".join(out)
 
 
 def blocks(path):
@@ -44,7 +59,7 @@ def main(argv):
             count += 1
             where = f"{path.relative_to(ROOT)}:{line}"
             print(f"== {where}", flush=True)
-            run = subprocess.run(["bash", "-e", "-x", "-c", script], cwd=work, capture_output=True, text=True)
+            run = subprocess.run(["bash", "-e", "-x", "-c", with_exit_checks(script)], cwd=work, capture_output=True, text=True)
             if run.returncode != 0:
                 failed.append(where)
                 print(run.stdout[-4000:] + run.stderr[-4000:])

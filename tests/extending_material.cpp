@@ -39,7 +39,7 @@ smithlab::Vec3 from_theta_deg(double theta_deg) {
 }  // namespace
 
 // [docs: tinted-mirror-test]
-TEST_CASE("a tinted mirror: white furnace at tint 1, tint^k at order k", "[extending][walk]") {
+TEST_CASE("a tinted mirror: a white furnace at tint 1 and tint^k of the mirror at order k", "[extending][walk]") {
     const walk::Microsurface ms(smithlab::ggx(0.5));  // the concrete NDF type: no virtual call in the walk
     walk::CellRequest r;
     r.wi = from_theta_deg(60.0);

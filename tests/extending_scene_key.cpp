@@ -33,6 +33,7 @@ namespace {
 Exposure read_scene(const std::string& text) {
     const toml::value data = smithlab::report::parse_toml(text, "scene.toml");
     smithlab::report::StrictTable doc(data, "scene.toml", "", {"title", "exposure"});
+    doc.text("title", "");
     const Exposure e = read_exposure(doc);
     doc.done();
     return e;
@@ -41,7 +42,7 @@ Exposure read_scene(const std::string& text) {
 }  // namespace
 
 // [docs: scene-key-test]
-TEST_CASE("a new scene key: read when given, defaulted when not, refused when wrong", "[extending][scenes]") {
+TEST_CASE("a new scene key: read when given and defaulted when absent and refused when wrong", "[extending][scenes]") {
     const Exposure e = read_scene("title = \"t\"\n[exposure]\nstops = 1\nsamples = 64\n");
     CHECK(e.stops == 1.0);  // an integer stands for a real
     CHECK(e.samples == 64);
@@ -51,7 +52,7 @@ TEST_CASE("a new scene key: read when given, defaulted when not, refused when wr
     CHECK_THROWS_WITH(read_scene("[exposure]\nstop = 1\n"),
                       Contains("scene.toml:2: unknown key 'exposure.stop' (did you mean 'exposure.stops'?)"));
     CHECK_THROWS_WITH(read_scene("[exposure]\nsamples = 1.5\n"),
-                      Contains("scene.toml:2: exposure.samples must be an integer in [1, 1000000], got a float"));
+                      Contains("scene.toml:2: exposure.samples must be an integer in [1, 1000000], got a real (1.5)"));
     CHECK_THROWS_WITH(read_scene("[exposure]\nsamples = 0\n"), Contains("exposure.samples must be an integer"));
     CHECK_THROWS_WITH(read_scene("[exposur]\n"), Contains("unknown section 'exposur' (did you mean 'exposure'?)"));
 }
