@@ -11,8 +11,8 @@ Two kinds of block, each between a start and an end marker on lines of their own
     <!-- end generated -->
 
     <!-- quoted: PATH NAME -->               the lines of PATH (relative to the repository root) between the
-    <!-- end quoted -->                      comment lines "[docs: NAME]" and "[end docs]", in a fence named
-                                             after PATH's extension; without NAME, the whole file
+    <!-- end quoted -->                      comment lines "[docs: NAME]" and "[end docs]", dedented, in a fence
+                                             named after PATH's extension; without NAME, the whole file
 
 Everything outside the markers is left as it is. CITATION.cff's `version:` is kept equal to the version in
 CMakeLists.txt's project().
@@ -23,6 +23,7 @@ import re
 import shlex
 import subprocess
 import sys
+import textwrap
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 START = re.compile(r"^<!-- (generated|quoted): (.+?) -->$")
@@ -59,7 +60,7 @@ def quoted(args):
     ends = [i for i in range(starts[0] + 1, len(lines)) if lines[i].strip().endswith("[end docs]")]
     if not ends:
         raise SystemExit(f"{words[0]}: no '[end docs]' after '[docs: {name}]'")
-    return fenced(FENCES.get(path.suffix, ""), "\n".join(lines[starts[0] + 1:ends[0]]))
+    return fenced(FENCES.get(path.suffix, ""), textwrap.dedent("\n".join(lines[starts[0] + 1:ends[0]])))
 
 
 def rewrite(path, build_dir):
