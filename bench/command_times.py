@@ -1,0 +1,88 @@
+#!/usr/bin/env python3
+"""Time the main job's commands on the default scenes and rewrite the timing block of docs/performance.md.
+
+    bench/command_times.py BUILD_DIR [--threads N]
+
+In a scratch directory, one after another: `smithlab check --all`, `smithlab report`, `smithlab trace`,
+`smithlab fit` (cold: nothing cached) and `smithlab fit` again (warm: every traced point read from fit/cache/).
+Wall time of each, with the machine (CPU model, cores, load average before the run) and the date, between
+
+    <!-- command times: bench/command_times.py -->
+    <!-- end command times -->
+
+in docs/performance.md. About 5 minutes on 2 cores; a machine busy with other work gives longer times, and the
+block says what the load was.
+"""
+import datetime
+import os
+import pathlib
+import platform
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+DOC = ROOT / "docs" / "performance.md"
+START, END = "<!-- command times: bench/command_times.py -->", "<!-- end command times -->"
+RUNS = [("the per-distribution checks of every registered NDF", ["check", "--all"]),
+        ("the default report scene", ["report"]),
+        ("the default trace sweep", ["trace"]),
+        ("the default fit, nothing cached", ["fit"]),
+        ("the same fit again, its traced points read from fit/cache/", ["fit"])]
+
+
+def cpu_model():
+    for line in pathlib.Path("/proc/cpuinfo").read_text().splitlines():
+        if line.startswith("model name"):
+            return line.split(":", 1)[1].strip()
+    return platform.processor() or "unknown CPU"
+
+
+def main(argv):
+    threads = None
+    if "--threads" in argv:
+        i = argv.index("--threads")
+        threads = argv[i + 1]
+        argv = argv[:i] + argv[i + 2:]
+    if len(argv) != 1:
+        raise SystemExit(__doc__)
+    exe = pathlib.Path(argv[0]).resolve() / "experiments" / "smithlab"
+    load = os.getloadavg()[0]
+    rows = []
+    work = pathlib.Path(tempfile.mkdtemp(prefix="smithlab-times-"))
+    try:
+        for label, args in RUNS:
+            cmd = [str(exe)] + args + (["--threads", threads] if threads and args[0] in ("trace", "fit") else [])
+            t0 = time.monotonic()
+            run = subprocess.run(cmd, cwd=work, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+            seconds = time.monotonic() - t0
+            if run.returncode != 0:
+                raise SystemExit(f"{' '.join(cmd)} exited {run.returncode}:\n{run.stderr[-2000:]}")
+            print(f"{label}: {seconds:.1f} s", flush=True)
+            rows.append((label, "smithlab " + " ".join(args), seconds))
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+
+    block = [START,
+             f"Measured {datetime.date.today().isoformat()} on {cpu_model()}, {os.cpu_count()} cores, "
+             f"load average {load:.1f} when the runs began (Release build; wall time, one run each).",
+             "",
+             "| command | what it runs | wall time |",
+             "|---|---|---:|"]
+    block += [f"| `{cmd}` | {label} | {seconds:.0f} s |" for label, cmd, seconds in rows]
+    block.append(END)
+
+    text = DOC.read_text()
+    if START not in text or END not in text:
+        raise SystemExit(f"{DOC}: no '{START}' ... '{END}' block")
+    head, rest = text.split(START, 1)
+    tail = rest.split(END, 1)[1]
+    DOC.write_text(head + "\n".join(block) + tail)
+    print(f"rewrote the block in {DOC.relative_to(ROOT)}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
