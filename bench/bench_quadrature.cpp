@@ -7,7 +7,7 @@
 // route at 1e-14 (the others); evals, the fixed rule's slope-density evaluations (the rule alone, before any
 // fallback); fallback, 1 where its error estimate missed 1e-12 and the Boost route (the default backend) answered.
 // Run: build/bench/bench_quadrature --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
-//      (one core; the README quotes the medians)
+//      (one core; docs/performance.md quotes the medians)
 #include <benchmark/benchmark.h>
 
 #include <cmath>

@@ -2,7 +2,7 @@
 // Beckmann(0.3), GTR(0.3, 1.5) and a D-only NDF at theta_i = 45 degrees; and what preparing a sampler costs.
 // Visible normals by the template on the concrete NDF (VisibleNormals<N>, as the walk calls it), closed form and
 // rejection, at 45, 135 and 170 degrees (wi below the horizon: a ray going up).
-// Run: build/bench/bench_sampling --benchmark_min_time=0.2   (one core; the README has the current numbers)
+// Run: build/bench/bench_sampling --benchmark_min_time=0.2   (one core; docs/performance.md has the current numbers)
 #include <benchmark/benchmark.h>
 
 #include <smithlab/smithlab.hpp>

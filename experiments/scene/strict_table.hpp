@@ -1,4 +1,4 @@
-// A TOML table read strictly: the reader of every scene format (the report's; trace and fit to come) declares the
+// A TOML table read strictly: the reader of every scene format (report, trace, fit) declares the
 // keys each table may hold and reads each through a typed getter, so that nothing wrong is ignored:
 //   - a key that is not declared is refused, naming it, the file and line, and the nearest declared key
 //     ("scene.toml:7: unknown section 'timng' (did you mean 'timing'?)");

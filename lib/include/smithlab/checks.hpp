@@ -1,4 +1,4 @@
-// smithlab/checks.hpp -- the checks every NDF must pass (README, "The math, and where it comes from"; Walter 2007
+// smithlab/checks.hpp -- the checks every NDF must pass (docs/math.md; Walter 2007
 // sec. 3 and appendix A; Heitz 2014 eq. 2 for the projected-area identity). Each is computed by a route independent
 // of the one it checks.
 #pragma once

@@ -1,6 +1,6 @@
 // smithlab/lambda_fixed.hpp -- the reduced 1D Lambda by fixed Gauss-Kronrod panels with precomputed nodes.
 //
-// The integral (smith.hpp, Lambda_1d; README, "The math, and where it comes from")
+// The integral (smith.hpp, Lambda_1d; docs/math.md)
 //   Lambda(mu) = (2/mu) integral_mu^inf f(r^2) r (sqrt(r^2 - mu^2) - mu acos(mu/r)) dr,   f(r^2) = P22,
 // in u = acosh(r/mu) (r = mu cosh u, sqrt(r^2 - mu^2) = mu sinh u, acos(mu/r) = gd u = atan(sinh u)):
 //   Lambda(mu) = 2 integral_0^inf f(r^2) r^2 H(u) du,   H(u) = sinh u (sinh u - gd u) / cosh u.

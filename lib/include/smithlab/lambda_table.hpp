@@ -1,6 +1,6 @@
 // smithlab/lambda_table.hpp -- a fast Lambda for one NDF at every mu, tabulated once from an exact route.
 //
-// With x = ln mu, the table holds f(x) = ln(mu Lambda(mu)) (README, "The fast evaluator: LambdaTable") in three
+// With x = ln mu, the table holds f(x) = ln(mu Lambda(mu)) (docs/math.md, "The tabulated Lambda") in three
 // pieces; none calls the exact route, allocates or throws after construction (read-only: any number of threads):
 //   mu < mu_lo: the two-term asymptote. From Lambda = (1/mu) int_mu^inf (q - mu) P2(q) dq (Walter 2007 eq. 48) and
 //     P(q > 0) = 1/2, mu Lambda = c0 - mu/2 + R(mu) exactly, with c0 = E[q+] (the mean positive slope) and

@@ -3,7 +3,7 @@
 // Boost.Math: tanh-sinh on [a, b] and exp-sinh on [a, inf) (double-exponential, bounded cost).
 // GSL: QAG (21-point Gauss-Kronrod, globally adaptive) and QAGIU for [a, inf).
 // Both stop on a *relative* error. An absolute rule silently returns three correct digits when the integral is
-// 1e-78; the relative rule keeps Lambda's digits down to its underflow (README, "Accuracy").
+// 1e-78; the relative rule keeps Lambda's digits down to its underflow (docs/accuracy-and-limits.md).
 // Threads: any number may integrate at once (Boost's node tables are per thread). GSL reports a missed tolerance
 // through its process-wide error handler, whose default aborts: smithlab switches it off (gsl_set_error_handler_off)
 // once, at its first GSL integration, and never touches it again. A program that installs its own GSL handler

@@ -163,8 +163,7 @@ double Lambda_2d(const N& ndf, double mu, const QuadratureOptions& opts = {}) {
     }, opts, detail::grazing_breaks(ndf, mu));
 }
 
-// Lambda by the reduced route. Doing the azimuthal integral of Walter eq. 48 in closed form (README, "The math, and
-// where it comes from"):
+// Lambda by the reduced route. Doing the azimuthal integral of Walter eq. 48 in closed form (docs/math.md):
 //   Lambda(mu) = (2/mu) integral_mu^inf f(r^2) r (sqrt(r^2 - mu^2) - mu acos(mu/r)) dr,   f(r^2) = P22,
 // and with r = mu sec t,
 //   Lambda(mu) = 2 mu^2 integral_0^{pi/2} f(mu^2 sec^2 t) sec^2 t tan t (tan t - t) dt,

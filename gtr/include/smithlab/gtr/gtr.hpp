@@ -18,7 +18,7 @@ struct Gtr {
 
     // D = K t^gamma with t = alpha^2 / (sin^2 + alpha^2 cos^2) in [alpha^2, 1] (sin^2 = (1-c)(1+c): exact at the pole).
     double D(double cos_theta_m) const;
-    // Burley 2012's D as a slope density, overflow-safe (README, "The math, and where it comes from"): with
+    // Burley 2012's D as a slope density, overflow-safe (docs/math.md): with
     // w = alpha^2/(r^2 + alpha^2), t = w (1 + r^2) in [alpha^2, 1],
     //     P22 = K t^(gamma - 2) w^2.
     // Written as (1 + r^2)^(gamma-2) (r^2 + alpha^2)^-gamma it overflows to inf*0 in the far tail at gamma = 7.
