@@ -150,9 +150,11 @@ TEST_CASE("CSV with --method table: one table per spec, within 1e-6 of the close
     std::istringstream rows(r.out);
     std::string line;
     std::getline(rows, line);
+    REQUIRE(line == "ndf,mu,alpha,lambda,g1");
     for (double want : {0.035707241430158465, 2.0495097567963922, -1.0357072414301585}) {
         REQUIRE(std::getline(rows, line));
-        const double got = std::stod(line.substr(line.find("),") + 2).substr(line.substr(line.find("),") + 2).find(',') + 1));
+        const std::string lambda_g1 = line.substr(line.find(",0.5,") + 5);
+        const double got = std::stod(lambda_g1.substr(0, lambda_g1.find(',')));
         INFO(line);
         CHECK(std::abs(got - want) <= 1e-6 * std::abs(want));
         CHECK(got != want);  // interpolated, not the closed form
@@ -575,12 +577,13 @@ TEST_CASE("the texts say what the code does: list's GTR closed forms, eval's met
     CHECK_THAT(l.out, !Catch::Contains("e.g.\n"));  // a family without examples prints no empty list
     // eval's help lists every method with what --list-methods says of it.
     const Run methods = run("eval --list-methods"), help = run("eval --help");
+    std::map<std::string, std::string> listed;  // "%-28s %s": name, description
+    std::istringstream lines(methods.out);
+    for (std::string line; std::getline(lines, line);) listed[line.substr(0, line.find(' '))] = line.substr(29);
     for (const char* name : {"auto", "closed", "spline", "quadrature", "quadrature2d", "fixed"}) {
-        const auto q = methods.out.find(std::string(name) + " ");
-        REQUIRE(q != std::string::npos);
-        const std::string description = methods.out.substr(q, methods.out.find('\n', q) - q).substr(29);
-        INFO(name << ": " << description);
-        CHECK_THAT(help.out, Catch::Contains(std::string(name) + ": " + description.substr(0, 40)));
+        REQUIRE(listed.count(name) == 1);
+        INFO(name << ": " << listed[name]);
+        CHECK_THAT(help.out, Catch::Contains("  " + std::string(name) + ": " + listed[name] + "\n"));
     }
     // The method line says the route taken: auto is the closed form where there is one, else the fixed rule.
     CHECK_THAT(run("eval --ndf 'ggx(alpha=0.5)' --mu 1").out, Catch::Contains("method  auto (closed form)\n"));
@@ -606,8 +609,11 @@ TEST_CASE("eval --theta: degrees from the normal, the same values as --mu = cot(
         CHECK(line_value(t.out, "lambda") == line_value(m.out, "lambda"));
         CHECK(line_value(t.out, "g1") == line_value(m.out, "g1"));
     }
-    // 60 degrees: mu = 1/sqrt(3) to the last digit.
-    CHECK(std::stod(line_value(run("eval --ndf 'ggx(alpha=0.5)' --theta 60").out, "mu")) == 1.0 / std::sqrt(3.0));
+    // 60 degrees: mu = 1/sqrt(3) = 0.57735026918962576451 within half an ulp (5.55e-17 there), and 30: sqrt(3).
+    const double mu60 = std::stod(line_value(run("eval --ndf 'ggx(alpha=0.5)' --theta 60").out, "mu"));
+    CHECK(std::abs(static_cast<long double>(mu60) - 0.57735026918962576451L) <= 0.56e-16L);
+    const double mu30 = std::stod(line_value(run("eval --ndf 'ggx(alpha=0.5)' --theta 30").out, "mu"));
+    CHECK(std::abs(static_cast<long double>(mu30) - 1.7320508075688772935L) <= 1.12e-16L);
 }
 
 TEST_CASE("eval --mu-range and --theta-range: one CSV row per point, each the values of that point given alone", "[cli][csv]") {

@@ -106,9 +106,9 @@ int run_eval(const EvalArgs& a, const NdfRegistry& registry, const VariantRegist
     if (a.ndf.empty() || (a.mu.empty() && a.theta.empty() && !range))
         throw input_error("eval needs --ndf SPEC with --mu, --theta, --mu-range or --theta-range, or --input FILE "
                           "(see smithlab eval --help)");
+    const std::vector<EvalPoint> points = eval_points(a.mu, a.theta, a.mu_range, a.theta_range);
     if (!range && !a.output.empty())
         throw input_error("--output writes the CSV of --input or a range; one point is printed (see smithlab eval --help)");
-    const std::vector<EvalPoint> points = eval_points(a.mu, a.theta, a.mu_range, a.theta_range);
     return range ? eval_sweep(a, points, registry, route) : eval_one(a, points.front(), registry, route);
 }
 
