@@ -47,7 +47,7 @@ inline void write(const fs::path& p, const std::string& text) { std::ofstream(p)
 
 // `smithlab report` on a scene written to d/name, into d/out.
 inline std::string report_args(const fs::path& d, const std::string& name, const std::string& out) {
-    return "report --scene '" + (d / name).string() + "' --out '" + (d / out).string() + "'";
+    return "report '" + (d / name).string() + "' --output '" + (d / out).string() + "'";
 }
 inline Run run_scene(const fs::path& d, const std::string& name, const std::string& text, const std::string& out) {
     write(d / name, text);

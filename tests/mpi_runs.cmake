@@ -27,7 +27,7 @@ endfunction()
 # The command's arguments for output directory `dir` and `threads` threads per rank (the report uses all cores).
 function(arguments command scene dir threads var)
   if(command STREQUAL "report")
-    set(${var} ${command} --scene ${scene} --out ${dir} PARENT_SCOPE)
+    set(${var} ${command} ${scene} --output ${dir} PARENT_SCOPE)
   else()
     set(${var} ${command} ${scene} --output ${dir} --threads ${threads} PARENT_SCOPE)
   endif()

@@ -105,7 +105,7 @@ TEST_CASE("abc, a built-in added as one file, goes through eval, check, sample a
     CHECK(std::count(s.out.begin(), s.out.end(), '\n') == 201);
     // brdf: the walk's first order against the single-scattering BRDF in closed form (Walter 2007 eq. 20), a route
     // of its own (no walk), within 5 standard errors.
-    const Run b = run("brdf --ndf 'abc(b=30, c=2)' --material mirror --wi 30,0 --wo 40,180 --n 200000 --threads 2");
+    const Run b = run("brdf --ndf 'abc(b=30, c=2)' --material mirror --wi 30,0 --wo 40,180 --walks 200000 --threads 2");
     REQUIRE(b.rc == 0);
     const double order1 = field(b.out, "order_1"), se = field(b.out, "order_1", 2), single = field(b.out, "single_analytic");
     INFO("order 1 " << order1 << " +- " << se << ", single scattering " << single);
@@ -132,7 +132,7 @@ TEST_CASE("abc through trace, report and fit, swept over alpha by its registered
     write(d / "report.toml", "[grid]\nalpha = [0.3, 0.8]\nmu = [0.1, 1.0, 10.0]\n[[ndf]]\nfamily = \"abc\"\nc = [3]\n"
                              "[variants]\ninclude = [\"table\"]\n[timing]\nmin_time = 0.001\n"
                              "[walk]\nmaterials = [\"mirror\"]\nalpha = [0.5]\nwalks = 500\n[[walk.ndf]]\nfamily = \"abc\"\nc = [3]\n");
-    const Run r = run("report --scene " + q(d / "report.toml") + " --out " + q(d / "report"));
+    const Run r = run("report " + q(d / "report.toml") + " --output " + q(d / "report"));
     INFO(r.err);
     REQUIRE(r.rc == 0);
     const std::string variants = slurp(d / "report" / "variants.csv");

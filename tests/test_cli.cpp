@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -81,17 +82,23 @@ TEST_CASE("bad input exits 2 and names the offending item", "[cli]") {
     }
 }
 
-TEST_CASE("CSV: columns pass through, lambda and g1 appended with 17 digits", "[cli][csv]") {
+TEST_CASE("CSV: columns pass through, one per NDF parameter follows, lambda and g1 appended with 17 digits", "[cli][csv]") {
     const fs::path d = scratch();
     write(d / "in.csv", "id,ndf,mu\nA,\"ggx(alpha=0.5)\",1\nB,\"gtr(alpha=0.3, gamma=1.5)\",0.25\n");
-    const Run r = run("eval --input '" + (d / "in.csv").string() + "' --output '" + (d / "res.csv").string() + "'");
+    const Run r = run("eval --input '" + (d / "in.csv").string() + "' -o '" + (d / "res.csv").string() + "'");
     REQUIRE(r.rc == 0);
     const std::string res = slurp(d / "res.csv");
-    CHECK_THAT(res, Catch::StartsWith("id,ndf,mu,lambda,g1\nA,ggx(alpha=0.5),1,0.059016994374947"));
-    CHECK_THAT(res, Catch::Contains("B,\"gtr(alpha=0.3, gamma=1.5)\",0.25,"));
+    // GGX has no gamma: its cell is empty.
+    CHECK_THAT(res, Catch::StartsWith("id,ndf,mu,alpha,gamma,lambda,g1\nA,ggx(alpha=0.5),1,0.5,,0.059016994374947"));
+    CHECK_THAT(res, Catch::Contains("B,\"gtr(alpha=0.3, gamma=1.5)\",0.25,0.3,1.5,"));
     // 17 significant digits: the lambda of row A is "0.0" and 17 digits.
-    const auto a = res.find("A,ggx(alpha=0.5),1,") + std::string("A,ggx(alpha=0.5),1,").size();
+    const std::string a_row = "A,ggx(alpha=0.5),1,0.5,,";
+    const auto a = res.find(a_row) + a_row.size();
     CHECK(res.substr(a, res.find(',', a) - a).size() == 20);
+    // A parameter the input has already is not repeated.
+    write(d / "alpha.csv", "alpha,ndf,mu\n0.5,\"ggx(alpha=0.5)\",1\n");
+    CHECK_THAT(run("eval --input '" + (d / "alpha.csv").string() + "'").out,
+               Catch::StartsWith("alpha,ndf,mu,lambda,g1\n0.5,ggx(alpha=0.5),1,0.059016994374947"));
 }
 
 TEST_CASE("sample: CSV of unit normals and their pdfs, reproducible by seed, bad input exits 2 with no file", "[cli][sample]") {
@@ -143,9 +150,11 @@ TEST_CASE("CSV with --method table: one table per spec, within 1e-6 of the close
     std::istringstream rows(r.out);
     std::string line;
     std::getline(rows, line);
+    REQUIRE(line == "ndf,mu,alpha,lambda,g1");
     for (double want : {0.035707241430158465, 2.0495097567963922, -1.0357072414301585}) {
         REQUIRE(std::getline(rows, line));
-        const double got = std::stod(line.substr(line.find("),") + 2).substr(line.substr(line.find("),") + 2).find(',') + 1));
+        const std::string lambda_g1 = line.substr(line.find(",0.5,") + 5);
+        const double got = std::stod(lambda_g1.substr(0, lambda_g1.find(',')));
         INFO(line);
         CHECK(std::abs(got - want) <= 1e-6 * std::abs(want));
         CHECK(got != want);  // interpolated, not the closed form
@@ -339,7 +348,7 @@ TEST_CASE("trace: albedo.csv and meta.json, the same bits for any --threads, and
 }
 
 TEST_CASE("brdf: the eval estimator's value, its orders and the analytic single scattering", "[cli][walk]") {
-    const Run r = run("brdf --ndf 'ggx(alpha=0.5)' --material mirror --wi 45,0 --wo 60,180 --n 100000 --seed 3");
+    const Run r = run("brdf --ndf 'ggx(alpha=0.5)' --material mirror --wi 45,0 --wo 60,180 --walks 100000 --seed 3");
     REQUIRE(r.rc == 0);
     double order1 = 0, err1 = 0, single = 0;
     std::istringstream in(r.out);
@@ -352,10 +361,10 @@ TEST_CASE("brdf: the eval estimator's value, its orders and the analytic single 
     CHECK(std::abs(order1 - single) < 4.0 * err1);
     CHECK(run("brdf --ndf 'ggx(alpha=0.5)' --material mirror --wi 120,0 --wo 60,180").rc == 2);
     // Light from below is for the dielectric only: f(wi, wo) / eta_o^2 = f(wo, wi) / eta_i^2 across the surface.
-    const Run below = run("brdf --ndf 'ggx(alpha=0.5)' --material 'dielectric(eta=1.5)' --wi 150,180 --wo 40,0 --n 20000");
+    const Run below = run("brdf --ndf 'ggx(alpha=0.5)' --material 'dielectric(eta=1.5)' --wi 150,180 --wo 40,0 --walks 20000");
     REQUIRE(below.rc == 0);
     CHECK_THAT(below.out, Catch::Contains("value ") && !Catch::Contains("single_analytic"));
-    CHECK_THAT(run("brdf --ndf 'ggx(alpha=0.5)' --material 'dielectric(eta=1.5)' --wi 40,0 --wo 150,180 --n 20000").out,
+    CHECK_THAT(run("brdf --ndf 'ggx(alpha=0.5)' --material 'dielectric(eta=1.5)' --wi 40,0 --wo 150,180 --walks 20000").out,
                Catch::Contains("single_analytic "));
     CHECK(run("brdf --ndf 'ggx(alpha=0.5)' --material 'dielectric(eta=1.5)' --wi 90,0 --wo 150,180").rc == 2);
 }
@@ -514,4 +523,196 @@ TEST_CASE("trace: the default sweep, and a malformed scene exits 2 naming the ke
     }
     CHECK(run("trace '" + (d / "default.toml").string() + "' --ndf 'ggx(alpha=0.5)'").rc == 2);  // a scene or flags
     CHECK(run("trace '" + (d / "missing.toml").string() + "' --output '" + (d / "never").string() + "'").rc == 2);
+}
+
+// ---- the command line's conventions, its self-description, eval by angle and by range -----------------------------
+
+namespace {
+
+// The records of CSV text, header first.
+std::vector<std::vector<std::string>> csv_rows(const std::string& text) {
+    std::istringstream in(text);
+    std::vector<std::vector<std::string>> out;
+    for (smithlab::CsvRecord& r : smithlab::read_csv(in)) out.push_back(std::move(r.fields));
+    return out;
+}
+
+// The value of a "key  value" line of eval's one-point output.
+std::string line_value(const std::string& out, const std::string& key) {
+    std::istringstream in(out);
+    for (std::string line; std::getline(in, line);) {
+        const auto gap = line.find(' ');
+        if (line.substr(0, gap) == key) return line.substr(line.find_first_not_of(' ', gap));
+    }
+    return "";
+}
+
+}  // namespace
+
+TEST_CASE("--version prints the project's version, and --help opens with it and names every registered NDF", "[cli]") {
+    const Run v = run("--version");
+    REQUIRE(v.rc == 0);
+    std::smatch m;
+    REQUIRE(std::regex_match(v.out, m, std::regex("smithlab ([0-9]+\\.[0-9]+\\.[0-9]+)\n")));
+    const Run h = run("--help");
+    REQUIRE(h.rc == 0);
+    CHECK_THAT(h.out, Catch::StartsWith("smithlab " + m[1].str() + ": "));
+    CHECK_THAT(h.out, Catch::Contains("--version"));
+    for (const char* ndf : {"ggx", "beckmann", "blinn", "student", "tabulated", "abc", "gtr"}) CHECK_THAT(h.out, Catch::Contains(ndf));
+}
+
+TEST_CASE("the texts say what the code does: list's GTR closed forms, eval's methods and its method line", "[cli]") {
+    // list says up to which gamma GTR has a closed form; --method closed works there and is refused one above.
+    const Run l = run("list");
+    REQUIRE(l.rc == 0);
+    const std::string at = "closed-form Lambda at integer gamma = 0..";
+    const auto p = l.out.find(at);
+    REQUIRE(p != std::string::npos);
+    const int top = std::stoi(l.out.substr(p + at.size()));
+    CHECK(top >= 4);
+    CHECK(run("eval --ndf 'gtr(alpha=0.3, gamma=" + std::to_string(top) + ")' --mu 0.5 --method closed").rc == 0);
+    const Run above = run("eval --ndf 'gtr(alpha=0.3, gamma=" + std::to_string(top + 1) + ")' --mu 0.5 --method closed");
+    CHECK(above.rc == 2);
+    CHECK_THAT(above.err, Catch::Contains("gamma"));
+    CHECK_THAT(l.out, !Catch::Contains("e.g.\n"));  // a family without examples prints no empty list
+    // eval's help lists every method with what --list-methods says of it.
+    const Run methods = run("eval --list-methods"), help = run("eval --help");
+    std::map<std::string, std::string> listed;  // "%-28s %s": name, description
+    std::istringstream lines(methods.out);
+    for (std::string line; std::getline(lines, line);) listed[line.substr(0, line.find(' '))] = line.substr(29);
+    for (const char* name : {"auto", "closed", "spline", "quadrature", "quadrature2d", "fixed"}) {
+        REQUIRE(listed.count(name) == 1);
+        INFO(name << ": " << listed[name]);
+        CHECK_THAT(help.out, Catch::Contains("  " + std::string(name) + ": " + listed[name] + "\n"));
+    }
+    // The method line says the route taken: auto is the closed form where there is one, else the fixed rule.
+    CHECK_THAT(run("eval --ndf 'ggx(alpha=0.5)' --mu 1").out, Catch::Contains("method  auto (closed form)\n"));
+    CHECK_THAT(run("eval --ndf 'gtr(alpha=0.3, gamma=1.5)' --mu 0.5").out,
+               Catch::Contains("method  auto (fixed rule, relative tolerance 1e-12; boost where its error estimate misses it)\n"));
+    CHECK_THAT(run("eval --ndf 'gtr(alpha=0.3, gamma=1.5)' --mu 0.5 --method quadrature --backend gsl").out,
+               Catch::Contains("method  quadrature (gsl, relative tolerance 1e-12)\n"));
+}
+
+TEST_CASE("eval --theta: degrees from the normal, the same values as --mu = cot(theta)", "[cli]") {
+    struct Case {
+        const char* theta;
+        const char* mu;
+    };
+    // 45 degrees is mu = 1 exactly; 0 the normal, 90 grazing, above 90 below the surface.
+    for (const Case c : {Case{"45", "1"}, Case{"0", "inf"}, Case{"90", "0"}, Case{"135", "-1"}, Case{"180", "-inf"}}) {
+        const Run t = run(std::string("eval --ndf 'gtr(alpha=0.3, gamma=1.5)' --theta ") + c.theta);
+        const Run m = run(std::string("eval --ndf 'gtr(alpha=0.3, gamma=1.5)' --mu ") + c.mu);
+        INFO(c.theta << " " << t.err);
+        REQUIRE(t.rc == 0);
+        CHECK(line_value(t.out, "theta") == c.theta);
+        CHECK(line_value(t.out, "mu") == c.mu);
+        CHECK(line_value(t.out, "lambda") == line_value(m.out, "lambda"));
+        CHECK(line_value(t.out, "g1") == line_value(m.out, "g1"));
+    }
+    // 60 degrees: mu = 1/sqrt(3) = 0.57735026918962576451 within half an ulp (5.55e-17 there), and 30: sqrt(3).
+    const double mu60 = std::stod(line_value(run("eval --ndf 'ggx(alpha=0.5)' --theta 60").out, "mu"));
+    CHECK(std::abs(static_cast<long double>(mu60) - 0.57735026918962576451L) <= 0.56e-16L);
+    const double mu30 = std::stod(line_value(run("eval --ndf 'ggx(alpha=0.5)' --theta 30").out, "mu"));
+    CHECK(std::abs(static_cast<long double>(mu30) - 1.7320508075688772935L) <= 1.12e-16L);
+}
+
+TEST_CASE("eval --mu-range and --theta-range: one CSV row per point, each the values of that point given alone", "[cli][csv]") {
+    const fs::path d = scratch();
+    const std::string ndf = "--ndf 'gtr(alpha=0.3, gamma=1.5)'";
+    const Run r = run("eval " + ndf + " --mu-range log:0.01:100:5 -o '" + (d / "mu.csv").string() + "'");
+    REQUIRE(r.rc == 0);
+    const auto rows = csv_rows(slurp(d / "mu.csv"));
+    REQUIRE(rows.size() == 6);
+    CHECK(rows[0] == std::vector<std::string>{"ndf", "alpha", "gamma", "mu", "lambda", "g1"});
+    const double want_mu[] = {0.01, 0.1, 1.0, 10.0, 100.0};
+    for (std::size_t i = 1; i < rows.size(); ++i) {
+        INFO(i);
+        CHECK(rows[i][0] == "gtr(alpha=0.3, gamma=1.5)");
+        CHECK(rows[i][1] == "0.3");
+        CHECK(rows[i][2] == "1.5");
+        CHECK(std::stod(rows[i][3]) == Approx(want_mu[i - 1]).epsilon(1e-14));
+        const Run one = run("eval " + ndf + " --mu " + rows[i][3]);
+        CHECK(line_value(one.out, "lambda") == rows[i][4]);
+        CHECK(line_value(one.out, "g1") == rows[i][5]);
+    }
+    // Linear spacing, by angle: theta and its mu in each row, equal to --theta alone.
+    const Run t = run("eval " + ndf + " --theta-range 0:120:5 --method quadrature");
+    REQUIRE(t.rc == 0);
+    const auto trows = csv_rows(t.out);
+    REQUIRE(trows.size() == 6);
+    CHECK(trows[0] == std::vector<std::string>{"ndf", "alpha", "gamma", "theta", "mu", "lambda", "g1"});
+    const char* want_theta[] = {"0", "30", "60", "90", "120"};
+    for (std::size_t i = 1; i < trows.size(); ++i) {
+        INFO(i);
+        CHECK(trows[i][3] == want_theta[i - 1]);
+        const Run one = run("eval " + ndf + " --theta " + trows[i][3] + " --method quadrature");
+        CHECK(line_value(one.out, "mu") == trows[i][4]);
+        CHECK(line_value(one.out, "lambda") == trows[i][5]);
+        CHECK(line_value(one.out, "g1") == trows[i][6]);
+    }
+    CHECK(trows[1][4] == "inf");
+    CHECK(trows[4][4] == "0");
+    CHECK(trows[4][6] == "0");  // grazing: G1 = 0
+}
+
+TEST_CASE("eval: a bad angle or range is refused naming its option, exit 2, nothing written", "[cli]") {
+    const fs::path d = scratch();
+    const fs::path never = d / "never_eval.csv";
+    fs::remove(never);
+    struct Case {
+        const char* args;
+        const char* named;
+    };
+    for (const Case& c : {Case{"--theta nan", "--theta"}, Case{"--theta 180.5", "--theta"}, Case{"--theta -1", "--theta"},
+                          Case{"--theta 1x", "--theta"}, Case{"--mu-range 1:2:1", "--mu-range"},
+                          Case{"--mu-range 1:2:0", "--mu-range"}, Case{"--mu-range 1:2:-3", "--mu-range"},
+                          Case{"--mu-range 1:2:3.5", "--mu-range"}, Case{"--mu-range 2:1:5", "--mu-range"},
+                          Case{"--mu-range 1:2", "--mu-range"}, Case{"--mu-range 1:nan:3", "--mu-range"},
+                          Case{"--mu-range 1:inf:3", "--mu-range"}, Case{"--mu-range log:0:1:5", "--mu-range"},
+                          Case{"--mu-range lin:1:2:3", "--mu-range"}, Case{"--mu-range 1:2:99999999", "--mu-range"},
+                          Case{"--theta-range 0:200:3", "--theta-range"}, Case{"--theta-range -10:20:3", "--theta-range"},
+                          Case{"--mu 1 --theta 45", "--theta"}, Case{"--mu-range 1:2:3 --theta-range 1:2:3", "--theta-range"},
+                          Case{"--mu 1", "--output"}}) {
+        const Run r = run(std::string("eval --ndf 'ggx(alpha=0.3)' ") + c.args + " -o '" + never.string() + "'");
+        INFO(c.args << "\nstderr: " << r.err);
+        CHECK(r.rc == 2);
+        CHECK_THAT(r.err, Catch::Contains(c.named));
+        CHECK(r.out.empty());
+        CHECK_FALSE(fs::exists(never));
+    }
+    // A bad NDF with a range: nothing written either.
+    CHECK(run("eval --ndf 'ggx(alpha=-1)' --mu-range 1:2:3 -o '" + never.string() + "'").rc == 2);
+    CHECK_FALSE(fs::exists(never));
+    CHECK_THAT(run("eval --mu-range 1:2:3").err, Catch::Contains("--ndf"));
+}
+
+TEST_CASE("one convention: COMMAND [SCENE] -o PATH, shared options checked alike", "[cli]") {
+    const fs::path d = scratch();
+    // -o is --output for every command that writes.
+    fs::remove(d / "s.csv");
+    REQUIRE(run("sample --ndf 'ggx(alpha=0.3)' --sampler vndf --n 3 -o '" + (d / "s.csv").string() + "'").rc == 0);
+    CHECK(csv_rows(slurp(d / "s.csv")).size() == 4);
+    for (const char* command : {"eval", "sample", "trace", "fit", "report"}) {
+        INFO(command);
+        CHECK_THAT(run(std::string(command) + " --help").out, Catch::Contains("-o,--output"));
+    }
+    for (const char* command : {"trace", "fit", "report"}) {
+        INFO(command);
+        const std::string help = run(std::string(command) + " --help").out;
+        CHECK_THAT(help, Catch::Contains("scene") && Catch::Contains("--print-scene"));
+        CHECK(run(std::string(command) + " --print-scene").rc == 0);
+    }
+    // --threads, --walks, --seed and --downward: one rule each, in every command that takes them.
+    const std::string brdf = "brdf --ndf 'ggx(alpha=0.5)' --material mirror --wi 45,0 --wo 45,180 ";
+    const std::string to_never = " -o '" + (d / "never_dir").string() + "'";
+    for (const std::string bad : {brdf + "--threads -1", brdf + "--walks 0", brdf + "--seed x", brdf + "--downward up",
+                                  "trace --ndf 'ggx(alpha=0.5)' --threads -1" + to_never, "fit --threads -1" + to_never,
+                                  "trace --ndf 'ggx(alpha=0.5)' --downward up" + to_never,
+                                  "trace --ndf 'ggx(alpha=0.5)' --seed x" + to_never}) {
+        const Run r = run(bad);
+        INFO(bad << "\nstderr: " << r.err);
+        CHECK(r.rc == 2);
+        CHECK_THAT(r.err, Catch::StartsWith("smithlab: error: "));
+        CHECK_FALSE(fs::exists(d / "never_dir"));
+    }
 }

@@ -23,7 +23,7 @@
 //
 // Kept out of the generators on purpose, because they are legitimate work rather than bad input: sample counts and
 // grid sizes in the expensive-but-valid range (--n from 1e5 to 1e9, scene counts from 1e5 up to the largest
-// accepted), `check --all`, a report without --scene, and any output path outside the test's scratch directory
+// accepted), `check --all`, a report without a scene file, and any output path outside the test's scratch directory
 // (`--output /dev/null` as root is a known way to replace /dev/null). Nothing else is excluded for failing.
 #include <catch2/catch.hpp>
 
@@ -963,7 +963,7 @@ std::string nan_in_files(const fs::path& dir) {
 
 }  // namespace
 
-TEST_CASE("fuzz: report --scene on mutated tiny scenes", "[fuzz][cli][scene]") {
+TEST_CASE("fuzz: report SCENE on mutated tiny scenes", "[fuzz][cli][scene]") {
     const std::size_t n = count(60);
     Gen g = start("scenes", n);
     Campaign c("scenes");

@@ -210,7 +210,7 @@ TEST_CASE("a killed report leaves the previous report whole, and the rerun is ri
           "[grid]\nalpha = [0.1, 0.5]\nmu = [0.1, 1.0, 10.0]\n[[ndf]]\nfamily = \"gtr\"\ngamma = [1.5, 3.0]\n"
           "[variants]\ninclude = [\"dimov-spline\", \"closed-form\", \"table\"]\n[timing]\nmin_time = 1.0\n");
     const fs::path out = d / "rep";
-    const std::vector<std::string> args = {"report", "--scene", (d / "scene.toml").string(), "--out", out.string()};
+    const std::vector<std::string> args = {"report", (d / "scene.toml").string(), "--output", out.string()};
     const auto staging = [&] { return fs::exists(out) && !temporaries(out).empty(); };
 
     // Killed on its first run: no report at all, and no stage.
@@ -222,7 +222,7 @@ TEST_CASE("a killed report leaves the previous report whole, and the rerun is ri
     CHECK_FALSE(fs::exists(out / "report.md"));
     CHECK_FALSE(fs::exists(out / "bench.json"));
 
-    const std::string cmd = "report --scene '" + (d / "scene.toml").string() + "' --out '" + out.string() + "'";
+    const std::string cmd = "report '" + (d / "scene.toml").string() + "' --output '" + out.string() + "'";
     Run r = run(cmd);
     REQUIRE(r.rc == 0);
     std::string report = slurp(out / "report.md");
@@ -253,7 +253,7 @@ TEST_CASE("report: a damaged reference cache record is computed again, not reuse
     write(d / "scene.toml",
           "[grid]\nalpha = [0.1, 0.5]\nmu = [0.1, 1.0, 10.0]\n[[ndf]]\nfamily = \"gtr\"\ngamma = [1.5]\n"
           "[variants]\ninclude = [\"dimov-spline\"]\n[timing]\nmin_time = 0.01\n");
-    const std::string cmd = "report --scene '" + (d / "scene.toml").string() + "' --out '" + (d / "rep").string() + "'";
+    const std::string cmd = "report '" + (d / "scene.toml").string() + "' --output '" + (d / "rep").string() + "'";
     Run r = run(cmd);
     REQUIRE(r.rc == 0);
     const std::string clean = first_fields(slurp(d / "rep" / "variants.csv"), 6);

@@ -206,7 +206,7 @@ TEST_CASE("scenes: a grid mu outside the quadrature's domain is refused before a
 TEST_CASE("scenes: the default scene is read strictly and is far inside the default limit", "[scenes]") {
     const fs::path d = fresh_dir("default");
     // --max-work 1 refuses it with its estimate: about 1.2e7 evaluations, most of them the sampling experiment's.
-    const Run r = run("report --out '" + (d / "never").string() + "' --max-work 1");
+    const Run r = run("report --output '" + (d / "never").string() + "' --max-work 1");
     INFO(r.err);
     CHECK(r.rc == 2);
     CHECK_THAT(r.err, Catch::Contains("<default scene>: the scene's work is estimated at 1.2") && Catch::Contains("e+07 evaluations"));
@@ -214,7 +214,7 @@ TEST_CASE("scenes: the default scene is read strictly and is far inside the defa
     CHECK_THAT(run("report --help").out, Catch::Contains("--max-work"));
 }
 
-TEST_CASE("scenes: --scene naming a directory, a missing or an unreadable file is refused naming it", "[scenes]") {
+TEST_CASE("scenes: a scene naming a directory, a missing or an unreadable file is refused naming it", "[scenes]") {
     const fs::path d = fresh_dir("files");
     fs::create_directories(d / "a_dir");
     Run r = run(report_args(d, "a_dir", "never"));

@@ -11,9 +11,11 @@ namespace smithlab::cli {
 void add_check(CLI::App& app, CheckArgs& a) {
     CLI::App* c = app.add_subcommand("check", "Run the per-distribution checks and print each residual");
     c->footer(
-        "Checks: integral of D cos = 1; integral of P2 = 1; G1(v) times the visible projected area = cos theta_v\n"
-        "for theta_v = 30..89 deg; 1D and 2D Lambda agree; closed form and quadrature agree (where one exists);\n"
-        "an analytic D cos sampler leaves the probability it was asked for beyond its quantile (where one exists).\n"
+        "Checks: integral of D cos = 1; G1(v) times the visible projected area = cos theta_v at theta_v = 30, 60,\n"
+        "80, 89 deg; at mu = 0.1, 1, 10 (times the NDF's slope scale where above 1) the 1D quadrature of Lambda\n"
+        "against the closed form (where one exists); without --no-2d, integral of P2 = 1 and the 1D against the\n"
+        "nested 2D Lambda; an analytic D cos sampler leaves the probability it was asked for beyond its quantile\n"
+        "(where one exists).\n"
         "Exit code 1 if any check fails, 2 for bad input.\n"
         "Examples:\n"
         "  smithlab check --ndf 'gtr(alpha=0.3, gamma=1.5)'\n"

@@ -17,7 +17,9 @@ constexpr int exit_ok = 0, exit_failed = 1, exit_bad_input = 2, exit_internal = 
 
 struct EvalArgs {
     std::string ndf, input, output, method = "auto", backend = "boost", downward = "smith";
-    std::string mu;  // text, so that "inf" and "nan" reach our own validation
+    // The points, as text so that "inf" and "nan" reach our own validation: one of mu, theta (degrees), a range of
+    // either (eval_points.hpp), or the input file above.
+    std::string mu, theta, mu_range, theta_range;
     double tolerance = 1e-12;
     bool list_methods = false;
 };
@@ -34,7 +36,8 @@ void add_check(CLI::App& app, CheckArgs& args);
 int run_check(const CheckArgs& args, const NdfRegistry& registry);
 
 struct ReportArgs {
-    std::string scene, out = "report";
+    std::string scene;  // a scene file; empty: the embedded default
+    std::string output = "report";
     bool print_scene = false;
     double max_work = 0.0;  // evaluations a scene may cost: report::default_max_work (set by add_report) or --max-work
 };
@@ -66,7 +69,7 @@ int run_trace(const TraceArgs& args, const NdfRegistry& registry);
 
 struct BrdfArgs {
     std::string ndf, material, wi, wo, downward = "smith";
-    long long n = 1'000'000;
+    long long walks = 1'000'000;
     int threads = 0;
     std::string seed = "1";
 };
@@ -82,13 +85,28 @@ struct FitArgs {
 void add_fit(CLI::App& app, FitArgs& args);
 int run_fit(const FitArgs& args, const NdfRegistry& registry);
 
+CLI::App* add_list(CLI::App& app);
+int run_list(const NdfRegistry& registry);
+
 // Parses a double, accepting "inf"; NaN and trailing junk are input errors naming `what`.
 double parse_number(const std::string& text, const std::string& what);
 // The text of a scene file; a directory, a missing or unreadable file is an input error naming it.
 std::string read_scene_file(const std::string& path);
 // Parses a seed: decimal digits only, 0 .. 2^64 - 1; anything else is an input error naming `what`.
 unsigned long long parse_seed(const std::string& text, const std::string& what);
+// The options several subcommands share, spelled and described once.
 // --backend, its accepted names and its help from backend_names (quadrature.hpp).
 void add_backend_option(CLI::App& command, std::string& backend);
+// -o/--output PATH: every output of every command.
+CLI::Option* add_output_option(CLI::App& command, std::string& output, const std::string& what);
+// --threads N (0: all cores); run_* checks it with require_threads.
+CLI::Option* add_threads_option(CLI::App& command, int& threads);
+void require_threads(int threads);
+// --seed, an integer in [0, 2^64) as text (parse_seed reads it).
+CLI::Option* add_seed_option(CLI::App& command, std::string& seed);
+// --downward, from downward_names (smith.hpp).
+CLI::Option* add_downward_option(CLI::App& command, std::string& downward);
+// The optional positional SCENE (a TOML file) and --print-scene, of report, trace and fit.
+void add_scene_options(CLI::App& command, std::string& scene, bool& print_scene, const std::string& none);
 
 }  // namespace smithlab::cli

@@ -22,8 +22,8 @@ void add_fit(CLI::App& app, FitArgs& a) {
         "Examples:\n"
         "  smithlab fit\n"
         "  smithlab fit --print-scene > gtr.toml   # edit: [[ndf]] family = \"gtr\", gamma = [1, 1.5, 2, 3, 4]\n"
-        "  smithlab fit gtr.toml --output gtr-fit/ --threads 8\n"
-        "Writes into DIR (default fit/): constants.csv (model,ndf,parameter,value,stderr) and constants.json;\n"
+        "  smithlab fit gtr.toml -o gtr-fit/ --threads 8\n"
+        "Writes into DIR (-o, default fit/): constants.csv (model,ndf,parameter,value,stderr) and constants.json;\n"
         "errors.csv (model,ndf,rms_rel,max_rel,albedo_rms,chi2_dof: on the validation set, chi2_dof per value with the\n"
         "fit's weights; '<model>' at its published constants, '<model>-fitted' refitted); training.csv and\n"
         "validation.csv (the traced values beside every model's); with [compensation] compensation.csv,\n"
@@ -32,10 +32,9 @@ void add_fit(CLI::App& app, FitArgs& a) {
         "[pictures] pictures/ (PNG and CSV); report.md; meta.json; all only\n"
         "when complete. Traced points are cached in DIR/cache/ as they finish: a killed run resumes, and refitting the\n"
         "same data (other models, albedos, floor) traces nothing.");
-    c->add_option("scene", a.scene, "scene file (TOML); none: the embedded default");
-    c->add_option("--output", a.output, "output directory")->capture_default_str();
-    c->add_option("--threads", a.threads, "threads (0: all cores)")->capture_default_str();
-    c->add_flag("--print-scene", a.print_scene, "print the default scene and exit");
+    add_scene_options(*c, a.scene, a.print_scene, "the embedded default");
+    add_output_option(*c, a.output, "output directory")->capture_default_str();
+    add_threads_option(*c, a.threads);
     c->add_flag("--list-models", a.list_models, "list the diffuse models, their constants and sources, and exit");
 }
 
@@ -54,7 +53,7 @@ int run_fit(const FitArgs& a, const NdfRegistry& registry) {
         }
         return exit_ok;
     }
-    require(a.threads >= 0, "--threads", ">= 0 (0: all cores)", a.threads);
+    require_threads(a.threads);
     const std::string source = a.scene.empty() ? "<default scene>" : a.scene;
     const std::string text = a.scene.empty() ? fitrun::default_fit_scene_text() : read_scene_file(a.scene);
     const fitrun::FitScene scene = fitrun::parse_fit_scene(text, source, registry);

@@ -45,4 +45,29 @@ void add_backend_option(CLI::App& command, std::string& backend) {
         ->check(CLI::IsMember(names_of(backend_names)));
 }
 
+CLI::Option* add_output_option(CLI::App& command, std::string& output, const std::string& what) {
+    return command.add_option("-o,--output", output, what);
+}
+
+CLI::Option* add_threads_option(CLI::App& command, int& threads) {
+    return command.add_option("--threads", threads, "threads (0: all cores)")->capture_default_str();
+}
+
+void require_threads(int threads) { require(threads >= 0, "--threads", ">= 0 (0: all cores)", threads); }
+
+CLI::Option* add_seed_option(CLI::App& command, std::string& seed) {
+    return command.add_option("--seed", seed, "seed, an integer in [0, 2^64)")->capture_default_str();
+}
+
+CLI::Option* add_downward_option(CLI::App& command, std::string& downward) {
+    return command.add_option("--downward", downward, "Lambda for mu < 0: " + join_described(downward_names, " | ", " | "))
+        ->capture_default_str()
+        ->check(CLI::IsMember(names_of(downward_names)));
+}
+
+void add_scene_options(CLI::App& command, std::string& scene, bool& print_scene, const std::string& none) {
+    command.add_option("scene", scene, "scene file (TOML); none: " + none);
+    command.add_flag("--print-scene", print_scene, "print the default scene (every key documented) and exit");
+}
+
 }  // namespace smithlab::cli

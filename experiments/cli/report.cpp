@@ -21,10 +21,9 @@ void add_report(CLI::App& app, ReportArgs& a) {
         "with [g2], the G2 approximations; with [sampling], the sampling-efficiency experiment (cosine, D cos and\n"
         "visible-normal sampling of a conductor's albedo); with [walk], the Smith microsurface path-traced: albedo\n"
         "by scattering order against alpha and what single scattering loses; the figures named in [figures].\n"
-        "Writes OUT/report.md, OUT/variants.csv, OUT/bench.json (and g2_variants.csv, sampling.csv,\n"
-        "walk_albedo.csv, *.png);\n"
-        "references are cached in OUT/cache and reused when the same scene runs again. Only what the scene names\n"
-        "is computed.\n"
+        "Writes into DIR (-o, default report/): report.md, variants.csv, bench.json (and g2_variants.csv,\n"
+        "sampling.csv, walk_albedo.csv, *.png); references are cached in DIR/cache and reused when the same scene\n"
+        "runs again. Only what the scene names is computed.\n"
         "The scene is read strictly: an unknown key or section (the nearest known one is suggested), a value of the\n"
         "wrong type (an integer is taken where a real is meant), an integer out of bounds is an error naming the key\n"
         "and FILE:LINE, exit 2, and nothing is written.\n"
@@ -34,13 +33,12 @@ void add_report(CLI::App& app, ReportArgs& a) {
         "with the estimate, exit 2. The default scene is about 1.2e7.\n"
         "Examples:\n"
         "  smithlab report\n"
-        "  smithlab report --scene my_scene.toml --out my_report\n"
-        "  smithlab report --scene big.toml --max-work 1e9");
-    c->add_option("--scene", a.scene, "scene file (TOML)");
-    c->add_option("--out", a.out, "output directory")->capture_default_str();
+        "  smithlab report my_scene.toml -o my_report\n"
+        "  smithlab report big.toml --max-work 1e9");
+    add_scene_options(*c, a.scene, a.print_scene, "the embedded default");
+    add_output_option(*c, a.output, "output directory")->capture_default_str();
     a.max_work = report::default_max_work;
     c->add_option("--max-work", a.max_work, "the most evaluations a scene may cost (inf: no limit)")->capture_default_str();
-    c->add_flag("--print-scene", a.print_scene, "print the default scene and exit");
 }
 
 int run_report(const ReportArgs& a, const NdfRegistry& registry, const VariantRegistry& variants) {
@@ -54,7 +52,7 @@ int run_report(const ReportArgs& a, const NdfRegistry& registry, const VariantRe
     const report::Work work = report::estimate_work(scene, variants);
     report::check_work(work, a.max_work, source);
     if (mpi::rank() == 0) std::fprintf(stderr, "report: work estimated at %s (limit --max-work %g)\n", report::describe(work).c_str(), a.max_work);
-    return report::run_report(scene, a.out, registry, variants);  // under mpirun, every rank (rank 0 reports)
+    return report::run_report(scene, a.output, registry, variants);  // under mpirun, every rank (rank 0 reports)
 }
 
 }  // namespace smithlab::cli

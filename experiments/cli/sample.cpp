@@ -16,7 +16,7 @@ void add_sample(CLI::App& app, SampleArgs& a) {
     CLI::App* c = app.add_subcommand("sample", "Draw microfacet normals with a named sampler (CSV x,y,z,pdf)");
     c->footer(
         "Examples:\n"
-        "  smithlab sample --ndf 'ggx(alpha=0.1)' --sampler vndf-ggx --theta-i 60 --n 100000 --seed 7 --output m.csv\n"
+        "  smithlab sample --ndf 'ggx(alpha=0.1)' --sampler vndf-ggx --theta-i 60 --n 100000 --seed 7 -o m.csv\n"
         "  smithlab sample --ndf 'gtr(alpha=0.2, gamma=1.5)' --sampler dcos --n 10\n"
         "  smithlab sample --list-samplers\n"
         "Each row is a unit normal m (z up) and its pdf with respect to solid angle. The incident direction is\n"
@@ -28,8 +28,8 @@ void add_sample(CLI::App& app, SampleArgs& a) {
         ->capture_default_str()
         ->check(CLI::Range(0.0, 179.999999));
     c->add_option("--n", a.n, "number of samples")->capture_default_str()->check(CLI::Range(1LL, 1000000000LL));
-    c->add_option("--seed", a.seed, "seed of the PCG generator, an integer in [0, 2^64)")->capture_default_str();
-    c->add_option("--output", a.output, "output CSV file (default: stdout)");
+    add_seed_option(*c, a.seed);
+    add_output_option(*c, a.output, "output CSV file (default: stdout)");
     c->add_flag("--list-samplers", a.list_samplers, "list the samplers with a one-line description");
 }
 

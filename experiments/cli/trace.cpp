@@ -76,19 +76,20 @@ void add_trace(CLI::App& app, TraceArgs& a) {
         "75; a few seconds). The cell flags (--ndf ... --downward) trace one cell instead, defaults as shown.\n"
         "Examples:\n"
         "  smithlab trace\n"
-        "  smithlab trace my_sweep.toml --output sweep/ --threads 8\n"
+        "  smithlab trace my_sweep.toml -o sweep/ --threads 8\n"
         "  smithlab trace --ndf 'ggx(alpha=0.5)' --material mirror --theta-i 45 --walks 1000000\n"
-        "  smithlab trace --ndf 'gtr(alpha=0.3, gamma=1.5)' --material 'lambert(albedo=1)' --theta-i 70 --output t/\n"
+        "  smithlab trace --ndf 'gtr(alpha=0.3, gamma=1.5)' --material 'lambert(albedo=1)' --theta-i 70 -o t/\n"
         "Materials: mirror, conductor(eta=, k=), lambert(albedo=1), fresnel-diffuse(f0=0.02, albedo=1),\n"
         "dielectric(eta=1.5) (reflection and transmission: hemisphere transmission is the light below).\n"
-        "Writes DIR/albedo.csv (ndf,material,theta_i,phi_i,hemisphere,order,component,albedo,stderr,walks), with\n"
-        "[brdf] in the scene DIR/brdf.csv (f |cos theta_o| per equal-solid-angle bin, order and component), and\n"
-        "DIR/meta.json (the scene, seed, version, walks, bounces traced, seconds, threads), all only when complete.\n"
+        "Writes into DIR (-o, default trace/): albedo.csv (ndf,material,theta_i,phi_i,hemisphere,order,component,\n"
+        "albedo,stderr,walks), with [brdf] in the scene brdf.csv (f |cos theta_o| per equal-solid-angle bin, order\n"
+        "and component), and meta.json (the scene, seed, version, walks, bounces traced, seconds, threads), all only\n"
+        "when complete.\n"
         "Each finished cell is kept in DIR/cells/: a killed run resumes from its last finished cell, and the same\n"
         "scene run again traces nothing. Walk k of cell c draws from a counter-based generator keyed by (seed, c, k):\n"
         "the files are the same bits for any --threads, resumed or not. max_order = N ends every walk after N hits\n"
         "(the orders beyond are not traced).");
-    c->add_option("scene", a.scene, "scene file (TOML); none: the default sweep, or the cell the flags name");
+    add_scene_options(*c, a.scene, a.print_scene, "the default sweep, or the cell the flags name");
     a.cell_options = {
         c->add_option("--ndf", a.ndf, "NDF spec")->capture_default_str(),
         c->add_option("--material", a.material, "facet material spec")->capture_default_str(),
@@ -96,14 +97,12 @@ void add_trace(CLI::App& app, TraceArgs& a) {
         c->add_option("--phi-i", a.phi_i, "incident azimuth, degrees")->capture_default_str(),
         c->add_option("--walks", a.walks, "walks in the cell (> 0)")->capture_default_str(),
         c->add_option("--max-order", a.max_order, "end walks after this many hits (0: no limit)")->capture_default_str(),
-        c->add_option("--downward", a.downward, "Lambda of downward rays: smith (-1 - Lambda) or hammon (-Lambda)")
-            ->capture_default_str(),
+        add_downward_option(*c, a.downward),
         c->add_option("--hit-normal", a.hit_normal, "hit normal: " + join_described(trace::hit_normal_names, ", ", " or "))
             ->capture_default_str(),
-        c->add_option("--seed", a.seed, "seed, an integer in [0, 2^64)")->capture_default_str()};
-    c->add_option("--threads", a.threads, "threads (0: all cores)")->capture_default_str();
-    c->add_option("--output", a.output, "output directory")->capture_default_str();
-    c->add_flag("--print-scene", a.print_scene, "print the default scene and exit");
+        add_seed_option(*c, a.seed)};
+    add_threads_option(*c, a.threads);
+    add_output_option(*c, a.output, "output directory")->capture_default_str();
 }
 
 int run_trace(const TraceArgs& a, const NdfRegistry& registry) {
@@ -111,7 +110,7 @@ int run_trace(const TraceArgs& a, const NdfRegistry& registry) {
         std::cout << trace::default_trace_scene_text();
         return exit_ok;
     }
-    require(a.threads >= 0, "--threads", ">= 0 (0: all cores)", a.threads);
+    require_threads(a.threads);
     const bool flags = std::any_of(a.cell_options.begin(), a.cell_options.end(), [](const CLI::Option* o) { return o->count() > 0; });
     if (flags && !a.scene.empty())
         throw input_error("trace: give a scene file or the cell flags (--ndf, --material, ...), not both");
@@ -134,7 +133,7 @@ void add_brdf(CLI::App& app, BrdfArgs& a) {
     CLI::App* c = app.add_subcommand("brdf", "f(wi, wo) |cos theta_o| of the Smith microsurface by the eval estimator");
     c->footer(
         "Example:\n"
-        "  smithlab brdf --ndf 'ggx(alpha=0.5)' --material mirror --wi 45,0 --wo 60,180 --n 1000000\n"
+        "  smithlab brdf --ndf 'ggx(alpha=0.5)' --material mirror --wi 45,0 --wo 60,180 --walks 1000000\n"
         "Prints value and stderr (the eval estimator: next-event estimation toward wo at every hit), then\n"
         "order_1 .. order_4+ as 'value stderr', and single_analytic (the single-scattering BSDF times |cos theta_o|,\n"
         "Walter 2007 eq. 20 and 21 with the height-correlated G2) for mirror, conductor and dielectric facets.\n"
@@ -143,21 +142,22 @@ void add_brdf(CLI::App& app, BrdfArgs& a) {
     c->add_option("--material", a.material, "facet material spec")->required();
     c->add_option("--wi", a.wi, "THETA,PHI of the light, degrees, theta in [0, 90) (dielectric: also (90, 180])")->required();
     c->add_option("--wo", a.wo, "THETA,PHI of the viewer, degrees")->required();
-    c->add_option("--n", a.n, "walks (> 0)")->capture_default_str();
-    c->add_option("--downward", a.downward, join_names(downward_names, ", ", " or "))->capture_default_str();
-    c->add_option("--seed", a.seed, "seed, an integer in [0, 2^64)")->capture_default_str();
-    c->add_option("--threads", a.threads, "threads (0: all cores)")->capture_default_str();
+    c->add_option("--walks", a.walks, "walks (> 0)")->capture_default_str();
+    add_downward_option(*c, a.downward);
+    add_seed_option(*c, a.seed);
+    add_threads_option(*c, a.threads);
 }
 
 int run_brdf(const BrdfArgs& a, const NdfRegistry& registry) {
     const unsigned long long seed = parse_seed(a.seed, "--seed");
-    require(a.n > 0, "--n", "> 0", static_cast<double>(a.n));
+    require(a.walks > 0, "--walks", "> 0", static_cast<double>(a.walks));
+    require_threads(a.threads);
     const AnyNdf ndf = registry.make(a.ndf);
     if (!ndf.note().empty()) std::fprintf(stderr, "smithlab: note: %s\n", ndf.note().c_str());
     const walk::Material material = walk::parse_material(a.material);
     walk::EvalRequest r{.wi = parse_direction(a.wi, "--wi", &material), .wo = parse_direction(a.wo, "--wo", nullptr)};
     r.seed = seed;
-    r.walks = a.n;
+    r.walks = a.walks;
     r.threads = static_cast<unsigned>(a.threads);
     const walk::EvalTally t =
         make_surface(ndf, trace::parse_walk_options(a.downward, "visible", "--"))->eval_cell(material, r);

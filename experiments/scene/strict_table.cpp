@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "scene/nearest_name.hpp"
+#include "scene/spaced.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
 
@@ -26,11 +27,7 @@ bool is_section(const toml::value& v) {
     return (v.is_table() || v.is_array()) && first != std::string::npos && line[first] == '[';
 }
 
-
-
-// The most points one axis may hold: a scene's size is bounded by the work limit (work_estimate.hpp), but an axis
-// is made before the work is estimated, so it has its own bound (80 MB of doubles, made in ~0.1 s).
-constexpr std::int64_t max_axis_points = 10'000'000;
+}  // namespace
 
 std::vector<double> spaced(double lo, double hi, std::int64_t n, bool log) {
     std::vector<double> out;
@@ -41,8 +38,6 @@ std::vector<double> spaced(double lo, double hi, std::int64_t n, bool log) {
     out.back() = hi;
     return out;
 }
-
-}  // namespace
 
 std::string describe_toml(const toml::value& v) {
     const auto shown = [&](const char* kind) {

@@ -1,3 +1,5 @@
+#include <string>
+
 #include "smithlab/gtr/family.hpp"
 #include "smithlab/gtr/gtr.hpp"
 #include "smithlab/gtr/interpolants.hpp"
@@ -9,7 +11,8 @@ namespace smithlab {
 void register_gtr_ndfs(NdfRegistry& r) {
     r.add({"gtr",
            {"alpha", "gamma"},
-           "Generalized Trowbridge-Reitz (Burley 2012), any real gamma >= 0; closed-form Lambda at gamma = 0..4",
+           "Generalized Trowbridge-Reitz (Burley 2012), any real gamma >= 0; closed-form Lambda at integer gamma = 0.." +
+               std::to_string(gtr_max_closed_gamma) + " (Dimov 2015 for 0..4, generated beyond), else by quadrature",
            {"gtr(alpha=1e-4, gamma=0.5)", "gtr(alpha=0.3, gamma=1)", "gtr(alpha=0.3, gamma=1.000000001)",
             "gtr(alpha=0.999999, gamma=1)", "gtr(alpha=1, gamma=3)", "gtr(alpha=0.2, gamma=0)",
             "gtr(alpha=0.5, gamma=2.5)", "gtr(alpha=0.05, gamma=4)", "gtr(alpha=0.05, gamma=10)"}},

@@ -8,6 +8,7 @@
 //                      [](const smithlab::NdfParams& p) { return Mine{p.at("alpha")}; });
 //         return smithlab::run_cli(argc, argv, registry);
 //     }
+// Its `--help` names the registry's NDFs, its own among them; `--version` prints smithlab's version.
 // Under mpirun (where the library was built with MPI), trace, fit and report run on every rank, as `smithlab` does.
 #pragma once
 

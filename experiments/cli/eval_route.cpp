@@ -1,0 +1,64 @@
+#include "cli/eval_route.hpp"
+
+#include <cstdio>
+#include <sstream>
+
+#include "smithlab/errors.hpp"
+
+namespace smithlab::cli {
+
+LambdaOfMu Route::prepare(const AnyNdf& ndf) const {
+    if (variant) return smithlab::prepare(*variant, ndf);
+    return [ndf, o = options](double mu) { return smithlab::Lambda(ndf, mu, o); };
+}
+
+Route route(const EvalArgs& a, const VariantRegistry& variants) {
+    Route r;
+    r.options.backend = parse_backend(a.backend);
+    r.options.tolerance = a.tolerance;
+    r.options.downward = parse_downward(a.downward);
+    if (const Named<Method>* m = find_named(method_names, a.method))
+        r.options.method = m->value;
+    else
+        r.variant = &variants.at(a.method);
+    return r;
+}
+
+std::string describe(const Route& r, const EvalArgs& a, const AnyNdf& ndf) {
+    std::ostringstream out;
+    out << a.method;
+    if (r.variant) return out.str();
+    const Method m = r.options.method;
+    const bool closed = m == Method::automatic && ndf.has_closed_Lambda();
+    // Lambda_by_method (smith.hpp): auto is the closed form where the NDF has one, else the fixed rule, which
+    // answers by the adaptive route (--backend) where its error estimate misses the tolerance.
+    if (closed) out << " (closed form)";
+    if (m == Method::fixed || (m == Method::automatic && !closed))
+        out << " (fixed rule, relative tolerance " << a.tolerance << "; " << a.backend
+            << " where its error estimate misses it)";
+    if (m == Method::quadrature || m == Method::quadrature2d)
+        out << " (" << a.backend << ", relative tolerance " << a.tolerance << ")";
+    return out.str();
+}
+
+Prepared prepare(const std::string& spec, const NdfRegistry& registry, const Route& r) {
+    AnyNdf ndf = registry.make(spec);
+    if (!ndf.note().empty()) std::fprintf(stderr, "smithlab: note: %s\n", ndf.note().c_str());
+    try {
+        LambdaOfMu up = r.prepare(ndf);
+        return {std::move(ndf), std::move(up)};
+    } catch (const input_error& e) {
+        throw input_error("ndf '" + ndf.spec() + "': " + e.what());
+    }
+}
+
+LambdaG1 lambda_g1(const Prepared& p, double mu, Downward downward) {
+    try {
+        const double up = Lambda_of_abs(mu, p.Lambda_up);
+        return {Lambda_of_sign(mu, up, downward), 1.0 / (1.0 + up)};
+    } catch (const input_error& e) {
+        throw input_error("ndf '" + p.ndf.spec() + "': " + e.what());
+    }
+}
+
+}  // namespace smithlab::cli

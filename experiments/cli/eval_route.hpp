@@ -1,0 +1,39 @@
+// What `smithlab eval` computes at a point: the route --method names, an NDF prepared for it, Lambda and G1.
+#pragma once
+
+#include <string>
+
+#include "cli/commands.hpp"
+
+namespace smithlab::cli {
+
+// The route --method names: one of the core methods (method_names, with --backend and --tolerance), or a
+// registered variant.
+struct Route {
+    LambdaOptions options;
+    const LambdaVariant* variant = nullptr;
+    // Lambda of ndf at a finite mu > 0, the variant prepared once per NDF (a table variant builds its table there).
+    LambdaOfMu prepare(const AnyNdf& ndf) const;
+};
+Route route(const EvalArgs& args, const VariantRegistry& variants);
+
+// What the route computes for `ndf`, as eval's method line says it: the method's name, and for the quadratures
+// their backend and tolerance ("auto (fixed rule, relative tolerance 1e-12; boost where its error estimate misses
+// it)", "auto (closed form)").
+std::string describe(const Route& route, const EvalArgs& args, const AnyNdf& ndf);
+
+// An NDF of the input and its Lambda by the route, made once per spec.
+struct Prepared {
+    AnyNdf ndf;
+    LambdaOfMu Lambda_up;
+};
+Prepared prepare(const std::string& spec, const NdfRegistry& registry, const Route& route);
+
+struct LambdaG1 {
+    double lambda, g1;
+};
+// One Lambda evaluation serves both: G1 takes |mu| (Walter 2007 eq. 44), Lambda(mu < 0) follows the convention
+// (the special values of mu: smith.hpp's Lambda_of_abs and Lambda_of_sign). An input_error names the NDF.
+LambdaG1 lambda_g1(const Prepared& p, double mu, Downward downward);
+
+}  // namespace smithlab::cli

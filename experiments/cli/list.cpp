@@ -1,0 +1,27 @@
+// smithlab list: the registered NDFs, their parameters, descriptions and example specs.
+#include <iostream>
+
+#include "cli/commands.hpp"
+
+namespace smithlab::cli {
+
+CLI::App* add_list(CLI::App& app) {
+    return app.add_subcommand("list", "List the registered NDFs, their parameters and example specs");
+}
+
+int run_list(const NdfRegistry& registry) {
+    for (const NdfInfo* info : registry.list()) {
+        std::cout << info->name << "(";
+        for (std::size_t i = 0; i < info->parameters.size(); ++i) std::cout << (i ? ", " : "") << info->parameters[i];
+        for (std::size_t i = 0; i < info->text_parameters.size(); ++i)
+            std::cout << (i || !info->parameters.empty() ? ", " : "") << info->text_parameters[i];
+        std::cout << ")\n    " << info->description << "\n";
+        if (info->examples.empty()) continue;  // a family read from a file has none to offer
+        std::cout << "    e.g.";
+        for (const auto& ex : info->examples) std::cout << "  " << ex;
+        std::cout << "\n";
+    }
+    return exit_ok;
+}
+
+}  // namespace smithlab::cli
