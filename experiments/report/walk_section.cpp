@@ -109,21 +109,20 @@ void write_walk_csv(const std::vector<WalkResult>& results, const WalkScene& w, 
     std::vector<AnyNdf> ndfs;
     for (const WalkResult& r : results) ndfs.push_back(r.cell.ndf);
     const output::NdfColumns params = output::ndf_columns(ndfs, {"alpha", "gamma"});
-    std::vector<std::string> head = {"ndf", "family", "gamma"};
+    std::vector<std::string> head = {"ndf", "family", "gamma", "alpha", "material", "theta_i", "order", "albedo", "stderr",
+                                     "walks", "label"};
     head.insert(head.end(), params.names.begin(), params.names.end());
-    for (const char* h : {"alpha", "material", "theta_i", "order", "albedo", "stderr", "walks", "label"}) head.push_back(h);
     std::ofstream csv(dir / "walk_albedo.csv");
     write_csv_record(csv, head);
     for (const WalkResult& r : results) {
         const WalkCell& c = r.cell;
-        std::vector<std::string> ndf = {c.ndf.spec(), c.family, c.ndf.has_param("gamma") ? format_g17(c.ndf.param("gamma")) : ""};
-        for (const std::string& cell : params.cells(c.ndf)) ndf.push_back(cell);
+        const std::vector<std::string> param_cells = params.cells(c.ndf);
         for (std::size_t o = 0; o < walk_orders.size(); ++o) {
-            std::vector<std::string> f = ndf;
-            for (const std::string& cell : {format_g17(c.alpha), walk::format_material(c.material), format_shortest(c.theta_i),
-                                            std::string(walk_orders[o]), format_g17(r.albedo[o].value),
-                                            format_g17(r.albedo[o].stderr_), std::to_string(w.walks), family_label(c)})
-                f.push_back(cell);
+            std::vector<std::string> f = {c.ndf.spec(), c.family, c.ndf.has_param("gamma") ? format_g17(c.ndf.param("gamma")) : "",
+                                          format_g17(c.alpha), walk::format_material(c.material), format_shortest(c.theta_i),
+                                          walk_orders[o], format_g17(r.albedo[o].value), format_g17(r.albedo[o].stderr_),
+                                          std::to_string(w.walks), family_label(c)};
+            f.insert(f.end(), param_cells.begin(), param_cells.end());
             write_csv_record(csv, f);
         }
     }

@@ -60,9 +60,9 @@ std::vector<WalkCell> walk_cells(const WalkScene& walk, const NdfRegistry& ndfs)
 // every rank (cluster/block_jobs.hpp): rank 0 gets the results, the other ranks none.
 std::vector<WalkResult> trace_walk_cells(const std::vector<WalkCell>& cells, const WalkScene& walk);
 
-// DIR/walk_albedo.csv (ndf,family,gamma,[one column per other parameter of the NDFs but alpha,]alpha,material,
-// theta_i,order,albedo,stderr,walks,label; order as walk_orders, label the NDF without the roughness it is swept over:
-// "gtr (gamma 1.5)", "abc (c 3)", what the plot's panels show)
+// DIR/walk_albedo.csv (ndf,family,gamma,alpha,material,theta_i,order,albedo,stderr,walks,label, then one column per
+// other parameter of the NDFs (abc: b, c); order as walk_orders, label the NDF without the roughness it is swept
+// over: "gtr (gamma 1.5)", "abc (c 3)", what the plot's panels show)
 // and the section appended to DIR/report.md: its table, and the figure report_plots.py draws from the CSV.
 void write_walk_section(const std::vector<WalkResult>& results, const WalkScene& walk, double seconds,
                         const std::filesystem::path& dir);
