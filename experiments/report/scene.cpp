@@ -35,11 +35,14 @@ void read_figures(StrictTable& doc, Settings::Figures& fig) {
     f->done();
 }
 
-// The document's top-level keys: the settings' and every section's.
+// The document's top-level keys, as a message lists them: the title and the grid, every section's, then the timing
+// and the figures.
 std::vector<std::string> known_keys(const Sections& sections) {
-    std::vector<std::string> keys = {"title", "grid", "timing", "figures"};
+    std::vector<std::string> keys = {"title", "grid"};
     for (const auto& section : sections)
         for (const std::string& k : section->keys()) keys.push_back(k);
+    keys.push_back("timing");
+    keys.push_back("figures");
     return keys;
 }
 
