@@ -1,6 +1,9 @@
 // Lambda per method and backend (closed, spline, 1D Boost, 1D GSL, 2D) for GGX, GTR at a few gamma and the Student-t;
 // the table (the fast evaluator) against the closed-form GGX G1; every registered variant.
 // Each iteration evaluates one Lambda; mu cycles through 0.01 .. 100 so that no single easy point is timed.
+// The variant/ rows are timed as `smithlab report` times its rows (experiments/report/timing_points.hpp: the same
+// points of a grid, the same loop), so that bench/compare_report_timing.py can set the two side by side; the GTR
+// family evaluator has two rows there, one call (variant/family/...) and the stream (variant/family-stream/...).
 // Run: build/bench/bench_lambda --benchmark_min_time=0.2   (one core; the README has the current numbers)
 #include <benchmark/benchmark.h>
 
@@ -9,6 +12,8 @@
 #include <smithlab/smithlab.hpp>
 #include <string>
 #include <utility>
+
+#include "report/timing_points.hpp"
 
 namespace {
 
@@ -146,7 +151,24 @@ void register_table() {
         })->Unit(benchmark::kMillisecond);
 }
 
-// Every registered variant, on the first of GTR(0.3, 1.5), GGX(0.3), Beckmann(0.3) it applies to.
+// Every registered variant, on the first of GTR(0.3, 1.5), GGX(0.3), Beckmann(0.3) it applies to, at the report's
+// timing points of the grid {that NDF} x mus; the family evaluator also as a stream over the same points.
+void register_variant(const smithlab::LambdaVariant& v, const smithlab::AnyNdf& ndf) {
+    std::string spec = ndf.spec();
+    std::erase(spec, ' ');
+    benchmark::RegisterBenchmark(("variant/" + v.name + "/" + spec).c_str(), [v, ndf](benchmark::State& s) {
+        const std::vector<smithlab::LambdaOfMu> prepared = {smithlab::prepare(v, ndf)};  // not timed
+        const std::vector<smithlab::report::LambdaPoint> points = smithlab::report::lambda_timing_points(prepared, mus);
+        smithlab::report::time_cycling(s, std::span<const smithlab::report::LambdaPoint>(points),
+                                       smithlab::report::lambda_point_value);
+    });
+    if (v.name != "family") return;
+    benchmark::RegisterBenchmark(("variant/family-stream/" + spec).c_str(), [ndf](benchmark::State& s) {
+        const smithlab::report::GtrStreamPoints points = smithlab::report::gtr_stream_timing_points(std::span(&ndf, 1), mus);
+        smithlab::report::time_stream(s, points.size(), [&](double* out) { points.G1(out); });
+    });
+}
+
 void register_variants() {
     const auto reg = smithlab::builtin_registry();
     const std::array<smithlab::AnyNdf, 3> candidates = {reg.make("gtr(alpha=0.3, gamma=1.5)"), reg.make("ggx(alpha=0.3)"),
@@ -155,14 +177,7 @@ void register_variants() {
     for (const smithlab::LambdaVariant& v : variants.list())
         for (const smithlab::AnyNdf& ndf : candidates)
             if (v.applies(ndf)) {
-                std::string spec = ndf.spec();
-                std::erase(spec, ' ');
-                benchmark::RegisterBenchmark(("variant/" + v.name + "/" + spec).c_str(), [v, ndf](benchmark::State& s) {
-                    const smithlab::LambdaOfMu Lambda = smithlab::prepare(v, ndf);  // not timed
-                    std::size_t i = 0;
-                    for (auto _ : s) benchmark::DoNotOptimize(Lambda(mus[i++ % mus.size()]));
-                    s.SetItemsProcessed(s.iterations());
-                });
+                register_variant(v, ndf);
                 break;
             }
 }

@@ -48,7 +48,7 @@ int run_report(const ReportArgs& a, const NdfRegistry& registry, const VariantRe
     }
     require(a.max_work > 0.0, "--max-work", "> 0 (inf: no limit)", a.max_work);
     const std::string source = a.scene.empty() ? "<default scene>" : a.scene;
-    const report::Scene scene = report::parse_scene(a.scene.empty() ? report::default_scene_text() : read_scene_file(a.scene), source, registry);
+    report::Scene scene = report::parse_scene(a.scene.empty() ? report::default_scene_text() : read_scene_file(a.scene), source, registry);
     const report::Work work = report::estimate_work(scene, variants);
     report::check_work(work, a.max_work, source);
     if (mpi::rank() == 0) std::fprintf(stderr, "report: work estimated at %s (limit --max-work %g)\n", report::describe(work).c_str(), a.max_work);

@@ -9,6 +9,7 @@
 #include <numbers>
 #include <utility>
 
+#include "output/progress.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
 #include "smithlab/samplers.hpp"
@@ -34,8 +35,10 @@ struct Conductor {
     }
 };
 
-// The scene's NDFs, checked: each family of one parameter, alpha, with a closed-form Lambda (for G2), at each alpha.
-std::vector<AnyNdf> sampling_ndfs(const Scene::Sampling& s, const NdfRegistry& ndfs) {
+}  // namespace
+
+std::vector<AnyNdf> sampling_ndfs(const SamplingScene& s, const NdfRegistry& ndfs) {
+    require(s.theta_o >= 0.0 && s.theta_o < 90.0, "scene: sampling.theta_o", "in [0, 90) degrees", s.theta_o);
     std::vector<AnyNdf> list;
     for (const std::string& family : s.families) {
         const NdfInfo* info = ndfs.find(family);
@@ -51,6 +54,8 @@ std::vector<AnyNdf> sampling_ndfs(const Scene::Sampling& s, const NdfRegistry& n
     }
     return list;
 }
+
+namespace {
 
 // One sample of each strategy's weight (sampling_strategies' order) for ndf seen from wo.
 std::vector<std::function<double(Rng&)>> strategy_weights(const AnyNdf& ndf, const Vec3& wo,
@@ -100,13 +105,16 @@ std::pair<double, double> mean_and_variance(const std::function<double(Rng&)>& w
 
 }  // namespace
 
-std::vector<SamplingRow> run_sampling_experiment(const Scene::Sampling& s, const NdfRegistry& ndfs) {
-    require(s.theta_o >= 0.0 && s.theta_o < 90.0, "scene: sampling.theta_o", "in [0, 90) degrees", s.theta_o);
-    const std::vector<AnyNdf> list = sampling_ndfs(s, ndfs);
+std::vector<SamplingRow> run_sampling_experiment(const std::vector<AnyNdf>& list, const SamplingScene& s) {
     const std::vector<SamplerInfo> samplers = builtin_samplers();
     const Vec3 wo = direction_from_theta_deg(s.theta_o);
+    const std::size_t estimates = list.size() * sampling_strategies.size();
+    output::ProgressLine progress;
     std::vector<SamplingRow> rows;
     for (const AnyNdf& ndf : list) {
+        progress(static_cast<double>(rows.size()) / static_cast<double>(estimates), [&] {
+            return "report: sampling experiment, " + std::to_string(rows.size()) + "/" + std::to_string(estimates) + " estimates";
+        });
         const std::vector<std::function<double(Rng&)>> weights = strategy_weights(ndf, wo, samplers);
         for (std::size_t k = 0; k < weights.size(); ++k) {
             const auto [mean, variance] = mean_and_variance(weights[k], make_rng(s.seed, rows.size()), s.samples);
@@ -117,15 +125,16 @@ std::vector<SamplingRow> run_sampling_experiment(const Scene::Sampling& s, const
     return rows;
 }
 
-void add_sampling_timing(std::vector<SamplingRow>& rows, const Scene::Sampling& s, std::vector<Timed>& timed) {
+void add_sampling_timing(std::vector<SamplingRow>& rows, const SamplingScene& s, Timing& timing) {
     for (SamplingRow& r : rows) {
         auto g = std::make_shared<Rng>(make_rng(s.seed, 1u << 20));
-        timed.push_back({"sampling/" + r.family + "(" + format_g17(r.alpha) + ")/" + r.strategy, 1,
-                         [w = r.weight, g](std::size_t) { return w(*g); }, &r.ns});
+        // One point, nothing in it: each call draws from the row's own stream.
+        timing.add("sampling/" + r.family + "(" + format_g17(r.alpha) + ")/" + r.strategy, std::vector<char>(1),
+                   [w = r.weight, g](char) { return w(*g); }, &r.ns);
     }
 }
 
-void write_sampling_section(const std::vector<SamplingRow>& rows, const Scene::Sampling& s, const std::filesystem::path& dir) {
+void write_sampling_section(const std::vector<SamplingRow>& rows, const SamplingScene& s, const std::filesystem::path& dir) {
     std::ofstream csv(dir / "sampling.csv");
     write_csv_record(csv, {"family", "alpha", "strategy", "samples", "mean", "stderr", "variance", "ns_per_sample", "efficiency"});
     std::ofstream md(dir / "report.md", std::ios::app);

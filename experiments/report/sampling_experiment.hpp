@@ -7,6 +7,7 @@
 //     visible normals    pdf = D_wo(m) / (4 wo.m)         weight = G2 / G1(wo)       (Heitz 2014, sec. 5)
 // with wi = reflect(wo, m) and weight 0 when wi falls below the surface. All three estimate the same A; the
 // report gives their variance, time per sample (Google Benchmark) and efficiency 1 / (variance x time).
+// The section that runs it: sections/sampling.cpp.
 #pragma once
 
 #include <array>
@@ -16,12 +17,20 @@
 #include <string_view>
 #include <vector>
 
-#include "report/scene.hpp"
+#include "report/timing.hpp"
 #include "smithlab/registry.hpp"
 #include "smithlab/rng.hpp"
-#include "report/timing.hpp"
 
 namespace smithlab::report {
+
+// The scene's [sampling]: absent (families empty) unless named.
+struct SamplingScene {
+    std::vector<std::string> families;
+    std::vector<double> alphas;
+    double theta_o = 45.0;         // degrees
+    std::size_t samples = 100000;  // per estimate
+    unsigned long long seed = 1;
+};
 
 struct SamplingRow {
     std::string family, strategy;
@@ -35,14 +44,17 @@ struct SamplingRow {
 // The strategies, in the order of the table.
 inline constexpr std::array<std::string_view, 3> sampling_strategies = {"cosine", "dcos", "vndf"};
 
-// One row per (family, alpha, strategy), estimated with scene.sampling.samples samples each. Validates first
-// (families with a closed-form Lambda and an alpha; theta_o in [0, 90)); input_error naming the key otherwise.
-std::vector<SamplingRow> run_sampling_experiment(const Scene::Sampling& s, const NdfRegistry& ndfs);
+// The experiment's NDFs (families x alphas), checked: each family of one parameter, alpha, with a closed-form Lambda
+// (for G2); theta_o in [0, 90). input_error naming the key otherwise.
+std::vector<AnyNdf> sampling_ndfs(const SamplingScene& s, const NdfRegistry& ndfs);
+
+// One row per (NDF, strategy), estimated with s.samples samples each (a progress line on stderr past a few seconds).
+std::vector<SamplingRow> run_sampling_experiment(const std::vector<AnyNdf>& ndfs, const SamplingScene& s);
 
 // One item per row: one sample of its estimator, from a stream of its own.
-void add_sampling_timing(std::vector<SamplingRow>& rows, const Scene::Sampling& s, std::vector<Timed>& timed);
+void add_sampling_timing(std::vector<SamplingRow>& rows, const SamplingScene& s, Timing& timing);
 
 // DIR/sampling.csv and the section appended to DIR/report.md: per (family, alpha) the strategies side by side.
-void write_sampling_section(const std::vector<SamplingRow>& rows, const Scene::Sampling& s, const std::filesystem::path& dir);
+void write_sampling_section(const std::vector<SamplingRow>& rows, const SamplingScene& s, const std::filesystem::path& dir);
 
 }  // namespace smithlab::report

@@ -7,8 +7,9 @@
 #include <thread>
 #include <variant>
 
-#include "trace/cell_jobs.hpp"
+#include "output/ndf_columns.hpp"
 #include "output/progress.hpp"
+#include "trace/cell_jobs.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
 #include "smithlab/spec.hpp"
@@ -44,7 +45,7 @@ std::string family_label(const WalkCell& c) {
 
 }  // namespace
 
-std::vector<WalkCell> walk_cells(const Scene::Walk& w, const NdfRegistry& registry) {
+std::vector<WalkCell> walk_cells(const WalkScene& w, const NdfRegistry& registry) {
     std::vector<walk::Material> materials;
     for (const std::string& m : w.materials) materials.push_back(walk::parse_material(m));  // checked by the scene
     std::vector<WalkCell> cells;
@@ -74,7 +75,7 @@ std::vector<WalkCell> walk_cells(const Scene::Walk& w, const NdfRegistry& regist
     return cells;
 }
 
-std::vector<WalkResult> trace_walk_cells(const std::vector<WalkCell>& cells, const Scene::Walk& w) {
+std::vector<WalkResult> trace_walk_cells(const std::vector<WalkCell>& cells, const WalkScene& w) {
     std::vector<trace::CellJob> jobs;
     for (const WalkCell& c : cells) {
         walk::CellRequest r;
@@ -102,23 +103,37 @@ std::vector<WalkResult> trace_walk_cells(const std::vector<WalkCell>& cells, con
     return out;
 }
 
-void write_walk_section(const std::vector<WalkResult>& results, const Scene::Walk& w, double seconds, const fs::path& dir) {
+namespace {
+
+void write_walk_csv(const std::vector<WalkResult>& results, const WalkScene& w, const fs::path& dir) {
+    std::vector<AnyNdf> ndfs;
+    for (const WalkResult& r : results) ndfs.push_back(r.cell.ndf);
+    const output::NdfColumns params = output::ndf_columns(ndfs, {"alpha", "gamma"});
+    std::vector<std::string> head = {"ndf", "family", "gamma", "alpha", "material", "theta_i", "order", "albedo", "stderr",
+                                     "walks", "label"};
+    head.insert(head.end(), params.names.begin(), params.names.end());
     std::ofstream csv(dir / "walk_albedo.csv");
-    write_csv_record(csv, {"ndf", "family", "gamma", "alpha", "material", "theta_i", "order", "albedo", "stderr", "walks",
-                           "label"});
-    std::int64_t events = 0, capped = 0;
+    write_csv_record(csv, head);
     for (const WalkResult& r : results) {
         const WalkCell& c = r.cell;
-        for (std::size_t o = 0; o < walk_orders.size(); ++o)
-            write_csv_record(csv, {c.ndf.spec(), c.family, c.ndf.has_param("gamma") ? format_g17(c.ndf.param("gamma")) : "",
-                                   format_g17(c.alpha),
-                                   walk::format_material(c.material), format_shortest(c.theta_i), walk_orders[o],
-                                   format_g17(r.albedo[o].value), format_g17(r.albedo[o].stderr_), std::to_string(w.walks),
-                                   family_label(c)});
+        const std::vector<std::string> param_cells = params.cells(c.ndf);
+        for (std::size_t o = 0; o < walk_orders.size(); ++o) {
+            std::vector<std::string> f = {c.ndf.spec(), c.family, c.ndf.has_param("gamma") ? format_g17(c.ndf.param("gamma")) : "",
+                                          format_g17(c.alpha), walk::format_material(c.material), format_shortest(c.theta_i),
+                                          walk_orders[o], format_g17(r.albedo[o].value), format_g17(r.albedo[o].stderr_),
+                                          std::to_string(w.walks), family_label(c)};
+            f.insert(f.end(), param_cells.begin(), param_cells.end());
+            write_csv_record(csv, f);
+        }
+    }
+}
+
+void write_walk_markdown(const std::vector<WalkResult>& results, const WalkScene& w, double seconds, const fs::path& dir) {
+    std::int64_t events = 0, capped = 0;
+    for (const WalkResult& r : results) {
         events += r.events;
         capped += r.capped;
     }
-
     std::ofstream md(dir / "report.md", std::ios::app);
     const std::string threads = std::to_string(util::thread_count(0)) + " threads",
                       where = mpi::size() > 1 ? std::to_string(mpi::size()) + " MPI ranks x " + threads : threads;
@@ -146,6 +161,13 @@ void write_walk_section(const std::vector<WalkResult>& results, const Scene::Wal
         }
         md << " |\n";
     }
+}
+
+}  // namespace
+
+void write_walk_section(const std::vector<WalkResult>& results, const WalkScene& w, double seconds, const fs::path& dir) {
+    write_walk_csv(results, w, dir);
+    write_walk_markdown(results, w, seconds, dir);
 }
 
 }  // namespace smithlab::report

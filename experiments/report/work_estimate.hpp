@@ -15,26 +15,38 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
-#include "report/scene.hpp"
 #include "smithlab/variants.hpp"
 
 namespace smithlab::report {
 
+struct Scene;
+
 inline constexpr double default_max_work = 1e8;
 
+// The work as its parts, each counted by the sections (section.hpp: add_work), in the order first named:
+// "Lambda" (selected variants x NDFs of the grid x mu), "references" (reference Lambdas: per grid point one per
+// route, at most 3, and the G2 table's), "G2" (selected G2 variants x families x alpha x mu_i x mu_o), "samples"
+// (sampling: families x alpha x strategies x samples), "walks" (NDFs x alpha x materials x theta_i x walks x
+// max(1, alpha)).
 struct Work {
-    double lambda_evaluations = 0.0;  // selected variants x NDFs of the grid x mu
-    double g2_evaluations = 0.0;      // selected G2 variants x families x alpha x mu_i x mu_o
-    double references = 0.0;          // reference Lambdas: per grid point one per route (at most 3), and the G2 table's
-    double samples = 0.0;             // sampling: families x alpha x strategies x samples
-    double walks = 0.0;               // walk: NDFs (families x gamma) x alpha x materials x theta_i x walks x max(1, alpha)
-    double total() const { return lambda_evaluations + g2_evaluations + references + samples + walks; }
+    struct Part {
+        std::string name;
+        double count = 0.0;
+        bool shown_when_zero = true;  // a part that is not, is left out of the message while it is 0
+    };
+    std::vector<Part> parts;
+    // Adds count to the part of that name, or appends the part.
+    void add(const std::string& name, double count, bool shown_when_zero = true);
+    double of(const std::string& name) const;  // 0 for a part never named
+    double total() const;
 };
 
+// Every section's work (scene.sections).
 Work estimate_work(const Scene& scene, const VariantRegistry& variants);
 
-// "1.23e+07 evaluations (Lambda 1.1e+05, G2 2.2e+03, references 7.3e+03, samples 1.2e+07)", then ", walks 3.2e+05"
+// "1.23e+07 evaluations (Lambda 1.1e+05, references 7.3e+03, G2 2.2e+03, samples 1.2e+07)", then ", walks 3.2e+05"
 // when the scene traces any.
 std::string describe(const Work& work);
 
