@@ -25,6 +25,7 @@ using namespace smithlab;
 
 namespace {
 
+// [docs: report-section]
 // [ggx_g1] alpha = AXIS, mu = REAL: G1 = 1 / (1 + Lambda) of GGX at mu for each alpha, from the NDF's Lambda.
 class GgxG1Section : public report::Section {
 public:
@@ -70,13 +71,16 @@ private:
     std::vector<double> G1_;
     std::shared_ptr<int> computed_;
 };
+// [end docs]
 
+// [docs: report-section-list]
 // The built-in sections and the example after them.
 report::Sections with_example(std::shared_ptr<int> computed) {
     report::Sections sections = report::builtin_sections();
     sections.push_back(std::make_unique<GgxG1Section>(std::move(computed)));
     return sections;
 }
+// [end docs]
 
 const std::string quick_scene =
     "[grid]\n"                          // 1
