@@ -198,6 +198,20 @@ TEST_CASE("CSV writers", "[compensation]") {
     const std::vector<smithlab::CsvRecord> rows = smithlab::read_csv(in);
     REQUIRE(rows.size() == 7);
     CHECK(rows[6].fields == std::vector<std::string>{"gtr(alpha=0.3, gamma=1.5)", "1", "0.5"});
+
+    // One column per NDF parameter after the ndf column; a cell count that does not match is refused.
+    const fit::SpecColumns columns{{"alpha", "gamma"}, {{"0.5", ""}, {"0.3", "1.5"}}};
+    std::ostringstream with, with_avg;
+    fit::write_compensation_csv(with, {{"ggx(alpha=0.5)", t}, {"gtr(alpha=0.3, gamma=1.5)", t}}, columns);
+    fit::write_compensation_avg_csv(with_avg, {{"ggx(alpha=0.5)", t}, {"gtr(alpha=0.3, gamma=1.5)", t}}, columns);
+    CHECK(with.str().rfind("ndf,alpha,gamma,cos_theta,E\nggx(alpha=0.5),0.5,,0,1\n", 0) == 0);
+    CHECK(with.str().find("\"gtr(alpha=0.3, gamma=1.5)\",0.3,1.5,0.5,0.75\n") != std::string::npos);
+    CHECK(with_avg.str() == "ndf,alpha,gamma,E_avg\nggx(alpha=0.5),0.5,,0.625\n\"gtr(alpha=0.3, gamma=1.5)\",0.3,1.5,0.625\n");
+    std::ostringstream bad;
+    CHECK_THROWS_AS(fit::write_compensation_csv(bad, {{"ggx(alpha=0.5)", t}}, columns), smithlab::input_error);
+    CHECK_THROWS_AS(fit::write_compensation_avg_csv(bad, {{"ggx(alpha=0.5)", t}, {"ggx(alpha=0.5)", t}},
+                                                    {{"alpha"}, {{"0.5"}, {"0.5", "1"}}}),
+                    smithlab::input_error);
 }
 
 TEST_CASE("the C header: compiles as C, and its lookups return the table and interpolate it", "[compensation]") {

@@ -112,6 +112,48 @@ TEST_CASE("diffuse_models: the table is well formed and every name is found", "[
     CHECK(find_diffuse_model("oren-nayar").published == std::vector<double>{0.5});
 }
 
+TEST_CASE("diffuse_models: every range is one per constant and holds the starting constants", "[diffuse]") {
+    for (const DiffuseModel& m : diffuse_models()) {
+        INFO(m.name);
+        if (m.ranges.empty()) continue;
+        REQUIRE(m.ranges.size() == m.parameters.size());
+        for (std::size_t i = 0; i < m.ranges.size(); ++i) {
+            INFO(m.parameters[i]);
+            CHECK(m.ranges[i].lo < m.ranges[i].hi);
+            CHECK(m.published[i] >= m.ranges[i].lo);
+            CHECK(m.published[i] <= m.ranges[i].hi);
+            if (std::isfinite(m.ranges[i].lo) || std::isfinite(m.ranges[i].hi)) CHECK(!m.ranges[i].why.empty());
+        }
+    }
+    // The fitted constants of the default GGX scene that leave their models' domains, and some that do not.
+    const DiffuseModel &on = find_diffuse_model("oren-nayar"), &eon = find_diffuse_model("eon"),
+                       &hl = find_diffuse_model("hammon-2017-linear"), &sl = find_diffuse_model("smithlab-2026");
+    CHECK(outside_range(on, 0, 14.96) != nullptr);
+    CHECK(outside_range(on, 0, 0.5) == nullptr);
+    CHECK(outside_range(on, 0, -0.1) != nullptr);
+    CHECK(outside_range(on, 0, NAN) != nullptr);
+    CHECK(outside_range(eon, 0, 3.16) != nullptr);
+    CHECK(outside_range(hl, 4, -0.005) != nullptr);  // multi
+    CHECK(outside_range(hl, 1, -0.19) == nullptr);   // rough_b: free
+    CHECK(outside_range(sl, 7, -1.0) != nullptr);    // multi_forward at its bound
+    CHECK(outside_range(sl, 7, -0.13) == nullptr);
+    CHECK(outside_range(find_diffuse_model("lambert"), 0, 1e9) == nullptr);  // no constants, no ranges
+}
+
+TEST_CASE("diffuse_models: smithlab-2026 at its starting constants is hammon-2017, so it is no baseline of its own",
+          "[diffuse]") {
+    const DiffuseModel &s = find_diffuse_model("smithlab-2026"), &h = find_diffuse_model("hammon-2017");
+    CHECK_FALSE(s.own_baseline);
+    for (const DiffuseModel& m : diffuse_models())
+        if (m.name != "smithlab-2026") CHECK(m.own_baseline);
+    for (double alpha : {0.01, 0.3, 1.0})
+        for (double ti : {0.0, 40.0, 85.0})
+            for (double phi : {0.0, 90.0, 180.0}) {
+                const Vec3 wi = direction_from_deg(ti, 0.0), wo = direction_from_deg(60.0, phi);
+                CHECK(s.f(wi, wo, alpha, 0.7, s.published.data()) == h.f(wi, wo, alpha, 0.7, h.published.data()));
+            }
+}
+
 TEST_CASE("diffuse_models: an unknown name is an input_error naming it and the known ones", "[diffuse]") {
     try {
         (void)find_diffuse_model("nope");

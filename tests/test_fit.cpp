@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <sstream>
 
 #include "cli_run.hpp"
 #include "smithlab/fit/dataset.hpp"
@@ -298,11 +299,14 @@ TEST_CASE("fit: a pictures section traces and draws the spheres, slices and miss
     INFO(r.err);
     REQUIRE(r.rc == 0);
     const fs::path p = d / "out" / "pictures";
+    fs::create_directories(d / "first");
+    for (const char* csv : {"spheres.csv", "slices.csv", "missing.csv", "ndfs.csv"}) fs::copy_file(p / csv, d / "first" / csv);
     CHECK(slurp(p / "spheres.csv").rfind("ndf,source,alpha,light_deg,albedo,px,py,value\n", 0) == 0);
     CHECK(slurp(p / "slices.csv").rfind("ndf,source,alpha,theta_h,theta_d,value,stderr\n", 0) == 0);
     CHECK(slurp(p / "missing.csv").rfind("ndf,alpha,theta,albedo,E,E1,missing,stderr\n", 0) == 0);
     const std::string report = slurp(d / "out" / "report.md");
     CHECK_THAT(report, Contains("## Pictures") && Contains("pictures/spheres_ggx.png"));
+    CHECK_THAT(r.err, Contains("fit: pictures: ggx, alpha 1: spheres"));
     // Lambertian facets on a nearly flat surface are Lambert's law, albedo/pi cos theta_l, pixel by pixel: the whole
     // chain (pixel geometry, local frames, reciprocity, the split) against the analytic law.
     const auto at = report.find("is Lambert's law (albedo/pi cos theta_l) within ");
@@ -313,6 +317,111 @@ TEST_CASE("fit: a pictures section traces and draws the spheres, slices and miss
         INFO(png);
         CHECK(fs::exists(p / png));
     }
+
+    // Again: the pictures' traces come from the cache, and every output is the same (meta.json holds the times).
+    const Run again = run("fit '" + (d / "s.toml").string() + "' --output '" + (d / "out").string() + "' --threads 1");
+    INFO(again.err);
+    REQUIRE(again.rc == 0);
+    CHECK_THAT(again.err, Contains("fit: pictures: 7 of 7 traces read from the cache"));
+    CHECK_THAT(again.err, !Contains("fit: pictures: ggx, alpha"));
+    CHECK(slurp(d / "out" / "report.md") == report);
+    for (const char* csv : {"spheres.csv", "slices.csv", "missing.csv", "ndfs.csv"}) {
+        INFO(csv);
+        CHECK(slurp(p / csv) == slurp(d / "first" / csv));
+    }
+    // Another scene's pictures (more walks) are traced again, not read from the stale cache.
+    write(d / "more.toml", tiny_scene + "[pictures]\nsphere_alpha = [0.001, 1.0]\npixels = 8\nwalks = 300\n"
+                                         "slice_alpha = [1.0]\nslice_n = 4\n");
+    const Run more = run("fit '" + (d / "more.toml").string() + "' --output '" + (d / "out").string() + "' --threads 2");
+    REQUIRE(more.rc == 0);
+    // Lambertian facets' albedos do not depend on the pictures' walks: those 2 traces are reused, the 5 others not.
+    CHECK_THAT(more.err, Contains("fit: pictures: 2 of 7 traces read from the cache") &&
+                             Contains("fit: pictures: ggx, alpha 1: spheres") && Contains("ggx, alpha 1: slices"));
+    CHECK(slurp(p / "spheres.csv") != slurp(d / "first" / "spheres.csv"));
+    fs::remove_all(d);
+}
+
+TEST_CASE("fit: fits that leave their model's domain or measure worse than their start are flagged", "[fit][cli]") {
+    using namespace smithlab_test;
+    const fs::path d = fresh_directory("fitflags");
+    // Hammon's facets and enough points for hammon-2017's five constants and smithlab-2026's eight.
+    write(d / "s.toml", R"TOML(title = "flags"
+material = "fresnel-diffuse(f0=0.04, albedo=1)"
+albedos = [0.5, 1.0]
+models = ["oren-nayar", "hammon-2017", "smithlab-2026"]
+[[ndf]]
+family = "ggx"
+[training]
+alpha = [0.1, 0.4, 0.8]
+theta = [0.0, 20.0, 40.0, 60.0, 80.0]
+phi = [0.0, 90.0, 180.0]
+walks = 1000
+[validation]
+points = 6
+walks = 400
+albedo_theta = [0.0, 60.0]
+albedo_walks = 400
+)TOML");
+    const Run r = run("fit '" + (d / "s.toml").string() + "' --output '" + (d / "out").string() + "' --threads 2");
+    INFO(r.err);
+    REQUIRE(r.rc == 0);
+    const std::string report = slurp(d / "out" / "report.md");
+    CHECK_THAT(report, Contains("\n## Fits that look wrong\n"));
+    // Every flag is on stderr and in the report, and names its model and NDF.
+    std::size_t flags = 0;
+    for (std::size_t at = r.err.find("fit: warning: "); at != std::string::npos; at = r.err.find("fit: warning: ", at + 1)) {
+        const std::string line = r.err.substr(at + 14, r.err.find('\n', at) - at - 14);
+        const std::string model = line.substr(0, line.find(" on ggx: "));
+        INFO(line);
+        REQUIRE(line.find(" on ggx: ") != std::string::npos);
+        CHECK_THAT(report, Contains("- **" + model + "** on ggx: " + line.substr(model.size() + 9)));
+        ++flags;
+    }
+    CHECK((flags == 0) == (report.find("\nNone.\n") != std::string::npos));
+    // A flag is what the tables say: each fitted constant against its range, each error against the start's.
+    const std::string constants = slurp(d / "out" / "constants.csv");
+    const auto at = constants.find("\noren-nayar-fitted,ggx,sigma_scale,");
+    REQUIRE(at != std::string::npos);
+    const double sigma_scale = std::stod(constants.substr(at + 35));
+    const bool outside = !(sigma_scale > 0.0 && sigma_scale < std::numbers::pi / 2.0);
+    CHECK(outside == (r.err.find("oren-nayar-fitted on ggx: sigma_scale = ") != std::string::npos));
+    const std::string errors = slurp(d / "out" / "errors.csv");
+    auto albedo_rms = [&](const std::string& model) {  // model,ndf,rms_rel,max_rel,albedo_rms,chi2_dof
+        const auto row = errors.find("\n" + model + ",ggx,");
+        REQUIRE(row != std::string::npos);
+        std::istringstream fields(errors.substr(row + 1, errors.find('\n', row + 1) - row - 1));
+        std::string f;
+        for (int i = 0; i <= 4; ++i) std::getline(fields, f, ',');
+        return std::stod(f);
+    };
+    const bool worse = albedo_rms("oren-nayar-fitted") > albedo_rms("oren-nayar");
+    CHECK(worse == (r.err.find("oren-nayar-fitted on ggx: its RMS error of the directional albedo") != std::string::npos));
+    // smithlab-2026 starts at hammon-2017's constants: fitted, but not listed at its start.
+    CHECK_THAT(errors, Contains("\nhammon-2017,ggx,") && Contains("\nsmithlab-2026-fitted,ggx,"));
+    CHECK_THAT(errors, !Contains("\nsmithlab-2026,"));
+    CHECK_THAT(report, !Contains("| smithlab-2026 |"));
+    fs::remove_all(d);
+}
+
+TEST_CASE("fit: the tables name an NDF's parameters in columns of their own beside its spec", "[fit][cli]") {
+    using namespace smithlab_test;
+    const fs::path d = fresh_directory("fitcolumns");
+    std::string text = tiny_scene;
+    text.replace(text.find("family = \"ggx\""), std::string("family = \"ggx\"").size(),
+                 "family = \"gtr\"\ngamma = [1.5, 3]");
+    write(d / "s.toml", text + "[compensation]\nalpha = [0.5, 1.0]\nmu = 4\n");
+    const Run r = run("fit '" + (d / "s.toml").string() + "' --output '" + (d / "out").string() + "' --threads 2");
+    INFO(r.err);
+    REQUIRE(r.rc == 0);
+    const fs::path o = d / "out";
+    CHECK(slurp(o / "constants.csv").rfind("model,ndf,gamma,parameter,value,stderr\n", 0) == 0);
+    CHECK_THAT(slurp(o / "constants.csv"), Contains("\nfujii-fitted,gtr(gamma=3),3,sigma_scale,"));
+    CHECK(slurp(o / "errors.csv").rfind("model,ndf,gamma,rms_rel,", 0) == 0);
+    CHECK_THAT(slurp(o / "errors.csv"), Contains("\nlambert,gtr(gamma=1.5),1.5,"));
+    CHECK(slurp(o / "training.csv").rfind("ndf,gamma,alpha,theta_i,", 0) == 0);
+    CHECK_THAT(slurp(o / "validation.csv"), Contains("\ngtr(gamma=3),3,"));
+    CHECK(slurp(o / "compensation.csv").rfind("ndf,alpha,gamma,cos_theta,E\n\"gtr(alpha=0.5, gamma=1.5)\",0.5,1.5,0,", 0) == 0);
+    CHECK(slurp(o / "compensation_avg.csv").rfind("ndf,alpha,gamma,E_avg\n", 0) == 0);
     fs::remove_all(d);
 }
 

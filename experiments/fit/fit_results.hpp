@@ -1,4 +1,4 @@
-// What a fit run hands to its writers: each model as measured on each NDF family.
+// What a fit run hands to its writers: each model as measured on each NDF family, and its errors on the validation set.
 #pragma once
 
 #include <string>
@@ -6,6 +6,7 @@
 
 #include "fit/fit_data.hpp"
 #include "smithlab/fit/diffuse_models.hpp"
+#include "smithlab/fit/fit_model.hpp"
 
 namespace smithlab::fitrun {
 
@@ -24,6 +25,15 @@ struct Measured {
 struct Results {
     std::vector<NdfData> data;
     std::vector<std::vector<Measured>> fits;
+};
+
+// One row of errors.csv: a model (a fixed baseline, a model at its published constants, or "<model>-fitted") on one
+// NDF family, measured on the validation set.
+struct ErrorRow {
+    std::string model, ndf;
+    double rms_rel, max_rel, albedo_rms, chi2_dof;
+    fit::AlbedoPeak peak;  // the largest directional albedo at albedo 1 (training alphas x theta_i 0..89)
+    fit::GridCheck grid;   // the largest relative |f(l, v) - f(v, l)|, the smallest f
 };
 
 }  // namespace smithlab::fitrun

@@ -1,7 +1,12 @@
 // Running a fit scene into an output directory: trace (or reuse) the data, fit every model to every NDF family,
-// measure each on the validation set, and write the constants, errors, tables and pictures. The traced points are
-// cached in OUT/cache/ as they finish (fit_data.hpp); the outputs are staged and moved in together when all are
-// written (StagedDirectory), so a failed or killed run leaves the previous ones whole.
+// measure each on the validation set, flag the fits that look wrong, and write the constants, errors, tables and
+// pictures. The traced points (the data's and the pictures') are cached in OUT/cache/ as they finish
+// (fit/point_cache.hpp); the outputs are staged and moved in together when all are written (StagedDirectory), so a
+// failed or killed run leaves the previous ones whole.
+//
+// The pieces: fit/fit_data.hpp (the traced data), fit/fit_models.hpp (fitting and measuring), fit/fit_flags.hpp,
+// fit/fit_tables.hpp (the CSV and JSON tables), fit/fit_shaders.hpp, fit/fit_compensation.hpp, fit/fit_trends.hpp,
+// fit/fit_pictures.hpp, fit/fit_report.hpp (report.md).
 #pragma once
 
 #include <cstdint>
@@ -9,20 +14,11 @@
 #include <string>
 #include <vector>
 
+#include "fit/fit_results.hpp"
 #include "fit/fit_scene.hpp"
-#include "smithlab/fit/fit_model.hpp"
 #include "smithlab/registry.hpp"
 
 namespace smithlab::fitrun {
-
-// One row of errors.csv: a model (a fixed baseline, a model at its published constants, or "<model>-fitted") on one
-// NDF family, measured on the validation set.
-struct ErrorRow {
-    std::string model, ndf;
-    double rms_rel, max_rel, albedo_rms, chi2_dof;
-    fit::AlbedoPeak peak;  // the largest directional albedo at albedo 1 (training alphas x theta_i 0..89)
-    fit::GridCheck grid;   // the largest relative |f(l, v) - f(v, l)|, the smallest f
-};
 
 struct FitSummary {
     std::int64_t points = 0, traced = 0, reused = 0;

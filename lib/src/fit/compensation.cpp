@@ -138,16 +138,53 @@ std::string g9f(double x) {  // a float literal that round-trips the float neare
 }
 }  // namespace
 
-void write_compensation_csv(std::ostream& out, const std::vector<std::pair<std::string, CompensationTable>>& tables) {
-    out << "ndf,cos_theta,E\n";
-    for (const auto& [name, t] : tables)
-        for (std::size_t j = 0; j < t.mus.size() && j < t.E.size(); ++j)
-            write_csv_record(out, {name, format_shortest(t.mus[j]), g17(t.E[j])});
+namespace {
+// The first fields of table i's rows: its spec, then its cells of the extra columns.
+std::vector<std::string> spec_fields(const std::string& spec, const SpecColumns& columns, std::size_t i) {
+    std::vector<std::string> f{spec};
+    if (columns.names.empty()) return f;
+    f.insert(f.end(), columns.cells[i].begin(), columns.cells[i].end());
+    return f;
 }
 
-void write_compensation_avg_csv(std::ostream& out, const std::vector<std::pair<std::string, CompensationTable>>& tables) {
-    out << "ndf,E_avg\n";
-    for (const auto& [name, t] : tables) write_csv_record(out, {name, g17(t.E_avg)});
+void write_spec_header(std::ostream& out, const SpecColumns& columns, std::size_t tables,
+                       const std::vector<std::string>& rest) {
+    if (!columns.names.empty() && columns.cells.size() != tables)
+        throw input_error("compensation CSV: " + std::to_string(columns.cells.size()) + " rows of columns for " +
+                          std::to_string(tables) + " tables");
+    for (const std::vector<std::string>& row : columns.cells)
+        if (row.size() != columns.names.size())
+            throw input_error("compensation CSV: a row of " + std::to_string(row.size()) + " cells for " +
+                              std::to_string(columns.names.size()) + " columns");
+    std::vector<std::string> header{"ndf"};
+    header.insert(header.end(), columns.names.begin(), columns.names.end());
+    header.insert(header.end(), rest.begin(), rest.end());
+    write_csv_record(out, header);
+}
+}  // namespace
+
+void write_compensation_csv(std::ostream& out, const std::vector<std::pair<std::string, CompensationTable>>& tables,
+                            const SpecColumns& columns) {
+    write_spec_header(out, columns, tables.size(), {"cos_theta", "E"});
+    for (std::size_t i = 0; i < tables.size(); ++i) {
+        const CompensationTable& t = tables[i].second;
+        for (std::size_t j = 0; j < t.mus.size() && j < t.E.size(); ++j) {
+            std::vector<std::string> row = spec_fields(tables[i].first, columns, i);
+            row.push_back(format_shortest(t.mus[j]));
+            row.push_back(g17(t.E[j]));
+            write_csv_record(out, row);
+        }
+    }
+}
+
+void write_compensation_avg_csv(std::ostream& out, const std::vector<std::pair<std::string, CompensationTable>>& tables,
+                                const SpecColumns& columns) {
+    write_spec_header(out, columns, tables.size(), {"E_avg"});
+    for (std::size_t i = 0; i < tables.size(); ++i) {
+        std::vector<std::string> row = spec_fields(tables[i].first, columns, i);
+        row.push_back(g17(tables[i].second.E_avg));
+        write_csv_record(out, row);
+    }
 }
 
 std::string compensation_header_name(std::string_view family_name) {

@@ -171,6 +171,26 @@ double smithlab_2026(const Vec3& wi, const Vec3& wo, double alpha, double albedo
 
 namespace {
 
+constexpr double inf = INFINITY;
+
+// The ranges of Hammon 2017's constants (his slide's terms): the rough term's shape a - b facing is left free; the
+// others are non-negative where the term they scale is.
+std::vector<ParameterRange> hammon_ranges() {
+    return {{},
+            {},
+            {0.0, inf, "rough = facing (a - b facing)(c + N.H)/N.H: below c = 0 it changes sign toward grazing N.H"},
+            {0.0, inf, "smooth = k (1 - (1 - N.L)^5)(1 - (1 - N.V)^5): negative light below k = 0"},
+            {0.0, inf, "multi = m alpha, the light scattered more than once: negative below m = 0"}};
+}
+
+std::vector<ParameterRange> smithlab_2026_ranges() {
+    std::vector<ParameterRange> r = hammon_ranges();
+    r.push_back({0.0, inf, "the roughness blend alpha^p: at p <= 0 it does not vanish as alpha -> 0"});
+    r.push_back({0.0, inf, "multi = m alpha^q: at q <= 0 it does not vanish as alpha -> 0"});
+    r.push_back({-1.0, inf, "1 + u (1 - facing), facing in [0, 1]: negative below u = -1"});
+    return r;
+}
+
 HammonConstants hammon_constants(const double* c) { return {c[0], c[1], c[2], c[3], c[4]}; }
 
 double f_lambert(const Vec3&, const Vec3&, double, double albedo, const double*) { return lambert(albedo); }
@@ -214,7 +234,11 @@ const std::vector<DiffuseModel>& diffuse_models() {
         {"oren-nayar", {"sigma_scale"}, {0.5},
          "Oren & Nayar 1994, Generalization of Lambert's Reflectance Model, full model with L2; sigma = s alpha, "
          "s = 0.5 as in Hammon 2017's comparison",
-         f_oren_nayar},
+         f_oren_nayar,
+         true,
+         {{0.0, std::numbers::pi / 2.0,
+           "sigma = s alpha, the standard deviation of the facets' slope angle (Oren & Nayar 1994 sec. 3), an angle "
+           "within (-pi/2, pi/2): at most pi/2 at alpha = 1"}}},
         {"oren-nayar-sqrt2", {}, {},
          "Oren & Nayar 1994, Generalization of Lambert's Reflectance Model, full model with L2; sigma = alpha/sqrt(2)",
          f_oren_nayar_sqrt2},
@@ -223,11 +247,15 @@ const std::vector<DiffuseModel>& diffuse_models() {
          f_oren_nayar_qualitative},
         {"fujii", {"sigma_scale"}, {1.0},
          "Fujii 2013, A tiny improvement of Oren-Nayar reflectance model; sigma = s alpha, start s = 1 (not published)",
-         f_fujii},
+         f_fujii,
+         true,
+         {{0.0, 1.0, "sigma = s alpha: above sigma = 1 Fujii's f turns negative (A + B s >= A (1 - sigma)), held at 0 here"}}},
         {"eon", {"r_scale"}, {1.0},
          "Portsmouth, Kutz & Hill 2025, EON: A Practical Energy-Preserving Rough Diffuse BRDF, JCGT 14(1), "
          "exact E_FON; r = clamp(c alpha, 0, 1), start c = 1 (not published)",
-         f_eon},
+         f_eon,
+         true,
+         {{0.0, 1.0, "r = clamp(c alpha, 0, 1): above c = 1 EON's roughness r (in [0, 1]) is held at 1 from alpha = 1/c on"}}},
         {"chan-2018", {}, {},
          "Chan 2018, Material Advances in Call of Duty: WWII (SIGGRAPH course), as UE5 BRDF.ush Diffuse_Chan, a2 = "
          "alpha^2, retro-reflectivity weight 1",
@@ -235,18 +263,30 @@ const std::vector<DiffuseModel>& diffuse_models() {
         {"hammon-2017", {"rough_a", "rough_b", "rough_c", "smooth", "multi"}, {0.9, 0.4, 0.5, 1.05, 0.1159},
          "Hammon 2017, PBR Diffuse Lighting for GGX+Smith Microsurfaces (GDC), GGX Diffuse Approximation: "
          "albedo (single + albedo multi)",
-         f_hammon},
+         f_hammon,
+         true,
+         hammon_ranges()},
         {"hammon-2017-linear", {"rough_a", "rough_b", "rough_c", "smooth", "multi"}, {0.9, 0.4, 0.5, 1.05, 0.1159},
          "Hammon 2017, PBR Diffuse Lighting for GGX+Smith Microsurfaces (GDC), GGX Diffuse Approximation: "
          "albedo (single + multi)",
-         f_hammon_linear},
+         f_hammon_linear,
+         true,
+         hammon_ranges()},
         {"smithlab-2026", {"rough_a", "rough_b", "rough_c", "smooth", "multi", "blend_power", "multi_power", "multi_forward"},
          {0.9, 0.4, 0.5, 1.05, 0.1159, 1.0, 1.0, 0.0},
          "smithlab 2026 (this tool's own, from the traced data): Hammon 2017's single term blended by alpha^p, "
          "multi = m alpha^q (1 + u (1 - facing)); starts at Hammon's constants",
-         f_smithlab_2026},
+         f_smithlab_2026,
+         false,
+         smithlab_2026_ranges()},
     };
     return models;
+}
+
+const ParameterRange* outside_range(const DiffuseModel& m, std::size_t i, double value) {
+    if (i >= m.ranges.size()) return nullptr;
+    const ParameterRange& r = m.ranges[i];
+    return r.lo < value && value < r.hi ? nullptr : &r;
 }
 
 const DiffuseModel& find_diffuse_model(std::string_view name) {

@@ -147,9 +147,19 @@ inline double turquin_scale(const CompensationTable& table, double mu_view, doub
     return turquin_scale(interpolate_E(table, mu_view), F0);
 }
 
-// CSV: `ndf,cos_theta,E`, one row per table point, ndf the spec string (e.g. "ggx(alpha=0.5)"); and `ndf,E_avg`.
-void write_compensation_csv(std::ostream& out, const std::vector<std::pair<std::string, CompensationTable>>& tables);
-void write_compensation_avg_csv(std::ostream& out, const std::vector<std::pair<std::string, CompensationTable>>& tables);
+// Columns beside a CSV's ndf column (one per NDF parameter, say): their names, and each table's cells in the tables'
+// order (empty: no such columns).
+struct SpecColumns {
+    std::vector<std::string> names;
+    std::vector<std::vector<std::string>> cells;
+};
+
+// CSV: `ndf,COLUMNS,cos_theta,E`, one row per table point, ndf the spec string (e.g. "ggx(alpha=0.5)"); and
+// `ndf,COLUMNS,E_avg`. input_error when columns has cells for another number of tables, or rows of another width.
+void write_compensation_csv(std::ostream& out, const std::vector<std::pair<std::string, CompensationTable>>& tables,
+                            const SpecColumns& columns = {});
+void write_compensation_avg_csv(std::ostream& out, const std::vector<std::pair<std::string, CompensationTable>>& tables,
+                                const SpecColumns& columns = {});
 
 // A self-contained C header (C99, or C++) for a renderer: static const float tables of E over (alpha, mu) and
 // E_avg over alpha for one NDF family, and lookups NAME_E(alpha, mu) and NAME_E_avg(alpha) with bilinear

@@ -8,6 +8,8 @@
 // for z > 0 and alpha in (0, 1] none returns NaN.
 #pragma once
 
+#include <cmath>
+#include <cstddef>
 #include <string_view>
 #include <vector>
 
@@ -104,18 +106,33 @@ double smithlab_2026(const Vec3& wi, const Vec3& wo, double alpha, double albedo
 // c the model's free constants (parameters.size() of them; may be null when there are none).
 using DiffuseFn = double (*)(const Vec3& wi, const Vec3& wo, double alpha, double albedo, const double* c);
 
+// The values a free constant can take where the model means what its source says: lo < c < hi (an infinite bound where
+// none applies), and why. A fit whose constant ends at or beyond a bound has left the model's own domain.
+struct ParameterRange {
+    double lo = -INFINITY, hi = INFINITY;
+    std::string_view why;  // one line, e.g. "sigma = s alpha, a slope angle's standard deviation: at most pi/2"
+};
+
 struct DiffuseModel {
     std::string_view name;                     // e.g. "hammon-2017"
     std::vector<std::string_view> parameters;  // names of the free constants; empty for a fixed baseline
     std::vector<double> published;             // their published values (a fit's start, the fixed baseline)
     std::string_view source;                   // citation, one line
     DiffuseFn f;
+    // Its starting constants make a model of its own, measured as a baseline; false where they make another one
+    // (smithlab-2026 starts at hammon-2017).
+    bool own_baseline = true;
+    std::vector<ParameterRange> ranges = {};   // per parameter (empty: none bounded)
 };
+
+// Where constant i of m is at or beyond its range: the range, else nullptr.
+const ParameterRange* outside_range(const DiffuseModel& m, std::size_t i, double value);
 
 // All of them, in a fixed order: lambert, disney, oren-nayar (sigma = s alpha, s free, published 0.5: Hammon's
 // comparison), oren-nayar-sqrt2 (sigma = alpha/sqrt(2)), oren-nayar-qualitative (sigma = 0.5 alpha), fujii
 // (sigma = s alpha, s free, start 1), eon (r = clamp(c alpha, 0, 1), c free, start 1), chan-2018 (retro weight 1),
-// hammon-2017, hammon-2017-linear (rough_a, rough_b, rough_c, smooth, multi free).
+// hammon-2017, hammon-2017-linear (rough_a, rough_b, rough_c, smooth, multi free), smithlab-2026 (Hammon's constants
+// and p, q, u free; no baseline of its own).
 const std::vector<DiffuseModel>& diffuse_models();
 // The model named `name`; input_error naming it and listing the known names otherwise.
 const DiffuseModel& find_diffuse_model(std::string_view name);

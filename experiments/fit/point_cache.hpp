@@ -1,0 +1,40 @@
+// The fitter's cache of traced points (OUT/cache/NDF/...csv): one file per group of points traced together, line 1
+// `key,KEY`, line 2 the header (the points' own columns, then fit::moment_columns), then a row per point: its own
+// fields (its directions, 17 digits) and its moments (read back bit for bit). A file is reused only when it is whole,
+// its key is the one asked for (all that defines the trace: version, NDF, material, set, walks, seed, stream, points)
+// and every point's fields are the ones asked for: a changed scene or NDF never reuses stale data.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "smithlab/any_ndf.hpp"
+#include "smithlab/fit/dataset.hpp"
+
+namespace smithlab::fitrun {
+
+struct CacheFile {
+    std::filesystem::path path;
+    std::string key;
+    std::vector<std::string> columns;              // the points' own columns, e.g. theta_i, theta_o, phi
+    std::vector<std::vector<std::string>> points;  // per point: its fields under those columns
+    std::int64_t walks = 0;                        // per point
+};
+
+// "smithlab VERSION|ndf=NDF KEY|material=...|set=SET|walks=N|seed=S|stream=FIRST STREAM|points=N".
+std::string cache_key(const AnyNdf& ndf, const std::string& material, const std::string& set, std::int64_t walks,
+                      std::uint64_t seed, std::uint64_t stream, std::size_t points);
+
+// The moments of the file's points, when the file is whole and is this one (key, fields, walks); nullopt otherwise.
+std::optional<std::vector<fit::SplitMoments>> read_cache(const CacheFile& file);
+
+// Writes the file whole (output/output_file.hpp: a temporary renamed into place), creating its directory.
+void write_cache(const CacheFile& file, const std::vector<fit::SplitMoments>& moments);
+
+// An NDF label as a directory name: letters, digits, '.', '=' and '-' kept, anything else '_'.
+std::string cache_directory_name(const std::string& label);
+
+}  // namespace smithlab::fitrun
