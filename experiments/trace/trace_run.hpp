@@ -31,7 +31,4 @@ struct RunSummary {
 RunSummary run_scene(const TraceScene& scene, const std::string& source, const NdfRegistry& registry,
                      const std::filesystem::path& out, unsigned threads);
 
-// The scene as TOML that parse_trace_scene reads back to the same cells (meta.json keeps it: the run's recipe).
-std::string format_trace_scene(const TraceScene& scene);
-
 }  // namespace smithlab::trace
