@@ -63,7 +63,8 @@ Traffic run_jobs(Plan& plan, unsigned threads, Progress&& progress) {
     auto trace_here = [&] { detail::trace_blocks_here(board, cache); };
     if (mpi::size() == 1) {
         // One process: as many threads as there are blocks, at most `threads`, this one among them.
-        const std::uint64_t n = std::min<std::uint64_t>(util::thread_count(threads), std::max<std::uint64_t>(board.blocks_in_all(), 1));
+        const std::uint64_t n =
+            std::min<std::uint64_t>(util::thread_count(threads), std::max<std::uint64_t>(board.blocks_in_all(), 1));
         std::vector<std::jthread> pool;
         for (std::uint64_t t = 1; t < n; ++t) pool.emplace_back(trace_here);
         trace_here();

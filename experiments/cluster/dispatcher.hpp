@@ -63,7 +63,8 @@ void serve_ranks(Board& board, Ledger& ledger) {
             mpi::send(m->from, tag_work, reply);  // before finishing jobs: the rank goes on at once
             traffic.messages += 2;
             traffic.bytes += static_cast<std::int64_t>(m->bytes.size() + reply.size());
-            traffic.serving_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - served_from).count();
+            traffic.serving_seconds +=
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - served_from).count();
             board.finish_completed();
         }
     } catch (...) {

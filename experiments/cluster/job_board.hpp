@@ -100,7 +100,8 @@ private:
     // finish() once the lock is released.
     void deliver(std::size_t j, std::uint64_t b, Partial&& p, std::vector<std::pair<std::size_t, Partial>>& done) {
         const auto it = open_.find(j);
-        if (it == open_.end() || b >= blocks_[j]) throw std::runtime_error("cluster: a block that was not handed out came back");
+        if (it == open_.end() || b >= blocks_[j])
+            throw std::runtime_error("cluster: a block that was not handed out came back");
         merged_ += it->second.add(b, std::move(p), [&](Partial& t, const Partial& q) { plan_.merge(t, q); });
         if (it->second.merged() == blocks_[j]) {
             done.emplace_back(j, std::move(it->second.total()));

@@ -19,7 +19,8 @@ public:
     void update(int r, const Chunk& back, const Chunk& out) {
         const std::lock_guard guard(lock_);
         std::vector<Chunk>& h = held_[static_cast<std::size_t>(r)];
-        if (back.count > 0) std::erase_if(h, [&](const Chunk& d) { return d.job == back.job && d.first == back.first; });
+        if (back.count > 0)
+            std::erase_if(h, [&](const Chunk& d) { return d.job == back.job && d.first == back.first; });
         if (out.count > 0) h.push_back(out);
     }
 

@@ -18,7 +18,8 @@ namespace smithlab::cluster::detail {
 // The partials of chunk c's blocks, in block order, traced on `threads` threads. A block that throws is named on
 // stderr (this rank's message: rank 0 sees only the job end) and rethrown.
 template <class Plan>
-std::vector<typename Plan::Partial> trace_chunk(const Plan& plan, RunnerCache<Plan>& cache, const Chunk& c, unsigned threads) {
+std::vector<typename Plan::Partial> trace_chunk(const Plan& plan, RunnerCache<Plan>& cache, const Chunk& c,
+                                                unsigned threads) {
     std::vector<typename Plan::Partial> parts(c.count);
     try {
         const auto run = cache.get(c.job);

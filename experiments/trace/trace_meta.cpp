@@ -38,8 +38,7 @@ std::string format_trace_scene(const TraceScene& s) {
     for (std::size_t i = 0; i < s.materials.size(); ++i) t << (i ? ", " : "") << toml_string(s.materials[i]);
     t << "]\n\n[walks]\nn = " << s.walks << "\nseed = " << s.seed << "\nmax_order = " << s.max_order
       << "\ndownward = " << toml_string(s.downward) << "\nhit_normal = " << toml_string(s.hit_normal)
-      << "\n\n[grid]\ntheta_i = " << toml_list(s.theta_i)
-      << "\nphi_i = " << toml_list(s.phi_i) << "\n";
+      << "\n\n[grid]\ntheta_i = " << toml_list(s.theta_i) << "\nphi_i = " << toml_list(s.phi_i) << "\n";
     for (const SceneNdf& n : s.ndfs) t << "\n[[ndf]]\nspec = " << toml_string(n.spec) << "\n";
     if (!s.brdf.empty()) t << "\n[brdf]\ntheta_bins = " << s.brdf.n_theta << "\nphi_bins = " << s.brdf.n_phi << "\n";
     return t.str();

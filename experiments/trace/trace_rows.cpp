@@ -21,11 +21,11 @@ const char* const component_name[] = {"specular", "diffuse", "all"};
 const char* const order_name[] = {"1", "2", "3", "4+", "all"};
 constexpr int order_columns = walk::order_bins + 1;  // 1, 2, 3, 4+, all
 
-const std::vector<std::string> albedo_columns = {"ndf", "material", "theta_i", "phi_i", "hemisphere", "order",
-                                                 "component", "albedo", "stderr", "walks"};
-const std::vector<std::string> brdf_columns = {"ndf", "material", "theta_i", "phi_i", "hemisphere", "theta_o_lo",
-                                               "theta_o_hi", "phi_o_lo", "phi_o_hi", "order", "component", "value",
-                                               "stderr", "walks"};
+const std::vector<std::string> albedo_columns = {"ndf",   "material",  "theta_i", "phi_i",  "hemisphere",
+                                                 "order", "component", "albedo",  "stderr", "walks"};
+const std::vector<std::string> brdf_columns = {"ndf",        "material",   "theta_i",  "phi_i",    "hemisphere",
+                                               "theta_o_lo", "theta_o_hi", "phi_o_lo", "phi_o_hi", "order",
+                                               "component",  "value",      "stderr",   "walks"};
 
 // One CSV record, without its line end.
 std::string record(const std::vector<std::string>& fields) {
@@ -50,7 +50,8 @@ std::vector<std::string> albedo_rows(const CellLabel& l, const walk::AlbedoTally
     for (int h = 0; h < 3; ++h)
         for (int o = 0; o < order_columns; ++o)
             for (int c = 0; c < 3; ++c) {
-                const walk::Estimate e = a.albedo(static_cast<walk::Hemisphere>(h), order_of(o), static_cast<walk::Component>(c));
+                const walk::Estimate e =
+                    a.albedo(static_cast<walk::Hemisphere>(h), order_of(o), static_cast<walk::Component>(c));
                 rows.push_back(record({l.ndf, l.material, l.theta_i, l.phi_i, hemisphere_name[h], order_name[o],
                                        component_name[c], format_g17(e.value), format_g17(e.stderr_), l.walks}));
             }
@@ -81,8 +82,10 @@ std::size_t first_field_end(const std::string& row) {
     if (row.empty() || row[0] != '"') return row.find(',');
     for (std::size_t i = 1; i < row.size(); ++i)
         if (row[i] == '"') {
-            if (i + 1 < row.size() && row[i + 1] == '"') ++i;
-            else return i + 1;
+            if (i + 1 < row.size() && row[i + 1] == '"')
+                ++i;
+            else
+                return i + 1;
         }
     return std::string::npos;
 }
@@ -131,7 +134,8 @@ std::size_t brdf_row_count(const walk::BrdfBins& bins, bool transmits) {
     return (transmits ? 2u : 1u) * static_cast<std::size_t>(bins.n_theta) * bins.n_phi * order_columns * 3;
 }
 
-void write_tables(const std::filesystem::path& dir, std::span<const AnyNdf> ndfs, std::span<const CellRows> rows, bool brdf) {
+void write_tables(const std::filesystem::path& dir, std::span<const AnyNdf> ndfs, std::span<const CellRows> rows,
+                  bool brdf) {
     std::vector<std::string> taken = albedo_columns;
     taken.insert(taken.end(), brdf_columns.begin(), brdf_columns.end());
     const output::NdfColumns columns = output::ndf_columns(ndfs, taken);
@@ -146,7 +150,8 @@ void write_tables(const std::filesystem::path& dir, std::span<const AnyNdf> ndfs
         if (brdf_file) write_rows(*brdf_file, rows[i].brdf, params);
     }
     albedo.close();
-    if (!albedo || (brdf_file && !brdf_file->flush())) throw std::runtime_error("trace: could not write the outputs (disk full?)");
+    if (!albedo || (brdf_file && !brdf_file->flush()))
+        throw std::runtime_error("trace: could not write the outputs (disk full?)");
 }
 
 }  // namespace smithlab::trace

@@ -46,6 +46,7 @@ std::size_t brdf_row_count(const walk::BrdfBins& bins, bool transmits);
 
 // albedo.csv, and brdf.csv when `brdf`, in dir: the header, then each cell's rows in cell order, the parameter
 // columns of ndfs[i] (cell i's NDF) after the ndf column. Throws when a file cannot be written whole.
-void write_tables(const std::filesystem::path& dir, std::span<const AnyNdf> ndfs, std::span<const CellRows> rows, bool brdf);
+void write_tables(const std::filesystem::path& dir, std::span<const AnyNdf> ndfs, std::span<const CellRows> rows,
+                  bool brdf);
 
 }  // namespace smithlab::trace

@@ -64,8 +64,9 @@ std::vector<Prepared> prepare_cells(const std::vector<TraceCell>& cells, const s
         const AnyNdf& ndf = ndfs.at(c.ndf);
         const walk::Material& m = materials.at(c.material);
         if (c.theta_i > 90.0 && !walk::transmits(m))
-            throw input_error(source + ": theta_i = " + format_shortest(c.theta_i) + " is light from below the surface, which '" +
-                              walk::format_material(m) + "' facets never see (only a dielectric takes it; theta_i < 90 for the others)");
+            throw input_error(source + ": theta_i = " + format_shortest(c.theta_i) +
+                              " is light from below the surface, which '" + walk::format_material(m) +
+                              "' facets never see (only a dielectric takes it; theta_i < 90 for the others)");
         prepared.push_back({c, ndf, m, cell_key(w, c, ndf, m)});
     }
     return prepared;
@@ -118,8 +119,9 @@ std::vector<std::optional<CellRows>> reuse_cells(const fs::path& out, const std:
 // The progress line: "trace: 3 of 48 cells done on 2 ranks, 12% of the walks".
 std::string progress_text(std::int64_t traced, std::int64_t to_trace, std::uint64_t merged, std::uint64_t all) {
     char line[128];
-    std::snprintf(line, sizeof line, "trace: %lld of %lld cells done%s, %.0f%% of the walks", static_cast<long long>(traced),
-                  static_cast<long long>(to_trace), mpi::size() > 1 ? (" on " + std::to_string(mpi::size()) + " ranks").c_str() : "",
+    std::snprintf(line, sizeof line, "trace: %lld of %lld cells done%s, %.0f%% of the walks",
+                  static_cast<long long>(traced), static_cast<long long>(to_trace),
+                  mpi::size() > 1 ? (" on " + std::to_string(mpi::size()) + " ranks").c_str() : "",
                   100.0 * static_cast<double>(merged) / static_cast<double>(all));
     return line;
 }
@@ -192,7 +194,8 @@ RunSummary run_scene(const TraceScene& s, const std::string& source, const NdfRe
         done = reuse_cells(out, prepared, s.brdf, jobs);
         for (const auto& d : done) sum.reused += d.has_value();
     }
-    const cluster::Traffic traffic = trace_cells(std::move(jobs), opts, prepared, s.walks, out, done, threads, sum.traced);
+    const cluster::Traffic traffic =
+        trace_cells(std::move(jobs), opts, prepared, s.walks, out, done, threads, sum.traced);
     if (mpi::rank() != 0) return sum;
 
     RunMeta run = write_outputs(stage->path(), prepared, std::move(done), !s.brdf.empty(), sum);
