@@ -314,8 +314,8 @@ TEST_CASE("a killed trace resumes from its last finished cell, and its files are
     CHECK(slurp(out / "albedo.csv") == slurp(d / "whole" / "albedo.csv"));
 }
 
-TEST_CASE("trace: a column per NDF parameter after the ndf column, empty where the NDF has no such parameter; the "
-          "cell files hold the rows without them",
+TEST_CASE("trace: a column per NDF parameter after the ndf column, empty where the NDF has no such parameter, and "
+          "the cell files hold the rows without them",
           "[outputs][walk]") {
     const fs::path d = scratch() / "trace_ndf_columns";
     fs::remove_all(d);
