@@ -3,8 +3,10 @@
 // parameter, and their refusals; a measured NDF from a CSV file (tabulated) against the analytic NDF it samples, keyed
 // by its contents, and its refusals.
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <map>
 #include <numbers>
 #include <smithlab/smithlab.hpp>
@@ -48,27 +50,27 @@ struct Albedo {
     double value, stderr_;
 };
 
-// albedo.csv of a trace: (ndf, material, hemisphere, order, component) -> albedo, read from the end of each row (the
-// ndf spec may be quoted and hold commas).
+// albedo.csv of a trace: (ndf, material, hemisphere, order, component) -> albedo, its columns found by name (the
+// ndf spec may be quoted and hold commas; a column per NDF parameter follows it).
 std::map<std::string, Albedo> albedos(const fs::path& csv) {
     std::map<std::string, Albedo> out;
-    std::istringstream in(slurp(csv));
-    std::string line;
-    std::getline(in, line);
-    while (std::getline(in, line)) {
-        std::vector<std::string> f;
-        std::string field_text;
-        bool quoted = false;
-        for (std::size_t i = 0; i < line.size(); ++i) {
-            const char c = line[i];
-            if (c == '"' && quoted && i + 1 < line.size() && line[i + 1] == '"') field_text += '"', ++i;  // RFC 4180 ""
-            else if (c == '"') quoted = !quoted;
-            else if (c == ',' && !quoted) f.push_back(field_text), field_text.clear();
-            else field_text += c;
-        }
-        f.push_back(field_text);
-        REQUIRE(f.size() == 10);
-        out[f[0] + "|" + f[1] + "|" + f[4] + "|" + f[5] + "|" + f[6]] = {std::stod(f[7]), std::stod(f[8])};
+    std::ifstream in(csv);
+    const std::vector<smithlab::CsvRecord> records = smithlab::read_csv(in);
+    REQUIRE(!records.empty());
+    const std::vector<std::string>& names = records[0].fields;
+    auto column = [&](const std::string& name) {
+        const auto at = std::find(names.begin(), names.end(), name);
+        REQUIRE(at != names.end());
+        return static_cast<std::size_t>(at - names.begin());
+    };
+    const std::size_t ndf = column("ndf"), material = column("material"), hemisphere = column("hemisphere"),
+                      order = column("order"), component = column("component"), albedo = column("albedo"),
+                      stderr_ = column("stderr");
+    for (std::size_t i = 1; i < records.size(); ++i) {
+        const std::vector<std::string>& f = records[i].fields;
+        REQUIRE(f.size() == names.size());
+        out[f[ndf] + "|" + f[material] + "|" + f[hemisphere] + "|" + f[order] + "|" + f[component]] = {
+            std::stod(f[albedo]), std::stod(f[stderr_])};
     }
     return out;
 }

@@ -330,8 +330,8 @@ TEST_CASE("trace: albedo.csv and meta.json, the same bits for any --threads, and
         const Run r = run("trace " + cell + " --threads " + std::to_string(threads) + " --output '" + out.string() + "'");
         REQUIRE(r.rc == 0);
         const std::string csv = slurp(out / "albedo.csv");
-        CHECK(csv.rfind("ndf,material,theta_i,phi_i,hemisphere,order,component,albedo,stderr,walks\n", 0) == 0);
-        CHECK(csv.find("\"gtr(alpha=0.4, gamma=1.5)\",lambert(albedo=0.8),60,0,all,all,all,") != std::string::npos);
+        CHECK(csv.rfind("ndf,alpha,gamma,material,theta_i,phi_i,hemisphere,order,component,albedo,stderr,walks\n", 0) == 0);
+        CHECK(csv.find("\"gtr(alpha=0.4, gamma=1.5)\",0.4,1.5,lambert(albedo=0.8),60,0,all,all,all,") != std::string::npos);
         CHECK(slurp(out / "meta.json").find("\"walks\": 20000") != std::string::npos);
         if (first.empty()) first = csv;
         CHECK(csv == first);
@@ -379,6 +379,17 @@ std::vector<std::vector<std::string>> records(const fs::path& p) {
     return out;
 }
 
+// The records after the header, each as its fields by column name (trace's tables have a column per NDF parameter
+// after the ndf column: the others' places depend on the scene's NDFs).
+std::vector<std::map<std::string, std::string>> by_name(const std::vector<std::vector<std::string>>& records) {
+    std::vector<std::map<std::string, std::string>> out;
+    for (std::size_t i = 1; i < records.size(); ++i) {
+        std::map<std::string, std::string>& row = out.emplace_back();
+        for (std::size_t k = 0; k < records[0].size() && k < records[i].size(); ++k) row[records[0][k]] = records[i][k];
+    }
+    return out;
+}
+
 const char* trace_scene_text = R"toml(title = "a small sweep"
 materials = ["mirror", "lambert(albedo=0.7)"]
 [walks]
@@ -420,11 +431,13 @@ TEST_CASE("trace: a scene file -- albedo.csv and brdf.csv for every cell, the sa
     CHECK(albedo.back()[0] == "beckmann(alpha=0.5)");
     // Every walk's weight lands in one bin: the bins' value x solid angle sum to the cell's reflection albedo.
     std::map<std::string, double> reflected, binned;
-    for (const auto& f : albedo)
-        if (f[4] == "reflection" && f[5] == "all" && f[6] == "all") reflected[f[0] + f[1] + f[2]] = std::stod(f[7]);
+    for (const auto& f : by_name(albedo))
+        if (f.at("hemisphere") == "reflection" && f.at("order") == "all" && f.at("component") == "all")
+            reflected[f.at("ndf") + f.at("material") + f.at("theta_i")] = std::stod(f.at("albedo"));
     const double omega = 2.0 * M_PI / (4 * 6);
-    for (std::size_t i = 1; i < brdf.size(); ++i)
-        if (brdf[i][9] == "all" && brdf[i][10] == "all") binned[brdf[i][0] + brdf[i][1] + brdf[i][2]] += std::stod(brdf[i][11]) * omega;
+    for (const auto& f : by_name(brdf))
+        if (f.at("order") == "all" && f.at("component") == "all")
+            binned[f.at("ndf") + f.at("material") + f.at("theta_i")] += std::stod(f.at("value")) * omega;
     REQUIRE(reflected.size() == 8);
     for (const auto& [cell, a] : reflected) {
         INFO(cell);
@@ -436,8 +449,8 @@ TEST_CASE("trace: a scene file -- albedo.csv and brdf.csv for every cell, the sa
                             "[[ndf]]\nspec = \"ggx(alpha=0.4)\"\n[brdf]\ntheta_bins = 2\nphi_bins = 3\n");
     REQUIRE(run(trace_args(d / "glass.toml", d / "glass", 1)).rc == 0);
     CHECK(records(d / "glass" / "brdf.csv").size() == 1 + 2 * 2 * 3 * 5 * 3);
-    for (const auto& f : records(d / "glass" / "albedo.csv"))
-        if (f[4] == "all" && f[5] == "all" && f[6] == "all") CHECK(f[7] == "1");
+    for (const auto& f : by_name(records(d / "glass" / "albedo.csv")))
+        if (f.at("hemisphere") == "all" && f.at("order") == "all" && f.at("component") == "all") CHECK(f.at("albedo") == "1");
 
     // The same bits for 3 threads, and a rerun reuses every cell.
     REQUIRE(run(trace_args(d / "scene.toml", d / "b", 3)).rc == 0);
@@ -471,15 +484,15 @@ TEST_CASE("trace: max_order = 1 ends every walk at its first hit -- fewer bounce
     // Hammon's hit normals (D cos facing the ray) instead of visible normals: another law, every walk still leaves.
     write(d / "hammon.toml", base + "[walks]\nn = 4000\nhit_normal = \"hammon\"\n");
     REQUIRE(run(trace_args(d / "hammon.toml", d / "hammon", 1)).rc == 0);
-    for (const auto& f : records(d / "hammon" / "albedo.csv"))
-        if (f[4] == "all" && f[5] == "all" && f[6] == "all") CHECK(f[7] == "1");
+    for (const auto& f : by_name(records(d / "hammon" / "albedo.csv")))
+        if (f.at("hemisphere") == "all" && f.at("order") == "all" && f.at("component") == "all") CHECK(f.at("albedo") == "1");
     CHECK_THAT(slurp(d / "hammon" / "meta.json"), Catch::Contains("\"hit_normal\": \"hammon\""));
     CHECK(slurp(d / "hammon" / "albedo.csv") != slurp(d / "all" / "albedo.csv"));
     CHECK(run("trace --ndf 'ggx(alpha=0.5)' --hit-normal sideways --output '" + (d / "never").string() + "'").rc == 2);
     CHECK(bounces("one") <= 4000);
     CHECK(bounces("all") > 4000 + 4000 / 5);  // lambert(1) at alpha 0.8: ~1.6 hits per walk
-    for (const auto& f : records(d / "one" / "albedo.csv"))
-        if (f[5] == "2" || f[5] == "3" || f[5] == "4+") CHECK(f[7] == "0");
+    for (const auto& f : by_name(records(d / "one" / "albedo.csv")))
+        if (f.at("order") == "2" || f.at("order") == "3" || f.at("order") == "4+") CHECK(f.at("albedo") == "0");
 }
 
 TEST_CASE("trace: the default sweep, and a malformed scene exits 2 naming the key, with nothing written", "[cli][walk][scene]") {
@@ -494,8 +507,9 @@ TEST_CASE("trace: the default sweep, and a malformed scene exits 2 naming the ke
     const Run r = run(trace_args(d / "default.toml", d / "out", 2));
     REQUIRE(r.rc == 0);
     CHECK_THAT(r.out, Catch::Contains("cells 48\n"));
-    for (const auto& f : records(d / "out" / "albedo.csv"))
-        if (f[1] == "mirror" && f[4] == "all" && f[5] == "all" && f[6] == "all") CHECK(f[7] == "1");
+    for (const auto& f : by_name(records(d / "out" / "albedo.csv")))
+        if (f.at("material") == "mirror" && f.at("hemisphere") == "all" && f.at("order") == "all" && f.at("component") == "all")
+            CHECK(f.at("albedo") == "1");
 
     struct Bad {
         std::string text, named;

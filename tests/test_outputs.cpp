@@ -14,6 +14,8 @@
 #include <thread>
 #include <vector>
 
+#include <smithlab/csv.hpp>
+
 #include "cli_run.hpp"
 
 using namespace smithlab_test;
@@ -310,4 +312,49 @@ TEST_CASE("a killed trace resumes from its last finished cell, and its files are
     REQUIRE(r.rc == 0);
     CHECK_THAT(r.out, Catch::Contains("traced 1\nreused 19\n"));
     CHECK(slurp(out / "albedo.csv") == slurp(d / "whole" / "albedo.csv"));
+}
+
+TEST_CASE("trace: a column per NDF parameter after the ndf column, empty where the NDF has no such parameter, and "
+          "the cell files hold the rows without them",
+          "[outputs][walk]") {
+    const fs::path d = scratch() / "trace_ndf_columns";
+    fs::remove_all(d);
+    fs::create_directories(d);
+    write(d / "scene.toml", "materials = [\"mirror\"]\n[walks]\nn = 500\n[grid]\nalpha = [0.3]\ntheta_i = [30]\n"
+                            "[[ndf]]\nfamily = \"ggx\"\n[[ndf]]\nfamily = \"gtr\"\ngamma = [1.5]\n[brdf]\ntheta_bins = 1\nphi_bins = 2\n");
+    const std::string cmd = "trace '" + (d / "scene.toml").string() + "' --threads 2 --output ";
+    REQUIRE(run(cmd + "'" + (d / "out").string() + "'").rc == 0);
+    const std::string albedo = slurp(d / "out" / "albedo.csv"), brdf = slurp(d / "out" / "brdf.csv");
+    CHECK(albedo.rfind("ndf,alpha,gamma,material,theta_i,phi_i,hemisphere,order,component,albedo,stderr,walks\n", 0) == 0);
+    CHECK(brdf.rfind("ndf,alpha,gamma,material,theta_i,phi_i,hemisphere,theta_o_lo,theta_o_hi,phi_o_lo,phi_o_hi,order,"
+                     "component,value,stderr,walks\n", 0) == 0);
+    CHECK_THAT(albedo, Catch::Contains("\nggx(alpha=0.3),0.3,,mirror,30,0,reflection,1,specular,"));
+    CHECK_THAT(albedo, Catch::Contains("\n\"gtr(alpha=0.3, gamma=1.5)\",0.3,1.5,mirror,30,0,all,all,all,1,"));
+    CHECK_THAT(brdf, Catch::Contains("\n\"gtr(alpha=0.3, gamma=1.5)\",0.3,1.5,mirror,30,0,reflection,0,"));
+    // Every row as long as the header; without the two parameter fields, the rows are the cell files' "a," lines.
+    std::string cell_rows;
+    for (const char* name : {"cell-000000.csv", "cell-000001.csv"}) {
+        std::istringstream cell(slurp(d / "out" / "cells" / name));
+        for (std::string line; std::getline(cell, line);)
+            if (line.rfind("a,", 0) == 0) cell_rows += line.substr(2) + "\n";
+    }
+    std::istringstream in(albedo);
+    const std::vector<smithlab::CsvRecord> records = smithlab::read_csv(in);
+    REQUIRE(records.size() == 1 + 2 * 45);
+    std::string without_params;
+    for (std::size_t i = 1; i < records.size(); ++i) {
+        CHECK(records[i].fields.size() == records[0].fields.size());
+        std::vector<std::string> f = records[i].fields;
+        f.erase(f.begin() + 1, f.begin() + 3);
+        std::ostringstream row;
+        smithlab::write_csv_record(row, f);
+        without_params += row.str();
+    }
+    CHECK(without_params == cell_rows);
+    // A rerun reads every cell back from its file: the same bytes.
+    const Run again = run(cmd + "'" + (d / "out").string() + "'");
+    REQUIRE(again.rc == 0);
+    CHECK_THAT(again.out, Catch::Contains("traced 0\nreused 2\n"));
+    CHECK(slurp(d / "out" / "albedo.csv") == albedo);
+    CHECK(slurp(d / "out" / "brdf.csv") == brdf);
 }

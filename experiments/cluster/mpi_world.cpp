@@ -58,8 +58,8 @@ void init(int& argc, char**& argv) {
 
 namespace {
 // A communication that failed -- a rank that died with a message on its way: said, then the process ends as on
-// mpirun's SIGTERM (the notes printed, the temporaries removed: output/signal_cleanup.hpp). Without it, the library's
-// default handler aborted rank 0 before mpirun's signal came, and the note of what each rank held was never printed.
+// mpirun's SIGTERM (the notes printed, the temporaries removed: output/signal_cleanup.hpp). The library's default
+// handler would abort rank 0 before mpirun's signal comes, and the note of what each rank held would never be printed.
 void check(int rc, const char* call) {
     if (rc == MPI_SUCCESS) return;
     char text[MPI_MAX_ERROR_STRING];

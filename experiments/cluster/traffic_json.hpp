@@ -1,9 +1,9 @@
-// meta.json's "mpi" object of a run on several ranks: what rank 0 saw (cluster/block_jobs.hpp, Traffic).
+// meta.json's "mpi" object of a run on several ranks: what rank 0 saw (cluster/traffic.hpp).
 #pragma once
 
 #include <nlohmann/json.hpp>
 
-#include "cluster/block_jobs.hpp"
+#include "cluster/traffic.hpp"
 #include "cluster/mpi_world.hpp"
 
 namespace smithlab::cluster {

@@ -1,9 +1,10 @@
 // Running a trace scene into an output directory, resumably.
 //
-// Every finished cell is written at once, atomically, to OUT/cells/cell-NNNNNN.csv: its rows of albedo.csv and
-// brdf.csv exactly as they will appear there (17 digits: they round-trip), its bounces, and a key line naming all
-// that defines it (version, NDF, material, direction, walks, seed, cell index, max_order, downward, brdf bins; not
-// the thread count, which changes no bit). A run first reads the cells whose key matches and traces only the rest,
+// Every finished cell is written at once, atomically, to OUT/cells/cell-NNNNNN.csv (trace/cell_file.hpp): its rows of
+// albedo.csv and brdf.csv as they will appear there but for the NDF parameter columns (trace/trace_rows.hpp; 17
+// digits: they round-trip), its bounces, and a key line naming all that defines it (version, NDF, material,
+// direction, walks, seed, cell index, max_order, downward, hit_normal, brdf bins; not the thread count, which changes
+// no bit). A run first reads the cells whose key matches and traces only the rest,
 // so a killed run resumes from its last finished cell, and the same scene run again traces nothing. A cell file
 // that does not parse, or whose key differs, is traced again. When every cell is there, albedo.csv, brdf.csv (when
 // the scene asks) and meta.json are assembled from the cell files and published together (StagedDirectory): the
@@ -30,8 +31,5 @@ struct RunSummary {
 // written: a bad one is an input_error naming it, and OUT is left as it was.
 RunSummary run_scene(const TraceScene& scene, const std::string& source, const NdfRegistry& registry,
                      const std::filesystem::path& out, unsigned threads);
-
-// The scene as TOML that parse_trace_scene reads back to the same cells (meta.json keeps it: the run's recipe).
-std::string format_trace_scene(const TraceScene& scene);
 
 }  // namespace smithlab::trace

@@ -38,6 +38,18 @@ struct TraceScene {
     walk::BrdfBins brdf;                 // empty: no brdf.csv
 };
 
+// What every cell of a scene shares and its bits depend on: the [walks] and [brdf] settings.
+struct CellSettings {
+    std::int64_t walks = 0;
+    std::uint64_t seed = 1;
+    int max_order = 0;
+    std::string downward, hit_normal;
+    walk::BrdfBins brdf;
+};
+inline CellSettings cell_settings(const TraceScene& s) {
+    return {s.walks, s.seed, s.max_order, s.downward, s.hit_normal, s.brdf};
+}
+
 // One cell of a scene: where it stands in the sweep and what it traces.
 struct TraceCell {
     std::uint64_t index;

@@ -1,0 +1,93 @@
+#include "trace/cell_file.hpp"
+
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "output/output_file.hpp"
+#include "smithlab/csv.hpp"
+
+namespace smithlab::trace {
+
+namespace fs = std::filesystem;
+
+fs::path cell_path(const fs::path& out, std::uint64_t index) {
+    char name[32];
+    std::snprintf(name, sizeof name, "cell-%06llu.csv", static_cast<unsigned long long>(index));
+    return out / "cells" / name;
+}
+
+std::string cell_key(const CellSettings& w, const TraceCell& c, const AnyNdf& ndf, const walk::Material& m) {
+    std::ostringstream k;
+    k << "smithlab " << SMITHLAB_VERSION << "|ndf=" << ndf.key() << "|material=" << walk::format_material(m)
+      << "|theta_i=" << format_g17(c.theta_i) << "|phi_i=" << format_g17(c.phi_i) << "|walks=" << w.walks
+      << "|seed=" << w.seed << "|cell=" << c.index << "|max_order=" << w.max_order << "|downward=" << w.downward
+      << "|hit_normal=" << w.hit_normal << "|brdf=" << w.brdf.n_theta << "x" << w.brdf.n_phi;
+    return k.str();
+}
+
+void write_cell(const fs::path& path, const std::string& key, const CellRows& rows) {
+    output::write_output(output::resolve_output(path.string()), [&](std::ostream& out) {
+        out << "key," << csv_field(key) << "\n"
+            << "bounces," << rows.bounces << "\n"
+            << "capped," << rows.capped << "\n"
+            << "total," << format_g17(rows.total.value) << "," << format_g17(rows.total.stderr_) << "\n";
+        for (const std::string& a : rows.albedo) out << "a," << a << "\n";
+        for (const std::string& b : rows.brdf) out << "b," << b << "\n";
+    });
+}
+
+namespace {
+
+// A line "TAG,INTEGER" into v.
+bool read_integer(std::istream& in, const char* tag, std::int64_t& v) {
+    std::string line;
+    if (!std::getline(in, line) || line.rfind(std::string(tag) + ",", 0) != 0) return false;
+    char* end = nullptr;
+    v = std::strtoll(line.c_str() + std::strlen(tag) + 1, &end, 10);
+    return *end == '\0';
+}
+
+// The line "total,VALUE,STDERR" into e.
+bool read_total(std::istream& in, walk::Estimate& e) {
+    std::string line;
+    if (!std::getline(in, line) || line.rfind("total,", 0) != 0) return false;
+    char* end = nullptr;
+    e.value = std::strtod(line.c_str() + 6, &end);
+    if (*end != ',') return false;
+    e.stderr_ = std::strtod(end + 1, &end);
+    return *end == '\0';
+}
+
+// The "a," and "b," lines to the end; false at any other line.
+bool read_rows(std::istream& in, CellRows& rows) {
+    for (std::string line; std::getline(in, line);) {
+        if (line.rfind("a,", 0) == 0)
+            rows.albedo.push_back(line.substr(2));
+        else if (line.rfind("b,", 0) == 0)
+            rows.brdf.push_back(line.substr(2));
+        else
+            return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+std::optional<CellRows> read_cell(const fs::path& path, const std::string& key, std::size_t albedo_rows,
+                                  std::size_t brdf_rows) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return std::nullopt;
+    std::string line;
+    if (!std::getline(in, line) || line != "key," + csv_field(key)) return std::nullopt;
+    CellRows rows;
+    if (!read_integer(in, "bounces", rows.bounces) || !read_integer(in, "capped", rows.capped) ||
+        !read_total(in, rows.total) || !read_rows(in, rows))
+        return std::nullopt;
+    if (rows.albedo.size() != albedo_rows || rows.brdf.size() != brdf_rows) return std::nullopt;
+    return rows;
+}
+
+}  // namespace smithlab::trace
