@@ -85,7 +85,9 @@ void register_all() {
     for (int g = 0; g <= 4; ++g) {
         const std::string gs = std::to_string(g);
         benchmark::RegisterBenchmark(("G1/gtr" + gs + "/mu/plain").c_str(), [&p, g](B& s) {
-            each(s, [&](std::size_t i) { return 1.0 / (1.0 + smithlab_plain::Lambda_gtr_closed(p.alpha[i], g, p.mu[i])); });
+            each(s, [&](std::size_t i) {
+                return 1.0 / (1.0 + smithlab_plain::Lambda_gtr_closed(p.alpha[i], g, p.mu[i]));
+            });
         });
         benchmark::RegisterBenchmark(("G1/gtr" + gs + "/mu/after").c_str(), [&p, g](B& s) {
             each(s, [&](std::size_t i) { return smithlab::G1_gtr_closed(p.alpha[i], g, p.mu[i]); });
@@ -134,8 +136,8 @@ void register_all() {
     // Through the variant interface (the report's route): one NDF, gtr(0.3, 1.5), mu cycling over the points.
     benchmark::RegisterBenchmark("Lambda/dimov-spline/variant/gtr(0.3,1.5)", [&p](B& s) {
         const auto variants = smithlab::builtin_variants();
-        const smithlab::LambdaOfMu Lambda_of =
-            smithlab::prepare(variants.at("dimov-spline"), smithlab::builtin_registry().make("gtr(alpha=0.3, gamma=1.5)"));
+        const smithlab::LambdaOfMu Lambda_of = smithlab::prepare(
+            variants.at("dimov-spline"), smithlab::builtin_registry().make("gtr(alpha=0.3, gamma=1.5)"));
         each(s, [&](std::size_t i) { return Lambda_of(p.mu[i]); });
     });
 }

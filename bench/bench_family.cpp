@@ -65,7 +65,8 @@ const Stream& scattered_stream() {
 static_assert((n_points & (n_points - 1)) == 0);
 template <class F>
 void run(benchmark::State& state, const Stream& s, const F& G1) {
-    if (s.mu.size() != static_cast<std::size_t>(n_points)) state.SkipWithError("a stream of other than n_points points");
+    if (s.mu.size() != static_cast<std::size_t>(n_points))
+        state.SkipWithError("a stream of other than n_points points");
     std::size_t i = 0;
     for (auto _ : state) {
         benchmark::DoNotOptimize(G1(i & (n_points - 1)));
@@ -97,9 +98,8 @@ void run_stream(benchmark::State& state, const Stream& s, const F& G1_stream) {
         benchmark::ClobberMemory();
     }
     state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(out.size()));
-    state.counters["s_per_G1"] = benchmark::Counter(static_cast<double>(out.size()),
-                                                    benchmark::Counter::kIsIterationInvariantRate |
-                                                        benchmark::Counter::kInvert);
+    state.counters["s_per_G1"] = benchmark::Counter(
+        static_cast<double>(out.size()), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 void unchecked(const Stream& s, std::vector<double>& out) {
     smithlab::GtrFamilyStream::get().G1_up(s.alpha.data(), s.gamma.data(), s.mu.data(), out.data(), out.size());
@@ -134,13 +134,17 @@ void BM_dimov_spline(benchmark::State& state) {
 void BM_exact_fixed(benchmark::State& state) {
     const Stream& s = stream();
     run(state, s, [&](std::size_t i) {
-        return 1.0 / (1.0 + smithlab::Lambda_fixed(smithlab::gtr(s.alpha[i], s.gamma[i]), s.mu[i], {smithlab::Backend::gsl, 1e-12}));
+        return 1.0 /
+            (1.0 +
+             smithlab::Lambda_fixed(smithlab::gtr(s.alpha[i], s.gamma[i]), s.mu[i], {smithlab::Backend::gsl, 1e-12}));
     });
 }
 void BM_exact_gsl(benchmark::State& state) {
     const Stream& s = stream();
     run(state, s, [&](std::size_t i) {
-        return 1.0 / (1.0 + smithlab::Lambda_1d(smithlab::gtr(s.alpha[i], s.gamma[i]), s.mu[i], {smithlab::Backend::gsl, 1e-12}));
+        return 1.0 /
+            (1.0 +
+             smithlab::Lambda_1d(smithlab::gtr(s.alpha[i], s.gamma[i]), s.mu[i], {smithlab::Backend::gsl, 1e-12}));
     });
 }
 

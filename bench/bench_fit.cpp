@@ -37,7 +37,8 @@ BENCHMARK(eval_point);
 void model(benchmark::State& state, const fit::DiffuseModel* m) {
     std::vector<std::pair<Vec3, Vec3>> pairs;
     for (int i = 0; i < 64; ++i)
-        pairs.emplace_back(smithlab::direction_from_deg(1.3 * i, 0.0), smithlab::direction_from_deg(85.0 - 1.2 * i, 2.8 * i));
+        pairs.emplace_back(smithlab::direction_from_deg(1.3 * i, 0.0),
+                           smithlab::direction_from_deg(85.0 - 1.2 * i, 2.8 * i));
     double sum = 0.0;
     for (auto _ : state)
         for (const auto& [wi, wo] : pairs) sum += m->f(wi, wo, 0.5, 0.7, m->published.data());
@@ -57,7 +58,8 @@ void hammon_fit(benchmark::State& state) {
                     fit::DataPoint p{alpha, {ti, to, phi}, {}};
                     const Vec3 a = p.dir.wi(), b = p.dir.wo();
                     // f(a) = c1 a + c2 a^2 from f(1) and f(1/2); walks spread by +-2% about it.
-                    const double f1 = m.f(a, b, alpha, 1.0, truth.data()) * b.z(), fh = m.f(a, b, alpha, 0.5, truth.data()) * b.z();
+                    const double f1 = m.f(a, b, alpha, 1.0, truth.data()) * b.z(),
+                                 fh = m.f(a, b, alpha, 0.5, truth.data()) * b.z();
                     const double c2 = 2.0 * f1 - 4.0 * fh, c1 = f1 - c2;
                     for (int w = 0; w < 20; ++w) {
                         fit::Split x{};
@@ -83,7 +85,8 @@ int main(int argc, char** argv) {
     for (const fit::DiffuseModel& m : fit::diffuse_models())
         benchmark::RegisterBenchmark(("model/" + std::string(m.name)).c_str(), model, &m);
     for (double a : {0.1, 0.5, 1.0})
-        benchmark::RegisterBenchmark(("compensation/ggx(" + std::to_string(a).substr(0, 3) + ")").c_str(), compensation, a)
+        benchmark::RegisterBenchmark(("compensation/ggx(" + std::to_string(a).substr(0, 3) + ")").c_str(), compensation,
+                                     a)
             ->Unit(benchmark::kMillisecond);
     benchmark::Initialize(&argc, argv);
     benchmark::RunSpecifiedBenchmarks();

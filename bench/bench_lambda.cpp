@@ -48,7 +48,8 @@ void register_all() {
     for (int g : {0, 1, 2, 3, 4, 10, 20})
         benchmark::RegisterBenchmark(("closed/gtr(0.3," + std::to_string(g) + ")").c_str(),
                                      [g](benchmark::State& s) { run(s, smithlab::gtr(0.3, g), {}); });
-    benchmark::RegisterBenchmark("closed/beckmann(0.3)", [](benchmark::State& s) { run(s, smithlab::beckmann(0.3), {}); });
+    benchmark::RegisterBenchmark("closed/beckmann(0.3)",
+                                 [](benchmark::State& s) { run(s, smithlab::beckmann(0.3), {}); });
     // The Student-t (Ribardiere et al. 2017): its closed form over mu = 0.01 .. 100 (z = mu / alpha = 0.03 .. 333), and
     // where it costs most, z in [0.7, 2] (its continued fraction just past the seam at z = 0.7, longer as gamma grows).
     for (double g : {1.65, 2.0, 4.0, 30.0, 1e4}) {
@@ -71,15 +72,17 @@ void register_all() {
         for (Backend b : {Backend::boost, Backend::gsl}) {
             const std::string be(smithlab::to_string(b));
             for (double tol : {1e-8, 1e-12})
-                benchmark::RegisterBenchmark(("quadrature1d/" + be + "/tol" + (tol == 1e-8 ? "1e-8/" : "1e-12/") + n.name).c_str(),
-                                             [n, b, tol](benchmark::State& s) {
-                                                 run(s, n.ndf, {.method = Method::quadrature, .backend = b, .tolerance = tol});
-                                             });
+                benchmark::RegisterBenchmark(
+                    ("quadrature1d/" + be + "/tol" + (tol == 1e-8 ? "1e-8/" : "1e-12/") + n.name).c_str(),
+                    [n, b, tol](benchmark::State& s) {
+                        run(s, n.ndf, {.method = Method::quadrature, .backend = b, .tolerance = tol});
+                    });
             if (n.name == "ggx(0.3)" || n.name == "gtr(0.3,1.5)")
-                benchmark::RegisterBenchmark(("quadrature2d/" + be + "/tol1e-10/" + n.name).c_str(),
-                                             [n, b](benchmark::State& s) {
-                                                 run(s, n.ndf, {.method = Method::quadrature2d, .backend = b, .tolerance = 1e-10});
-                                             })
+                benchmark::RegisterBenchmark(
+                    ("quadrature2d/" + be + "/tol1e-10/" + n.name).c_str(),
+                    [n, b](benchmark::State& s) {
+                        run(s, n.ndf, {.method = Method::quadrature2d, .backend = b, .tolerance = 1e-10});
+                    })
                     ->Unit(benchmark::kMicrosecond);
         }
 }
@@ -112,28 +115,33 @@ void register_table() {
         });
         // the default route (auto: the closed form at integer gamma, else the fixed rule) beside the adaptive one
         // that `auto` does not take
-        for (const auto& [route, method] : {std::pair{"", smithlab::Method::automatic}, std::pair{"/adaptive", smithlab::Method::quadrature}})
+        for (const auto& [route, method] :
+             {std::pair{"", smithlab::Method::automatic}, std::pair{"/adaptive", smithlab::Method::quadrature}})
             if (method == smithlab::Method::automatic || !smithlab::gtr_has_closed_form(gamma))
-                benchmark::RegisterBenchmark(("table-build/" + name + route).c_str(), [gamma, method](benchmark::State& s) {
-                    for (auto _ : s)
-                        benchmark::DoNotOptimize(
-                            smithlab::tabulate_Lambda(smithlab::gtr(0.3, gamma), {.exact = {.method = method}}).knots());
-                })->Unit(benchmark::kMillisecond);
+                benchmark::RegisterBenchmark(
+                    ("table-build/" + name + route).c_str(),
+                    [gamma, method](benchmark::State& s) {
+                        for (auto _ : s)
+                            benchmark::DoNotOptimize(
+                                smithlab::tabulate_Lambda(smithlab::gtr(0.3, gamma), {.exact = {.method = method}})
+                                    .knots());
+                    })
+                    ->Unit(benchmark::kMillisecond);
     }
     // Outside the old range [1e-5, 1e5], where the exact route used to answer: the small-mu asymptote (mu = 1e-7)
     // and the continued tail (1e7) of a D-only GGX (nothing closed-form), against that exact route at 1e-7.
     using DOnlyGgx = smithlab::DOnly<smithlab::Ggx>;
     for (const auto& [at, mu] : {std::pair{"1e-7", 1e-7}, std::pair{"1e7", 1e7}}) {
-        benchmark::RegisterBenchmark((std::string("G1/table/outside-range/donly-ggx(0.3)/mu=") + at).c_str(),
-                                     [mu](benchmark::State& s) {
-                                         const smithlab::LambdaTable t = smithlab::tabulate_Lambda(DOnlyGgx{smithlab::ggx(0.3)});
-                                         double m = mu;
-                                         for (auto _ : s) {
-                                             benchmark::DoNotOptimize(m);  // not a constant to fold
-                                             benchmark::DoNotOptimize(t.G1(m));
-                                         }
-                                         s.SetItemsProcessed(s.iterations());
-                                     });
+        benchmark::RegisterBenchmark(
+            (std::string("G1/table/outside-range/donly-ggx(0.3)/mu=") + at).c_str(), [mu](benchmark::State& s) {
+                const smithlab::LambdaTable t = smithlab::tabulate_Lambda(DOnlyGgx{smithlab::ggx(0.3)});
+                double m = mu;
+                for (auto _ : s) {
+                    benchmark::DoNotOptimize(m);  // not a constant to fold
+                    benchmark::DoNotOptimize(t.G1(m));
+                }
+                s.SetItemsProcessed(s.iterations());
+            });
     }
     benchmark::RegisterBenchmark("G1/quadrature1d/donly-ggx(0.3)/mu=1e-7", [](benchmark::State& s) {
         const DOnlyGgx ndf{smithlab::ggx(0.3)};
@@ -144,11 +152,16 @@ void register_table() {
         }
         s.SetItemsProcessed(s.iterations());
     })->Unit(benchmark::kMicrosecond);
-    for (const auto& [route, method] : {std::pair{"", smithlab::Method::automatic}, std::pair{"/adaptive", smithlab::Method::quadrature}})
-        benchmark::RegisterBenchmark((std::string("table-build/donly-ggx(0.3)") + route).c_str(), [method](benchmark::State& s) {
-            for (auto _ : s)
-                benchmark::DoNotOptimize(smithlab::tabulate_Lambda(DOnlyGgx{smithlab::ggx(0.3)}, {.exact = {.method = method}}).knots());
-        })->Unit(benchmark::kMillisecond);
+    for (const auto& [route, method] :
+         {std::pair{"", smithlab::Method::automatic}, std::pair{"/adaptive", smithlab::Method::quadrature}})
+        benchmark::RegisterBenchmark(
+            (std::string("table-build/donly-ggx(0.3)") + route).c_str(),
+            [method](benchmark::State& s) {
+                for (auto _ : s)
+                    benchmark::DoNotOptimize(
+                        smithlab::tabulate_Lambda(DOnlyGgx{smithlab::ggx(0.3)}, {.exact = {.method = method}}).knots());
+            })
+            ->Unit(benchmark::kMillisecond);
 }
 
 // Every registered variant, on the first of GTR(0.3, 1.5), GGX(0.3), Beckmann(0.3) it applies to, at the report's
@@ -164,15 +177,16 @@ void register_variant(const smithlab::LambdaVariant& v, const smithlab::AnyNdf& 
     });
     if (v.name != "family") return;
     benchmark::RegisterBenchmark(("variant/family-stream/" + spec).c_str(), [ndf](benchmark::State& s) {
-        const smithlab::report::GtrStreamPoints points = smithlab::report::gtr_stream_timing_points(std::span(&ndf, 1), mus);
+        const smithlab::report::GtrStreamPoints points =
+            smithlab::report::gtr_stream_timing_points(std::span(&ndf, 1), mus);
         smithlab::report::time_stream(s, points.size(), [&](double* out) { points.G1(out); });
     });
 }
 
 void register_variants() {
     const auto reg = smithlab::builtin_registry();
-    const std::array<smithlab::AnyNdf, 3> candidates = {reg.make("gtr(alpha=0.3, gamma=1.5)"), reg.make("ggx(alpha=0.3)"),
-                                                        reg.make("beckmann(alpha=0.3)")};
+    const std::array<smithlab::AnyNdf, 3> candidates = {reg.make("gtr(alpha=0.3, gamma=1.5)"),
+                                                        reg.make("ggx(alpha=0.3)"), reg.make("beckmann(alpha=0.3)")};
     const smithlab::VariantRegistry variants = smithlab::builtin_variants();
     for (const smithlab::LambdaVariant& v : variants.list())
         for (const smithlab::AnyNdf& ndf : candidates)

@@ -72,7 +72,7 @@ void scaling(benchmark::State& state) {
         messages += mpi.at("messages").get<double>();
         serving += mpi.at("rank0_serving_seconds").get<double>() / mpi.at("messages").get<double>() * 2.0;
         rank0 += mpi.at("blocks_rank0").get<double>() /
-                 (mpi.at("blocks_rank0").get<double>() + mpi.at("blocks_other_ranks").get<double>());
+            (mpi.at("blocks_rank0").get<double>() + mpi.at("blocks_other_ranks").get<double>());
     }
     const auto n = static_cast<double>(state.iterations());
     state.counters["speedup"] = np1 / np2;
@@ -91,7 +91,8 @@ void cell_cost(benchmark::State& state, const std::string& ndf, const std::strin
     auto run = [&](long n) {
         fs::remove_all(work / "cell");
         return timed(std::string(SMITHLAB_EXE) + " trace --ndf '" + ndf + "' --material '" + material +
-                     "' --theta-i 0 --walks " + std::to_string(n) + " --threads 1 --output " + (work / "cell").string());
+                     "' --theta-i 0 --walks " + std::to_string(n) + " --threads 1 --output " +
+                     (work / "cell").string());
     };
     double ns = 0.0;
     for (auto _ : state) {
@@ -106,9 +107,15 @@ void cell_cost(benchmark::State& state, const std::string& ndf, const std::strin
 
 BENCHMARK(scaling)->Name("scaling/np1_vs_np2")->UseManualTime()->Unit(benchmark::kSecond)->Iterations(1);
 BENCHMARK_CAPTURE(cell_cost, cheapest, "ggx(alpha=0.01)", "mirror", 10'000'000)
-    ->Name("cell_cost/cheapest")->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(1);
+    ->Name("cell_cost/cheapest")
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
 BENCHMARK_CAPTURE(cell_cost, costliest, "blinn(n=0.5)", "lambert(albedo=1)", 1'000'000)
-    ->Name("cell_cost/costliest")->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(1);
+    ->Name("cell_cost/costliest")
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
 
 int main(int argc, char** argv) {
     fs::create_directories(work);

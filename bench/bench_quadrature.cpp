@@ -23,9 +23,12 @@ enum class Route { fixed, gsl, boost };
 template <class N>
 double lambda_by(Route r, const N& ndf, double mu) {
     switch (r) {
-        case Route::fixed: return smithlab::Lambda_fixed(ndf, mu, {Backend::boost, 1e-12});
-        case Route::gsl: return smithlab::Lambda_1d(ndf, mu, {Backend::gsl, 1e-12});
-        case Route::boost: return smithlab::Lambda_1d(ndf, mu, {Backend::boost, 1e-12});
+        case Route::fixed:
+            return smithlab::Lambda_fixed(ndf, mu, {Backend::boost, 1e-12});
+        case Route::gsl:
+            return smithlab::Lambda_1d(ndf, mu, {Backend::gsl, 1e-12});
+        case Route::boost:
+            return smithlab::Lambda_1d(ndf, mu, {Backend::boost, 1e-12});
     }
     return 0.0;
 }
@@ -57,7 +60,8 @@ void add_closed(const std::string& name, const N& ndf, double mu) {
 
 template <class N>
 void add_quadrature(const std::string& name, const N& ndf, double mu) {
-    add(name + "/mu=" + std::to_string(mu).substr(0, 8), ndf, mu, smithlab::Lambda_1d(ndf, mu, {Backend::boost, 1e-14}));
+    add(name + "/mu=" + std::to_string(mu).substr(0, 8), ndf, mu,
+        smithlab::Lambda_1d(ndf, mu, {Backend::boost, 1e-14}));
 }
 
 void register_all() {
@@ -72,8 +76,9 @@ void register_all() {
     };
     for (G g : {G{0.3, 1.5, 1.0}, G{0.1, 0.5, 0.1}, G{0.3, 10.0, 2.0}, G{0.5, 2.5, 0.01}, G{1e-4, 1.0 + 1e-9, 1e-3},
                 G{1e-4, 0.5, 1e-4}})
-        add_quadrature("gtr(" + std::to_string(g.alpha).substr(0, 6) + "," + std::to_string(g.gamma).substr(0, 11) + ")",
-                       smithlab::gtr(g.alpha, g.gamma), g.mu);
+        add_quadrature(
+            "gtr(" + std::to_string(g.alpha).substr(0, 6) + "," + std::to_string(g.gamma).substr(0, 11) + ")",
+            smithlab::gtr(g.alpha, g.gamma), g.mu);
 }
 
 }  // namespace

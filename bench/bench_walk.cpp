@@ -10,13 +10,13 @@
 // Run: build/bench/bench_walk --benchmark_repetitions=7 --benchmark_report_aggregates_only
 #include <benchmark/benchmark.h>
 
-#include <smithlab/smithlab.hpp>
-#include <smithlab/surface.hpp>
-#include <smithlab/walk/trace.hpp>
 #include <cmath>
 #include <cstdio>
 #include <memory>
 #include <numbers>
+#include <smithlab/smithlab.hpp>
+#include <smithlab/surface.hpp>
+#include <smithlab/walk/trace.hpp>
 #include <string>
 
 namespace {
@@ -37,14 +37,16 @@ void walks(benchmark::State& state, const MS& ms, const M& material) {
     }
     state.SetItemsProcessed(state.iterations());
     state.counters["bounces"] = static_cast<double>(bounces) / static_cast<double>(state.iterations());
-    state.counters["bounces_per_second"] = benchmark::Counter(static_cast<double>(bounces), benchmark::Counter::kIsRate);
+    state.counters["bounces_per_second"] =
+        benchmark::Counter(static_cast<double>(bounces), benchmark::Counter::kIsRate);
 }
 
 template <class N, class M>
 void add(const std::string& name, const N& ndf, const M& material, const walk::MicrosurfaceOptions& opts = {}) {
     // The microsurface (its tables) is built once, outside the timed runs.
     auto ms = std::make_shared<const walk::Microsurface<N>>(ndf, opts);
-    benchmark::RegisterBenchmark(("walk/" + name).c_str(), [ms, material](benchmark::State& s) { walks(s, *ms, material); });
+    benchmark::RegisterBenchmark(("walk/" + name).c_str(),
+                                 [ms, material](benchmark::State& s) { walks(s, *ms, material); });
 }
 
 template <class N, class M>
@@ -87,20 +89,25 @@ void add_block(const std::string& name, Run run) {
         std::int64_t bounces = 0;
         for (auto _ : s) bounces += run(r, b++).albedo.events;
         s.SetItemsProcessed(s.iterations() * r.block);
-        s.counters["bounces_per_second"] = benchmark::Counter(static_cast<double>(bounces), benchmark::Counter::kIsRate);
+        s.counters["bounces_per_second"] =
+            benchmark::Counter(static_cast<double>(bounces), benchmark::Counter::kIsRate);
     })->Unit(benchmark::kMicrosecond);
 }
 
 template <class N>
 void add_block_of(const std::string& name, const N& ndf) {
     auto ms = std::make_shared<const walk::Microsurface<N>>(ndf);
-    add_block(name, [ms](const walk::CellRequest& r, std::uint64_t b) { return walk::trace_block(*ms, walk::Mirror{}, r, b); });
+    add_block(name, [ms](const walk::CellRequest& r, std::uint64_t b) {
+        return walk::trace_block(*ms, walk::Mirror{}, r, b);
+    });
 }
 
 void add_block_of(const std::string& name, const smithlab::AnyNdf& ndf) {
     const std::shared_ptr<const smithlab::AnySurface> surface = smithlab::make_surface(ndf);
     const walk::Material mirror = walk::Mirror{};
-    add_block(name, [surface, mirror](const walk::CellRequest& r, std::uint64_t b) { return surface->trace_block(mirror, r, b); });
+    add_block(name, [surface, mirror](const walk::CellRequest& r, std::uint64_t b) {
+        return surface->trace_block(mirror, r, b);
+    });
 }
 
 const bool registered = [] {
@@ -109,7 +116,8 @@ const bool registered = [] {
     add("ggx(alpha=0.5)/fresnel-diffuse(f0=0.02, albedo=1)", smithlab::ggx(0.5), walk::FresnelDiffuse{0.02, 1.0});
     add("ggx(alpha=0.5)/conductor(eta=0.2, k=3)", smithlab::ggx(0.5), walk::Conductor{0.2, 3.0});
     add("ggx(alpha=0.5)/dielectric(eta=1.5)", smithlab::ggx(0.5), walk::Dielectric{1.5});
-    add("ggx(alpha=0.5)/mirror[hit_normal=hammon]", smithlab::ggx(0.5), walk::Mirror{}, {.hit_normal = walk::HitNormal::hammon_dcos});
+    add("ggx(alpha=0.5)/mirror[hit_normal=hammon]", smithlab::ggx(0.5), walk::Mirror{},
+        {.hit_normal = walk::HitNormal::hammon_dcos});
     add("beckmann(alpha=0.5)/mirror", smithlab::beckmann(0.5), walk::Mirror{});
     add("gtr(alpha=0.5, gamma=1.5)/mirror", smithlab::gtr(0.5, 1.5), walk::Mirror{});
     add("gtr(alpha=0.5, gamma=1.5)/lambert(albedo=1)", smithlab::gtr(0.5, 1.5), walk::Lambert{1.0});
@@ -127,7 +135,8 @@ const bool registered = [] {
     for (int i = 0; i < 100; ++i) {
         const double deg = 89.0 * i / 99.0;
         char row[64];
-        std::snprintf(row, sizeof row, "%.17g,%.17g\n", deg, smithlab::ggx(0.5).D(std::cos(deg * std::numbers::pi / 180.0)));
+        std::snprintf(row, sizeof row, "%.17g,%.17g\n", deg,
+                      smithlab::ggx(0.5).D(std::cos(deg * std::numbers::pi / 180.0)));
         table += row;
     }
     smithlab::NdfRegistry tabulated;

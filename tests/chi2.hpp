@@ -4,7 +4,8 @@
 //
 // Bins are equal-area in (phi, cos theta') on the hemisphere of normals whose slopes are divided by `scale` (the
 // NDF's typical slope): at alpha = 1e-3 equal-area bins in cos theta itself would put every sample in one bin.
-// In z' = cos theta', tan theta = scale tan theta', and d omega = scale^2 (scale^2 + z'^2 (1 - scale^2))^{-3/2} dz' dphi.
+// In z' = cos theta', tan theta = scale tan theta', and d omega = scale^2 (scale^2 + z'^2 (1 - scale^2))^{-3/2} dz'
+// dphi.
 //
 // The harness shares nothing with what it judges but the sampler's interface (BoundSampler: sample, pdf): the map
 // from the bins' (z', phi) to normals is its own (Bins::normal), and so is the quadrature (Boost's Gauss-Kronrod and
@@ -30,7 +31,7 @@ struct Result {
     double p_value = 0.0;
     double statistic = 0.0;
     int dof = 0;
-    double pdf_integral = 0.0;  // of the pdf over the hemisphere (must be 1)
+    double pdf_integral = 0.0;    // of the pdf over the hemisphere (must be 1)
     std::size_t bad_samples = 0;  // NaN, zero pdf, pdf not the pdf() of m, below the horizon
     std::string note;             // why p = 0, if it is
 };
@@ -49,10 +50,10 @@ struct Bins {
     // Optional: a direction w across whose great circle w.m = 0 the pdf may jump (Hammon's facing boundary) or kink
     // (the visible normals' <w.m>^+). Zero: none. The bin integrals are then split exactly where the circle crosses a
     // bin, in phi and in z' (split_phi, split_z): the same integrals to the same tolerances, each piece smooth. Without
-    // the splits an adaptive rule bisects towards a jump to its depth limit and stops ~1e-4 off, and that error, jumping
-    // from one z' to the next, made the outer rule bisect to its limit all along the circle: 97% of the evaluations of
-    // the [slow] cases, for a worse answer. (A split is exact for any pdf: a jump elsewhere is still integrated, only
-    // at the old cost; the chi-square and the pdf's integral see the same pdf as before.)
+    // the splits an adaptive rule bisects towards a jump to its depth limit and stops ~1e-4 off, and that error,
+    // jumping from one z' to the next, made the outer rule bisect to its limit all along the circle: 97% of the
+    // evaluations of the [slow] cases, for a worse answer. (A split is exact for any pdf: a jump elsewhere is still
+    // integrated, only at the old cost; the chi-square and the pdf's integral see the same pdf as before.)
     smithlab::Vec3 crease = smithlab::Vec3::Zero();
     // The azimuths in (a, b) where the circle crosses slope tan(theta) = t, in increasing order.
     std::vector<double> split_phi(double t, double a, double b) const {
@@ -87,8 +88,8 @@ struct Bins {
         std::sort(x.begin(), x.end());
         return x;
     }
-    // The unit normal at bin coordinates (z', phi), z' in (0, 1]: the direction (sin theta' cos phi, sin theta' sin phi,
-    // z') with its slope multiplied by scale, (scale sin theta' cos phi, scale sin theta' sin phi, z') / sqrt(q),
+    // The unit normal at bin coordinates (z', phi), z' in (0, 1]: the direction (sin theta' cos phi, sin theta' sin
+    // phi, z') with its slope multiplied by scale, (scale sin theta' cos phi, scale sin theta' sin phi, z') / sqrt(q),
     // q = scale^2 sin^2 theta' + z'^2, sin^2 theta' = (1 - z')(1 + z') (exact near the pole).
     smithlab::Vec3 normal(double zp, double phi) const {
         const double st = std::sqrt((1.0 - zp) * (1.0 + zp)), x = scale * st, len = std::sqrt(x * x + zp * zp);
@@ -133,8 +134,7 @@ inline Result test(const smithlab::BoundSampler& sampler, const Bins& bins, std:
     for (std::size_t k = 0; k < n; ++k) {
         const smithlab::NormalSample s = sampler.sample(rng);
         const bool ok = std::isfinite(s.m.x()) && std::isfinite(s.m.y()) && std::isfinite(s.m.z()) && s.m.z() >= 0.0 &&
-                        s.pdf > 0.0 && std::abs(s.m.norm() - 1.0) < 1e-12 &&
-                        std::abs(s.pdf - sampler.pdf(s.m)) <= 1e-12 * s.pdf;
+            s.pdf > 0.0 && std::abs(s.m.norm() - 1.0) < 1e-12 && std::abs(s.pdf - sampler.pdf(s.m)) <= 1e-12 * s.pdf;
         if (!ok) {
             ++r.bad_samples;
             continue;
@@ -163,7 +163,8 @@ inline Result test(const smithlab::BoundSampler& sampler, const Bins& bins, std:
     if (pooled_e >= 5.0 || (pooled_e > 0.0 && cells.empty())) {
         cells.emplace_back(pooled_o, pooled_e);
     } else if (pooled_e > 0.0) {
-        auto smallest = std::min_element(cells.begin(), cells.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
+        auto smallest = std::min_element(cells.begin(), cells.end(),
+                                         [](const auto& a, const auto& b) { return a.second < b.second; });
         smallest->first += pooled_o;
         smallest->second += pooled_e;
     }
@@ -191,6 +192,8 @@ inline double median_slope(const smithlab::BoundSampler& sampler, std::size_t n,
 }
 
 // Sidak: the per-test significance that keeps the family-wise rate at `alpha` over `tests` tests.
-inline double sidak(double alpha, std::size_t tests) { return 1.0 - std::pow(1.0 - alpha, 1.0 / static_cast<double>(tests)); }
+inline double sidak(double alpha, std::size_t tests) {
+    return 1.0 - std::pow(1.0 - alpha, 1.0 / static_cast<double>(tests));
+}
 
 }  // namespace chi2

@@ -38,7 +38,7 @@ inline fs::path scratch() {
 inline Run run(const std::string& args) {
     const fs::path d = scratch();
     const std::string cmd = std::string("'") + SMITHLAB_EXE + "' " + args + " > '" + (d / "out").string() + "' 2> '" +
-                            (d / "err").string() + "'";
+        (d / "err").string() + "'";
     const int status = std::system(cmd.c_str());
     return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(d / "out"), slurp(d / "err")};
 }
@@ -55,7 +55,8 @@ inline Run run_scene(const fs::path& d, const std::string& name, const std::stri
 }
 
 // A malformed scene: exit 2, a message holding `expected`, and no output directory. Returns the message.
-inline std::string check_bad_scene(const fs::path& d, const std::string& name, const std::string& text, const std::string& expected) {
+inline std::string check_bad_scene(const fs::path& d, const std::string& name, const std::string& text,
+                                   const std::string& expected) {
     const Run r = run_scene(d, name, text, "never");
     INFO(name << ": " << r.err);
     CHECK(r.rc == 2);

@@ -15,7 +15,9 @@
 
 namespace smithlab_plain {
 
-inline double Ggx_Lambda(double alpha, double mu) { return alpha / (mu + std::hypot(mu, alpha)) * (alpha / (2.0 * mu)); }
+inline double Ggx_Lambda(double alpha, double mu) {
+    return alpha / (mu + std::hypot(mu, alpha)) * (alpha / (2.0 * mu));
+}
 
 namespace detail {
 
@@ -44,7 +46,8 @@ inline double lambda4(double alpha, double mu) {
     const double a2 = alpha * alpha, a4 = a2 * a2, A = std::hypot(mu, alpha);
     const double s = mu + A, v = a2 / A, p = mu / s;
     const double c = a4 + a2 + 1.0;
-    const double tail = (3.0 * A + mu + 2.0 * a2 * (3.0 * A + 5.0 * mu) + a4 * (15.0 * A + 37.0 * mu)) / (mu * s * s * s);
+    const double tail =
+        (3.0 * A + mu + 2.0 * a2 * (3.0 * A + 5.0 * mu) + a4 * (15.0 * A + 37.0 * mu)) / (mu * s * s * s);
     const double bracket = 48.0 * mu * p * p + 12.0 * p * p / mu * (1.0 + a2 * (5.0 * A + 7.0 * mu) / s) + tail;
     return v * v * v / (16.0 * c) * bracket;
 }
@@ -99,8 +102,7 @@ inline std::array<double, 30> brackets(int n, double alpha, double mu, double A)
 using namespace detail;
 
 inline double Lambda_gtr_integer_sum(double alpha, int gamma, double mu) {
-    if (gamma < 2 || gamma > 31)
-        return std::numeric_limits<double>::quiet_NaN();
+    if (gamma < 2 || gamma > 31) return std::numeric_limits<double>::quiet_NaN();
     const int n = gamma - 2;
     const double one_minus_a2 = (1.0 - alpha) * (1.0 + alpha);
     const double A = std::hypot(mu, alpha);
@@ -140,12 +142,18 @@ inline double Lambda_gtr_closed(double alpha, int gamma, double mu) {
     }
     if (mu < small) return Lambda_gtr_closed(alpha, gamma, small) * (small / mu);
     switch (gamma) {
-        case 0: return lambda0(mu);
-        case 1: return lambda1(alpha, mu);
-        case 2: return lambda2(alpha, mu);
-        case 3: return lambda3(alpha, mu);
-        case 4: return lambda4(alpha, mu);
-        default: return Lambda_gtr_integer_sum(alpha, gamma, mu);
+        case 0:
+            return lambda0(mu);
+        case 1:
+            return lambda1(alpha, mu);
+        case 2:
+            return lambda2(alpha, mu);
+        case 3:
+            return lambda3(alpha, mu);
+        case 4:
+            return lambda4(alpha, mu);
+        default:
+            return Lambda_gtr_integer_sum(alpha, gamma, mu);
     }
 }
 
@@ -173,7 +181,8 @@ inline double G1_gtr_dimov_spline(double alpha, double gamma, double mu) {
     const double g = std::min(gamma, 4.0);
     const int i = std::min(static_cast<int>(g), 3);
     const double b = g - i, a = 1.0 - b;  // distances to the right and left knots
-    return M[i] * a * a * a / 6.0 + M[i + 1] * b * b * b / 6.0 + (y[i] - M[i] / 6.0) * a + (y[i + 1] - M[i + 1] / 6.0) * b;
+    return M[i] * a * a * a / 6.0 + M[i + 1] * b * b * b / 6.0 + (y[i] - M[i] / 6.0) * a +
+        (y[i + 1] - M[i + 1] / 6.0) * b;
 }
 
 }  // namespace smithlab_plain

@@ -19,7 +19,8 @@ struct TintedMirror {
         return s;
     }
     template <class Microsurface, class G>
-    smithlab::walk::Phase phase(const Microsurface& ms, const smithlab::Vec3& wi, const smithlab::Vec3& wo, G& g) const {
+    smithlab::walk::Phase phase(const Microsurface& ms, const smithlab::Vec3& wi, const smithlab::Vec3& wo,
+                                G& g) const {
         smithlab::walk::Phase p = smithlab::walk::Mirror{}.phase(ms, wi, wo, g);  // F D(h) / (4 A(wi)) with F = 1
         p.specular *= tint;
         return p;

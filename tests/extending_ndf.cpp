@@ -25,10 +25,10 @@ TEST_CASE("an NDF written as D alone: Lambda, G2, visible normals and a table ag
           "[extending][smith]") {
     const smithlab::Ggx ggx = smithlab::ggx(0.3);
     // [docs: d-only-calls]
-    double l = smithlab::Lambda(MyGgx{0.3}, 0.5);               // mu = cot(theta_v); by quadrature: no closed form
-    double g2 = smithlab::G2(MyGgx{0.3}, 0.5, 2.0);             // height-correlated
+    double l = smithlab::Lambda(MyGgx{0.3}, 0.5);    // mu = cot(theta_v); by quadrature: no closed form
+    double g2 = smithlab::G2(MyGgx{0.3}, 0.5, 2.0);  // height-correlated
     smithlab::Rng rng = smithlab::make_rng(7);
-    smithlab::VisibleNormalSampler vis(MyGgx{0.3});             // its tables: milliseconds, once
+    smithlab::VisibleNormalSampler vis(MyGgx{0.3});  // its tables: milliseconds, once
     smithlab::NormalSample v = vis.sample(smithlab::direction_from_theta_deg(60), rng);
     smithlab::LambdaTable fast = smithlab::tabulate_Lambda(MyGgx{0.3});  // Lambda in ~20 ns
     // [end docs]

@@ -85,9 +85,10 @@ real Lambda_student_printed(double alpha_d, double gamma_d, double mu_d) {
     const wide g(gamma_d), z = wide(mu_d) / wide(alpha_d), one_half = wide(1) / 2;
     const wide S1 = pow(g - 1 + z * z, 3 * one_half - g) / z;
     thread_local boost::math::quadrature::tanh_sinh<wide> ts;
-    const wide S2 = ts.integrate([&](const wide& u) { return pow(1 + u * u / (g - 1), one_half - g); }, wide(0), z,
-                                 wide("1e-60"));
-    const wide c = boost::math::tgamma(g - one_half) / (sqrt(boost::math::constants::pi<wide>()) * boost::math::tgamma(g));
+    const wide S2 =
+        ts.integrate([&](const wide& u) { return pow(1 + u * u / (g - 1), one_half - g); }, wide(0), z, wide("1e-60"));
+    const wide c =
+        boost::math::tgamma(g - one_half) / (sqrt(boost::math::constants::pi<wide>()) * boost::math::tgamma(g));
     return real(c * (pow(g - 1, g) * S1 / (2 * g - 3) + sqrt(g - 1) * S2) - one_half);
 }
 
@@ -96,9 +97,12 @@ real Lambda_dimov(int gamma, double alpha_d, double mu_d) {
     const wide a(alpha_d), mu(mu_d), A = sqrt(mu * mu + a * a), B = sqrt(mu * mu + 1);
     const wide a2 = a * a, a4 = a2 * a2, a6 = a4 * a2, a8 = a4 * a4;
     switch (gamma) {
-        case 0: return real((B - mu) / (2 * mu));
-        case 1: return real((A - B + mu * boost::multiprecision::asinh(mu) - mu * log(mu + A)) / (mu * log(a2)));
-        case 2: return real((A - mu) / (2 * mu));
+        case 0:
+            return real((B - mu) / (2 * mu));
+        case 1:
+            return real((A - B + mu * boost::multiprecision::asinh(mu) - mu * log(mu + A)) / (mu * log(a2)));
+        case 2:
+            return real((A - mu) / (2 * mu));
         case 3:
             return real((3 * a4 + 2 * mu * (mu - A) + a2 * (1 + 2 * mu * (mu - A))) / (4 * (1 + a2) * mu * A));
         case 4: {

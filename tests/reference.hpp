@@ -24,11 +24,11 @@
 namespace ref {
 
 using real = boost::multiprecision::cpp_bin_float_50;
+using boost::multiprecision::acos;
+using boost::multiprecision::exp;
 using boost::multiprecision::log;
 using boost::multiprecision::pow;
 using boost::multiprecision::sqrt;
-using boost::multiprecision::exp;
-using boost::multiprecision::acos;
 
 real pi();
 
@@ -55,9 +55,9 @@ real Lambda(const SlopeDensity& f, double mu_d);
 real Lambda_uncut(const SlopeDensity& f, double mu_d);
 
 // Ribardiere et al. 2017 eq. 13-14 as printed, at 100 digits, z = mu / alpha:
-// Lambda = Gamma(gamma - 1/2) / (sqrt(pi) Gamma(gamma)) [(gamma - 1)^gamma S1 / (2 gamma - 3) + sqrt(gamma - 1) S2] - 1/2,
-// S1 = ((gamma - 1) + z^2)^(3/2 - gamma) / z, S2 = integral_0^z (1 + u^2 / (gamma - 1))^(1/2 - gamma) du (eq. 15) by
-// tanh-sinh. It cancels to 1/2 as z grows: 100 digits leave 50 wherever Lambda > 1e-45.
+// Lambda = Gamma(gamma - 1/2) / (sqrt(pi) Gamma(gamma)) [(gamma - 1)^gamma S1 / (2 gamma - 3) + sqrt(gamma - 1) S2] -
+// 1/2, S1 = ((gamma - 1) + z^2)^(3/2 - gamma) / z, S2 = integral_0^z (1 + u^2 / (gamma - 1))^(1/2 - gamma) du (eq. 15)
+// by tanh-sinh. It cancels to 1/2 as z grows: 100 digits leave 50 wherever Lambda > 1e-45.
 real Lambda_student_printed(double alpha_d, double gamma_d, double mu_d);
 
 // Dimov 2015, the printed closed forms for gamma = 0..4 (sec. 3.1-3.5), evaluated literally at 100 digits: they

@@ -2,8 +2,8 @@
 // of the defining integral, the hemisphere integral of D cos by smithlab's checks (D integrated numerically), its slope
 // form against D and against the printed formula at 50 digits, Lambda by smithlab's quadrature against the 50-digit
 // reference, the roughness correspondence with Beckmann at large c, and bad parameters. Relative errors throughout.
-#include <catch2/catch.hpp>
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cfloat>
 #include <cmath>
 #include <limits>
@@ -97,7 +97,7 @@ TEST_CASE("abc: the normalization in closed form against a 50-digit quadrature o
         worst_A = std::max(worst_A, eA);
     }
     WARN("I(b, c) against the 50-digit quadrature: worst relative error " << worst_I << " at " << worst_at << "; A "
-                                                                            << worst_A);
+                                                                          << worst_A);
     // the limits: I -> 1/2 as b c -> 0 (uniform D = 1/pi), I ~ 1 / (b (c - 1)) for c > 2 as b grows
     CHECK(rel(abc(1e-8, 1e-6).A, 1.0 / std::numbers::pi) < 1e-13);
     CHECK(rel(smithlab::detail::abc_integral(1e16, 10.0) * 1e16 * 9.0, 1.0) < 1e-15);
@@ -216,12 +216,8 @@ TEST_CASE("abc: Lambda by smithlab's quadrature against the 50-digit reference, 
         std::vector<double> mus;
     };
     const std::vector<Case> cases = {
-        {1e8, 1.0, {1e-7, 1e-4, 3e-3, 1.0, 1e3}},
-        {1e8, 0.3, {1e-6, 1e-2, 1.0}},
-        {1e8, 30.0, {1e-6, 2.6e-5, 1e-4}},
-        {10.0, 2.0, {0.05, 1.0, 20.0}},
-        {1e16, 0.5, {1e-6, 1.0}},
-        {0.5, 1e4, {0.01, 0.1}},
+        {1e8, 1.0, {1e-7, 1e-4, 3e-3, 1.0, 1e3}}, {1e8, 0.3, {1e-6, 1e-2, 1.0}}, {1e8, 30.0, {1e-6, 2.6e-5, 1e-4}},
+        {10.0, 2.0, {0.05, 1.0, 20.0}},           {1e16, 0.5, {1e-6, 1.0}},      {0.5, 1e4, {0.01, 0.1}},
     };
     double worst = 0.0;
     std::string worst_at;
@@ -252,8 +248,8 @@ TEST_CASE("abc: with b = 2 / (c alpha^2), Lambda tends to Beckmann's of alpha as
     for (double c : {1e3, 1e4}) {
         const Abc n = abc(smithlab::abc_b_from_alpha(alpha, c), c);
         double gap = 0.0;
-        for (double z : grid::logspace(0.05, 3.0, 15)) gap = std::max(gap, rel(smithlab::Lambda(n, z * alpha),
-                                                                               beck.Lambda(z * alpha)));
+        for (double z : grid::logspace(0.05, 3.0, 15))
+            gap = std::max(gap, rel(smithlab::Lambda(n, z * alpha), beck.Lambda(z * alpha)));
         INFO("c=" << c << ": max relative gap to Beckmann's Lambda over z = mu / alpha in [0.05, 3]: " << gap);
         WARN("c=" << c << ": gap to Beckmann's Lambda " << gap);
         CHECK(gap < 80.0 / c);

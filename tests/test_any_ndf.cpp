@@ -2,8 +2,8 @@
 // one file) through eval, check, sample, brdf, trace, report and fit; scene [[ndf]] tables sweeping any declared
 // parameter, and their refusals; a measured NDF from a CSV file (tabulated) against the analytic NDF it samples, keyed
 // by its contents, and its refusals.
-#include <catch2/catch.hpp>
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -81,7 +81,8 @@ std::string ggx_table(double alpha, int n, double factor = 1.0) {
     for (int i = 0; i < n; ++i) {
         const double deg = std::min(89.0, 89.0 * (i + 0.35 * std::sin(7.3 * i) * (i > 0 && i + 1 < n)) / (n - 1));
         char row[96];
-        std::snprintf(row, sizeof row, "%.10g,%.17g,0\n", deg, factor * smithlab::ggx(alpha).D(std::cos(deg * std::numbers::pi / 180.0)));
+        std::snprintf(row, sizeof row, "%.10g,%.17g,0\n", deg,
+                      factor * smithlab::ggx(alpha).D(std::cos(deg * std::numbers::pi / 180.0)));
         t += row;
     }
     return t;
@@ -109,7 +110,8 @@ TEST_CASE("abc, a built-in added as one file, goes through eval, check, sample a
     // of its own (no walk), within 5 standard errors.
     const Run b = run("brdf --ndf 'abc(b=30, c=2)' --material mirror --wi 30,0 --wo 40,180 --walks 200000 --threads 2");
     REQUIRE(b.rc == 0);
-    const double order1 = field(b.out, "order_1"), se = field(b.out, "order_1", 2), single = field(b.out, "single_analytic");
+    const double order1 = field(b.out, "order_1"), se = field(b.out, "order_1", 2),
+                 single = field(b.out, "single_analytic");
     INFO("order 1 " << order1 << " +- " << se << ", single scattering " << single);
     CHECK(std::abs(order1 - single) < 5.0 * se);
     // Bad values are refused by its registration, naming them.
@@ -122,8 +124,9 @@ TEST_CASE("abc through trace, report and fit, swept over alpha by its registered
     const fs::path d = fresh("abc");
     // trace: grid.alpha reaches abc through b = 2 / (c alpha^2); lambert(albedo=1) facets lose nothing, so every walk
     // that is not capped leaves with weight 1: the total albedo is 1 exactly.
-    write(d / "trace.toml", "materials = [\"lambert(albedo=1)\"]\n[walks]\nn = 4000\n[grid]\nalpha = [0.5]\ntheta_i = [30]\n"
-                            "[[ndf]]\nfamily = \"abc\"\nc = [2, 8]\n");
+    write(d / "trace.toml",
+          "materials = [\"lambert(albedo=1)\"]\n[walks]\nn = 4000\n[grid]\nalpha = [0.5]\ntheta_i = [30]\n"
+          "[[ndf]]\nfamily = \"abc\"\nc = [2, 8]\n");
     const Run t = run("trace " + q(d / "trace.toml") + " --output " + q(d / "trace") + " --threads 2");
     INFO(t.err);
     REQUIRE(t.rc == 0);
@@ -131,9 +134,10 @@ TEST_CASE("abc through trace, report and fit, swept over alpha by its registered
     CHECK(a.at("abc(b=4, c=2)|lambert(albedo=1)|all|all|all").value == 1.0);
     CHECK(a.at("abc(b=1, c=8)|lambert(albedo=1)|all|all|all").value == 1.0);
     // report: the table variant against the reference on abc's grid, and the walk section.
-    write(d / "report.toml", "[grid]\nalpha = [0.3, 0.8]\nmu = [0.1, 1.0, 10.0]\n[[ndf]]\nfamily = \"abc\"\nc = [3]\n"
-                             "[variants]\ninclude = [\"table\"]\n[timing]\nmin_time = 0.001\n"
-                             "[walk]\nmaterials = [\"mirror\"]\nalpha = [0.5]\nwalks = 500\n[[walk.ndf]]\nfamily = \"abc\"\nc = [3]\n");
+    write(d / "report.toml",
+          "[grid]\nalpha = [0.3, 0.8]\nmu = [0.1, 1.0, 10.0]\n[[ndf]]\nfamily = \"abc\"\nc = [3]\n"
+          "[variants]\ninclude = [\"table\"]\n[timing]\nmin_time = 0.001\n"
+          "[walk]\nmaterials = [\"mirror\"]\nalpha = [0.5]\nwalks = 500\n[[walk.ndf]]\nfamily = \"abc\"\nc = [3]\n");
     const Run r = run("report " + q(d / "report.toml") + " --output " + q(d / "report"));
     INFO(r.err);
     REQUIRE(r.rc == 0);
@@ -141,10 +145,11 @@ TEST_CASE("abc through trace, report and fit, swept over alpha by its registered
     CHECK_THAT(variants, Contains("table,6,"));
     CHECK_THAT(slurp(d / "report" / "walk_albedo.csv"), Contains("\"abc(b=2.6666666666666665, c=3)\",abc,,0.5,mirror"));
     // fit: one fit per c, and the constants' trend against c.
-    write(d / "fit.toml", "material = \"lambert(albedo=1)\"\nalbedos = [0.5, 1.0]\nmodels = [\"lambert\", \"fujii\"]\n"
-                          "[[ndf]]\nfamily = \"abc\"\nc = [1.5, 3, 6]\n[training]\nalpha = [0.2, 0.8]\ntheta = [0.0, 40.0, 70.0]\n"
-                          "phi = [0.0, 180.0]\nwalks = 300\n[validation]\npoints = 4\nwalks = 300\nalbedo_theta = [0.0]\n"
-                          "albedo_walks = 300\n");
+    write(d / "fit.toml",
+          "material = \"lambert(albedo=1)\"\nalbedos = [0.5, 1.0]\nmodels = [\"lambert\", \"fujii\"]\n"
+          "[[ndf]]\nfamily = \"abc\"\nc = [1.5, 3, 6]\n[training]\nalpha = [0.2, 0.8]\ntheta = [0.0, 40.0, 70.0]\n"
+          "phi = [0.0, 180.0]\nwalks = 300\n[validation]\npoints = 4\nwalks = 300\nalbedo_theta = [0.0]\n"
+          "albedo_walks = 300\n");
     const Run f = run("fit " + q(d / "fit.toml") + " --output " + q(d / "fit") + " --threads 2");
     INFO(f.err);
     REQUIRE(f.rc == 0);
@@ -156,8 +161,10 @@ TEST_CASE("abc through trace, report and fit, swept over alpha by its registered
 TEST_CASE("scene [[ndf]] tables sweep any declared parameter, and refuse one the family lacks", "[any_ndf][scenes]") {
     const fs::path d = fresh("sweep");
     const std::string head = "materials = [\"mirror\"]\n[walks]\nn = 200\n[grid]\ntheta_i = [45]\n";
-    write(d / "ok.toml", head + "[[ndf]]\nfamily = \"blinn\"\nn = {log = [2, 200], n = 3}\n"
-                                "[[ndf]]\nfamily = \"student\"\nalpha = [0.1, 0.3]\ngamma = [2, 4]\n");
+    write(d / "ok.toml",
+          head +
+              "[[ndf]]\nfamily = \"blinn\"\nn = {log = [2, 200], n = 3}\n"
+              "[[ndf]]\nfamily = \"student\"\nalpha = [0.1, 0.3]\ngamma = [2, 4]\n");
     const Run t = run("trace " + q(d / "ok.toml") + " --output " + q(d / "ok"));
     INFO(t.err);
     REQUIRE(t.rc == 0);
@@ -167,8 +174,12 @@ TEST_CASE("scene [[ndf]] tables sweep any declared parameter, and refuse one the
     specs.erase(std::unique(specs.begin(), specs.end()), specs.end());
     CHECK(specs.size() == 7);
     const std::string cells = slurp(d / "ok" / "albedo.csv");
-    const std::vector<std::string> order = {"blinn(n=2)", "blinn(n=20)", "blinn(n=200)", "student(alpha=0.1, gamma=2)",
-                                            "student(alpha=0.1, gamma=4)", "student(alpha=0.3, gamma=2)",
+    const std::vector<std::string> order = {"blinn(n=2)",
+                                            "blinn(n=20)",
+                                            "blinn(n=200)",
+                                            "student(alpha=0.1, gamma=2)",
+                                            "student(alpha=0.1, gamma=4)",
+                                            "student(alpha=0.3, gamma=2)",
                                             "student(alpha=0.3, gamma=4)"};
     std::size_t at = 0;
     for (const std::string& s : order) {
@@ -192,11 +203,13 @@ TEST_CASE("scene [[ndf]] tables sweep any declared parameter, and refuse one the
     refused("no_alpha.toml", "[[ndf]]\nfamily = \"ggx\"\n", "ndf.family is swept over grid.alpha, which is missing");
     refused("unknown.toml", "[[ndf]]\nfamily = \"ggx\"\nbeta = [1]\n", "unknown key 'ndf.beta'");
     // The fitter sweeps alpha itself: an entry that gives it is refused.
-    write(d / "fit.toml", "[[ndf]]\nfamily = \"ggx\"\nalpha = [0.3]\n[training]\nalpha = [0.2]\ntheta = [0.0]\nphi = [0.0]\n");
+    write(d / "fit.toml",
+          "[[ndf]]\nfamily = \"ggx\"\nalpha = [0.3]\n[training]\nalpha = [0.2]\ntheta = [0.0]\nphi = [0.0]\n");
     const Run f = run("fit " + q(d / "fit.toml") + " --output " + q(d / "never"));
     CHECK(f.rc == 2);
-    CHECK_THAT(f.err, Contains("fit.toml:2: ndf.family 'ggx' is given its roughness here: the fit sweeps alpha over "
-                               "training.alpha"));
+    CHECK_THAT(f.err,
+               Contains("fit.toml:2: ndf.family 'ggx' is given its roughness here: the fit sweeps alpha over "
+                        "training.alpha"));
 }
 
 TEST_CASE("tabulated: a GGX table through eval, check and trace, keyed by its contents", "[any_ndf][tabulated]") {
@@ -218,8 +231,10 @@ TEST_CASE("tabulated: a GGX table through eval, check and trace, keyed by its co
     INFO(c.out << c.err);
     CHECK(c.rc == 0);
     // trace: the table's albedo by order against GGX's own, within 5 combined standard errors.
-    const Run t = run("trace --ndf " + spec + " --material mirror --theta-i 60 --walks 100000 --output " + q(d / "tab"));
-    const Run g = run("trace --ndf 'ggx(alpha=0.5)' --material mirror --theta-i 60 --walks 100000 --seed 2 --output " + q(d / "ggx"));
+    const Run t =
+        run("trace --ndf " + spec + " --material mirror --theta-i 60 --walks 100000 --output " + q(d / "tab"));
+    const Run g = run("trace --ndf 'ggx(alpha=0.5)' --material mirror --theta-i 60 --walks 100000 --seed 2 --output " +
+                      q(d / "ggx"));
     REQUIRE(t.rc == 0);
     REQUIRE(g.rc == 0);
     const auto at = albedos(d / "tab" / "albedo.csv"), ag = albedos(d / "ggx" / "albedo.csv");
@@ -227,45 +242,57 @@ TEST_CASE("tabulated: a GGX table through eval, check and trace, keyed by its co
     for (const std::string order : {"1", "2", "3", "4+"}) {
         const Albedo x = at.at(tab_spec + "|mirror|reflection|" + order + "|all"),
                      y = ag.at("ggx(alpha=0.5)|mirror|reflection|" + order + "|all");
-        INFO("order " << order << ": table " << x.value << " +- " << x.stderr_ << ", ggx " << y.value << " +- " << y.stderr_);
+        INFO("order " << order << ": table " << x.value << " +- " << x.stderr_ << ", ggx " << y.value << " +- "
+                      << y.stderr_);
         CHECK(std::abs(x.value - y.value) < 5.0 * std::hypot(x.stderr_, y.stderr_));
     }
     // Its contents key the cells: moved, it is reused; one digit edited, it is traced again.
     const fs::path moved = d / "moved.csv";
     fs::copy_file(file, moved);
-    const Run reuse = run("trace --ndf 'tabulated(file=" + moved.string() + ")' --material mirror --theta-i 60 --walks 100000 --output " + q(d / "tab"));
+    const Run reuse = run("trace --ndf 'tabulated(file=" + moved.string() +
+                          ")' --material mirror --theta-i 60 --walks 100000 --output " + q(d / "tab"));
     INFO(reuse.err);
     REQUIRE(reuse.rc == 0);
     CHECK_THAT(reuse.out, Contains("traced 0") && Contains("reused 1"));
     std::string text = slurp(moved);
-    text.replace(text.find(",0\n", text.size() / 2) - 3, 1, text[text.find(",0\n", text.size() / 2) - 3] == '1' ? "2" : "1");
+    text.replace(text.find(",0\n", text.size() / 2) - 3, 1,
+                 text[text.find(",0\n", text.size() / 2) - 3] == '1' ? "2" : "1");
     write(moved, text);
-    const Run edited = run("trace --ndf 'tabulated(file=" + moved.string() + ")' --material mirror --theta-i 60 --walks 100000 --output " + q(d / "tab"));
+    const Run edited = run("trace --ndf 'tabulated(file=" + moved.string() +
+                           ")' --material mirror --theta-i 60 --walks 100000 --output " + q(d / "tab"));
     INFO(edited.err);
     REQUIRE(edited.rc == 0);
     CHECK_THAT(edited.out, Contains("traced 1") && Contains("reused 0"));
     // Swept over alpha (its scale set so that its core slope scale is alpha), in a trace and in a fit.
-    write(d / "sweep.toml", "materials = [\"mirror\"]\n[walks]\nn = 2000\n[grid]\nalpha = [0.25, 0.5]\ntheta_i = [30]\n"
-                            "[[ndf]]\nfamily = \"tabulated\"\nfile = \"" + file.string() + "\"\n");
+    write(d / "sweep.toml",
+          "materials = [\"mirror\"]\n[walks]\nn = 2000\n[grid]\nalpha = [0.25, 0.5]\ntheta_i = [30]\n"
+          "[[ndf]]\nfamily = \"tabulated\"\nfile = \"" +
+              file.string() + "\"\n");
     const Run sweep = run("trace " + q(d / "sweep.toml") + " --output " + q(d / "sweep"));
     INFO(sweep.err);
     REQUIRE(sweep.rc == 0);
-    CHECK_THAT(slurp(d / "sweep" / "albedo.csv"), Contains("tabulated(scale=0.4999999") && Contains("tabulated(scale=0.9999999"));
-    write(d / "fit.toml", "material = \"lambert(albedo=1)\"\nalbedos = [1.0]\nmodels = [\"fujii\"]\n[[ndf]]\n"
-                          "family = \"tabulated\"\nfile = \"" + file.string() + "\"\n[training]\nalpha = [0.3, 0.6]\n"
-                          "theta = [0.0, 60.0]\nphi = [0.0]\nwalks = 200\n[validation]\npoints = 2\nwalks = 200\n"
-                          "albedo_theta = [0.0]\nalbedo_walks = 200\n");
+    CHECK_THAT(slurp(d / "sweep" / "albedo.csv"),
+               Contains("tabulated(scale=0.4999999") && Contains("tabulated(scale=0.9999999"));
+    write(d / "fit.toml",
+          "material = \"lambert(albedo=1)\"\nalbedos = [1.0]\nmodels = [\"fujii\"]\n[[ndf]]\n"
+          "family = \"tabulated\"\nfile = \"" +
+              file.string() +
+              "\"\n[training]\nalpha = [0.3, 0.6]\n"
+              "theta = [0.0, 60.0]\nphi = [0.0]\nwalks = 200\n[validation]\npoints = 2\nwalks = 200\n"
+              "albedo_theta = [0.0]\nalbedo_walks = 200\n");
     const Run fit = run("fit " + q(d / "fit.toml") + " --output " + q(d / "fit"));
     INFO(fit.err);
     CHECK(fit.rc == 0);
     CHECK_THAT(slurp(d / "fit" / "constants.csv"), Contains("fujii-fitted,\"tabulated(file="));
 }
 
-TEST_CASE("tabulated: a bad file is refused naming it, its line and the value, before anything is written", "[any_ndf][tabulated]") {
+TEST_CASE("tabulated: a bad file is refused naming it, its line and the value, before anything is written",
+          "[any_ndf][tabulated]") {
     const fs::path d = fresh("tabulated_bad");
     auto refused = [&](const std::string& name, const std::string& csv, const std::string& expected) {
         write(d / name, csv);
-        const Run r = run("trace --ndf 'tabulated(file=" + (d / name).string() + ")' --walks 100 --output " + q(d / "never"));
+        const Run r =
+            run("trace --ndf 'tabulated(file=" + (d / name).string() + ")' --walks 100 --output " + q(d / "never"));
         INFO(name << ": " << r.err);
         CHECK(r.rc == 2);
         CHECK_THAT(r.err, Contains((d / name).string()) && Contains(expected));

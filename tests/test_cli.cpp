@@ -2,8 +2,6 @@
 // no output file), the CSV contract.
 #include <catch2/catch.hpp>
 
-#include "cli_run.hpp"
-#include <smithlab/csv.hpp>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -12,9 +10,11 @@
 #include <fstream>
 #include <map>
 #include <regex>
+#include <smithlab/csv.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
+#include "cli_run.hpp"
 
 using namespace smithlab_test;
 
@@ -39,7 +39,8 @@ TEST_CASE("eval prints lambda and g1", "[cli]") {
     CHECK(run("eval --ndf 'blinn(n=20)' --mu 0.5 --method quadrature2d --backend gsl").rc == 0);
     CHECK(run("eval --ndf 'gtr(alpha=0.3, gamma=1.5)' --mu 0.5 --method spline").rc == 0);
     // A variant by name: Hammon's approximation for GGX is alpha times the gamma = 0 Lambda: 0.3/(2 (1 + sqrt 2)).
-    CHECK_THAT(run("eval --ndf 'ggx(alpha=0.3)' --mu 1 --method schlick-ggx").out, Catch::Contains("lambda  0.0621320343559642"));
+    CHECK_THAT(run("eval --ndf 'ggx(alpha=0.3)' --mu 1 --method schlick-ggx").out,
+               Catch::Contains("lambda  0.0621320343559642"));
     CHECK(run("eval --ndf 'gtr(alpha=0.3, gamma=1)' --mu inf").out.find("g1      1\n") != std::string::npos);
     // Below the surface: Smith's Lambda(-mu) = -1 - Lambda(mu), G1 of |mu|; GGX Lambda(0.5) at alpha = 0.5 is
     // (sqrt(2) - 1)/2 = 0.20710678118654752.
@@ -52,7 +53,8 @@ TEST_CASE("eval prints lambda and g1", "[cli]") {
     const Run tiny = run("eval --ndf 'ggx(alpha=0.5)' --mu 1e-310");
     CHECK(tiny.rc == 0);
     CHECK_THAT(tiny.out, Catch::Contains("g1      "));
-    CHECK_THAT(run("eval --ndf 'ggx(alpha=1e-10)' --mu 1e-310").out, Catch::Contains("lambda  5.00000000000001") && Catch::Contains("e+299"));
+    CHECK_THAT(run("eval --ndf 'ggx(alpha=1e-10)' --mu 1e-310").out,
+               Catch::Contains("lambda  5.00000000000001") && Catch::Contains("e+299"));
 }
 
 TEST_CASE("bad input exits 2 and names the offending item", "[cli]") {
@@ -60,20 +62,19 @@ TEST_CASE("bad input exits 2 and names the offending item", "[cli]") {
         const char* args;
         const char* named;
     };
-    for (const Case& c : {Case{"eval --ndf 'ggx(alpha=-1)' --mu 1", "alpha"},
-                          Case{"eval --ndf 'ggx(alpha=nan)' --mu 1", "alpha"},
-                          Case{"eval --ndf 'gtr(alpha=0.3, gamma=-1)' --mu 1", "gamma"},
-                          Case{"eval --ndf 'phong(n=2)' --mu 1", "phong"},
-                          Case{"eval --ndf 'ggx(alpha=0.3)' --mu nan", "mu"},
-                          Case{"eval --ndf 'ggx(alpha=0.3)' --mu abc", "mu"},
-                          Case{"eval --ndf 'ggx(alpha=0.3)' --mu 1e-400", "smallest double"},
-                          Case{"eval --ndf 'ggx(alpha=0.3)' --mu 1e400", "largest double"},
-                          Case{"eval --ndf 'ggx(alpha=1e999)' --mu 1", "largest double"},
-                          Case{"eval --ndf 'blinn(n=4)' --mu 1 --method closed", "closed"},
-                          Case{"eval --ndf 'ggx(alpha=0.3)' --mu 1 --method magic", "magic"},
-                          Case{"eval --ndf 'ggx(alpha=0.3)' --mu 1 --method dimov-spline", "dimov-spline"},
-                          Case{"eval --input /nonexistent/points.csv", "/nonexistent/points.csv"},
-                          Case{"check --ndf 'gtr(alpha=0, gamma=2)'", "alpha"}}) {
+    for (const Case& c :
+         {Case{"eval --ndf 'ggx(alpha=-1)' --mu 1", "alpha"}, Case{"eval --ndf 'ggx(alpha=nan)' --mu 1", "alpha"},
+          Case{"eval --ndf 'gtr(alpha=0.3, gamma=-1)' --mu 1", "gamma"},
+          Case{"eval --ndf 'phong(n=2)' --mu 1", "phong"}, Case{"eval --ndf 'ggx(alpha=0.3)' --mu nan", "mu"},
+          Case{"eval --ndf 'ggx(alpha=0.3)' --mu abc", "mu"},
+          Case{"eval --ndf 'ggx(alpha=0.3)' --mu 1e-400", "smallest double"},
+          Case{"eval --ndf 'ggx(alpha=0.3)' --mu 1e400", "largest double"},
+          Case{"eval --ndf 'ggx(alpha=1e999)' --mu 1", "largest double"},
+          Case{"eval --ndf 'blinn(n=4)' --mu 1 --method closed", "closed"},
+          Case{"eval --ndf 'ggx(alpha=0.3)' --mu 1 --method magic", "magic"},
+          Case{"eval --ndf 'ggx(alpha=0.3)' --mu 1 --method dimov-spline", "dimov-spline"},
+          Case{"eval --input /nonexistent/points.csv", "/nonexistent/points.csv"},
+          Case{"check --ndf 'gtr(alpha=0, gamma=2)'", "alpha"}}) {
         const Run r = run(c.args);
         INFO(c.args << "\nstderr: " << r.err);
         CHECK(r.rc == 2);
@@ -82,7 +83,8 @@ TEST_CASE("bad input exits 2 and names the offending item", "[cli]") {
     }
 }
 
-TEST_CASE("CSV: columns pass through, one per NDF parameter follows, lambda and g1 appended with 17 digits", "[cli][csv]") {
+TEST_CASE("CSV: columns pass through, one per NDF parameter follows, lambda and g1 appended with 17 digits",
+          "[cli][csv]") {
     const fs::path d = scratch();
     write(d / "in.csv", "id,ndf,mu\nA,\"ggx(alpha=0.5)\",1\nB,\"gtr(alpha=0.3, gamma=1.5)\",0.25\n");
     const Run r = run("eval --input '" + (d / "in.csv").string() + "' -o '" + (d / "res.csv").string() + "'");
@@ -101,9 +103,11 @@ TEST_CASE("CSV: columns pass through, one per NDF parameter follows, lambda and 
                Catch::StartsWith("alpha,ndf,mu,lambda,g1\n0.5,ggx(alpha=0.5),1,0.059016994374947"));
 }
 
-TEST_CASE("sample: CSV of unit normals and their pdfs, reproducible by seed, bad input exits 2 with no file", "[cli][sample]") {
+TEST_CASE("sample: CSV of unit normals and their pdfs, reproducible by seed, bad input exits 2 with no file",
+          "[cli][sample]") {
     const fs::path d = scratch();
-    const std::string args = "sample --ndf 'gtr(alpha=0.2, gamma=1.5)' --sampler vndf --theta-i 70 --n 500 --seed 9 --output '";
+    const std::string args =
+        "sample --ndf 'gtr(alpha=0.2, gamma=1.5)' --sampler vndf --theta-i 70 --n 500 --seed 9 --output '";
     REQUIRE(run(args + (d / "a.csv").string() + "'").rc == 0);
     REQUIRE(run(args + (d / "b.csv").string() + "'").rc == 0);
     const std::string a = slurp(d / "a.csv");
@@ -129,9 +133,10 @@ TEST_CASE("sample: CSV of unit normals and their pdfs, reproducible by seed, bad
     const Run below = run("sample --ndf 'ggx(alpha=0.3)' --sampler vndf --theta-i 135 --n 3 --seed 1");
     CHECK(below.rc == 0);
     CHECK(std::count(below.out.begin(), below.out.end(), '\n') == 4);
-    for (const char* bad : {"--sampler nope", "--sampler vndf --theta-i 180", "--sampler vndf --theta-i nan", "--sampler vndf --n 0",
-                            "--sampler vndf-beckmann --theta-i 10"}) {
-        const Run r = run(std::string("sample --ndf 'ggx(alpha=0.3)' ") + bad + " --output '" + (d / "never.csv").string() + "'");
+    for (const char* bad : {"--sampler nope", "--sampler vndf --theta-i 180", "--sampler vndf --theta-i nan",
+                            "--sampler vndf --n 0", "--sampler vndf-beckmann --theta-i 10"}) {
+        const Run r =
+            run(std::string("sample --ndf 'ggx(alpha=0.3)' ") + bad + " --output '" + (d / "never.csv").string() + "'");
         INFO(bad << ": " << r.err);
         CHECK(r.rc == 2);
         CHECK_FALSE(fs::exists(d / "never.csv"));
@@ -202,10 +207,12 @@ TEST_CASE("check prints a table and passes for a healthy NDF, and --help explain
     CHECK_THAT(run("eval --help").out, Catch::Contains("--method"));
     const Run m = run("eval --list-methods");
     CHECK(m.rc == 0);
-    CHECK_THAT(m.out, Catch::Contains("dimov-spline") && Catch::Contains("schlick-ggx") && Catch::Contains("q1d-gsl-1e-8"));
+    CHECK_THAT(m.out,
+               Catch::Contains("dimov-spline") && Catch::Contains("schlick-ggx") && Catch::Contains("q1d-gsl-1e-8"));
 }
 
-TEST_CASE("report: a scene computes what it names, caches its references, and rejects a malformed scene", "[cli][report]") {
+TEST_CASE("report: a scene computes what it names, caches its references, and rejects a malformed scene",
+          "[cli][report]") {
     const fs::path d = scratch();
     fs::remove_all(d / "rep");
     write(d / "small.toml",
@@ -234,14 +241,16 @@ TEST_CASE("report: a scene computes what it names, caches its references, and re
     CHECK_THAT(r.err, Catch::Contains("0 reused from the cache, 16 computed"));
     CHECK_THAT(run(args).err, Catch::Contains("16 reused from the cache, 0 computed"));
 
-    CHECK_THAT(check_bad_scene(d, "bad.toml", "[grid]\nalpha = [0.1]\nmu = \"many\"\n", "grid.mu"), Catch::Contains("bad.toml"));
+    CHECK_THAT(check_bad_scene(d, "bad.toml", "[grid]\nalpha = [0.1]\nmu = \"many\"\n", "grid.mu"),
+               Catch::Contains("bad.toml"));
     check_bad_scene(d, "g2gtr.toml",
                     "[grid]\nalpha = [0.1]\nmu = [1.0]\n[[ndf]]\nfamily = \"ggx\"\n[variants]\ninclude = [\"*\"]\n"
                     "[g2]\ninclude = [\"*\"]\nfamilies = [\"gtr\"]\nmu = [1.0]\n",
                     "gamma");
-    check_bad_scene(d, "none.toml",
-                    "[grid]\nalpha = [0.1]\nmu = [1.0]\n[[ndf]]\nfamily = \"ggx\"\n[variants]\ninclude = [\"nothing*\"]\n",
-                    "selects no variant");
+    check_bad_scene(
+        d, "none.toml",
+        "[grid]\nalpha = [0.1]\nmu = [1.0]\n[[ndf]]\nfamily = \"ggx\"\n[variants]\ninclude = [\"nothing*\"]\n",
+        "selects no variant");
 }
 
 TEST_CASE("report: the sampling experiment, the blog's point measured", "[cli][report][sampling]") {
@@ -251,12 +260,14 @@ TEST_CASE("report: the sampling experiment, the blog's point measured", "[cli][r
         d, "smp.toml",
         "[grid]\nalpha = [0.5]\nmu = [1.0]\n[[ndf]]\nfamily = \"ggx\"\n[variants]\ninclude = [\"schlick-ggx\"]\n"
         "[timing]\nmin_time = 0.01\n"
-        "[sampling]\nfamilies = [\"ggx\", \"beckmann\"]\nalpha = [0.01, 0.5]\ntheta_o = 30\nsamples = 40000\nseed = 3\n",
+        "[sampling]\nfamilies = [\"ggx\", \"beckmann\"]\nalpha = [0.01, 0.5]\ntheta_o = 30\nsamples = 40000\nseed = "
+        "3\n",
         "smp");
     INFO(r.err);
     REQUIRE(r.rc == 0);
     CHECK(fs::exists(d / "smp" / "sampling_efficiency.png"));
-    CHECK_THAT(slurp(d / "smp" / "report.md"), Catch::Contains("Sampling efficiency") && Catch::Contains("| ggx(0.01) | vndf |"));
+    CHECK_THAT(slurp(d / "smp" / "report.md"),
+               Catch::Contains("Sampling efficiency") && Catch::Contains("| ggx(0.01) | vndf |"));
     // Per (family, alpha): the three strategies estimate the same albedo (within 5 standard errors), and at
     // alpha = 0.01 the variance falls from cosine to D cos to visible normals.
     std::istringstream rows(slurp(d / "smp" / "sampling.csv"));
@@ -280,7 +291,8 @@ TEST_CASE("report: the sampling experiment, the blog's point measured", "[cli][r
     for (const auto& [key, by] : est)
         for (const auto& [a, ea] : by)
             for (const auto& [b, eb] : by) {
-                INFO(key << ": " << a << " " << ea.first << " +- " << ea.second << " vs " << b << " " << eb.first << " +- " << eb.second);
+                INFO(key << ": " << a << " " << ea.first << " +- " << ea.second << " vs " << b << " " << eb.first
+                         << " +- " << eb.second);
                 CHECK(std::abs(ea.first - eb.first) <= 5.0 * std::hypot(ea.second, eb.second) + 1e-12);
             }
     for (const char* key : {"ggx(0.01)", "beckmann(0.01)"}) {
@@ -320,24 +332,29 @@ TEST_CASE("report: Dimov 2015's figures reproduce, and are drawn", "[cli][report
     CHECK_FALSE(fs::exists(d / "dimov" / "pareto.png"));  // not asked for, not drawn
 }
 
-TEST_CASE("trace: albedo.csv and meta.json, the same bits for any --threads, and bad input exits 2 with nothing written",
-          "[cli][walk]") {
+TEST_CASE(
+    "trace: albedo.csv and meta.json, the same bits for any --threads, and bad input exits 2 with nothing written",
+    "[cli][walk]") {
     const fs::path d = scratch();
-    const std::string cell = "--ndf 'gtr(alpha=0.4, gamma=1.5)' --material 'lambert(albedo=0.8)' --theta-i 60 --walks 20000";
+    const std::string cell =
+        "--ndf 'gtr(alpha=0.4, gamma=1.5)' --material 'lambert(albedo=0.8)' --theta-i 60 --walks 20000";
     std::string first;
     for (int threads : {1, 2, 3}) {
         const fs::path out = d / ("trace" + std::to_string(threads));
-        const Run r = run("trace " + cell + " --threads " + std::to_string(threads) + " --output '" + out.string() + "'");
+        const Run r =
+            run("trace " + cell + " --threads " + std::to_string(threads) + " --output '" + out.string() + "'");
         REQUIRE(r.rc == 0);
         const std::string csv = slurp(out / "albedo.csv");
-        CHECK(csv.rfind("ndf,alpha,gamma,material,theta_i,phi_i,hemisphere,order,component,albedo,stderr,walks\n", 0) == 0);
-        CHECK(csv.find("\"gtr(alpha=0.4, gamma=1.5)\",0.4,1.5,lambert(albedo=0.8),60,0,all,all,all,") != std::string::npos);
+        CHECK(csv.rfind("ndf,alpha,gamma,material,theta_i,phi_i,hemisphere,order,component,albedo,stderr,walks\n", 0) ==
+              0);
+        CHECK(csv.find("\"gtr(alpha=0.4, gamma=1.5)\",0.4,1.5,lambert(albedo=0.8),60,0,all,all,all,") !=
+              std::string::npos);
         CHECK(slurp(out / "meta.json").find("\"walks\": 20000") != std::string::npos);
         if (first.empty()) first = csv;
         CHECK(csv == first);
     }
     for (const std::string bad : {"--material velvet", "--material 'lambert(albedo=2)'", "--walks 0", "--theta-i 90",
-                                   "--ndf 'ggx(alpha=-1)'", "--seed -1", "--downward up"}) {
+                                  "--ndf 'ggx(alpha=-1)'", "--seed -1", "--downward up"}) {
         const fs::path out = d / "refused";
         const Run r = run("trace " + bad + " --output '" + out.string() + "'");
         INFO(bad << ": " << r.err);
@@ -361,11 +378,13 @@ TEST_CASE("brdf: the eval estimator's value, its orders and the analytic single 
     CHECK(std::abs(order1 - single) < 4.0 * err1);
     CHECK(run("brdf --ndf 'ggx(alpha=0.5)' --material mirror --wi 120,0 --wo 60,180").rc == 2);
     // Light from below is for the dielectric only: f(wi, wo) / eta_o^2 = f(wo, wi) / eta_i^2 across the surface.
-    const Run below = run("brdf --ndf 'ggx(alpha=0.5)' --material 'dielectric(eta=1.5)' --wi 150,180 --wo 40,0 --walks 20000");
+    const Run below =
+        run("brdf --ndf 'ggx(alpha=0.5)' --material 'dielectric(eta=1.5)' --wi 150,180 --wo 40,0 --walks 20000");
     REQUIRE(below.rc == 0);
     CHECK_THAT(below.out, Catch::Contains("value ") && !Catch::Contains("single_analytic"));
-    CHECK_THAT(run("brdf --ndf 'ggx(alpha=0.5)' --material 'dielectric(eta=1.5)' --wi 40,0 --wo 150,180 --walks 20000").out,
-               Catch::Contains("single_analytic "));
+    CHECK_THAT(
+        run("brdf --ndf 'ggx(alpha=0.5)' --material 'dielectric(eta=1.5)' --wi 40,0 --wo 150,180 --walks 20000").out,
+        Catch::Contains("single_analytic "));
     CHECK(run("brdf --ndf 'ggx(alpha=0.5)' --material 'dielectric(eta=1.5)' --wi 90,0 --wo 150,180").rc == 2);
 }
 
@@ -414,9 +433,10 @@ std::string trace_args(const fs::path& scene, const fs::path& out, int threads) 
 
 }  // namespace
 
-TEST_CASE("trace: a scene file -- albedo.csv and brdf.csv for every cell, the same bits for any --threads, a rerun "
-          "traces nothing, brdf.csv holds the reflected energy",
-          "[cli][walk][scene]") {
+TEST_CASE(
+    "trace: a scene file -- albedo.csv and brdf.csv for every cell, the same bits for any --threads, a rerun "
+    "traces nothing, brdf.csv holds the reflected energy",
+    "[cli][walk][scene]") {
     const fs::path d = scratch() / "trace_scene";
     fs::remove_all(d);
     fs::create_directories(d);
@@ -445,12 +465,14 @@ TEST_CASE("trace: a scene file -- albedo.csv and brdf.csv for every cell, the sa
     }
     CHECK(reflected.at("beckmann(alpha=0.5)mirror30") == 1.0);  // mirror facets: every walk leaves, energy 1
     // Light from below into a dielectric: both hemispheres in brdf.csv, and the cell's energy all leaves.
-    write(d / "glass.toml", "materials = [\"dielectric(eta=1.5)\"]\n[walks]\nn = 2000\n[grid]\ntheta_i = [150]\n"
-                            "[[ndf]]\nspec = \"ggx(alpha=0.4)\"\n[brdf]\ntheta_bins = 2\nphi_bins = 3\n");
+    write(d / "glass.toml",
+          "materials = [\"dielectric(eta=1.5)\"]\n[walks]\nn = 2000\n[grid]\ntheta_i = [150]\n"
+          "[[ndf]]\nspec = \"ggx(alpha=0.4)\"\n[brdf]\ntheta_bins = 2\nphi_bins = 3\n");
     REQUIRE(run(trace_args(d / "glass.toml", d / "glass", 1)).rc == 0);
     CHECK(records(d / "glass" / "brdf.csv").size() == 1 + 2 * 2 * 3 * 5 * 3);
     for (const auto& f : by_name(records(d / "glass" / "albedo.csv")))
-        if (f.at("hemisphere") == "all" && f.at("order") == "all" && f.at("component") == "all") CHECK(f.at("albedo") == "1");
+        if (f.at("hemisphere") == "all" && f.at("order") == "all" && f.at("component") == "all")
+            CHECK(f.at("albedo") == "1");
 
     // The same bits for 3 threads, and a rerun reuses every cell.
     REQUIRE(run(trace_args(d / "scene.toml", d / "b", 3)).rc == 0);
@@ -467,11 +489,13 @@ TEST_CASE("trace: a scene file -- albedo.csv and brdf.csv for every cell, the sa
     CHECK_THAT(run(trace_args(d / "more.toml", d / "a", 2)).out, Catch::Contains("traced 8\nreused 0\n"));
 }
 
-TEST_CASE("trace: max_order = 1 ends every walk at its first hit -- fewer bounces, nothing beyond order 1", "[cli][walk][scene]") {
+TEST_CASE("trace: max_order = 1 ends every walk at its first hit -- fewer bounces, nothing beyond order 1",
+          "[cli][walk][scene]") {
     const fs::path d = scratch() / "trace_order";
     fs::remove_all(d);
     fs::create_directories(d);
-    const std::string base = "materials = [\"lambert(albedo=1)\"]\n[grid]\nalpha = [0.8]\ntheta_i = [60]\n[[ndf]]\nfamily = \"ggx\"\n";
+    const std::string base =
+        "materials = [\"lambert(albedo=1)\"]\n[grid]\nalpha = [0.8]\ntheta_i = [60]\n[[ndf]]\nfamily = \"ggx\"\n";
     write(d / "all.toml", base + "[walks]\nn = 4000\n");
     write(d / "one.toml", base + "[walks]\nn = 4000\nmax_order = 1\n");
     REQUIRE(run(trace_args(d / "all.toml", d / "all", 1)).rc == 0);
@@ -485,7 +509,8 @@ TEST_CASE("trace: max_order = 1 ends every walk at its first hit -- fewer bounce
     write(d / "hammon.toml", base + "[walks]\nn = 4000\nhit_normal = \"hammon\"\n");
     REQUIRE(run(trace_args(d / "hammon.toml", d / "hammon", 1)).rc == 0);
     for (const auto& f : by_name(records(d / "hammon" / "albedo.csv")))
-        if (f.at("hemisphere") == "all" && f.at("order") == "all" && f.at("component") == "all") CHECK(f.at("albedo") == "1");
+        if (f.at("hemisphere") == "all" && f.at("order") == "all" && f.at("component") == "all")
+            CHECK(f.at("albedo") == "1");
     CHECK_THAT(slurp(d / "hammon" / "meta.json"), Catch::Contains("\"hit_normal\": \"hammon\""));
     CHECK(slurp(d / "hammon" / "albedo.csv") != slurp(d / "all" / "albedo.csv"));
     CHECK(run("trace --ndf 'ggx(alpha=0.5)' --hit-normal sideways --output '" + (d / "never").string() + "'").rc == 2);
@@ -495,7 +520,8 @@ TEST_CASE("trace: max_order = 1 ends every walk at its first hit -- fewer bounce
         if (f.at("order") == "2" || f.at("order") == "3" || f.at("order") == "4+") CHECK(f.at("albedo") == "0");
 }
 
-TEST_CASE("trace: the default sweep, and a malformed scene exits 2 naming the key, with nothing written", "[cli][walk][scene]") {
+TEST_CASE("trace: the default sweep, and a malformed scene exits 2 naming the key, with nothing written",
+          "[cli][walk][scene]") {
     const fs::path d = scratch() / "trace_default";
     fs::remove_all(d);
     fs::create_directories(d);
@@ -508,7 +534,8 @@ TEST_CASE("trace: the default sweep, and a malformed scene exits 2 naming the ke
     REQUIRE(r.rc == 0);
     CHECK_THAT(r.out, Catch::Contains("cells 48\n"));
     for (const auto& f : by_name(records(d / "out" / "albedo.csv")))
-        if (f.at("material") == "mirror" && f.at("hemisphere") == "all" && f.at("order") == "all" && f.at("component") == "all")
+        if (f.at("material") == "mirror" && f.at("hemisphere") == "all" && f.at("order") == "all" &&
+            f.at("component") == "all")
             CHECK(f.at("albedo") == "1");
 
     struct Bad {
@@ -516,18 +543,20 @@ TEST_CASE("trace: the default sweep, and a malformed scene exits 2 naming the ke
     };
     const std::string grid = "[grid]\nalpha = [0.5]\ntheta_i = [45]\n";
     const std::string ndf = "[[ndf]]\nfamily = \"ggx\"\n";
-    for (const Bad& b : {Bad{"materials = [\"velvet\"]\n" + grid + ndf, "velvet"},
-                         Bad{"materials = [\"mirror\"]\n[grid]\nalpha = [0.5]\ntheta_i = [90]\n" + ndf, "theta_i"},
-                         Bad{"materials = [\"dielectric\", \"mirror\"]\n[grid]\nalpha = [0.5]\ntheta_i = [120]\n" + ndf, "from below"},
-                         Bad{"materials = [\"mirror\"]\n[walks]\nn = 0\n" + grid + ndf, "walks.n"},
-                         Bad{"materials = [\"mirror\"]\n[walks]\nm = 3\n" + grid + ndf, "did you mean"},
-                         Bad{"materials = [\"mirror\"]\n" + ndf, "grid"},
-                         Bad{"materials = [\"mirror\"]\n" + grid + "[[ndf]]\nspec = \"ggx(alpha=-1)\"\n", "alpha"},
-                         Bad{"materials = [\"mirror\"]\n" + grid + "[[ndf]]\nspec = \"ggx(alpha=1)\"\nfamily = \"ggx\"\n", "exactly one"},
-                         Bad{"materials = [\"mirror\"]\n" + grid + ndf + "[walks]\ndownward = \"up\"\n", "downward"},
-                         Bad{"materials = [\"mirror\"]\n" + grid + ndf + "[walks]\nhit_normal = \"dcos\"\n", "hit_normal"},
-                         Bad{"materials = [\"mirror\"]\n" + grid + ndf + "[brdf]\ntheta_bins = 0\nphi_bins = 4\n", "theta_bins"},
-                         Bad{"materials = [\"mirror\"\n", "malformed"}}) {
+    for (const Bad& b :
+         {Bad{"materials = [\"velvet\"]\n" + grid + ndf, "velvet"},
+          Bad{"materials = [\"mirror\"]\n[grid]\nalpha = [0.5]\ntheta_i = [90]\n" + ndf, "theta_i"},
+          Bad{"materials = [\"dielectric\", \"mirror\"]\n[grid]\nalpha = [0.5]\ntheta_i = [120]\n" + ndf, "from below"},
+          Bad{"materials = [\"mirror\"]\n[walks]\nn = 0\n" + grid + ndf, "walks.n"},
+          Bad{"materials = [\"mirror\"]\n[walks]\nm = 3\n" + grid + ndf, "did you mean"},
+          Bad{"materials = [\"mirror\"]\n" + ndf, "grid"},
+          Bad{"materials = [\"mirror\"]\n" + grid + "[[ndf]]\nspec = \"ggx(alpha=-1)\"\n", "alpha"},
+          Bad{"materials = [\"mirror\"]\n" + grid + "[[ndf]]\nspec = \"ggx(alpha=1)\"\nfamily = \"ggx\"\n",
+              "exactly one"},
+          Bad{"materials = [\"mirror\"]\n" + grid + ndf + "[walks]\ndownward = \"up\"\n", "downward"},
+          Bad{"materials = [\"mirror\"]\n" + grid + ndf + "[walks]\nhit_normal = \"dcos\"\n", "hit_normal"},
+          Bad{"materials = [\"mirror\"]\n" + grid + ndf + "[brdf]\ntheta_bins = 0\nphi_bins = 4\n", "theta_bins"},
+          Bad{"materials = [\"mirror\"\n", "malformed"}}) {
         write(d / "bad.toml", b.text);
         const Run bad = run(trace_args(d / "bad.toml", d / "never", 1));
         INFO(b.text << "\n-> " << bad.err);
@@ -572,7 +601,8 @@ TEST_CASE("--version prints the project's version, and --help opens with it and 
     REQUIRE(h.rc == 0);
     CHECK_THAT(h.out, Catch::StartsWith("smithlab " + m[1].str() + ": "));
     CHECK_THAT(h.out, Catch::Contains("--version"));
-    for (const char* ndf : {"ggx", "beckmann", "blinn", "student", "tabulated", "abc", "gtr"}) CHECK_THAT(h.out, Catch::Contains(ndf));
+    for (const char* ndf : {"ggx", "beckmann", "blinn", "student", "tabulated", "abc", "gtr"})
+        CHECK_THAT(h.out, Catch::Contains(ndf));
 }
 
 TEST_CASE("the texts say what the code does: list's GTR closed forms, eval's methods and its method line", "[cli]") {
@@ -585,7 +615,8 @@ TEST_CASE("the texts say what the code does: list's GTR closed forms, eval's met
     const int top = std::stoi(l.out.substr(p + at.size()));
     CHECK(top >= 4);
     CHECK(run("eval --ndf 'gtr(alpha=0.3, gamma=" + std::to_string(top) + ")' --mu 0.5 --method closed").rc == 0);
-    const Run above = run("eval --ndf 'gtr(alpha=0.3, gamma=" + std::to_string(top + 1) + ")' --mu 0.5 --method closed");
+    const Run above =
+        run("eval --ndf 'gtr(alpha=0.3, gamma=" + std::to_string(top + 1) + ")' --mu 0.5 --method closed");
     CHECK(above.rc == 2);
     CHECK_THAT(above.err, Catch::Contains("gamma"));
     CHECK_THAT(l.out, !Catch::Contains("e.g.\n"));  // a family without examples prints no empty list
@@ -602,7 +633,8 @@ TEST_CASE("the texts say what the code does: list's GTR closed forms, eval's met
     // The method line says the route taken: auto is the closed form where there is one, else the fixed rule.
     CHECK_THAT(run("eval --ndf 'ggx(alpha=0.5)' --mu 1").out, Catch::Contains("method  auto (closed form)\n"));
     CHECK_THAT(run("eval --ndf 'gtr(alpha=0.3, gamma=1.5)' --mu 0.5").out,
-               Catch::Contains("method  auto (fixed rule, relative tolerance 1e-12; boost where its error estimate misses it)\n"));
+               Catch::Contains(
+                   "method  auto (fixed rule, relative tolerance 1e-12; boost where its error estimate misses it)\n"));
     CHECK_THAT(run("eval --ndf 'gtr(alpha=0.3, gamma=1.5)' --mu 0.5 --method quadrature --backend gsl").out,
                Catch::Contains("method  quadrature (gsl, relative tolerance 1e-12)\n"));
 }
@@ -630,7 +662,8 @@ TEST_CASE("eval --theta: degrees from the normal, the same values as --mu = cot(
     CHECK(std::abs(static_cast<long double>(mu30) - 1.7320508075688772935L) <= 1.12e-16L);
 }
 
-TEST_CASE("eval --mu-range and --theta-range: one CSV row per point, each the values of that point given alone", "[cli][csv]") {
+TEST_CASE("eval --mu-range and --theta-range: one CSV row per point, each the values of that point given alone",
+          "[cli][csv]") {
     const fs::path d = scratch();
     const std::string ndf = "--ndf 'gtr(alpha=0.3, gamma=1.5)'";
     const Run r = run("eval " + ndf + " --mu-range log:0.01:100:5 -o '" + (d / "mu.csv").string() + "'");
@@ -677,15 +710,25 @@ TEST_CASE("eval: a bad angle or range is refused naming its option, exit 2, noth
         const char* args;
         const char* named;
     };
-    for (const Case& c : {Case{"--theta nan", "--theta"}, Case{"--theta 180.5", "--theta"}, Case{"--theta -1", "--theta"},
-                          Case{"--theta 1x", "--theta"}, Case{"--mu-range 1:2:1", "--mu-range"},
-                          Case{"--mu-range 1:2:0", "--mu-range"}, Case{"--mu-range 1:2:-3", "--mu-range"},
-                          Case{"--mu-range 1:2:3.5", "--mu-range"}, Case{"--mu-range 2:1:5", "--mu-range"},
-                          Case{"--mu-range 1:2", "--mu-range"}, Case{"--mu-range 1:nan:3", "--mu-range"},
-                          Case{"--mu-range 1:inf:3", "--mu-range"}, Case{"--mu-range log:0:1:5", "--mu-range"},
-                          Case{"--mu-range lin:1:2:3", "--mu-range"}, Case{"--mu-range 1:2:99999999", "--mu-range"},
-                          Case{"--theta-range 0:200:3", "--theta-range"}, Case{"--theta-range -10:20:3", "--theta-range"},
-                          Case{"--mu 1 --theta 45", "--theta"}, Case{"--mu-range 1:2:3 --theta-range 1:2:3", "--theta-range"},
+    for (const Case& c : {Case{"--theta nan", "--theta"},
+                          Case{"--theta 180.5", "--theta"},
+                          Case{"--theta -1", "--theta"},
+                          Case{"--theta 1x", "--theta"},
+                          Case{"--mu-range 1:2:1", "--mu-range"},
+                          Case{"--mu-range 1:2:0", "--mu-range"},
+                          Case{"--mu-range 1:2:-3", "--mu-range"},
+                          Case{"--mu-range 1:2:3.5", "--mu-range"},
+                          Case{"--mu-range 2:1:5", "--mu-range"},
+                          Case{"--mu-range 1:2", "--mu-range"},
+                          Case{"--mu-range 1:nan:3", "--mu-range"},
+                          Case{"--mu-range 1:inf:3", "--mu-range"},
+                          Case{"--mu-range log:0:1:5", "--mu-range"},
+                          Case{"--mu-range lin:1:2:3", "--mu-range"},
+                          Case{"--mu-range 1:2:99999999", "--mu-range"},
+                          Case{"--theta-range 0:200:3", "--theta-range"},
+                          Case{"--theta-range -10:20:3", "--theta-range"},
+                          Case{"--mu 1 --theta 45", "--theta"},
+                          Case{"--mu-range 1:2:3 --theta-range 1:2:3", "--theta-range"},
                           Case{"--mu 1", "--output"}}) {
         const Run r = run(std::string("eval --ndf 'ggx(alpha=0.3)' ") + c.args + " -o '" + never.string() + "'");
         INFO(c.args << "\nstderr: " << r.err);

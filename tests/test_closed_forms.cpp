@@ -66,7 +66,8 @@ TEST_CASE("Beckmann closed form against the textbook form at 50 digits, through 
     WARN("worst relative error of the Beckmann closed form: " << worst);
 }
 
-TEST_CASE("generated closed forms for integer gamma: equal to Dimov's printed forms at gamma = 2, 3, 4", "[closed][generated]") {
+TEST_CASE("generated closed forms for integer gamma: equal to Dimov's printed forms at gamma = 2, 3, 4",
+          "[closed][generated]") {
     for (int gamma = 2; gamma <= 4; ++gamma)
         for (double alpha : grid::alphas)
             for (double mu : grid::mus) {
@@ -76,7 +77,8 @@ TEST_CASE("generated closed forms for integer gamma: equal to Dimov's printed fo
             }
 }
 
-TEST_CASE("generated closed forms for integer gamma up to 31 against the 50-digit quadrature", "[closed][generated][slow]") {
+TEST_CASE("generated closed forms for integer gamma up to 31 against the 50-digit quadrature",
+          "[closed][generated][slow]") {
     double worst = 0.0;
     for (int gamma : {5, 7, 10, 20, 31})
         for (double alpha : {1e-4, 0.01, 0.1, 0.3, 0.999999, 1.0})
@@ -99,9 +101,23 @@ TEST_CASE("generated closed forms for integer gamma up to 31 against the 50-digi
 // moves by ~1e-15, far inside 1e-13). The stiff corners: c -> 0 (grazing, Lambda -> inf), c -> 1 (normal, s2 -> 0),
 // the smallest alpha of the grid (1e-4) and alpha = 1.
 namespace {
-const std::vector<double> cosines = {1e-300, 1e-120, 1e-100, 1e-30, 1e-8,   1e-4,          1e-2,
-                                     0.1,    0.3,    0.5,    0.7,   0.9,    0.999,         1.0 - 1e-6,
-                                     1.0 - 1e-9,     1.0 - 1e-12,   1.0 - 1.1102230246251565e-16};
+const std::vector<double> cosines = {1e-300,
+                                     1e-120,
+                                     1e-100,
+                                     1e-30,
+                                     1e-8,
+                                     1e-4,
+                                     1e-2,
+                                     0.1,
+                                     0.3,
+                                     0.5,
+                                     0.7,
+                                     0.9,
+                                     0.999,
+                                     1.0 - 1e-6,
+                                     1.0 - 1e-9,
+                                     1.0 - 1e-12,
+                                     1.0 - 1.1102230246251565e-16};
 double mu_of(double c) { return c / std::sqrt((1.0 - c) * (1.0 + c)); }
 }  // namespace
 
@@ -159,7 +175,8 @@ TEST_CASE("Lambda and G1 from cos(theta): the ends, the sign, and every other ND
         // Below the surface: G1 takes |c| (Walter 2007 eq. 44), Lambda is Smith's -1 - Lambda(|c|), as for mu.
         CHECK(smithlab::G1_from_cos(ndf, -0.4) == smithlab::G1_from_cos(ndf, 0.4));
         CHECK(smithlab::Lambda_from_cos(ndf, -0.4) == Approx(smithlab::Lambda(ndf, -mu_of(0.4))).epsilon(1e-15));
-        CHECK(smithlab::Lambda_from_cos(ndf, -0.4) == Approx(-1.0 - smithlab::Lambda_from_cos(ndf, 0.4)).epsilon(1e-15));
+        CHECK(smithlab::Lambda_from_cos(ndf, -0.4) ==
+              Approx(-1.0 - smithlab::Lambda_from_cos(ndf, 0.4)).epsilon(1e-15));
     }
     CHECK(smithlab::Lambda_from_cos(ggx, 1.0) == 0.0);
     CHECK(smithlab::G1_from_cos(ggx, 1.0) == 1.0);

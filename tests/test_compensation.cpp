@@ -6,10 +6,10 @@
 
 #include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <chrono>
-#include <ctime>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
@@ -44,12 +44,13 @@ double albedo_over_wo(const N& ndf, double mu) {
     auto over_phi = [&](double co) {
         const double so = std::sqrt(std::max(0.0, (1.0 - co) * (1.0 + co)));
         auto f = [&](double phi) {
-            return smithlab::single_scattering_reflection(ndf, wi, Vec3(so * std::cos(phi), so * std::sin(phi), co), one);
+            return smithlab::single_scattering_reflection(ndf, wi, Vec3(so * std::cos(phi), so * std::sin(phi), co),
+                                                          one);
         };
         return 2.0 * gauss_kronrod<double, 61>::integrate(f, 0.0, pi, 6, 1e-11);
     };
     return gauss_kronrod<double, 61>::integrate(over_phi, 0.0, mu, 6, 1e-11) +
-           gauss_kronrod<double, 61>::integrate(over_phi, mu, 1.0, 6, 1e-11);
+        gauss_kronrod<double, 61>::integrate(over_phi, mu, 1.0, 6, 1e-11);
 }
 
 double ms_since(std::chrono::steady_clock::time_point t0) {
@@ -60,7 +61,8 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
 
 TEST_CASE("E at normal incidence on GGX alpha = 1 is 1 - ln 2", "[compensation]") {
     // alpha = 1: D = 1/pi, Lambda_o = (sec theta_o - 1)/2, Lambda_i = 0, theta_o = 2 theta_m, so
-    // E = 2 int_0^{pi/4} cos sin 2 cos 2t / (1 + cos 2t) dt = 2 int_0^{pi/4} tan t cos 2t dt = 2 [sin^2 t + ln cos t] = 1 - ln 2.
+    // E = 2 int_0^{pi/4} cos sin 2 cos 2t / (1 + cos 2t) dt = 2 int_0^{pi/4} tan t cos 2t dt = 2 [sin^2 t + ln cos t] =
+    // 1 - ln 2.
     const double E = fit::directional_albedo(smithlab::ggx(1.0), 1.0);
     CHECK(std::abs(E - (1.0 - std::numbers::ln2)) < 1e-13);
 }
@@ -129,8 +131,9 @@ TEST_CASE("E_avg and F_avg: averages by their own quadrature", "[compensation]")
     {
         // 2 int_0^1 E mu dmu in mu = t^2 (softer at mu = 0, where E is not smooth): 4 int_0^1 E(t^2) t^3 dt, Boost's
         // 21-point Gauss-Kronrod to depth 3.
-        gl = 4.0 * boost::math::quadrature::gauss_kronrod<double, 21>::integrate(
-                       [&](double t) { return E(t * t) * t * t * t; }, 0.0, 1.0, 3, 1e-10);
+        gl = 4.0 *
+            boost::math::quadrature::gauss_kronrod<double, 21>::integrate(
+                 [&](double t) { return E(t * t) * t * t * t; }, 0.0, 1.0, 3, 1e-10);
     }
     INFO("E_avg " << avg << ", by Gauss-Kronrod in sqrt(mu) " << gl);
     CHECK(std::abs(avg - gl) < 1e-8);
@@ -138,7 +141,8 @@ TEST_CASE("E_avg and F_avg: averages by their own quadrature", "[compensation]")
     CHECK(avg < 1.0);
 }
 
-TEST_CASE("the table: its cosines, interpolation, the lobe and its energy, the Fresnel and Turquin factors", "[compensation]") {
+TEST_CASE("the table: its cosines, interpolation, the lobe and its energy, the Fresnel and Turquin factors",
+          "[compensation]") {
     const smithlab::Ggx ggx = smithlab::ggx(0.7);
     const auto t0 = std::chrono::steady_clock::now();
     const fit::CompensationTable t = fit::compensation_table(ggx, 32);
@@ -155,7 +159,8 @@ TEST_CASE("the table: its cosines, interpolation, the lobe and its energy, the F
         CHECK(t.E[j] == E(t.mus[j]));
         CHECK(fit::interpolate_E(t, t.mus[j]) == t.E[j]);
     }
-    // Linear between points; within 2e-3 of E there at 32 points (away from grazing, where E has a steep dip at mu ~ alpha).
+    // Linear between points; within 2e-3 of E there at 32 points (away from grazing, where E has a steep dip at mu ~
+    // alpha).
     const double mid = 0.5 * (t.mus[10] + t.mus[11]);
     CHECK(std::abs(fit::interpolate_E(t, mid) - 0.5 * (t.E[10] + t.E[11])) < 1e-15);
     CHECK(std::abs(fit::interpolate_E(t, mid) - E(mid)) < 2e-3);
@@ -166,9 +171,10 @@ TEST_CASE("the table: its cosines, interpolation, the lobe and its energy, the F
     // to the table's interpolation.
     CHECK(fit::compensation_lobe(t, 0.3, 0.8) == fit::compensation_lobe(t, 0.8, 0.3));
     for (double mu_i : {0.1, 0.5, 1.0}) {
-        const double lobe_albedo = 2.0 * pi * boost::math::quadrature::gauss_kronrod<double, 61>::integrate(
-                                                  [&](double mu_o) { return fit::compensation_lobe(t, mu_i, mu_o) * mu_o; },
-                                                  0.0, 1.0, 8, 1e-12);
+        const double lobe_albedo =
+            2.0 * pi *
+            boost::math::quadrature::gauss_kronrod<double, 61>::integrate(
+                [&](double mu_o) { return fit::compensation_lobe(t, mu_i, mu_o) * mu_o; }, 0.0, 1.0, 8, 1e-12);
         INFO("mu_i " << mu_i << ": E " << E(mu_i) << " + lobe " << lobe_albedo);
         CHECK(std::abs(E(mu_i) + lobe_albedo - 1.0) < 2e-3);
     }
@@ -191,7 +197,8 @@ TEST_CASE("CSV writers", "[compensation]") {
     std::ostringstream csv, avg;
     fit::write_compensation_csv(csv, {{"ggx(alpha=0.5)", t}, {"gtr(alpha=0.3, gamma=1.5)", t}});
     fit::write_compensation_avg_csv(avg, {{"ggx(alpha=0.5)", t}});
-    CHECK(csv.str().rfind("ndf,cos_theta,E\nggx(alpha=0.5),0,1\nggx(alpha=0.5),0.5,0.75\nggx(alpha=0.5),1,0.5\n", 0) == 0);
+    CHECK(csv.str().rfind("ndf,cos_theta,E\nggx(alpha=0.5),0,1\nggx(alpha=0.5),0.5,0.75\nggx(alpha=0.5),1,0.5\n", 0) ==
+          0);
     CHECK(csv.str().find("\"gtr(alpha=0.3, gamma=1.5)\",0.5,0.75\n") != std::string::npos);
     CHECK(avg.str() == "ndf,E_avg\nggx(alpha=0.5),0.625\n");
     std::istringstream in(csv.str());
@@ -206,7 +213,8 @@ TEST_CASE("CSV writers", "[compensation]") {
     fit::write_compensation_avg_csv(with_avg, {{"ggx(alpha=0.5)", t}, {"gtr(alpha=0.3, gamma=1.5)", t}}, columns);
     CHECK(with.str().rfind("ndf,alpha,gamma,cos_theta,E\nggx(alpha=0.5),0.5,,0,1\n", 0) == 0);
     CHECK(with.str().find("\"gtr(alpha=0.3, gamma=1.5)\",0.3,1.5,0.5,0.75\n") != std::string::npos);
-    CHECK(with_avg.str() == "ndf,alpha,gamma,E_avg\nggx(alpha=0.5),0.5,,0.625\n\"gtr(alpha=0.3, gamma=1.5)\",0.3,1.5,0.625\n");
+    CHECK(with_avg.str() ==
+          "ndf,alpha,gamma,E_avg\nggx(alpha=0.5),0.5,,0.625\n\"gtr(alpha=0.3, gamma=1.5)\",0.3,1.5,0.625\n");
     std::ostringstream bad;
     CHECK_THROWS_AS(fit::write_compensation_csv(bad, {{"ggx(alpha=0.5)", t}}, columns), smithlab::input_error);
     CHECK_THROWS_AS(fit::write_compensation_avg_csv(bad, {{"ggx(alpha=0.5)", t}, {"ggx(alpha=0.5)", t}},
@@ -237,20 +245,22 @@ TEST_CASE("the C header: compiles as C, and its lookups return the table and int
         return;
     }
     const std::filesystem::path dir = std::filesystem::temp_directory_path() /
-                                      ("smithlab_comp_" + std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()));
+        ("smithlab_comp_" + std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()));
     std::filesystem::create_directories(dir);
     std::ofstream(dir / "comp.h") << h.str();
-    CHECK(std::system(("gcc -std=c99 -Wall -Wextra -Werror -fsyntax-only -x c " + (dir / "comp.h").string()).c_str()) == 0);
+    CHECK(std::system(("gcc -std=c99 -Wall -Wextra -Werror -fsyntax-only -x c " + (dir / "comp.h").string()).c_str()) ==
+          0);
     // A program that includes it twice (the guard) and prints lookups at the nodes and between them.
-    std::ofstream(dir / "main.c") << "#include <stdio.h>\n#include \"comp.h\"\n#include \"comp.h\"\n"
-                                     "int main(void) {\n"
-                                     "    static const float a[] = {0.2f, 0.45f, 1.0f, 0.325f, 0.05f, 2.0f};\n"
-                                     "    static const float m[] = {0.0f, 0.6f, 1.0f, 0.1f, 0.77f, -1.0f};\n"
-                                     "    int i, j;\n"
-                                     "    for (i = 0; i < 6; ++i) {\n"
-                                     "        for (j = 0; j < 6; ++j) printf(\"%.9g \", smithlab_gtr_gamma_1_5_E(a[i], m[j]));\n"
-                                     "        printf(\"%.9g\\n\", smithlab_gtr_gamma_1_5_E_avg(a[i]));\n"
-                                     "    }\n    return 0;\n}\n";
+    std::ofstream(dir / "main.c")
+        << "#include <stdio.h>\n#include \"comp.h\"\n#include \"comp.h\"\n"
+           "int main(void) {\n"
+           "    static const float a[] = {0.2f, 0.45f, 1.0f, 0.325f, 0.05f, 2.0f};\n"
+           "    static const float m[] = {0.0f, 0.6f, 1.0f, 0.1f, 0.77f, -1.0f};\n"
+           "    int i, j;\n"
+           "    for (i = 0; i < 6; ++i) {\n"
+           "        for (j = 0; j < 6; ++j) printf(\"%.9g \", smithlab_gtr_gamma_1_5_E(a[i], m[j]));\n"
+           "        printf(\"%.9g\\n\", smithlab_gtr_gamma_1_5_E_avg(a[i]));\n"
+           "    }\n    return 0;\n}\n";
     const std::string exe = (dir / "lookup").string(), out = (dir / "out.txt").string();
     REQUIRE(std::system(("gcc -std=c99 -Wall -Werror -o " + exe + " " + (dir / "main.c").string()).c_str()) == 0);
     REQUIRE(std::system((exe + " > " + out).c_str()) == 0);
@@ -258,8 +268,14 @@ TEST_CASE("the C header: compiles as C, and its lookups return the table and int
     // The truth in double: bilinear in the double table, clamped; the header's floats within 1e-6.
     auto bilinear = [&](double a, double m) {
         auto cell = [](const std::vector<double>& g, double x, double& t) {
-            if (x <= g.front()) { t = 0.0; return std::size_t{0}; }
-            if (x >= g.back()) { t = 1.0; return g.size() - 2; }
+            if (x <= g.front()) {
+                t = 0.0;
+                return std::size_t{0};
+            }
+            if (x >= g.back()) {
+                t = 1.0;
+                return g.size() - 2;
+            }
             std::size_t k = 0;
             while (g[k + 1] <= x) ++k;
             t = (x - g[k]) / (g[k + 1] - g[k]);
@@ -267,7 +283,8 @@ TEST_CASE("the C header: compiles as C, and its lookups return the table and int
         };
         double ta, tm;
         const std::size_t i = cell(alphas, a, ta), j = cell(mus, m, tm);
-        const double lo = E[i][j] + tm * (E[i][j + 1] - E[i][j]), hi = E[i + 1][j] + tm * (E[i + 1][j + 1] - E[i + 1][j]);
+        const double lo = E[i][j] + tm * (E[i][j + 1] - E[i][j]),
+                     hi = E[i + 1][j] + tm * (E[i + 1][j + 1] - E[i + 1][j]);
         return lo + ta * (hi - lo);
     };
     const double a[] = {0.2, 0.45, 1.0, 0.325, 0.05, 2.0}, m[] = {0.0, 0.6, 1.0, 0.1, 0.77, -1.0};
@@ -305,10 +322,12 @@ TEST_CASE("E against the tracer's order-1 albedo of mirror facets", "[compensati
             r.seed = 12;
             r.cell = cell++;
             r.limits.max_order = 1;
-            const walk::Estimate e = walk::trace_cell(ms, walk::Mirror{}, r).albedo.albedo(walk::Hemisphere::reflection, 0, walk::Component::all);
+            const walk::Estimate e = walk::trace_cell(ms, walk::Mirror{}, r)
+                                         .albedo.albedo(walk::Hemisphere::reflection, 0, walk::Component::all);
             const double want = E(r.wi.z()), z = (e.value - want) / e.stderr_;
-            std::printf("compensation: %s alpha %.1f theta_i %2.0f: E %.6f, traced order 1 %.6f +- %.6f (%+.2f sigma)\n", name,
-                        alpha, theta, want, e.value, e.stderr_, z);
+            std::printf(
+                "compensation: %s alpha %.1f theta_i %2.0f: E %.6f, traced order 1 %.6f +- %.6f (%+.2f sigma)\n", name,
+                alpha, theta, want, e.value, e.stderr_, z);
             INFO(name << " alpha " << alpha << " theta_i " << theta);
             CHECK(std::abs(z) < 4.0);
             worst_sigma = std::max(worst_sigma, std::abs(z));
@@ -354,15 +373,17 @@ TEST_CASE("Kulla-Conty compensation of conductor facets against the traced total
                 r.cell = static_cast<std::uint64_t>(alpha * 1000 + theta);
                 const walk::AlbedoTally t = walk::trace_cell(ms, walk::Conductor{metal.eta, metal.k}, r).albedo;
                 const walk::Estimate order1 = t.albedo(walk::Hemisphere::reflection, 0, walk::Component::all);
-                const walk::Estimate total = t.albedo(walk::Hemisphere::reflection, walk::all_orders, walk::Component::all);
+                const walk::Estimate total =
+                    t.albedo(walk::Hemisphere::reflection, walk::all_orders, walk::Component::all);
                 const double mu = r.wi.z(), Ess = E(mu), EF = E(mu, F);
                 const double compensated = EF + F_ms * (1.0 - Ess), traced_ms = total.value - order1.value;
-                std::printf("compensation: %s alpha %.1f %s theta_i %2.0f: single %.5f (traced %.5f +- %.5f), "
-                            "ms: KC %.5f traced %.5f; total: compensated %.5f traced %.5f +- %.5f, "
-                            "difference %+.5f (%.1f%% of the ms energy), uncompensated %+.5f\n",
-                            name, alpha, metal.name, theta, EF, order1.value, order1.stderr_, F_ms * (1.0 - Ess), traced_ms,
-                            compensated, total.value, total.stderr_, compensated - total.value,
-                            100.0 * (compensated - total.value) / traced_ms, EF - total.value);
+                std::printf(
+                    "compensation: %s alpha %.1f %s theta_i %2.0f: single %.5f (traced %.5f +- %.5f), "
+                    "ms: KC %.5f traced %.5f; total: compensated %.5f traced %.5f +- %.5f, "
+                    "difference %+.5f (%.1f%% of the ms energy), uncompensated %+.5f\n",
+                    name, alpha, metal.name, theta, EF, order1.value, order1.stderr_, F_ms * (1.0 - Ess), traced_ms,
+                    compensated, total.value, total.stderr_, compensated - total.value,
+                    100.0 * (compensated - total.value) / traced_ms, EF - total.value);
                 INFO(name << " alpha " << alpha << " " << metal.name << " theta_i " << theta);
                 CHECK(std::abs(order1.value - EF) < 4.0 * order1.stderr_);
                 CHECK(std::abs(compensated - total.value) < 0.15 * (1.0 - Ess) + 4.0 * total.stderr_);
@@ -374,10 +395,13 @@ TEST_CASE("Kulla-Conty compensation of conductor facets against the traced total
         run(smithlab::ggx(alpha), "ggx", alpha);
         run(smithlab::gtr(alpha, 1.5), "gtr(gamma=1.5)", alpha);
     }
-    std::printf("compensation: compensated against traced total albedo of conductors, worst |difference| %.3f (1 - E)\n", worst);
+    std::printf(
+        "compensation: compensated against traced total albedo of conductors, worst |difference| %.3f (1 - E)\n",
+        worst);
 }
 
-TEST_CASE("the compensation lobe's shape against the traced multiple-scattering lobe (GGX alpha = 1)", "[compensation][slow]") {
+TEST_CASE("the compensation lobe's shape against the traced multiple-scattering lobe (GGX alpha = 1)",
+          "[compensation][slow]") {
     // Both carry the same energy, 1 - E(mu_i), for mirror facets (the walk's white furnace; the lobe's albedo), so the
     // difference is one of shape: the relative L2 difference over 8 x 16 equal-solid-angle bins of f cos.
     const smithlab::Ggx ggx = smithlab::ggx(1.0);
@@ -396,10 +420,12 @@ TEST_CASE("the compensation lobe's shape against the traced multiple-scattering 
         for (int t = 0; t < r.brdf.n_theta; ++t) {
             const double c_lo = 1.0 - (t + 1.0) / r.brdf.n_theta, c_hi = 1.0 - static_cast<double>(t) / r.brdf.n_theta;
             // The lobe's f cos averaged over the band (it does not depend on phi_o).
-            const double lobe = boost::math::quadrature::gauss_kronrod<double, 15>::integrate(
-                                    [&](double mu_o) { return fit::compensation_lobe(table, r.wi.z(), mu_o) * mu_o; }, c_lo, c_hi) /
-                                (c_hi - c_lo);
-            // A Lambertian lobe of the same energy, (1 - E(mu_i)) mu_o / pi: the shape without Kulla-Conty's 1 - E(mu_o).
+            const double lobe =
+                boost::math::quadrature::gauss_kronrod<double, 15>::integrate(
+                    [&](double mu_o) { return fit::compensation_lobe(table, r.wi.z(), mu_o) * mu_o; }, c_lo, c_hi) /
+                (c_hi - c_lo);
+            // A Lambertian lobe of the same energy, (1 - E(mu_i)) mu_o / pi: the shape without Kulla-Conty's 1 -
+            // E(mu_o).
             const double lambert = missing / pi * 0.5 * (c_lo + c_hi);
             std::vector<double> band(static_cast<std::size_t>(r.brdf.n_phi));
             double band_mean = 0.0;
@@ -418,12 +444,14 @@ TEST_CASE("the compensation lobe's shape against the traced multiple-scattering 
             }
             for (double v : band) azimuthal2 += (v - band_mean) * (v - band_mean);
         }
-        const double rel = std::sqrt(diff2 / norm2), noise = std::sqrt(noise2 / norm2), rel_lambert = std::sqrt(lambert2 / norm2);
+        const double rel = std::sqrt(diff2 / norm2), noise = std::sqrt(noise2 / norm2),
+                     rel_lambert = std::sqrt(lambert2 / norm2);
         // What no lobe independent of phi_o can match: the traced lobe's spread about its band means (noise included).
         const double azimuthal = std::sqrt(azimuthal2 / norm2);
-        std::printf("compensation: lobe shape, GGX alpha 1, theta_i %2.0f: relative L2 difference %.3f (noise %.3f; "
-                    "the traced lobe's azimuthal part %.3f; a Lambertian lobe of the same energy %.3f)\n",
-                    theta, rel, noise, azimuthal, rel_lambert);
+        std::printf(
+            "compensation: lobe shape, GGX alpha 1, theta_i %2.0f: relative L2 difference %.3f (noise %.3f; "
+            "the traced lobe's azimuthal part %.3f; a Lambertian lobe of the same energy %.3f)\n",
+            theta, rel, noise, azimuthal, rel_lambert);
         INFO("theta_i " << theta << ": " << rel << ", Lambertian " << rel_lambert);
         // Loose: the lobe has no azimuthal structure and the traced one does (its azimuthal part), so it cannot
         // match bin by bin; it must be nearer than a Lambertian lobe of the same energy, and within 20 %.
@@ -443,7 +471,9 @@ TEST_CASE("the cost of a 32 x 32 (alpha x mu) family table", "[compensation][slo
     c0 = std::clock();
     for (double a : {0.25, 0.75}) e_sum += fit::compensation_table(smithlab::gtr(a, 1.5), 32).E_avg;
     const double gtr_ms = cpu_ms(c0) / 2.0;
-    std::printf("compensation: GGX 32 alphas x 32 cosines with E_avg: %.0f ms CPU (%.1f ms per alpha); "
-                "GTR(gamma = 1.5): %.0f ms CPU per alpha\n", ggx_ms, ggx_ms / 32.0, gtr_ms);
+    std::printf(
+        "compensation: GGX 32 alphas x 32 cosines with E_avg: %.0f ms CPU (%.1f ms per alpha); "
+        "GTR(gamma = 1.5): %.0f ms CPU per alpha\n",
+        ggx_ms, ggx_ms / 32.0, gtr_ms);
     CHECK(e_sum > 0.0);
 }

@@ -323,8 +323,9 @@ TEST_CASE("diffuse_models: EON passes the white furnace and is bounded by its al
         }
     // The average of E_F: 2 int E_F mu dmu against the closed form.
     for (double r : {0.25, 1.0}) {
-        const double avg = 2.0 * (integrate(rule, 0.0, 0.5, [&](double mu) { return eon_fon_albedo(mu, r) * mu; }) +
-                                  integrate(rule, 0.5, 1.0, [&](double mu) { return eon_fon_albedo(mu, r) * mu; }));
+        const double avg = 2.0 *
+            (integrate(rule, 0.0, 0.5, [&](double mu) { return eon_fon_albedo(mu, r) * mu; }) +
+             integrate(rule, 0.5, 1.0, [&](double mu) { return eon_fon_albedo(mu, r) * mu; }));
         CHECK(avg == Approx(eon_fon_average_albedo(r)).epsilon(1e-9));
     }
     std::printf("EON white furnace: max |E - 1| = %.3g; FON lobe vs the analytic E_F: max |diff| = %.3g\n",
@@ -385,8 +386,8 @@ ShaderSet shader_set() {
     for (std::size_t i = 0; i < s.names.size(); ++i) {
         const bool fitted = !s.stderrs[i].empty();
         const std::string model = fitted ? s.names[i].substr(0, s.names[i].size() - 7) : s.names[i];
-        s.models.push_back({s.names[i], fitted ? "gtr(gamma=1.5)" : "ggx", &find_diffuse_model(model), s.constants[i],
-                            s.stderrs[i]});
+        s.models.push_back(
+            {s.names[i], fitted ? "gtr(gamma=1.5)" : "ggx", &find_diffuse_model(model), s.constants[i], s.stderrs[i]});
     }
     return s;
 }
@@ -483,9 +484,9 @@ TEST_CASE("glsl: every model compiles with glslangValidator", "[diffuse][glsl]")
     const ShaderSet s = shader_set();
     const std::filesystem::path dir = scratch_dir("glsl");
     std::string frag = "#version 330 core\n" + glsl_library(s.models) +
-                       "\nuniform vec3 L;\nuniform vec3 V;\nuniform vec3 N;\n"
-                       "uniform float alpha;\nuniform float albedo;\n"
-                       "out vec4 color;\n\nvoid main()\n{\n    float f = 0.0;\n";
+        "\nuniform vec3 L;\nuniform vec3 V;\nuniform vec3 N;\n"
+        "uniform float alpha;\nuniform float albedo;\n"
+        "out vec4 color;\n\nvoid main()\n{\n    float f = 0.0;\n";
     for (const ShaderModel& m : s.models) frag += "    f += " + glsl_function_name(m) + "(L, V, N, alpha, albedo);\n";
     frag += "    color = vec4(f);\n}\n";
     std::ofstream(dir / "models.frag") << frag;
@@ -527,18 +528,18 @@ TEST_CASE("glsl: models.glsl agrees with the C++ models", "[diffuse][glsl]") {
     const ShaderSet s = shader_set();
     const std::filesystem::path dir = scratch_dir("glsl_cpp");
     std::string program = std::string(glsl_as_cpp_shim) + glsl_library(s.models) + "}  // namespace glsl\n\n" +
-                          "using Fn = float (*)(glsl::vec3, glsl::vec3, glsl::vec3, float, float);\n" +
-                          "const Fn fns[] = {\n";
+        "using Fn = float (*)(glsl::vec3, glsl::vec3, glsl::vec3, float, float);\n" + "const Fn fns[] = {\n";
     for (const ShaderModel& m : s.models) program += "    glsl::" + glsl_function_name(m) + ",\n";
-    program += "};\n\nint main(int, char** argv)\n{\n"
-               "    std::FILE* in = std::fopen(argv[1], \"r\");\n    std::FILE* out = std::fopen(argv[2], \"w\");\n"
-               "    double p[8];\n"
-               "    while (std::fscanf(in, \"%lf %lf %lf %lf %lf %lf %lf %lf\", p, p + 1, p + 2, p + 3, p + 4, p + 5, "
-               "p + 6, p + 7) == 8) {\n"
-               "        glsl::vec3 l{float(p[0]), float(p[1]), float(p[2])};\n"
-               "        glsl::vec3 v{float(p[3]), float(p[4]), float(p[5])}, n{0, 0, 1};\n"
-               "        for (Fn f : fns) std::fprintf(out, \"%.17g \", double(f(l, v, n, float(p[6]), float(p[7]))));\n"
-               "        std::fprintf(out, \"\\n\");\n    }\n    return 0;\n}\n";
+    program +=
+        "};\n\nint main(int, char** argv)\n{\n"
+        "    std::FILE* in = std::fopen(argv[1], \"r\");\n    std::FILE* out = std::fopen(argv[2], \"w\");\n"
+        "    double p[8];\n"
+        "    while (std::fscanf(in, \"%lf %lf %lf %lf %lf %lf %lf %lf\", p, p + 1, p + 2, p + 3, p + 4, p + 5, "
+        "p + 6, p + 7) == 8) {\n"
+        "        glsl::vec3 l{float(p[0]), float(p[1]), float(p[2])};\n"
+        "        glsl::vec3 v{float(p[3]), float(p[4]), float(p[5])}, n{0, 0, 1};\n"
+        "        for (Fn f : fns) std::fprintf(out, \"%.17g \", double(f(l, v, n, float(p[6]), float(p[7]))));\n"
+        "        std::fprintf(out, \"\\n\");\n    }\n    return 0;\n}\n";
 
     struct Point {
         Vec3 wi, wo;
@@ -558,8 +559,8 @@ TEST_CASE("glsl: models.glsl agrees with the C++ models", "[diffuse][glsl]") {
                 for (const Vec3& wi : dirs)
                     for (const Vec3& wo : dirs)
                         if (wi.z() >= z_min && wo.z() >= z_min)
-                            grid.push_back({to_float(wi), to_float(wo), static_cast<float>(alpha),
-                                            static_cast<float>(albedo)});
+                            grid.push_back(
+                                {to_float(wi), to_float(wo), static_cast<float>(alpha), static_cast<float>(albedo)});
         const std::string src = (dir / (name + ".cpp")).string(), exe = (dir / name).string(),
                           points = (dir / (name + ".in")).string(), values = (dir / (name + ".out")).string();
         std::ofstream(src) << text;
@@ -611,7 +612,6 @@ TEST_CASE("glsl: models.glsl agrees with the C++ models", "[diffuse][glsl]") {
     exact(glsl_float(2.0 / 3.0 - 28.0 / (15.0 * pi)), 2.0 / 3.0 - 28.0 / (15.0 * pi));
     as_double = std::regex_replace(as_double, std::regex("1\\.41421356\\b"), "1.4142135623730951");
     compare("double", as_double, 0.0, [](const Point&) { return 1e-12; });
-    compare("float", program, z_89,
-            [&](const Point& p) { return p.wi.z() >= z_80 && p.wo.z() >= z_80 ? 1e-5 : 5e-5; });
+    compare("float", program, z_89, [&](const Point& p) { return p.wi.z() >= z_80 && p.wo.z() >= z_80 ? 1e-5 : 5e-5; });
     std::filesystem::remove_all(dir);
 }

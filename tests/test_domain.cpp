@@ -18,8 +18,8 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cfloat>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -61,7 +61,8 @@ Density blinn_ref(double n_d) {
     return [=](LD r2) { return (n + 2) / (2 * pi_ld) * std::exp(-(n + 4) / 2 * std::log1p(r2)); };
 }
 // P22 = c (1 + r^2)^(gamma-2) / (r^2 + alpha^2)^gamma = C t^gamma (1 + r^2)^-2, t = alpha^2 (1 + r^2)/(r^2 + alpha^2),
-// C = c alpha^(-2 gamma) = (1 - alpha^2)/(pi alpha^2) (gamma - 1)/(1 - alpha^(2(gamma-1))) (1/(-ln alpha^2) at gamma = 1).
+// C = c alpha^(-2 gamma) = (1 - alpha^2)/(pi alpha^2) (gamma - 1)/(1 - alpha^(2(gamma-1))) (1/(-ln alpha^2) at gamma =
+// 1).
 Density gtr_ref(double a_d, double g_d) {
     const LD a = a_d, g = g_d, a2 = a * a, la = std::log(a);
     if (a_d == 1.0) return [](LD r2) { return 1 / (pi_ld * (1 + r2) * (1 + r2)); };
@@ -80,8 +81,8 @@ Density student_ref(double a_d, double g_d) {
 }
 
 // Lambda(mu) = (2/mu) integral_mu^inf f(r^2) r (sqrt(r^2 - mu^2) - mu acos(mu/r)) dr (the r-form; smithlab integrates
-// the t-form in double): [mu, 2 mu] in r by tanh-sinh, then in ln r (pieces of <= 8 e-folds) from 2 mu through 4x every scale of the
-// law above it, then in ln r by exp-sinh beyond the last, each to 1e-17.
+// the t-form in double): [mu, 2 mu] in r by tanh-sinh, then in ln r (pieces of <= 8 e-folds) from 2 mu through 4x every
+// scale of the law above it, then in ln r by exp-sinh beyond the last, each to 1e-17.
 LD reference_Lambda(const Density& f, double mu_d, std::vector<double> scales) {
     const LD mu = mu_d;
     auto g = [&](LD r) -> LD {
@@ -103,13 +104,21 @@ LD reference_Lambda(const Density& f, double mu_d, std::vector<double> scales) {
         const LD x0 = std::log(lo), x1 = std::log(b);
         const int pieces = static_cast<int>(std::ceil((x1 - x0) / 8));
         for (int k = 0; k < pieces; ++k)
-            I += ts.integrate([&](LD x) { const LD r = std::exp(x); return g(r) * r; }, x0 + (x1 - x0) * k / pieces,
-                              x0 + (x1 - x0) * (k + 1) / pieces, tol);
+            I += ts.integrate(
+                [&](LD x) {
+                    const LD r = std::exp(x);
+                    return g(r) * r;
+                },
+                x0 + (x1 - x0) * k / pieces, x0 + (x1 - x0) * (k + 1) / pieces, tol);
         lo = b;
     }
     // beyond: r = lo e^y, y in [0, inf), so that the tail's own scale (lo) is O(1) in y
-    I += es.integrate([&](LD y) { const LD r = lo * std::exp(y); return r < LD(INFINITY) ? g(r) * r : LD(0); }, LD(0),
-                      LD(INFINITY), tol);
+    I += es.integrate(
+        [&](LD y) {
+            const LD r = lo * std::exp(y);
+            return r < LD(INFINITY) ? g(r) * r : LD(0);
+        },
+        LD(0), LD(INFINITY), tol);
     return 2 * I / mu;
 }
 
@@ -159,7 +168,8 @@ std::vector<Draw> draws(const std::string& family, int random, smithlab::Rng& g)
         for (int i = 0; i < random; ++i) {
             const double a = log_uniform(g, 1e-50, 1e50);
             // half in the shapes between GGX and its heavier tails and the paper's fits, half log-uniform up to 1e6
-            const double gm = smithlab::uniform01(g) < 0.5 ? 1.65 + 8.35 * smithlab::uniform01(g) : log_uniform(g, 1.65, 1e6);
+            const double gm =
+                smithlab::uniform01(g) < 0.5 ? 1.65 + 8.35 * smithlab::uniform01(g) : log_uniform(g, 1.65, 1e6);
             out.push_back(student_draw(a, gm));
         }
     } else if (family == "gtr") {
@@ -170,8 +180,8 @@ std::vector<Draw> draws(const std::string& family, int random, smithlab::Rng& g)
             const double u = smithlab::uniform01(g);
             // a third integer gamma (closed forms), a third in (0, 4), a third log-uniform up to 1e6
             const double gm = u < 1.0 / 3 ? std::floor(32.0 * smithlab::uniform01(g))
-                              : u < 2.0 / 3 ? 4.0 * smithlab::uniform01(g)
-                                            : log_uniform(g, 1e-6, 1e6);
+                : u < 2.0 / 3             ? 4.0 * smithlab::uniform01(g)
+                                          : log_uniform(g, 1e-6, 1e6);
             out.push_back(gtr_draw(a, gm));
         }
     }
@@ -194,7 +204,7 @@ enum class Kind { exact, approximation };
 struct MethodUnderTest {
     std::string name;
     Kind kind;
-    double tolerance;  // relative, of Lambda, for exact routes
+    double tolerance;                                            // relative, of Lambda, for exact routes
     std::function<smithlab::LambdaOfMu(const AnyNdf&)> prepare;  // throws input_error when it refuses
     bool slow = false;                                           // the nested 2D routes: fewer points
 };
@@ -218,8 +228,7 @@ std::vector<MethodUnderTest> methods_under_test() {
     out.push_back({"quadrature2d", Kind::exact, 1e-8, core(Method::quadrature2d), true});
     static const smithlab::VariantRegistry variants = smithlab::builtin_variants();
     for (const smithlab::LambdaVariant& v : variants.list()) {
-        MethodUnderTest m{v.name, Kind::approximation, 0,
-                          [&v](const AnyNdf& n) { return smithlab::prepare(v, n); }};
+        MethodUnderTest m{v.name, Kind::approximation, 0, [&v](const AnyNdf& n) { return smithlab::prepare(v, n); }};
         // "q1d-boost-1e-4": the tolerance follows the second '-'
         auto tol_of = [&] { return std::stod(v.name.substr(v.name.find('-', 4) + 1)); };
         if (v.name.rfind("q1d-", 0) == 0) {
@@ -287,8 +296,8 @@ void run_family(const std::string& family, int random_draws, int random_mus, boo
                 const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
                 ++t.evaluated;
                 const double g1 = 1.0 / (1.0 + got);
-                INFO(m.name << " on " << d.spec << " at mu=" << fmt(mu) << ": Lambda=" << fmt(got) << " reference="
-                            << static_cast<double>(want[i]) << " (" << secs << " s)");
+                INFO(m.name << " on " << d.spec << " at mu=" << fmt(mu) << ": Lambda=" << fmt(got)
+                            << " reference=" << static_cast<double>(want[i]) << " (" << secs << " s)");
                 REQUIRE(!std::isnan(got));
                 CHECK(got >= 0.0);
                 CHECK((g1 >= 0.0 && g1 <= 1.0));
@@ -331,7 +340,8 @@ TEST_CASE("accepted means right: Blinn-Phong over n in [0, 1e90], every method",
 TEST_CASE("accepted means right: GTR over alpha in [1e-50, 1], gamma in [0, 1e6], every method", "[domain]") {
     run_family("gtr", 12, 4, false, 904);
 }
-TEST_CASE("accepted means right: Student-t over alpha in [1e-50, 1e50], gamma in [1.65, 1e6], every method", "[domain]") {
+TEST_CASE("accepted means right: Student-t over alpha in [1e-50, 1e50], gamma in [1.65, 1e6], every method",
+          "[domain]") {
     run_family("student", 8, 4, false, 907);
 }
 TEST_CASE("accepted means right: the nested 2D routes at the corners", "[domain][2d][sweep]") {
@@ -340,10 +350,10 @@ TEST_CASE("accepted means right: the nested 2D routes at the corners", "[domain]
 
 TEST_CASE("factories refuse what lies beyond the accepted domain, naming it", "[domain]") {
     const smithlab::NdfRegistry r = smithlab::builtin_registry();
-    for (const char* spec : {"ggx(alpha=1e-51)", "ggx(alpha=2e50)", "beckmann(alpha=0)", "blinn(n=-1)",
-                             "gtr(alpha=1.5, gamma=1)", "gtr(alpha=1e-51, gamma=1)", "gtr(alpha=0.3, gamma=1.1e6)",
-                             "gtr(alpha=0.3, gamma=1e18)", "student(alpha=0.3, gamma=1.6)", "student(alpha=0.3, gamma=2e6)",
-                             "student(alpha=1e-51, gamma=2)"}) {
+    for (const char* spec :
+         {"ggx(alpha=1e-51)", "ggx(alpha=2e50)", "beckmann(alpha=0)", "blinn(n=-1)", "gtr(alpha=1.5, gamma=1)",
+          "gtr(alpha=1e-51, gamma=1)", "gtr(alpha=0.3, gamma=1.1e6)", "gtr(alpha=0.3, gamma=1e18)",
+          "student(alpha=0.3, gamma=1.6)", "student(alpha=0.3, gamma=2e6)", "student(alpha=1e-51, gamma=2)"}) {
         INFO(spec);
         CHECK_THROWS_AS(r.make(spec), input_error);
     }
@@ -386,8 +396,7 @@ TEST_CASE("known hard inputs: right or refused", "[domain]") {
             try {
                 const double l = smithlab::Lambda(v, g, mu);
                 CHECK(!std::isnan(l));
-            } catch (const input_error&) {
-            }
+            } catch (const input_error&) {}
         }
     }
 }
@@ -416,7 +425,8 @@ TEST_CASE("a D-only plug-in: right by quadrature down to a slope scale of 1e-3, 
         q.method = smithlab::Method::quadrature;
         CHECK_THROWS_WITH(smithlab::tabulate_Lambda(bad), Catch::Contains("only D"));
         // the NDF's own slope form has no such limit
-        CHECK(rel_err(smithlab::Lambda(smithlab::Ggx{alpha}, 1.0, q), reference_Lambda(ggx_ref(alpha), 1.0, {alpha, 1.0})) < 1e-10);
+        CHECK(rel_err(smithlab::Lambda(smithlab::Ggx{alpha}, 1.0, q),
+                      reference_Lambda(ggx_ref(alpha), 1.0, {alpha, 1.0})) < 1e-10);
     }
 }
 
@@ -445,10 +455,11 @@ TEST_CASE("the long-double reference agrees with the 50-digit one of reference.h
 TEST_CASE("the per-distribution checks pass over the accepted domain, or refuse", "[domain][checks]") {
     // `check` failed 6-9 of its checks at alpha 1e-5 .. 1e-50 (D read through cos theta_m; log axes split at 1).
     const smithlab::NdfRegistry r = smithlab::builtin_registry();
-    for (const char* spec : {"ggx(alpha=1e-5)", "ggx(alpha=1e-50)", "ggx(alpha=1e20)", "beckmann(alpha=1e-20)",
-                             "beckmann(alpha=1e-50)", "beckmann(alpha=1e8)", "blinn(n=1e90)", "gtr(alpha=1e-50, gamma=0.5)",
-                             "gtr(alpha=1e-30, gamma=31)", "gtr(alpha=1e-8, gamma=2.5)", "gtr(alpha=0.3, gamma=1e6)",
-                             "student(alpha=1e-50, gamma=1.65)", "student(alpha=1e8, gamma=3)", "student(alpha=1e-8, gamma=1e6)"}) {
+    for (const char* spec :
+         {"ggx(alpha=1e-5)", "ggx(alpha=1e-50)", "ggx(alpha=1e20)", "beckmann(alpha=1e-20)", "beckmann(alpha=1e-50)",
+          "beckmann(alpha=1e8)", "blinn(n=1e90)", "gtr(alpha=1e-50, gamma=0.5)", "gtr(alpha=1e-30, gamma=31)",
+          "gtr(alpha=1e-8, gamma=2.5)", "gtr(alpha=0.3, gamma=1e6)", "student(alpha=1e-50, gamma=1.65)",
+          "student(alpha=1e8, gamma=3)", "student(alpha=1e-8, gamma=1e6)"}) {
         const AnyNdf ndf = r.make(spec);
         for (const auto& c : smithlab::run_checks(ndf)) {
             INFO(spec << ": " << c.name << " " << c.where << " value=" << c.value << " expected=" << c.expected);
@@ -465,11 +476,21 @@ TEST_CASE("the per-distribution checks pass over the accepted domain, or refuse"
 TEST_CASE("samplers at extreme incidence: a finite sample with its finite pdf, or a refusal", "[domain][sampling]") {
     const smithlab::NdfRegistry registry = smithlab::builtin_registry();
     const std::vector<smithlab::SamplerInfo> samplers = smithlab::builtin_samplers();
-    const std::vector<std::string> specs = {
-        "ggx(alpha=1e-50)", "ggx(alpha=0.3)",   "ggx(alpha=1e50)",   "beckmann(alpha=1e-50)", "beckmann(alpha=0.3)",
-        "beckmann(alpha=1e50)", "blinn(n=0)", "blinn(n=1e90)", "gtr(alpha=1e-50, gamma=0.5)", "gtr(alpha=0.3, gamma=1e6)",
-        "gtr(alpha=1, gamma=0)", "gtr(alpha=1e-15, gamma=31)", "student(alpha=1e-50, gamma=1.65)",
-        "student(alpha=0.3, gamma=1.65)", "student(alpha=1e50, gamma=1e6)"};
+    const std::vector<std::string> specs = {"ggx(alpha=1e-50)",
+                                            "ggx(alpha=0.3)",
+                                            "ggx(alpha=1e50)",
+                                            "beckmann(alpha=1e-50)",
+                                            "beckmann(alpha=0.3)",
+                                            "beckmann(alpha=1e50)",
+                                            "blinn(n=0)",
+                                            "blinn(n=1e90)",
+                                            "gtr(alpha=1e-50, gamma=0.5)",
+                                            "gtr(alpha=0.3, gamma=1e6)",
+                                            "gtr(alpha=1, gamma=0)",
+                                            "gtr(alpha=1e-15, gamma=31)",
+                                            "student(alpha=1e-50, gamma=1.65)",
+                                            "student(alpha=0.3, gamma=1.65)",
+                                            "student(alpha=1e50, gamma=1e6)"};
     const std::vector<double> thetas = {0.0, 1e-200, 45.0, 89.999999, 90.0, 179.99};
     int drawn = 0, refused = 0;
     for (const std::string& spec : specs) {
@@ -502,5 +523,6 @@ TEST_CASE("samplers at extreme incidence: a finite sample with its finite pdf, o
             }
         }
     }
-    std::printf("domain samplers: %d (sampler, ndf, theta_i) drew 20 finite samples each, %d refused\n", drawn, refused);
+    std::printf("domain samplers: %d (sampler, ndf, theta_i) drew 20 finite samples each, %d refused\n", drawn,
+                refused);
 }

@@ -39,9 +39,9 @@ TEST_CASE("family: the stated bound holds on random points over the whole domain
     const GtrFamily& t = GtrFamily::get();
     const GtrFamilyData& d = t.data();
     WARN("family trees: " << d.n_leaves << " leaves of degree " << GtrFamily::degree << ", " << t.bytes() / 1e6
-                         << " MB, depth <= " << d.max_depth << "; stated bounds " << t.error_bound() << " (relative dLambda), " << t.G1_error_bound()
-                         << " (|dG1|)");
-    CHECK(t.error_bound() <= 1e-5);     // the stated targets
+                          << " MB, depth <= " << d.max_depth << "; stated bounds " << t.error_bound()
+                          << " (relative dLambda), " << t.G1_error_bound() << " (|dG1|)");
+    CHECK(t.error_bound() <= 1e-5);  // the stated targets
     CHECK(t.G1_error_bound() <= 1e-6);
     std::mt19937_64 rng(14);
     std::uniform_real_distribution<double> log_alpha(std::log(1e-4), 0.0), gamma_u(0.0, 20.0), gamma_low(0.0, 3.0),
@@ -127,9 +127,9 @@ TEST_CASE("family: input rules and conventions", "[family]") {
     CHECK(says([&] { G1_gtr_family(0.5, nan, 0.5); }, "gamma"));
     CHECK(says([&] { Lambda_gtr_family(0.5, 1.0, nan); }, "mu is NaN"));
     const double L = Lambda_gtr_family(0.3, 1.7, 0.6);
-    CHECK(Lambda_gtr_family(0.3, 1.7, -0.6) == -1.0 - L);                      // Smith's downward convention
+    CHECK(Lambda_gtr_family(0.3, 1.7, -0.6) == -1.0 - L);                        // Smith's downward convention
     CHECK(Lambda_gtr_family(0.3, 1.7, -0.6, Downward::hammon_symmetric) == -L);  // Hammon's
-    CHECK(G1_gtr_family(0.3, 1.7, -0.6) == 1.0 / (1.0 + L));                    // G1 takes |mu|
+    CHECK(G1_gtr_family(0.3, 1.7, -0.6) == 1.0 / (1.0 + L));                     // G1 takes |mu|
 
     // The variant: GTR in the domain only; through the variant interface, the same numbers.
     const VariantRegistry vr = builtin_variants();
@@ -145,8 +145,14 @@ TEST_CASE("family: input rules and conventions", "[family]") {
 TEST_CASE("family: one evaluator, shared by every thread", "[family]") {
     const GtrFamily* seen[2] = {nullptr, nullptr};
     double got[2] = {0.0, 0.0};
-    std::thread a([&] { seen[0] = &GtrFamily::get(); got[0] = seen[0]->Lambda_up(0.2, 2.5, 0.3); });
-    std::thread b([&] { seen[1] = &GtrFamily::get(); got[1] = seen[1]->Lambda_up(0.2, 2.5, 0.3); });
+    std::thread a([&] {
+        seen[0] = &GtrFamily::get();
+        got[0] = seen[0]->Lambda_up(0.2, 2.5, 0.3);
+    });
+    std::thread b([&] {
+        seen[1] = &GtrFamily::get();
+        got[1] = seen[1]->Lambda_up(0.2, 2.5, 0.3);
+    });
     a.join();
     b.join();
     CHECK(seen[0] == seen[1]);
@@ -248,8 +254,8 @@ TEST_CASE("family stream: the same G1 as one point at a time, over the whole dom
         const double allowed = 1e-12 * want * (1.0 - want) + 4.5e-16, ratio = std::abs(got[i] - want) / allowed;
         if (ratio > worst) worst = ratio, at = i;
     }
-    INFO("worst |dG1| over its allowance: " << worst << " at alpha " << alpha[at] << ", gamma " << gamma[at]
-                                            << ", mu " << mu[at] << ": " << got[at] << " against "
+    INFO("worst |dG1| over its allowance: " << worst << " at alpha " << alpha[at] << ", gamma " << gamma[at] << ", mu "
+                                            << mu[at] << ": " << got[at] << " against "
                                             << t.G1_up(alpha[at], gamma[at], mu[at]));
     CHECK(worst <= 1.0);
     CHECK(special == 4 * 9 * 2);
@@ -336,7 +342,7 @@ TEST_CASE("family stream: its grids find the tree's leaves, its lanes hold their
                 for (int k = GtrFamilyStream::Lanes::steps[g] - 1; k >= 0; --k)
                     h = h * s3[2] + l.c[GtrFamilyStream::Lanes::offset[g] + 8 * k + lane];
                 sum += h * std::pow(s3[0], lanes.i[g][lane]) * std::pow(s3[1], lanes.j[g][lane]) *
-                       std::pow(s3[2], lanes.k0[g][lane]);
+                    std::pow(s3[2], lanes.k0[g][lane]);
             }
         const double want = GtrFamily::polynomial(d.leaves[leaf], s3);
         worst = std::max(worst, std::abs(sum - want) / (1.0 + std::abs(want)));

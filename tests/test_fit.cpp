@@ -55,8 +55,8 @@ TEST_CASE("fit: one trace at albedo 1 split by diffuse events is the trace at an
             r.seed = 4;
             r.walks = n;
             const walk::CellResult direct = walk::trace_cell(ms, at_a, r);
-            const walk::Estimate d = direct.albedo.albedo(walk::Hemisphere::reflection, walk::all_orders,
-                                                          walk::Component::diffuse);
+            const walk::Estimate d =
+                direct.albedo.albedo(walk::Hemisphere::reflection, walk::all_orders, walk::Component::diffuse);
             const walk::Estimate split = fit::at_albedo(m, {a, 1});
             INFO("fresnel-diffuse albedo, albedo " << a << ": split " << split.value << " +- " << split.stderr_
                                                    << ", direct " << d.value << " +- " << d.stderr_);
@@ -124,22 +124,25 @@ TEST_CASE("fit: least squares on a linear model equals the closed-form weighted 
     }
     const Eigen::MatrixXd cov = (X.transpose() * X).inverse();
     const Eigen::VectorXd p = cov * X.transpose() * y;
-    const fit::LeastSquaresFit f = fit::least_squares(n, {0.0, 0.0, 0.0}, [&](std::span<const double> q, std::span<double> r) {
-        for (int i = 0; i < n; ++i) r[i] = (q[0] + q[1] * xs[i] + q[2] * xs[i] * xs[i] - ys[i]) / sig[i];
-    });
+    const fit::LeastSquaresFit f =
+        fit::least_squares(n, {0.0, 0.0, 0.0}, [&](std::span<const double> q, std::span<double> r) {
+            for (int i = 0; i < n; ++i) r[i] = (q[0] + q[1] * xs[i] + q[2] * xs[i] * xs[i] - ys[i]) / sig[i];
+        });
     REQUIRE(f.converged);
     CHECK(f.dof == n - 3);
     for (int i = 0; i < 3; ++i) {
         CHECK(f.params[i] == Approx(p(i)).epsilon(1e-7));
         for (int j = 0; j < 3; ++j)  // to the finite-difference Jacobian's accuracy
-            CHECK(f.covariance[i * 3 + j] == Approx(cov(i, j)).epsilon(1e-5).margin(1e-6 * std::sqrt(cov(i, i) * cov(j, j))));
+            CHECK(f.covariance[i * 3 + j] ==
+                  Approx(cov(i, j)).epsilon(1e-5).margin(1e-6 * std::sqrt(cov(i, i) * cov(j, j))));
     }
     const double chi2 = (X * p - y).squaredNorm();
     CHECK(f.chi2 == Approx(chi2).epsilon(1e-9));
     // Too few residuals is refused, with the counts.
-    const fit::LeastSquaresFit few = fit::least_squares(3, {0.0, 0.0, 0.0}, [](std::span<const double>, std::span<double> r) {
-        for (double& v : r) v = 1.0;
-    });
+    const fit::LeastSquaresFit few =
+        fit::least_squares(3, {0.0, 0.0, 0.0}, [](std::span<const double>, std::span<double> r) {
+            for (double& v : r) v = 1.0;
+        });
     CHECK_FALSE(few.converged);
     CHECK_THAT(few.reason, Contains("3 residuals for 3 parameters"));
 }
@@ -175,7 +178,8 @@ std::vector<fit::DataPoint> synthetic(const fit::DiffuseModel& m, const std::vec
 
 }  // namespace
 
-TEST_CASE("fit: the fitter recovers known constants from the model's own noisy data within their uncertainties", "[fit]") {
+TEST_CASE("fit: the fitter recovers known constants from the model's own noisy data within their uncertainties",
+          "[fit]") {
     const fit::DiffuseModel& m = fit::find_diffuse_model("hammon-2017");
     const std::vector<double> truth{0.85, 0.45, 0.55, 1.0, 0.15};
     REQUIRE(truth.size() == m.parameters.size());
@@ -213,7 +217,8 @@ TEST_CASE("fit: too few points for a model's constants is an error naming the mo
         fit::fit_model(m, data, "ggx at one point");
         FAIL("a fit of 5 constants to 2 values was accepted");
     } catch (const input_error& e) {
-        CHECK_THAT(e.what(), Contains("hammon-2017") && Contains("ggx at one point") && Contains("2 residuals for 5 parameters"));
+        CHECK_THAT(e.what(),
+                   Contains("hammon-2017") && Contains("ggx at one point") && Contains("2 residuals for 5 parameters"));
     }
 }
 
@@ -247,7 +252,8 @@ fs::path fresh_directory(const std::string& name) {
 
 }  // namespace
 
-TEST_CASE("fit: smithlab fit writes its outputs, reuses its cache, and the same scene gives the same bits", "[fit][cli]") {
+TEST_CASE("fit: smithlab fit writes its outputs, reuses its cache, and the same scene gives the same bits",
+          "[fit][cli]") {
     using namespace smithlab_test;
     const fs::path d = fresh_directory("fit");
     write(d / "s.toml", tiny_scene);
@@ -272,7 +278,8 @@ TEST_CASE("fit: smithlab fit writes its outputs, reuses its cache, and the same 
     CHECK(slurp(d / "out" / "errors.csv") == errors);
     CHECK(slurp(d / "out" / "constants.csv") == constants);
     // Fresh, one thread: the same bits as from the cache.
-    const Run fresh = run("fit '" + (d / "s.toml").string() + "' --output '" + (d / "fresh").string() + "' --threads 1");
+    const Run fresh =
+        run("fit '" + (d / "s.toml").string() + "' --output '" + (d / "fresh").string() + "' --threads 1");
     REQUIRE(fresh.rc == 0);
     CHECK(slurp(d / "fresh" / "validation.csv") == slurp(d / "out" / "validation.csv"));
     // A damaged cache file is traced again, not trusted.
@@ -290,17 +297,21 @@ TEST_CASE("fit: smithlab fit writes its outputs, reuses its cache, and the same 
     fs::remove_all(d);
 }
 
-TEST_CASE("fit: a pictures section traces and draws the spheres, slices and missing light, and checks itself", "[fit][cli]") {
+TEST_CASE("fit: a pictures section traces and draws the spheres, slices and missing light, and checks itself",
+          "[fit][cli]") {
     using namespace smithlab_test;
     const fs::path d = fresh_directory("fitpics");
-    write(d / "s.toml", tiny_scene + "[pictures]\nsphere_alpha = [0.001, 1.0]\npixels = 8\nwalks = 200\n"
-                                     "slice_alpha = [1.0]\nslice_n = 4\n");
+    write(d / "s.toml",
+          tiny_scene +
+              "[pictures]\nsphere_alpha = [0.001, 1.0]\npixels = 8\nwalks = 200\n"
+              "slice_alpha = [1.0]\nslice_n = 4\n");
     const Run r = run("fit '" + (d / "s.toml").string() + "' --output '" + (d / "out").string() + "' --threads 2");
     INFO(r.err);
     REQUIRE(r.rc == 0);
     const fs::path p = d / "out" / "pictures";
     fs::create_directories(d / "first");
-    for (const char* csv : {"spheres.csv", "slices.csv", "missing.csv", "ndfs.csv"}) fs::copy_file(p / csv, d / "first" / csv);
+    for (const char* csv : {"spheres.csv", "slices.csv", "missing.csv", "ndfs.csv"})
+        fs::copy_file(p / csv, d / "first" / csv);
     CHECK(slurp(p / "spheres.csv").rfind("ndf,source,alpha,light_deg,albedo,px,py,value\n", 0) == 0);
     CHECK(slurp(p / "slices.csv").rfind("ndf,source,alpha,theta_h,theta_d,value,stderr\n", 0) == 0);
     CHECK(slurp(p / "missing.csv").rfind("ndf,alpha,theta,albedo,E,E1,missing,stderr\n", 0) == 0);
@@ -330,13 +341,17 @@ TEST_CASE("fit: a pictures section traces and draws the spheres, slices and miss
         CHECK(slurp(p / csv) == slurp(d / "first" / csv));
     }
     // Another scene's pictures (more walks) are traced again, not read from the stale cache.
-    write(d / "more.toml", tiny_scene + "[pictures]\nsphere_alpha = [0.001, 1.0]\npixels = 8\nwalks = 300\n"
-                                         "slice_alpha = [1.0]\nslice_n = 4\n");
-    const Run more = run("fit '" + (d / "more.toml").string() + "' --output '" + (d / "out").string() + "' --threads 2");
+    write(d / "more.toml",
+          tiny_scene +
+              "[pictures]\nsphere_alpha = [0.001, 1.0]\npixels = 8\nwalks = 300\n"
+              "slice_alpha = [1.0]\nslice_n = 4\n");
+    const Run more =
+        run("fit '" + (d / "more.toml").string() + "' --output '" + (d / "out").string() + "' --threads 2");
     REQUIRE(more.rc == 0);
     // Lambertian facets' albedos do not depend on the pictures' walks: those 2 traces are reused, the 5 others not.
-    CHECK_THAT(more.err, Contains("fit: pictures: 2 of 7 traces read from the cache") &&
-                             Contains("fit: pictures: ggx, alpha 1: spheres") && Contains("ggx, alpha 1: slices"));
+    CHECK_THAT(more.err,
+               Contains("fit: pictures: 2 of 7 traces read from the cache") &&
+                   Contains("fit: pictures: ggx, alpha 1: spheres") && Contains("ggx, alpha 1: slices"));
     CHECK(slurp(p / "spheres.csv") != slurp(d / "first" / "spheres.csv"));
     fs::remove_all(d);
 }
@@ -369,7 +384,8 @@ albedo_walks = 400
     CHECK_THAT(report, Contains("\n## Fits that look wrong\n"));
     // Every flag is on stderr and in the report, and names its model and NDF.
     std::size_t flags = 0;
-    for (std::size_t at = r.err.find("fit: warning: "); at != std::string::npos; at = r.err.find("fit: warning: ", at + 1)) {
+    for (std::size_t at = r.err.find("fit: warning: "); at != std::string::npos;
+         at = r.err.find("fit: warning: ", at + 1)) {
         const std::string line = r.err.substr(at + 14, r.err.find('\n', at) - at - 14);
         const std::string model = line.substr(0, line.find(" on ggx: "));
         INFO(line);
@@ -395,7 +411,8 @@ albedo_walks = 400
         return std::stod(f);
     };
     const bool worse = albedo_rms("oren-nayar-fitted") > albedo_rms("oren-nayar");
-    CHECK(worse == (r.err.find("oren-nayar-fitted on ggx: its RMS error of the directional albedo") != std::string::npos));
+    CHECK(worse ==
+          (r.err.find("oren-nayar-fitted on ggx: its RMS error of the directional albedo") != std::string::npos));
     // smithlab-2026 starts at hammon-2017's constants: fitted, but not listed at its start.
     CHECK_THAT(errors, Contains("\nhammon-2017,ggx,") && Contains("\nsmithlab-2026-fitted,ggx,"));
     CHECK_THAT(errors, !Contains("\nsmithlab-2026,"));
@@ -420,7 +437,8 @@ TEST_CASE("fit: the tables name an NDF's parameters in columns of their own besi
     CHECK_THAT(slurp(o / "errors.csv"), Contains("\nlambert,gtr(gamma=1.5),1.5,"));
     CHECK(slurp(o / "training.csv").rfind("ndf,gamma,alpha,theta_i,", 0) == 0);
     CHECK_THAT(slurp(o / "validation.csv"), Contains("\ngtr(gamma=3),3,"));
-    CHECK(slurp(o / "compensation.csv").rfind("ndf,alpha,gamma,cos_theta,E\n\"gtr(alpha=0.5, gamma=1.5)\",0.5,1.5,0,", 0) == 0);
+    CHECK(slurp(o / "compensation.csv")
+              .rfind("ndf,alpha,gamma,cos_theta,E\n\"gtr(alpha=0.5, gamma=1.5)\",0.5,1.5,0,", 0) == 0);
     CHECK(slurp(o / "compensation_avg.csv").rfind("ndf,alpha,gamma,E_avg\n", 0) == 0);
     fs::remove_all(d);
 }
@@ -490,7 +508,8 @@ TEST_CASE("fit: a model's directional albedo by the fitter's rule against closed
     CHECK(fit::check_on_grid(linear, negative, alphas).min_f < 0.0);
 }
 
-TEST_CASE("fit: energy_alphas hold a fitted model's directional albedo to 1 where its data would take it above", "[fit]") {
+TEST_CASE("fit: energy_alphas hold a fitted model's directional albedo to 1 where its data would take it above",
+          "[fit]") {
     // Hammon's published constants make 1.15 at alpha = 1, theta_i = 89 (measured by the diffuse models' tests); data
     // made by them, fitted free, keeps that; fitted with the bound, the peak is 1.
     const fit::DiffuseModel& m = fit::find_diffuse_model("hammon-2017");

@@ -89,7 +89,9 @@ struct Gen {
     bool chance(double p) { return unit() < p; }
     double log_uniform(double lo, double hi) { return lo * std::pow(hi / lo, unit()); }
     template <class T>
-    const T& pick(const std::vector<T>& v) { return v[below(v.size())]; }
+    const T& pick(const std::vector<T>& v) {
+        return v[below(v.size())];
+    }
 };
 
 // One generator per class, seeded from the run's seed and the class name; the seed is printed.
@@ -114,16 +116,104 @@ std::string shell_quote(const std::string& s) {
 
 // ---- numbers as text ---------------------------------------------------------------------------------------------
 
-const std::vector<std::string> special_numbers = {
-    "0", "-0", "1", "-1", "0.5", "2", "3", "10", "1e-300", "-1e-300", "4.9e-324", "1e-320", "2.2250738585072014e-308",
-    "1.7976931348623157e308", "1e308", "-1e308", "1e309", "-1e309", "1e154", "1e-154", "1e15", "1e18", "1e50",
-    "1e-50", "1e-15", "1e-5", "1e5", "1e10", "1e-10", "inf", "-inf", "+inf", "INF", "Infinity", "-Infinity", "nan",
-    "NaN", "-nan", "+nan", "NAN", "nan(0x1)", "", " ", "1 ", " 1", "\t1", "1,5", "1.5.5", "0x1p-3", "0x10", "0X1P+4",
-    "1e", "e5", "--1", "+-1", "abc", "1abc", "1e5x", "0.", ".", "-", "+", "1_000", "\xef\xbc\x91", "18446744073709551615",
-    "18446744073709551616", "-18446744073709551616", "9223372036854775807", "9223372036854775808",
-    "-9223372036854775808", "-9223372036854775809", "4294967295", "4294967296", "4294967298", "1000000001",
-    "99999999999999999999999999", "3.0", "1e3", "001", "1/2", "true", "'", "\"", "\\", "$(id)", "`id`", "*", "%s%n",
-    "\xff\xfe", "89.999999999999", "90", "179.999999", "180", "360", "-90", "0.1", "0.10000000001", "1e-16"};
+const std::vector<std::string> special_numbers = {"0",
+                                                  "-0",
+                                                  "1",
+                                                  "-1",
+                                                  "0.5",
+                                                  "2",
+                                                  "3",
+                                                  "10",
+                                                  "1e-300",
+                                                  "-1e-300",
+                                                  "4.9e-324",
+                                                  "1e-320",
+                                                  "2.2250738585072014e-308",
+                                                  "1.7976931348623157e308",
+                                                  "1e308",
+                                                  "-1e308",
+                                                  "1e309",
+                                                  "-1e309",
+                                                  "1e154",
+                                                  "1e-154",
+                                                  "1e15",
+                                                  "1e18",
+                                                  "1e50",
+                                                  "1e-50",
+                                                  "1e-15",
+                                                  "1e-5",
+                                                  "1e5",
+                                                  "1e10",
+                                                  "1e-10",
+                                                  "inf",
+                                                  "-inf",
+                                                  "+inf",
+                                                  "INF",
+                                                  "Infinity",
+                                                  "-Infinity",
+                                                  "nan",
+                                                  "NaN",
+                                                  "-nan",
+                                                  "+nan",
+                                                  "NAN",
+                                                  "nan(0x1)",
+                                                  "",
+                                                  " ",
+                                                  "1 ",
+                                                  " 1",
+                                                  "\t1",
+                                                  "1,5",
+                                                  "1.5.5",
+                                                  "0x1p-3",
+                                                  "0x10",
+                                                  "0X1P+4",
+                                                  "1e",
+                                                  "e5",
+                                                  "--1",
+                                                  "+-1",
+                                                  "abc",
+                                                  "1abc",
+                                                  "1e5x",
+                                                  "0.",
+                                                  ".",
+                                                  "-",
+                                                  "+",
+                                                  "1_000",
+                                                  "\xef\xbc\x91",
+                                                  "18446744073709551615",
+                                                  "18446744073709551616",
+                                                  "-18446744073709551616",
+                                                  "9223372036854775807",
+                                                  "9223372036854775808",
+                                                  "-9223372036854775808",
+                                                  "-9223372036854775809",
+                                                  "4294967295",
+                                                  "4294967296",
+                                                  "4294967298",
+                                                  "1000000001",
+                                                  "99999999999999999999999999",
+                                                  "3.0",
+                                                  "1e3",
+                                                  "001",
+                                                  "1/2",
+                                                  "true",
+                                                  "'",
+                                                  "\"",
+                                                  "\\",
+                                                  "$(id)",
+                                                  "`id`",
+                                                  "*",
+                                                  "%s%n",
+                                                  "\xff\xfe",
+                                                  "89.999999999999",
+                                                  "90",
+                                                  "179.999999",
+                                                  "180",
+                                                  "360",
+                                                  "-90",
+                                                  "0.1",
+                                                  "0.10000000001",
+                                                  "1e-16"};
 
 std::string random_number(Gen& g) {
     std::string s;
@@ -134,7 +224,8 @@ std::string random_number(Gen& g) {
         s += '.';
         for (std::size_t i = g.below(10); i > 0; --i) s += char('0' + g.below(10));
     }
-    if (g.chance(0.6)) s += g.pick<std::string>({"e", "E", "e-", "e+"}) + std::to_string(g.below(g.chance(0.5) ? 30 : 400));
+    if (g.chance(0.6))
+        s += g.pick<std::string>({"e", "E", "e-", "e+"}) + std::to_string(g.below(g.chance(0.5) ? 30 : 400));
     return s;
 }
 
@@ -178,7 +269,9 @@ std::string valid_gamma(Gen& g) {
     if (g.chance(0.3)) return std::to_string(g.below(35));
     return g17(g.chance(0.8) ? 20.0 * g.unit() : g.log_uniform(1e-12, 1e20));
 }
-std::string valid_blinn_n(Gen& g) { return g17(g.chance(0.8) ? g.log_uniform(0.1, 2000.0) : g.log_uniform(1e-20, 1e20)); }
+std::string valid_blinn_n(Gen& g) {
+    return g17(g.chance(0.8) ? g.log_uniform(0.1, 2000.0) : g.log_uniform(1e-20, 1e20));
+}
 
 // Each value of a spec is a typical valid one 80% of the time, so that a spec with two values reaches the NDF.
 std::string value_for(Gen& g, const std::string& key) {
@@ -191,14 +284,15 @@ std::string value_for(Gen& g, const std::string& key) {
 std::string structured_spec(Gen& g) {
     static const std::vector<std::string> good_names = {"ggx", "beckmann", "blinn", "gtr", "gtr", "gtr"};
     static const std::vector<std::string> bad_names = {"GTR", "Ggx", "phong", "", "_", "gtr gtr", "1gtr", "ggx2"};
-    static const std::vector<std::string> other_keys = {"alpha", "gamma", "n", "beta", "ALPHA", "", "1a", "a b", "alpha "};
+    static const std::vector<std::string> other_keys = {"alpha", "gamma", "n",   "beta",  "ALPHA",
+                                                        "",      "1a",    "a b", "alpha "};
     // Each piece is right most of the time, so that one or two wrong ones are found in a spec that is otherwise fine.
     const std::string name = g.chance(0.9) ? g.pick(good_names) : g.pick(bad_names);
-    std::vector<std::string> keys = name == "gtr"        ? std::vector<std::string>{"alpha", "gamma"}
-                                    : name == "blinn"    ? std::vector<std::string>{"n"}
-                                    : name == "ggx" || name == "beckmann" ? std::vector<std::string>{"alpha"}
-                                                                          : std::vector<std::string>{g.pick(other_keys)};
-    if (g.chance(0.05)) keys.push_back(g.pick(other_keys));        // an extra or duplicate key
+    std::vector<std::string> keys = name == "gtr" ? std::vector<std::string>{"alpha", "gamma"}
+        : name == "blinn"                         ? std::vector<std::string>{"n"}
+        : name == "ggx" || name == "beckmann"     ? std::vector<std::string>{"alpha"}
+                                                  : std::vector<std::string>{g.pick(other_keys)};
+    if (g.chance(0.05)) keys.push_back(g.pick(other_keys));           // an extra or duplicate key
     if (g.chance(0.05) && keys.size() > 1) keys.erase(keys.begin());  // a missing one
     if (g.chance(0.2)) std::swap(keys.front(), keys.back());
     std::string s = g.chance(0.05) ? " " + name : name;
@@ -218,11 +312,21 @@ std::string mutate_bytes(Gen& g, std::string s) {
     for (std::size_t k = 1 + g.below(3); k > 0; --k) {
         const std::size_t at = g.below(s.size() + 1);
         switch (g.below(5)) {
-            case 0: if (at < s.size()) s.erase(at, 1); break;
-            case 1: s.insert(at, 1, alphabet[g.below(alphabet.size())]); break;
-            case 2: if (at < s.size()) s[at] = alphabet[g.below(alphabet.size())]; break;
-            case 3: s.resize(at); break;
-            case 4: s.insert(at, s.substr(g.below(s.size() + 1), g.below(12))); break;
+            case 0:
+                if (at < s.size()) s.erase(at, 1);
+                break;
+            case 1:
+                s.insert(at, 1, alphabet[g.below(alphabet.size())]);
+                break;
+            case 2:
+                if (at < s.size()) s[at] = alphabet[g.below(alphabet.size())];
+                break;
+            case 3:
+                s.resize(at);
+                break;
+            case 4:
+                s.insert(at, s.substr(g.below(s.size() + 1), g.below(12)));
+                break;
         }
     }
     return s;
@@ -267,7 +371,8 @@ std::string judge(const Run& r, const std::string& must_refuse) {
     if (r.rc == 124 || r.rc == 137) return "hang: killed by `timeout 30` (exit " + std::to_string(r.rc) + ")";
     if (r.err.find("Sanitizer") != std::string::npos || r.err.find("runtime error:") != std::string::npos)
         return "sanitizer report (exit " + std::to_string(r.rc) + "):\n" + first_lines(r.err, 12);
-    if (r.rc < 0 || r.rc > 128) return "crash: exit " + std::to_string(r.rc) + " (signal " + std::to_string(r.rc - 128) + ")";
+    if (r.rc < 0 || r.rc > 128)
+        return "crash: exit " + std::to_string(r.rc) + " (signal " + std::to_string(r.rc - 128) + ")";
     if (r.err.find("internal error") != std::string::npos)
         return "internal error (exit " + std::to_string(r.rc) + "): " + first_lines(r.err);
     if (r.rc != 0 && r.rc != 2) return "exit " + std::to_string(r.rc) + ": " + first_lines(r.err);
@@ -281,8 +386,10 @@ std::string judge(const Run& r, const std::string& must_refuse) {
 std::string debris(const fs::path& dir) {
     std::string found;
     std::error_code ec;
-    for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator(); it.increment(ec))
-        if (it->path().filename().string().find(".partial") != std::string::npos) found += std::string(" ") + it->path().string();
+    for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator();
+         it.increment(ec))
+        if (it->path().filename().string().find(".partial") != std::string::npos)
+            found += std::string(" ") + it->path().string();
     return found.empty() ? "" : std::string("temporary files left behind:") + found;
 }
 
@@ -354,7 +461,8 @@ TEST_CASE("fuzz: NDF specs, in-process (parse_spec, builtin_registry().make, one
             const smithlab::AnyNdf ndf = registry().make(text);
             ++accepted;
             CHECK(registry().make(ndf.spec()).spec() == ndf.spec());
-            for (const std::string& key : registry().find(ndf.family())->parameters) CHECK(std::isfinite(ndf.param(key)));
+            for (const std::string& key : registry().find(ndf.family())->parameters)
+                CHECK(std::isfinite(ndf.param(key)));
             // An accepted NDF answers: Lambda at one mu (the auto route: closed form, or 1D quadrature) is a number
             // >= 0, or the point is refused.
             const auto mu = strict_number(mu_text);
@@ -381,9 +489,27 @@ TEST_CASE("fuzz: NDF specs, in-process (parse_spec, builtin_registry().make, one
 
 namespace {
 
-const std::vector<std::string> csv_field_pool = {
-    "ndf", "mu", "id", "", " ", "ggx(alpha=0.5)", "gtr(alpha=0.3, gamma=1.5)", "1", "0.25", "nan", "a,b", "a\"b",
-    "\"", "\"\"", "line\nbreak", "cr\rhere", "crlf\r\nhere", "\xc3\xa9", "\xff", std::string("nul\0in", 6), "x y"};
+const std::vector<std::string> csv_field_pool = {"ndf",
+                                                 "mu",
+                                                 "id",
+                                                 "",
+                                                 " ",
+                                                 "ggx(alpha=0.5)",
+                                                 "gtr(alpha=0.3, gamma=1.5)",
+                                                 "1",
+                                                 "0.25",
+                                                 "nan",
+                                                 "a,b",
+                                                 "a\"b",
+                                                 "\"",
+                                                 "\"\"",
+                                                 "line\nbreak",
+                                                 "cr\rhere",
+                                                 "crlf\r\nhere",
+                                                 "\xc3\xa9",
+                                                 "\xff",
+                                                 std::string("nul\0in", 6),
+                                                 "x y"};
 
 std::string csv_field_text(Gen& g) { return g.chance(0.7) ? g.pick(csv_field_pool) : random_bytes(g, 12); }
 
@@ -451,7 +577,8 @@ TEST_CASE("fuzz: CSV reader, in-process (read_csv, write_csv_record round trip)"
     }
 }
 
-// ---- the executable: option values -----------------------------------------------------------------------------------
+// ---- the executable: option values
+// -----------------------------------------------------------------------------------
 
 namespace {
 
@@ -490,8 +617,10 @@ std::string bad_seed(const std::string& t) {
     if (t.empty()) return "--seed is empty";
     if (std::regex_match(t, std::regex("-0*[1-9][0-9]*"))) return "--seed is negative";
     if (std::regex_match(t, std::regex("\\+?[0-9]+"))) {
-        const std::string digits = t.substr(t.find_first_not_of("+0") == std::string::npos ? t.size() : t.find_first_not_of("+0"));
-        if (digits.size() > 20 || (digits.size() == 20 && digits > "18446744073709551615")) return "--seed is above 2^64 - 1";
+        const std::string digits =
+            t.substr(t.find_first_not_of("+0") == std::string::npos ? t.size() : t.find_first_not_of("+0"));
+        if (digits.size() > 20 || (digits.size() == 20 && digits > "18446744073709551615"))
+            return "--seed is above 2^64 - 1";
     }
     if (std::regex_match(t, std::regex("[-+]?[0-9]*\\.[0-9]*[1-9][0-9]*"))) return "--seed is not an integer";
     if (is_nan_word(t)) return "--seed is NaN";
@@ -510,9 +639,10 @@ std::string bad_n(const std::string& t) {
 std::string n_text(Gen& g) {
     const double u = g.unit();
     if (u < cli_valid) return std::to_string(1 + g.below(200));
-    if (u < 0.9) return g.pick<std::string>({"0", "-1", "-0", "1000000001", "1e3", "1.5", "", "nan", "inf", "1e10",
-                                             "9223372036854775807", "9223372036854775808", "18446744073709551617",
-                                             " 5", "5 ", "0x10", "abc", "+7", "10.0"});
+    if (u < 0.9)
+        return g.pick<std::string>({"0", "-1", "-0", "1000000001", "1e3", "1.5", "", "nan", "inf", "1e10",
+                                    "9223372036854775807", "9223372036854775808", "18446744073709551617", " 5", "5 ",
+                                    "0x10", "abc", "+7", "10.0"});
     std::string t = random_number(g);
     const auto v = strict_number(t);
     if (v && *v >= 1e5 && *v <= 1e9) return "100";  // the expensive valid range: not a parser input
@@ -521,7 +651,8 @@ std::string n_text(Gen& g) {
 
 std::string seed_text(Gen& g) {
     if (g.chance(0.5)) return std::to_string(g.rng());
-    return number_text(g, [](Gen& h) { return std::to_string(h.below(1000)); }, cli_valid);
+    return number_text(
+        g, [](Gen& h) { return std::to_string(h.below(1000)); }, cli_valid);
 }
 
 }  // namespace
@@ -545,7 +676,8 @@ TEST_CASE("fuzz: eval options (--ndf, --mu, --method, --backend, --tolerance, --
                 refuse = "unknown --method";
         }
         if (g.chance(0.3)) {
-            const std::string b = g.chance(cli_valid) ? g.pick<std::string>({"boost", "gsl"}) : g.pick<std::string>({"GSL", "", "qags"});
+            const std::string b =
+                g.chance(cli_valid) ? g.pick<std::string>({"boost", "gsl"}) : g.pick<std::string>({"GSL", "", "qags"});
             args += " --backend " + shell_quote(b);
             if (b != "boost" && b != "gsl") refuse = "unknown --backend";
         }
@@ -555,7 +687,8 @@ TEST_CASE("fuzz: eval options (--ndf, --mu, --method, --backend, --tolerance, --
             if (const std::string why = out_of_range("--tolerance", t, 1e-15, 0.1); !why.empty()) refuse = why;
         }
         if (g.chance(0.15)) {
-            const std::string w = g.chance(cli_valid) ? g.pick<std::string>({"smith", "hammon"}) : g.pick<std::string>({"Smith", ""});
+            const std::string w =
+                g.chance(cli_valid) ? g.pick<std::string>({"smith", "hammon"}) : g.pick<std::string>({"Smith", ""});
             args += " --downward " + shell_quote(w);
             if (w != "smith" && w != "hammon") refuse = "unknown --downward";
         }
@@ -586,8 +719,8 @@ TEST_CASE("fuzz: sample options (--ndf, --sampler, --theta-i, --n, --seed, --out
         const std::string sampler = known_sampler ? s.name : g.pick<std::string>({"", "VNDF", "dcos ", "x"});
         if (!known_sampler) refuse = "unknown --sampler";
         std::string args = "sample --ndf " + shell_quote(spec) + " --sampler " + shell_quote(sampler);
-        const std::string theta =
-            number_text(g, [](Gen& h) { return g17(h.chance(0.7) ? 89.0 * h.unit() : 180.0 * h.unit()); }, cli_valid);
+        const std::string theta = number_text(
+            g, [](Gen& h) { return g17(h.chance(0.7) ? 89.0 * h.unit() : 180.0 * h.unit()); }, cli_valid);
         if (g.chance(0.8)) {
             args += " --theta-i " + shell_quote(theta);
             const bool upper = known_sampler && s.incidence == smithlab::SamplerInfo::Incidence::upper;
@@ -619,12 +752,14 @@ TEST_CASE("fuzz: sample options (--ndf, --sampler, --theta-i, --n, --seed, --out
             while (why.empty() && std::getline(rows, line)) {
                 ++k;
                 double x, y, z, pdf;
-                if (std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf", &x, &y, &z, &pdf) != 4 || !std::isfinite(x) || !std::isfinite(y) ||
-                    !std::isfinite(z) || !std::isfinite(pdf) || pdf < 0.0 || std::abs(x * x + y * y + z * z - 1.0) > 1e-9)
+                if (std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf", &x, &y, &z, &pdf) != 4 || !std::isfinite(x) ||
+                    !std::isfinite(y) || !std::isfinite(z) || !std::isfinite(pdf) || pdf < 0.0 ||
+                    std::abs(x * x + y * y + z * z - 1.0) > 1e-9)
                     why = "row " + std::to_string(k) + " is not a finite unit normal with a pdf >= 0: " + line;
             }
             const auto v = strict_number(count_text);
-            if (why.empty() && with_n && v && std::regex_match(count_text, std::regex("[0-9]+")) && k != std::size_t(*v))
+            if (why.empty() && with_n && v && std::regex_match(count_text, std::regex("[0-9]+")) &&
+                k != std::size_t(*v))
                 why = "asked for " + count_text + " samples, got " + std::to_string(k);
         }
         if (why.empty() && r.rc == 2 && fs::exists(out)) why = "exit 2 but the output file was written";
@@ -645,14 +780,16 @@ TEST_CASE("fuzz: eval --input on generated CSV files", "[fuzz][cli][csv]") {
         std::string refuse;
         // The header: ndf and mu among pass-through columns, sometimes missing, duplicated or clashing.
         std::vector<std::string> header = {"ndf", "mu"};
-        if (g.chance(0.5)) header.insert(header.begin() + g.below(3), g.pick<std::string>({"id", "note", "x y", "a,b", "\"q\""}));
+        if (g.chance(0.5))
+            header.insert(header.begin() + g.below(3), g.pick<std::string>({"id", "note", "x y", "a,b", "\"q\""}));
         if (g.chance(0.1)) {
             header.push_back(g.pick<std::string>({"ndf", "mu"}));
             refuse = std::string("a duplicate '") + header.back() + "' column";
         }
         if (g.chance(0.05)) {
             header.erase(header.begin() + g.below(header.size()));
-            if (std::count(header.begin(), header.end(), "ndf") == 0 || std::count(header.begin(), header.end(), "mu") == 0)
+            if (std::count(header.begin(), header.end(), "ndf") == 0 ||
+                std::count(header.begin(), header.end(), "mu") == 0)
                 refuse = "no 'ndf' or 'mu' column";
         }
         if (g.chance(0.05)) {
@@ -669,7 +806,8 @@ TEST_CASE("fuzz: eval --input on generated CSV files", "[fuzz][cli][csv]") {
         for (std::size_t k = 0; k < 2; ++k) specs.push_back(structured_spec(g));
         for (std::size_t k = 0; k < rows; ++k) {
             std::vector<std::string> row(header.size());
-            for (std::size_t f = 0; f < row.size(); ++f) row[f] = g.chance(0.8) ? std::string("p") + std::to_string(k) : csv_field_text(g);
+            for (std::size_t f = 0; f < row.size(); ++f)
+                row[f] = g.chance(0.8) ? std::string("p") + std::to_string(k) : csv_field_text(g);
             if (col("ndf") < row.size()) {
                 row[col("ndf")] = g.chance(0.8) ? g.pick(specs) : spec_text(g);
                 if (!spec_accepted(row[col("ndf")])) refuse = "row " + std::to_string(k + 2) + ": a refused spec";
@@ -718,7 +856,8 @@ TEST_CASE("fuzz: eval --input on generated CSV files", "[fuzz][cli][csv]") {
         }
         const Run r = run(args);
         std::string why = judge(r, refuse);
-        const std::string result = written.empty() ? (r.rc == 0 ? r.out : "") : (fs::exists(written) ? slurp(written) : "");
+        const std::string result =
+            written.empty() ? (r.rc == 0 ? r.out : "") : (fs::exists(written) ? slurp(written) : "");
         if (why.empty() && r.rc == 0) {
             if (!written.empty() && !fs::exists(written)) why = "exit 0 but no output file";
             std::istringstream res(result);
@@ -776,10 +915,33 @@ Kind kind_of(const std::string& key) {
     return Kind::other;
 }
 
-const std::set<std::string> known_keys = {"title", "grid", "alpha", "mu", "ndf", "family", "gamma", "variants", "include",
-                                          "exclude", "g2", "families", "timing", "min_time", "sampling", "theta_o",
-                                          "samples", "seed", "figures", "pareto", "error_maps", "dimov_heightfields",
-                                          "dimov_spline_mean", "dimov_gamma4_vs_10", "log", "lin", "n"};
+const std::set<std::string> known_keys = {"title",
+                                          "grid",
+                                          "alpha",
+                                          "mu",
+                                          "ndf",
+                                          "family",
+                                          "gamma",
+                                          "variants",
+                                          "include",
+                                          "exclude",
+                                          "g2",
+                                          "families",
+                                          "timing",
+                                          "min_time",
+                                          "sampling",
+                                          "theta_o",
+                                          "samples",
+                                          "seed",
+                                          "figures",
+                                          "pareto",
+                                          "error_maps",
+                                          "dimov_heightfields",
+                                          "dimov_spline_mean",
+                                          "dimov_gamma4_vs_10",
+                                          "log",
+                                          "lin",
+                                          "n"};
 
 struct Mutated {
     std::string text, refuse, what;
@@ -805,10 +967,19 @@ std::string typo(Gen& g, std::string key) {
         key = original;
         const std::size_t at = g.below(key.size());
         switch (g.below(4)) {
-            case 0: key.erase(at, 1); break;
-            case 1: key.insert(at, 1, key[at]); break;
-            case 2: if (at + 1 < key.size()) std::swap(key[at], key[at + 1]); else key += 'e'; break;
-            case 3: key[at] = char('a' + g.below(26)); break;
+            case 0:
+                key.erase(at, 1);
+                break;
+            case 1:
+                key.insert(at, 1, key[at]);
+                break;
+            case 2:
+                if (at + 1 < key.size()) std::swap(key[at], key[at + 1]);
+                else key += 'e';
+                break;
+            case 3:
+                key[at] = char('a' + g.below(26));
+                break;
         }
         if (key.empty()) key = original + "x";
     }
@@ -819,12 +990,41 @@ std::string typo(Gen& g, std::string key) {
 std::pair<std::string, std::string> scene_value(Gen& g, Kind kind) {
     const std::vector<std::pair<std::string, int>> pool = {
         // text, type: 0 string, 1 integer, 2 float, 3 bool, 4 array, 5 table, 6 date
-        {"\"x\"", 0}, {"\"\"", 0}, {"\"0.5\"", 0}, {"-1", 1}, {"0", 1}, {"1", 1}, {"2", 1}, {"3", 1}, {"7", 1}, {"100", 1},
-        {"4294967298", 1}, {"9223372036854775807", 1}, {"-9223372036854775808", 1}, {"0.5", 2}, {"3.5", 2},
-        {"1000.5", 2}, {"1e-300", 2}, {"1e300", 2}, {"-0.5", 2}, {"nan", 2}, {"inf", 2}, {"-inf", 2}, {"true", 3},
-        {"[]", 4}, {"[1.0, \"a\"]", 4}, {"[0.5, 0.5]", 4}, {"[1e-300, 1e300]", 4}, {"[nan]", 4}, {"[[1.0]]", 4},
-        {"{}", 5}, {"{ log = [0.5, 0.1], n = 3 }", 5}, {"{ lin = [0.1, 0.5], n = 4294967298 }", 5},
-        {"{ log = [1e-300, 1e300], n = 5 }", 5}, {"{ lin = [0.1, 0.5] }", 5}, {"1979-05-27", 6}};
+        {"\"x\"", 0},
+        {"\"\"", 0},
+        {"\"0.5\"", 0},
+        {"-1", 1},
+        {"0", 1},
+        {"1", 1},
+        {"2", 1},
+        {"3", 1},
+        {"7", 1},
+        {"100", 1},
+        {"4294967298", 1},
+        {"9223372036854775807", 1},
+        {"-9223372036854775808", 1},
+        {"0.5", 2},
+        {"3.5", 2},
+        {"1000.5", 2},
+        {"1e-300", 2},
+        {"1e300", 2},
+        {"-0.5", 2},
+        {"nan", 2},
+        {"inf", 2},
+        {"-inf", 2},
+        {"true", 3},
+        {"[]", 4},
+        {"[1.0, \"a\"]", 4},
+        {"[0.5, 0.5]", 4},
+        {"[1e-300, 1e300]", 4},
+        {"[nan]", 4},
+        {"[[1.0]]", 4},
+        {"{}", 5},
+        {"{ log = [0.5, 0.1], n = 3 }", 5},
+        {"{ lin = [0.1, 0.5], n = 4294967298 }", 5},
+        {"{ log = [1e-300, 1e300], n = 5 }", 5},
+        {"{ lin = [0.1, 0.5] }", 5},
+        {"1979-05-27", 6}};
     const auto& [text, type] = g.pick(pool);
     const std::string name = "value " + text;
     std::string refuse;
@@ -833,8 +1033,12 @@ std::pair<std::string, std::string> scene_value(Gen& g, Kind kind) {
     };
     refuse_if(text.find("nan") != std::string::npos, "NaN");
     switch (kind) {
-        case Kind::string: refuse_if(type != 0, "not a string"); break;
-        case Kind::real: refuse_if(type != 1 && type != 2, "not a number"); break;  // an integer may stand for a real
+        case Kind::string:
+            refuse_if(type != 0, "not a string");
+            break;
+        case Kind::real:
+            refuse_if(type != 1 && type != 2, "not a number");
+            break;  // an integer may stand for a real
         case Kind::count:
             refuse_if(type != 1, "not an integer");
             refuse_if(text[0] == '-' || text == "0" || text.size() >= 10, "outside any sensible count");
@@ -843,15 +1047,18 @@ std::pair<std::string, std::string> scene_value(Gen& g, Kind kind) {
             refuse_if(type != 1, "not an integer");
             refuse_if(text[0] == '-', "a negative seed");
             break;
-        case Kind::list: refuse_if(text != "[]", "not a list of strings"); break;
+        case Kind::list:
+            refuse_if(text != "[]", "not a list of strings");
+            break;
         case Kind::axis:
             refuse_if(type != 4 && type != 5, "neither a list nor {log|lin = [lo, hi], n = N}");
-            refuse_if(text == "[]" || text == "{}" || text.find('"') != std::string::npos || text.find("[[") != std::string::npos ||
-                          text.find("[0.5, 0.1]") != std::string::npos || text.find("4294967298") != std::string::npos ||
-                          text == "{ lin = [0.1, 0.5] }",
+            refuse_if(text == "[]" || text == "{}" || text.find('"') != std::string::npos ||
+                          text.find("[[") != std::string::npos || text.find("[0.5, 0.1]") != std::string::npos ||
+                          text.find("4294967298") != std::string::npos || text == "{ lin = [0.1, 0.5] }",
                       "an empty, malformed or reversed axis, or a count beyond any grid");
             break;
-        case Kind::other: break;
+        case Kind::other:
+            break;
     }
     return {text, refuse};
 }
@@ -873,10 +1080,12 @@ Mutated mutate_scene(Gen& g, const std::string& base) {
             if (kind_of(lines[k].substr(0, lines[k].find(" = "))) == Kind::axis) axes.push_back(k);
         const std::size_t k = g.pick(axes);
         const std::string axis = lines[k].substr(0, lines[k].find(" = "));
-        const std::vector<std::string> extremes =
-            axis == "gamma" ? std::vector<std::string>{"0.0", "1e-9", "0.999999999", "1.0", "1.000000001", "19.7", "31.0", "32.5", "1000.0", "1e15"}
-            : axis == "mu"  ? std::vector<std::string>{"1e-12", "1e-4", "0.5", "1e4", "1e12", "1e154", "1e-300", "1e300"}
-                            : std::vector<std::string>{"1e-4", "1e-3", "0.3", "0.999999", "1.0", "1e-15", "1e-50", "2.0", "1e10"};
+        const std::vector<std::string> extremes = axis == "gamma"
+            ? std::vector<std::string>{"0.0",  "1e-9", "0.999999999", "1.0",    "1.000000001",
+                                       "19.7", "31.0", "32.5",        "1000.0", "1e15"}
+            : axis == "mu"
+            ? std::vector<std::string>{"1e-12", "1e-4", "0.5", "1e4", "1e12", "1e154", "1e-300", "1e300"}
+            : std::vector<std::string>{"1e-4", "1e-3", "0.3", "0.999999", "1.0", "1e-15", "1e-50", "2.0", "1e10"};
         std::string v = "[" + g.pick(extremes);
         for (std::size_t j = g.below(3); j > 0; --j) v += ", " + g.pick(extremes);
         lines[k] = axis + " = " + v + "]";
@@ -906,7 +1115,8 @@ Mutated mutate_scene(Gen& g, const std::string& base) {
             m = {join_lines(lines), "unknown key '" + t + "'", "added " + t};
             break;
         }
-        case 3: case 4: {  // a value replaced
+        case 3:
+        case 4: {  // a value replaced
             const auto [value, refuse] = scene_value(g, kind_of(key));
             lines[at] = key + " = " + value;
             m = {join_lines(lines), refuse, key + " = " + value};
@@ -918,12 +1128,15 @@ Mutated mutate_scene(Gen& g, const std::string& base) {
             if (p != std::string::npos) {
                 const std::string v = g.pick<std::string>({"1", "0", "-3", "2", "4294967298", "3.5", "\"3\"", "1e5"});
                 l = l.substr(0, p + 4) + v + " }";
-                m = {join_lines(lines), v == "2" ? "" : "n = " + v + " is not a count >= 2 of a sensible grid", "n = " + v};
+                m = {join_lines(lines), v == "2" ? "" : "n = " + v + " is not a count >= 2 of a sensible grid",
+                     "n = " + v};
             } else if (kind_of(key) == Kind::axis) {
-                const std::string v = g.pick<std::string>({"0.0", "-0.1", "1e-320", "1e308", "inf", "2.0", "0.9999999999999999"});
+                const std::string v =
+                    g.pick<std::string>({"0.0", "-0.1", "1e-320", "1e308", "inf", "2.0", "0.9999999999999999"});
                 lines[at] = key + " = [" + v + "]";
                 const bool bad = key != "mu" && ((v == "0.0" && key == "alpha") || v == "-0.1" || v == "inf");
-                m = {join_lines(lines), bad ? key + " = [" + v + "] is outside the NDF's parameter range" : "", lines[at]};
+                m = {join_lines(lines), bad ? key + " = [" + v + "] is outside the NDF's parameter range" : "",
+                     lines[at]};
             } else {
                 const auto [value, refuse] = scene_value(g, kind_of(key));
                 lines[at] = key + " = " + value;
@@ -953,7 +1166,8 @@ Mutated mutate_scene(Gen& g, const std::string& base) {
 
 std::string nan_in_files(const fs::path& dir) {
     std::error_code ec;
-    for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
+    for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator();
+         it.increment(ec)) {
         const std::string ext = it->path().extension().string();
         if (it->is_regular_file() && (ext == ".md" || ext == ".csv" || ext == ".json") && has_nan(slurp(it->path())))
             return "NaN in " + it->path().string();

@@ -85,7 +85,8 @@ TEST_CASE("Dimov's spline gives the values of its straightforward evaluation to 
                 points.push_back({a, g, mu});
     double worst = 0.0;
     for (const auto& [a, g, mu] : points) {
-        const double now = smithlab::G1_gtr_dimov_spline(a, g, mu), plain = smithlab_plain::G1_gtr_dimov_spline(a, g, mu);
+        const double now = smithlab::G1_gtr_dimov_spline(a, g, mu),
+                     plain = smithlab_plain::G1_gtr_dimov_spline(a, g, mu);
         INFO("alpha=" << a << " gamma=" << g << " mu=" << mu << " now " << now << " plain " << plain);
         const double ulps = std::abs(now - plain) / 0x1p-53;
         CHECK(ulps <= 16.0);

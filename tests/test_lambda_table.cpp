@@ -29,9 +29,10 @@ TEST_CASE("table: the fast-evaluator target over alpha in [1e-4, 1], mu in [1e-4
           "[table]") {
     // Random (alpha, gamma), the stiff corners among them; 12 random mu per table against the nested 2D route.
     std::mt19937_64 rng(20261122);
-    std::uniform_real_distribution<double> log_alpha(std::log(1e-4), 0.0), gamma_u(0.0, 20.0), log_mu(std::log(1e-4), std::log(1e4));
-    std::vector<std::pair<double, double>> cases = {{1e-4, 0.0},  {1e-4, 0.5}, {1e-4, 1.0 - 1e-9}, {1e-4, 1.0 + 1e-9},
-                                                    {1e-4, 1.5},  {1e-4, 19.7}, {1.0, 0.3},        {0.999999, 7.5},
+    std::uniform_real_distribution<double> log_alpha(std::log(1e-4), 0.0), gamma_u(0.0, 20.0),
+        log_mu(std::log(1e-4), std::log(1e4));
+    std::vector<std::pair<double, double>> cases = {{1e-4, 0.0}, {1e-4, 0.5},  {1e-4, 1.0 - 1e-9}, {1e-4, 1.0 + 1e-9},
+                                                    {1e-4, 1.5}, {1e-4, 19.7}, {1.0, 0.3},         {0.999999, 7.5},
                                                     {0.3, 1.25}, {1e-3, 20.0}};
     for (int k = 0; k < 14; ++k) cases.emplace_back(std::exp(log_alpha(rng)), gamma_u(rng));
     Worst all;
@@ -79,8 +80,8 @@ TEST_CASE("table: against the 50-digit reference at the stiff corners and the ge
 namespace {
 
 // Far outside the old range [1e-5, 1e5], on both sides, and points inside it that are no knots.
-const std::vector<double> extreme_mus = {DBL_TRUE_MIN, 1e-300, 1e-100, 1e-20, 1e-12, 1e-8, 1e-7, 3.3e-3, 0.71,
-                                         1e7,          1e12,   1e50,   1e100, 1e200, 1e300, DBL_MAX};
+const std::vector<double> extreme_mus = {DBL_TRUE_MIN, 1e-300, 1e-100, 1e-20, 1e-12, 1e-8,  1e-7,  3.3e-3,
+                                         0.71,         1e7,    1e12,   1e50,  1e100, 1e200, 1e300, DBL_MAX};
 
 // The rule of the header: relative error within the table's estimate where Lambda >= 1e-290; below, an answer in
 // [0, 1e-290] (the truth underflowed); above DBL_MAX, +inf.
@@ -102,7 +103,8 @@ void check_Lambda(const LambdaTable& t, double mu, double want, const std::strin
 // the limit of mu Lambda as mu -> 0, for GTR on Dimov's printed density in long double, split at alpha and 1, cut at
 // r = 1e60 as ref::Lambda is. (The same integral at 50 digits agrees to 5e-17, at 100x the cost.)
 double mean_positive_slope_gtr(double alpha, double gamma) {
-    const long double c = static_cast<long double>(ref::gtr_c(alpha, gamma)), a2 = static_cast<long double>(alpha) * alpha;
+    const long double c = static_cast<long double>(ref::gtr_c(alpha, gamma)),
+                      a2 = static_cast<long double>(alpha) * alpha;
     const long double g = gamma, a = alpha, tol = 1e-17L;
     auto h = [&](long double r) {
         if (r > 1e60L) return 0.0L;
@@ -196,8 +198,7 @@ TEST_CASE("table: every mu, Blinn-Phong: a power tail other than r^-4, continued
         const double J = 0.5 * (std::beta((n + 1.0) / 2.0, 1.5) - std::beta((n + 3.0) / 2.0, 0.5) / (n + 2.0));
         for (double mu : {1e9, 1e12, 1e13, 1e20, 1e50, 1e100})
             check_Lambda(t, mu, 2.0 * K * J * std::pow(mu, -(n + 2.0)), what, w);
-        for (double mu : {0.7, 1e3, 1e7, 1e12})
-            check_Lambda(t, mu, Lambda_1d(ndf, mu, {Backend::gsl, 1e-12}), what, w);
+        for (double mu : {0.7, 1e3, 1e7, 1e12}) check_Lambda(t, mu, Lambda_1d(ndf, mu, {Backend::gsl, 1e-12}), what, w);
     }
     WARN("table at every mu, Blinn-Phong n = 1, 20: worst relative dLambda " << w.rel);
     CHECK(w.rel > 1e-12);
@@ -227,7 +228,8 @@ TEST_CASE("table: never calls its exact route after construction, and answers 0,
     const int built = calls;
     CHECK(built > 100);
     double sum = 0.0;
-    for (double mu : std::vector<double>{0.0, DBL_TRUE_MIN, 1e-300, 1e-12, 1e-7, 0.5, 1e7, 1e12, 1e300, DBL_MAX, INFINITY, -1.0, NAN})
+    for (double mu : std::vector<double>{0.0, DBL_TRUE_MIN, 1e-300, 1e-12, 1e-7, 0.5, 1e7, 1e12, 1e300, DBL_MAX,
+                                         INFINITY, -1.0, NAN})
         sum += t.G1(mu);
     CHECK(std::isnan(sum));  // G1(NaN)
     CHECK(calls == built);
@@ -264,8 +266,9 @@ TEST_CASE("table: bad options and a bad exact route are errors that name the ite
                       Catch::Contains("cannot tabulate") && Catch::Contains("mu = 1"));
     // Blinn-Phong n = 1e90 (slope scale 1.4e-45) by quadrature: Lambda underflows at every mu >= 1e-12 the
     // quadrature accepts, so its asymptote as mu -> 0 is out of reach. Refused, naming why.
-    CHECK_THROWS_WITH(tabulate_Lambda(blinn(1e90)), Catch::Contains("cannot tabulate") && Catch::Contains("refuses mu") &&
-                                                        Catch::Contains("mu -> 0"));
+    CHECK_THROWS_WITH(
+        tabulate_Lambda(blinn(1e90)),
+        Catch::Contains("cannot tabulate") && Catch::Contains("refuses mu") && Catch::Contains("mu -> 0"));
     // An exact route that refuses a mu the table needs, before an asymptote holds (GGX(1): mu Lambda is within 1e-7
     // of its limit below mu ~ 4e-4, and its slope settles near mu ~ 4e4).
     const Ggx one = ggx(1.0);
@@ -275,8 +278,9 @@ TEST_CASE("table: bad options and a bad exact route are errors that name the ite
             return one.Lambda(mu);
         };
     };
-    CHECK_THROWS_WITH(LambdaTable(refusing(1e-3, 1e10), {.mu_min = 0.01}),
-                      Catch::Contains("mu -> 0") && Catch::Contains("refuses mu") && Catch::Contains("mu out of range"));
+    CHECK_THROWS_WITH(
+        LambdaTable(refusing(1e-3, 1e10), {.mu_min = 0.01}),
+        Catch::Contains("mu -> 0") && Catch::Contains("refuses mu") && Catch::Contains("mu out of range"));
     CHECK_THROWS_WITH(LambdaTable(refusing(1e-10, 1e3), {.mu_max = 10.0}),
                       Catch::Contains("mu -> inf") && Catch::Contains("refuses mu"));
     CHECK_THROWS_WITH(LambdaTable(refusing(1e-10, 1e3), {}), Catch::Contains("mu_min .. mu_max"));

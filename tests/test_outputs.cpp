@@ -7,8 +7,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <catch2/catch.hpp>
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <chrono>
 #include <string>
 #include <thread>
@@ -135,7 +135,8 @@ TEST_CASE("outputs: devices and FIFOs are written in place, symlinks followed, t
         CHECK(slurp(d / "in.csv") == small_points);
     }
     SECTION("an output in a directory that does not exist is refused before any work") {
-        const Run r = run("sample --ndf 'ggx(alpha=0.1)' --sampler dcos --n 10 --output '" + (d / "no" / "x.csv").string() + "'");
+        const Run r =
+            run("sample --ndf 'ggx(alpha=0.1)' --sampler dcos --n 10 --output '" + (d / "no" / "x.csv").string() + "'");
         CHECK(r.rc == 2);
         CHECK_THAT(r.err, Catch::Contains("does not exist"));
     }
@@ -168,7 +169,9 @@ TEST_CASE("error paths: directories as input, duplicate columns, seeds, unknown 
 
     r = run("frobnicate");
     CHECK(r.rc == 2);
-    CHECK_THAT(r.err, Catch::Contains("unknown subcommand 'frobnicate'") && Catch::Contains("eval") && Catch::Contains("sample"));
+    CHECK_THAT(
+        r.err,
+        Catch::Contains("unknown subcommand 'frobnicate'") && Catch::Contains("eval") && Catch::Contains("sample"));
 }
 
 TEST_CASE("a killed sample leaves nothing half-written, and the rerun is right", "[outputs][kill]") {
@@ -177,7 +180,7 @@ TEST_CASE("a killed sample leaves nothing half-written, and the rerun is right",
     fs::create_directories(d);
     const fs::path out = d / "m.csv";
     const std::vector<std::string> big = {"sample", "--ndf", "ggx(alpha=0.1)", "--sampler", "dcos", "--n", "100000000",
-                                          "--seed", "3", "--output", out.string()};
+                                          "--seed", "3",     "--output",       out.string()};
     const auto writing = [&] {
         const auto t = temporaries(d);
         std::error_code ec;
@@ -300,7 +303,8 @@ TEST_CASE("a killed trace resumes from its last finished cell, and its files are
     const std::string cmd = "trace '" + (d / "scene.toml").string() + "' --threads 2 --output ";
     Run r = run(cmd + "'" + out.string() + "'");
     REQUIRE(r.rc == 0);
-    CHECK_THAT(r.out, Catch::Contains("traced " + std::to_string(20 - kept) + "\nreused " + std::to_string(kept) + "\n"));
+    CHECK_THAT(r.out,
+               Catch::Contains("traced " + std::to_string(20 - kept) + "\nreused " + std::to_string(kept) + "\n"));
     CHECK(temporaries(out).empty());
     REQUIRE(run(cmd + "'" + (d / "whole").string() + "'").rc == 0);
     CHECK(slurp(out / "albedo.csv") == slurp(d / "whole" / "albedo.csv"));
@@ -314,20 +318,25 @@ TEST_CASE("a killed trace resumes from its last finished cell, and its files are
     CHECK(slurp(out / "albedo.csv") == slurp(d / "whole" / "albedo.csv"));
 }
 
-TEST_CASE("trace: a column per NDF parameter after the ndf column, empty where the NDF has no such parameter, and "
-          "the cell files hold the rows without them",
-          "[outputs][walk]") {
+TEST_CASE(
+    "trace: a column per NDF parameter after the ndf column, empty where the NDF has no such parameter, and "
+    "the cell files hold the rows without them",
+    "[outputs][walk]") {
     const fs::path d = scratch() / "trace_ndf_columns";
     fs::remove_all(d);
     fs::create_directories(d);
-    write(d / "scene.toml", "materials = [\"mirror\"]\n[walks]\nn = 500\n[grid]\nalpha = [0.3]\ntheta_i = [30]\n"
-                            "[[ndf]]\nfamily = \"ggx\"\n[[ndf]]\nfamily = \"gtr\"\ngamma = [1.5]\n[brdf]\ntheta_bins = 1\nphi_bins = 2\n");
+    write(
+        d / "scene.toml",
+        "materials = [\"mirror\"]\n[walks]\nn = 500\n[grid]\nalpha = [0.3]\ntheta_i = [30]\n"
+        "[[ndf]]\nfamily = \"ggx\"\n[[ndf]]\nfamily = \"gtr\"\ngamma = [1.5]\n[brdf]\ntheta_bins = 1\nphi_bins = 2\n");
     const std::string cmd = "trace '" + (d / "scene.toml").string() + "' --threads 2 --output ";
     REQUIRE(run(cmd + "'" + (d / "out").string() + "'").rc == 0);
     const std::string albedo = slurp(d / "out" / "albedo.csv"), brdf = slurp(d / "out" / "brdf.csv");
-    CHECK(albedo.rfind("ndf,alpha,gamma,material,theta_i,phi_i,hemisphere,order,component,albedo,stderr,walks\n", 0) == 0);
+    CHECK(albedo.rfind("ndf,alpha,gamma,material,theta_i,phi_i,hemisphere,order,component,albedo,stderr,walks\n", 0) ==
+          0);
     CHECK(brdf.rfind("ndf,alpha,gamma,material,theta_i,phi_i,hemisphere,theta_o_lo,theta_o_hi,phi_o_lo,phi_o_hi,order,"
-                     "component,value,stderr,walks\n", 0) == 0);
+                     "component,value,stderr,walks\n",
+                     0) == 0);
     CHECK_THAT(albedo, Catch::Contains("\nggx(alpha=0.3),0.3,,mirror,30,0,reflection,1,specular,"));
     CHECK_THAT(albedo, Catch::Contains("\n\"gtr(alpha=0.3, gamma=1.5)\",0.3,1.5,mirror,30,0,all,all,all,1,"));
     CHECK_THAT(brdf, Catch::Contains("\n\"gtr(alpha=0.3, gamma=1.5)\",0.3,1.5,mirror,30,0,reflection,0,"));

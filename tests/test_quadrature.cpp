@@ -7,9 +7,9 @@
 #include <catch2/catch.hpp>
 #include <cfloat>
 #include <random>
+#include <smithlab/smithlab.hpp>
 #include <sstream>
 #include <thread>
-#include <smithlab/smithlab.hpp>
 
 #include "reference.hpp"
 
@@ -33,7 +33,8 @@ void check_1d(const N& ndf, const ref::SlopeDensity& f, double mu, const std::st
         INFO(what << " mu=" << mu << " backend=" << smithlab::to_string(b) << " got=" << got);
         CHECK(ref::close(got, want, 1e-10));
         if (want >= DBL_MIN)
-            worst.add(ref::rel_err(got, want), what + " mu=" + std::to_string(mu) + " " + std::string(smithlab::to_string(b)));
+            worst.add(ref::rel_err(got, want),
+                      what + " mu=" + std::to_string(mu) + " " + std::string(smithlab::to_string(b)));
     }
 }
 
@@ -62,7 +63,8 @@ TEST_CASE("1D quadrature Lambda at random points of the GTR domain", "[quadratur
                  "gtr(alpha=" + std::to_string(a) + ", gamma=" + std::to_string(g) + ")", worst);
     }
     // The worst point of the report's grid for GSL QAG at 1e-12 (it stops at 8.7e-12 there).
-    check_1d(smithlab::gtr(0.000316227766016838, 3.5), ref::gtr(0.000316227766016838, 3.5), 1e-3, "gtr(3.16e-4, 3.5)", worst);
+    check_1d(smithlab::gtr(0.000316227766016838, 3.5), ref::gtr(0.000316227766016838, 3.5), 1e-3, "gtr(3.16e-4, 3.5)",
+             worst);
     WARN("worst 1D random-GTR relative error " << worst.err << " at " << worst.where);
 }
 
@@ -140,12 +142,13 @@ TEST_CASE("quadrature holds to the ends of its range, mu in [1e-12, 1e12], and r
 // 59 % low at mu in [1.76e-12, 2.22e-12], 47 % at [4.5e-11, 5.0e-11], 35 % at [7.9e-10, 8.0e-10], 0.56 % at
 // [1.37e-8, 1.39e-8], 19 windows up to mu = 5e-6; GGX(1) 5.6e-5, GTR(0.5, 4) 1.7e-3. The t-form integrals now
 // split at s = mu/r0 and s = mu (integrate_quarter_turn's breaks). Every 1/100 decade and every window, both backends.
-TEST_CASE("1D quadrature at grazing: every 1/100 decade of mu in [1e-12, 1] r0 against the closed forms", "[quadrature]") {
+TEST_CASE("1D quadrature at grazing: every 1/100 decade of mu in [1e-12, 1] r0 against the closed forms",
+          "[quadrature]") {
     std::vector<double> mus;
     for (int k = 0; k <= 1200; ++k) mus.push_back(std::pow(10.0, -12.0 + k / 100.0));
-    for (double m : {1.9e-12, 2.2e-12, 2.9e-12, 2.98e-12, 4.4235e-12, 6.695e-12, 6.8e-12, 1.0087e-11, 4.7e-11, 5.0e-11,
-                     7.03e-11, 1.46e-10, 7.95e-10, 8.0e-10, 1.155e-9, 1.38e-8, 1.2435e-7, 8.765e-7, 4.969e-6, 8.2177e-12,
-                     1.67e-10, 1.215e-12, 1.14e-12, 2.59e-12, 5.42e-11, 7.975e-10})
+    for (double m : {1.9e-12,  2.2e-12,    2.9e-12,  2.98e-12,  4.4235e-12, 6.695e-12, 6.8e-12,  1.0087e-11, 4.7e-11,
+                     5.0e-11,  7.03e-11,   1.46e-10, 7.95e-10,  8.0e-10,    1.155e-9,  1.38e-8,  1.2435e-7,  8.765e-7,
+                     4.969e-6, 8.2177e-12, 1.67e-10, 1.215e-12, 1.14e-12,   2.59e-12,  5.42e-11, 7.975e-10})
         mus.push_back(m);
     Worst worst;
     auto check = [&](const auto& ndf, double r0, const std::string& name) {
@@ -167,7 +170,8 @@ TEST_CASE("1D quadrature at grazing: every 1/100 decade of mu in [1e-12, 1] r0 a
     CHECK(worst.err <= 1e-10);
 }
 
-TEST_CASE("Nested 2D route holds outside its required domain too: the corners where a fixed-scale map fails", "[quadrature][2d][sweep]") {
+TEST_CASE("Nested 2D route holds outside its required domain too: the corners where a fixed-scale map fails",
+          "[quadrature][2d][sweep]") {
     // A semi-infinite map with a fixed unit scale (GSL QAGIU as is) misses a peak of width 1e-4 and the 1e4-long
     // tail: it returned 0 for Beckmann(1e-4) at mu = 1e-4 and 7.7% low at mu = 1e4. The tan/sec maps have no scale.
     struct Case {
@@ -270,10 +274,11 @@ constexpr double eps4 = 4.0 * DBL_EPSILON;
 
 }  // namespace
 
-TEST_CASE("fixed rule: Lambda of GGX, Beckmann and GTR at integer gamma against their closed forms", "[quadrature][fixed]") {
+TEST_CASE("fixed rule: Lambda of GGX, Beckmann and GTR at integer gamma against their closed forms",
+          "[quadrature][fixed]") {
     FixedWorst w;
-    const std::vector<double> mus = {1e-12, 1e-8, 1e-6, 1e-4, 1e-3, 0.01, 0.05, 0.1, 0.3, 0.7, 1.0, 2.0,
-                                     5.0, 10.0, 100.0, 1e4, 1e8, 1e12};
+    const std::vector<double> mus = {1e-12, 1e-8, 1e-6, 1e-4, 1e-3, 0.01,  0.05, 0.1, 0.3,
+                                     0.7,   1.0,  2.0,  5.0,  10.0, 100.0, 1e4,  1e8, 1e12};
     for (double a : {1e-4, 1e-3, 0.01, 0.1, 0.3, 0.5, 0.999999, 1.0})
         for (double mu : mus) {
             const auto g = smithlab::ggx(a);
@@ -281,7 +286,8 @@ TEST_CASE("fixed rule: Lambda of GGX, Beckmann and GTR at integer gamma against 
             const auto b = smithlab::beckmann(a);
             // Beckmann's Lambda ~ exp(-(mu/alpha)^2) underflows past mu/alpha ~ 27.
             if (mu / a <= 25.0)
-                check_fixed(b, mu, b.Lambda(mu), eps4 * (1.0 + (mu / a) * (mu / a)), "beckmann(" + std::to_string(a) + ")", w);
+                check_fixed(b, mu, b.Lambda(mu), eps4 * (1.0 + (mu / a) * (mu / a)),
+                            "beckmann(" + std::to_string(a) + ")", w);
         }
     for (int gamma : {0, 1, 3, 4, 7, 12})
         for (double a : {1e-4, 0.01, 0.3, 1.0})
@@ -290,8 +296,9 @@ TEST_CASE("fixed rule: Lambda of GGX, Beckmann and GTR at integer gamma against 
                 check_fixed(n, mu, smithlab::Lambda(n, mu, {.method = smithlab::Method::closed}), eps4,
                             "gtr(" + std::to_string(a) + ", " + std::to_string(gamma) + ")", w);
             }
-    WARN("fixed rule against closed forms: worst relative error " << w.err << " at " << w.where << "; worst error / bound "
-         << w.bound_ratio << "; most evaluations " << w.evaluations_max);
+    WARN("fixed rule against closed forms: worst relative error "
+         << w.err << " at " << w.where << "; worst error / bound " << w.bound_ratio << "; most evaluations "
+         << w.evaluations_max);
 }
 
 TEST_CASE("fixed rule: GTR at real gamma and Blinn-Phong against the 50-digit reference", "[quadrature][fixed]") {
@@ -305,8 +312,9 @@ TEST_CASE("fixed rule: GTR at real gamma and Blinn-Phong against the 50-digit re
         for (double mu : {1e-4, 0.03, 1.0, 30.0, 1e4})
             check_fixed(smithlab::blinn(n), mu, static_cast<double>(ref::Lambda(ref::blinn(n), mu)), eps4,
                         "blinn(" + std::to_string(n) + ")", w);
-    WARN("fixed rule against the 50-digit reference: worst relative error " << w.err << " at " << w.where
-         << "; worst error / bound " << w.bound_ratio << "; most evaluations " << w.evaluations_max);
+    WARN("fixed rule against the 50-digit reference: worst relative error "
+         << w.err << " at " << w.where << "; worst error / bound " << w.bound_ratio << "; most evaluations "
+         << w.evaluations_max);
 }
 
 TEST_CASE("fixed rule: the stiff corners, where the estimate sends it to bisection or to the adaptive route",
@@ -331,11 +339,12 @@ TEST_CASE("fixed rule: the stiff corners, where the estimate sends it to bisecti
         const smithlab::DOnly<smithlab::Ggx> d{smithlab::ggx(0.2)};
         check_fixed(d, mu, smithlab::ggx(0.2).Lambda(mu), 1e-14, "D-only ggx(0.2)", w);
     }
-    WARN("fixed rule at the stiff corners: worst relative error of the converged rule " << w.err << " at " << w.where
-         << "; not converged (adaptive route) " << w.not_converged);
+    WARN("fixed rule at the stiff corners: worst relative error of the converged rule "
+         << w.err << " at " << w.where << "; not converged (adaptive route) " << w.not_converged);
 }
 
-TEST_CASE("fixed rule: method 'fixed' through Lambda/G1, and the domain of the quadrature methods", "[quadrature][fixed]") {
+TEST_CASE("fixed rule: method 'fixed' through Lambda/G1, and the domain of the quadrature methods",
+          "[quadrature][fixed]") {
     const auto n = smithlab::gtr(0.3, 1.5);
     const smithlab::LambdaOptions fixed{.method = smithlab::Method::fixed};
     const double q = smithlab::Lambda(n, 0.7, {.method = smithlab::Method::quadrature, .tolerance = 1e-13});

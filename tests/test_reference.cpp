@@ -34,7 +34,8 @@ TEST_CASE("50-digit uncut r-form reproduces Dimov's forms, and the STD paper's e
         for (double mu : {1e-4, 0.7, 1e4}) {
             INFO("alpha=" << alpha << " mu=" << mu);
             for (int gamma : {2, 3}) {
-                const ref::real q = ref::Lambda_uncut(ref::gtr(alpha, gamma), mu), c = ref::Lambda_dimov(gamma, alpha, mu);
+                const ref::real q = ref::Lambda_uncut(ref::gtr(alpha, gamma), mu),
+                                c = ref::Lambda_dimov(gamma, alpha, mu);
                 CHECK(static_cast<double>(abs((q - c) / c)) < 1e-20);
             }
         }

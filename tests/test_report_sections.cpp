@@ -83,15 +83,15 @@ report::Sections with_example(std::shared_ptr<int> computed) {
 // [end docs]
 
 const std::string quick_scene =
-    "[grid]\n"                          // 1
-    "alpha = [0.1, 0.5]\n"              // 2
-    "mu = [1.0, 2.0]\n"                 // 3
-    "[[ndf]]\n"                         // 4
-    "family = \"ggx\"\n"                // 5
-    "[variants]\n"                      // 6
-    "include = [\"schlick-ggx\"]\n"     // 7
-    "[timing]\n"                        // 8
-    "min_time = 0.001\n";               // 9
+    "[grid]\n"                       // 1
+    "alpha = [0.1, 0.5]\n"           // 2
+    "mu = [1.0, 2.0]\n"              // 3
+    "[[ndf]]\n"                      // 4
+    "family = \"ggx\"\n"             // 5
+    "[variants]\n"                   // 6
+    "include = [\"schlick-ggx\"]\n"  // 7
+    "[timing]\n"                     // 8
+    "min_time = 0.001\n";            // 9
 
 std::string slurp(const fs::path& p) {
     std::ifstream in(p);
@@ -113,8 +113,8 @@ TEST_CASE("report sections: a section of one's own runs in a report, after the b
     const NdfRegistry ndfs = builtin_registry();
     const VariantRegistry variants = builtin_variants();
     auto computed = std::make_shared<int>(0);
-    report::Scene scene = report::parse_scene(quick_scene + "[ggx_g1]\nalpha = [0.1, 0.5, 1.0]\nmu = 0.5\n", "example.toml",
-                                              ndfs, with_example(computed));
+    report::Scene scene = report::parse_scene(quick_scene + "[ggx_g1]\nalpha = [0.1, 0.5, 1.0]\nmu = 0.5\n",
+                                              "example.toml", ndfs, with_example(computed));
     CHECK_THAT(report::describe(report::estimate_work(scene, variants)), Catch::Contains(", G1 of GGX 3)"));
 
     const fs::path out = fresh_dir("example");
@@ -126,7 +126,8 @@ TEST_CASE("report sections: a section of one's own runs in a report, after the b
     REQUIRE(records.size() == 4);
     for (std::size_t i = 1; i < records.size(); ++i) {
         const double alpha = std::stod(records[i].fields[0]), mu = std::stod(records[i].fields[1]);
-        CHECK(std::stod(records[i].fields[2]) == Approx(2.0 / (1.0 + std::sqrt(1.0 + alpha * alpha / (mu * mu)))).epsilon(1e-13));
+        CHECK(std::stod(records[i].fields[2]) ==
+              Approx(2.0 / (1.0 + std::sqrt(1.0 + alpha * alpha / (mu * mu)))).epsilon(1e-13));
     }
     // Its part of report.md comes after the built-in sections' (the G1 table's here).
     const std::string md = slurp(out / "report.md");
@@ -143,8 +144,8 @@ TEST_CASE("report sections: a section's keys are read strictly, and only where i
     CHECK_THROWS_WITH(report::parse_scene(misspelt, "example.toml", ndfs, with_example(computed)),
                       Catch::Contains("example.toml:11:") && Catch::Contains("did you mean 'ggx_g1.alpha'?"));
     const std::string own = quick_scene + "[ggx_g1]\nalpha = [0.1]\n";
-    CHECK_THROWS_WITH(report::parse_scene(own, "example.toml", ndfs), Catch::Contains("example.toml:10:") &&
-                                                                          Catch::Contains("unknown section 'ggx_g1'"));
+    CHECK_THROWS_WITH(report::parse_scene(own, "example.toml", ndfs),
+                      Catch::Contains("example.toml:10:") && Catch::Contains("unknown section 'ggx_g1'"));
     // Without its table it does nothing: no work, no file.
     report::Scene scene = report::parse_scene(quick_scene, "example.toml", ndfs, with_example(computed));
     CHECK_THAT(report::describe(report::estimate_work(scene, builtin_variants())), !Catch::Contains("G1 of GGX"));

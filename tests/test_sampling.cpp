@@ -21,13 +21,26 @@ struct Case {
 };
 
 std::vector<std::string> ndf_specs() {
-    return {"ggx(alpha=1)",           "ggx(alpha=0.3)",         "ggx(alpha=0.001)",
-            "beckmann(alpha=1)",      "beckmann(alpha=0.3)",    "beckmann(alpha=0.001)",
-            "blinn(n=1)",             "blinn(n=20)",            "blinn(n=2000000)",
-            "gtr(alpha=0.3, gamma=0.5)", "gtr(alpha=0.001, gamma=1)", "gtr(alpha=0.3, gamma=1.5)",
-            "gtr(alpha=0.5, gamma=3.3)", "gtr(alpha=0.001, gamma=10)", "gtr(alpha=1, gamma=4)",
-            "gtr(alpha=0.3, gamma=2)",   "student(alpha=0.3, gamma=1.65)", "student(alpha=0.001, gamma=4)",
-            "student(alpha=1, gamma=30)", "donly_ggx(alpha=0.3)"};
+    return {"ggx(alpha=1)",
+            "ggx(alpha=0.3)",
+            "ggx(alpha=0.001)",
+            "beckmann(alpha=1)",
+            "beckmann(alpha=0.3)",
+            "beckmann(alpha=0.001)",
+            "blinn(n=1)",
+            "blinn(n=20)",
+            "blinn(n=2000000)",
+            "gtr(alpha=0.3, gamma=0.5)",
+            "gtr(alpha=0.001, gamma=1)",
+            "gtr(alpha=0.3, gamma=1.5)",
+            "gtr(alpha=0.5, gamma=3.3)",
+            "gtr(alpha=0.001, gamma=10)",
+            "gtr(alpha=1, gamma=4)",
+            "gtr(alpha=0.3, gamma=2)",
+            "student(alpha=0.3, gamma=1.65)",
+            "student(alpha=0.001, gamma=4)",
+            "student(alpha=1, gamma=30)",
+            "donly_ggx(alpha=0.3)"};
 }
 
 NdfRegistry registry_with_donly() {
@@ -70,11 +83,11 @@ std::vector<Case> all_cases(const NdfRegistry& ndfs, const std::vector<SamplerIn
             if (!s.applies(ndfs.make(spec))) continue;
             // The tables are the same code for every NDF: a few NDFs suffice for the -table variants.
             const bool few = spec == "ggx(alpha=0.3)" || spec == "gtr(alpha=0.001, gamma=1)" || spec == "blinn(n=20)" ||
-                             spec == "beckmann(alpha=0.001)";
+                spec == "beckmann(alpha=0.001)";
             if (s.name.find("-table") != std::string::npos && !few) continue;
             using I = SamplerInfo::Incidence;
             const std::vector<double> thetas = s.incidence == I::ignored ? std::vector<double>{0.0}
-                                               : is_visible(s.name)      ? std::vector<double>{0.0, 45.0, 89.0}
+                : is_visible(s.name)                                     ? std::vector<double>{0.0, 45.0, 89.0}
                                                                          : std::vector<double>{89.0, 100.0, 150.0};
             for (double t : thetas) cases.push_back({s.name, spec, t});
         }
@@ -136,7 +149,10 @@ TEST_CASE("chi-square: D cos samplers, analytic and tabulated, every NDF family,
     run_chi2("dcos");
 }
 
-TEST_CASE("chi-square: visible-normal samplers, generic, tabulated, GGX and Beckmann, normal incidence to 10 degrees below the horizon", "[sampling][chi2][slow]") {
+TEST_CASE(
+    "chi-square: visible-normal samplers, generic, tabulated, GGX and Beckmann, normal incidence to 10 degrees below "
+    "the horizon",
+    "[sampling][chi2][slow]") {
     run_chi2("vndf");
 }
 
@@ -144,12 +160,13 @@ TEST_CASE("chi-square: Hammon's facing-restricted D cos, rays going down and up"
     run_chi2("hammon");
 }
 
-TEST_CASE("D cos laws: the analytic survival functions against quadrature of pi P22, and their inverses", "[sampling]") {
+TEST_CASE("D cos laws: the analytic survival functions against quadrature of pi P22, and their inverses",
+          "[sampling]") {
     // Independent route: S(s) = pi * integral_s^inf P22 by Boost quadrature on the slope density, not the inversions.
     auto check = [](const auto& ndf, const std::string& what) {
         for (double s : {1e-12, 1e-7, 1e-4, 0.01, 0.3, 1.0, 3.0, 100.0, 1e6}) {
-            const double want = integrate([&](double x) { return std::numbers::pi * slope_density(ndf, x); }, s, INFINITY,
-                                          {Backend::boost, 1e-13});
+            const double want = integrate([&](double x) { return std::numbers::pi * slope_density(ndf, x); }, s,
+                                          INFINITY, {Backend::boost, 1e-13});
             const double got = ndf.Dcos_sf(s);
             INFO(what << " s=" << s << " S=" << got << " quadrature " << want);
             CHECK(std::abs(got - want) <= 1e-12 * std::max(want, 1e-3));  // relative in the tail, absolute near 1
@@ -161,14 +178,16 @@ TEST_CASE("D cos laws: the analytic survival functions against quadrature of pi 
     for (double a : {1e-4, 0.01, 0.3, 1.0}) {
         check(ggx(a), "ggx " + std::to_string(a));
         check(beckmann(a), "beckmann " + std::to_string(a));
-        for (double g : {0.0, 0.5, 1.0, 1.0 + 1e-9, 1.5, 2.0, 3.3, 20.0}) check(gtr(a, g), "gtr " + std::to_string(a) + " " + std::to_string(g));
+        for (double g : {0.0, 0.5, 1.0, 1.0 + 1e-9, 1.5, 2.0, 3.3, 20.0})
+            check(gtr(a, g), "gtr " + std::to_string(a) + " " + std::to_string(g));
     }
     check(gtr(0.999999, 2.5), "gtr 0.999999");
     check(gtr(1e-30, 2.5), "gtr 1e-30 2.5");
     check(gtr(1e-30, 25.0), "gtr 1e-30 25");  // (gamma - 1) ln(1/alpha^2) = 3300: expm1 would overflow
     for (double n : {0.0, 1.0, 20.0, 1e4}) check(blinn(n), "blinn " + std::to_string(n));
     for (double a : {1e-4, 0.3, 1.0})
-        for (double g : {1.65, 2.0, 3.3, 30.0, 1e6}) check(student(a, g), "student " + std::to_string(a) + " " + std::to_string(g));
+        for (double g : {1.65, 2.0, 3.3, 30.0, 1e6})
+            check(student(a, g), "student " + std::to_string(a) + " " + std::to_string(g));
     check(student(1e-30, 2.5), "student 1e-30 2.5");
 }
 
@@ -211,8 +230,10 @@ TEST_CASE("D cos tables: a law reaching the ends of the table's range is refused
     CHECK_NOTHROW(DcosSampler(ggx(1e-49)));  // the analytic inversion has no range
 }
 
-TEST_CASE("reflected directions: pdf_m / (4 |i.m|) integrates to 1 over the sphere of outgoing directions", "[sampling][sweep]") {
-    // o = reflect(i, m) and m = normalize(i + o): the Jacobian d omega_m / d omega_o = 1 / (4 |i.m|) (Walter 2007 eq. 14).
+TEST_CASE("reflected directions: pdf_m / (4 |i.m|) integrates to 1 over the sphere of outgoing directions",
+          "[sampling][sweep]") {
+    // o = reflect(i, m) and m = normalize(i + o): the Jacobian d omega_m / d omega_o = 1 / (4 |i.m|) (Walter 2007 eq.
+    // 14).
     const Vec3 wi = direction_from_theta_deg(30.0);
     const Ggx g = ggx(0.3);
     const DcosSampler dcos(g);
@@ -221,11 +242,13 @@ TEST_CASE("reflected directions: pdf_m / (4 |i.m|) integrates to 1 over the sphe
         auto pdf_m = [&](const Vec3& m) { return which == 0 ? dcos.pdf(m) : vis.pdf(wi, m); };
         auto over_phi = [&](double z) {
             const double st = std::sqrt((1.0 - z) * (1.0 + z));
-            return integrate([&](double phi) {
-                const Vec3 o(st * std::cos(phi), st * std::sin(phi), z);
-                const Vec3 h = (wi + o).normalized();
-                return reflected_pdf(pdf_m(h), wi, h);
-            }, 0.0, 2.0 * std::numbers::pi, {Backend::boost, 1e-9});
+            return integrate(
+                [&](double phi) {
+                    const Vec3 o(st * std::cos(phi), st * std::sin(phi), z);
+                    const Vec3 h = (wi + o).normalized();
+                    return reflected_pdf(pdf_m(h), wi, h);
+                },
+                0.0, 2.0 * std::numbers::pi, {Backend::boost, 1e-9});
         };
         const double total = integrate(over_phi, -1.0, 1.0, {Backend::boost, 1e-9});
         // A facet facing away from wi (possible under D cos) sends o where the half vector is -m: those are lost,
@@ -258,8 +281,10 @@ TEST_CASE("samplers: the same seed gives the same samples, and bad input is an e
     CHECK_THROWS_WITH(sample_ggx_visible(0.3, Vec3(0, 0, -1), g), Catch::Contains("visible"));
     CHECK_THROWS_WITH(prepare(find_sampler(samplers, "hammon"), ndf, Vec3(0, 0, -1)), Catch::Contains("no microfacet"));
     CHECK_THROWS_WITH(prepare(find_sampler(samplers, "vndf"), ndf, Vec3(0, 0, 2)), Catch::Contains("unit"));
-    CHECK_THROWS_WITH(prepare(find_sampler(samplers, "vndf-ggx"), ndf, Vec3(0, 0, 1)), Catch::Contains("does not apply"));
-    CHECK_THROWS_WITH(prepare(find_sampler(samplers, "vndf-beckmann"), ndf, Vec3(0, 0, 1)), Catch::Contains("does not apply"));
+    CHECK_THROWS_WITH(prepare(find_sampler(samplers, "vndf-ggx"), ndf, Vec3(0, 0, 1)),
+                      Catch::Contains("does not apply"));
+    CHECK_THROWS_WITH(prepare(find_sampler(samplers, "vndf-beckmann"), ndf, Vec3(0, 0, 1)),
+                      Catch::Contains("does not apply"));
 }
 
 namespace {
@@ -279,14 +304,16 @@ double projected_area_by_quadrature(const N& ndf, const Vec3& v) {
         if (f == 0.0) return 0.0;
         if (st * r <= std::abs(ct)) return ct > 0.0 ? 2.0 * pi * ct * f : 0.0;
         const double phi_c = std::acos(ct / (st * r));  // positive on (phi_c, 2 pi - phi_c)
-        return 2.0 * f * GL::integrate([&](double phi) { return std::max(0.0, ct - st * r * std::cos(phi)); }, phi_c, pi);
+        return 2.0 * f *
+            GL::integrate([&](double phi) { return std::max(0.0, ct - st * r * std::cos(phi)); }, phi_c, pi);
     };
     return GK::integrate(over_phi, 0.0, a, 12, 1e-11) + GK::integrate(over_phi, a, INFINITY, 12, 1e-11);
 }
 
 }  // namespace
 
-TEST_CASE("projected area A(v) over the whole sphere: against quadrature of <v.m>^+ D, and A(v) - A(-v) = v.z", "[sampling]") {
+TEST_CASE("projected area A(v) over the whole sphere: against quadrature of <v.m>^+ D, and A(v) - A(-v) = v.z",
+          "[sampling]") {
     // Smith's convention Lambda(-mu) = -1 - Lambda(mu) (Heitz et al. 2016): A(v) = (1 + Lambda(v)) cos(theta_v) is the
     // projected area of the microsurface's facets facing v, above and below the horizon.
     const NdfRegistry ndfs = registry_with_donly();

@@ -49,7 +49,7 @@ TEST_CASE("G1 = 1/(1 + Lambda) and the two G2 forms", "[smith]") {
 TEST_CASE("method selection: closed where it exists, errors where it does not", "[smith]") {
     const auto gg = ggx(0.2);
     const auto bl = blinn(30.0);
-    CHECK(Lambda(gg, 1.0) == gg.Lambda(1.0));                       // auto takes the closed form
+    CHECK(Lambda(gg, 1.0) == gg.Lambda(1.0));                              // auto takes the closed form
     CHECK(Lambda(bl, 1.0) == Lambda(bl, 1.0, {.method = Method::fixed}));  // else the fixed rule
     CHECK(Lambda(bl, 1.0) == Approx(Lambda(bl, 1.0, {.method = Method::quadrature})).epsilon(1e-12));
     CHECK_THROWS_AS(Lambda(bl, 1.0, {.method = Method::closed}), input_error);
@@ -67,9 +67,11 @@ TEST_CASE("methods, backends and downward conventions by name: one table each, p
     CHECK(parse_method("auto") == Method::automatic);
     CHECK(parse_downward("smith") == Downward::smith);
     CHECK(parse_downward("hammon") == Downward::hammon_symmetric);
-    CHECK_THROWS_WITH(parse_method("q1d"),
-                      Catch::Contains("unknown method 'q1d' (expected auto, closed, spline, quadrature, quadrature2d or fixed)"));
-    CHECK_THROWS_WITH(parse_backend("qags"), Catch::Contains("unknown quadrature backend 'qags' (expected boost or gsl)"));
+    CHECK_THROWS_WITH(
+        parse_method("q1d"),
+        Catch::Contains("unknown method 'q1d' (expected auto, closed, spline, quadrature, quadrature2d or fixed)"));
+    CHECK_THROWS_WITH(parse_backend("qags"),
+                      Catch::Contains("unknown quadrature backend 'qags' (expected boost or gsl)"));
     CHECK_THROWS_WITH(parse_downward("up"), Catch::Contains("'up' (expected smith or hammon)"));
 }
 

@@ -3,8 +3,8 @@
 // r-form quadrature of the slope law as printed, reference.hpp) and against smithlab's 1D quadrature, its asymptotes
 // and the seams between its forms, its D cos survival function and inverse, and bad parameters.
 // Relative error of Lambda throughout: G1 near 1 hides everything.
-#include <catch2/catch.hpp>
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cfloat>
 #include <cmath>
 #include <limits>
@@ -16,8 +16,8 @@
 #include "grid.hpp"
 #include "reference.hpp"
 
-using smithlab::StudentT;
 using smithlab::student;
+using smithlab::StudentT;
 
 namespace {
 
@@ -124,7 +124,8 @@ TEST_CASE("student: normalized, its D cos law sums to 1, and D is P22 / cos^4", 
 TEST_CASE("student: closed-form Lambda against the 50-digit reference, z = mu / alpha from 1e-8 to 1e200",
           "[student][slow]") {
     // The reference integrates the slope law as printed in the r-form, to infinity (Lambda_uncut: the r^(-2 gamma) tail
-    // at gamma = 1.65 leaves 1e-18 beyond the usual cut, 1e-12 at 1.6); no double-precision route of smithlab takes part.
+    // at gamma = 1.65 leaves 1e-18 beyond the usual cut, 1e-12 at 1.6); no double-precision route of smithlab takes
+    // part.
     double worst = 0.0;
     std::string worst_at;
     auto check = [&](double a, double gm, double z) {

@@ -3,8 +3,8 @@
 // sees the table) to a bound per number of rows; the per-NDF checks pass; a walk on the table's microsurface gives the
 // albedo of GGX's by scattering order; every refusal names the file, the line and the value; normalize rescales; the
 // content hash follows the bytes, not the name; the example table in experiments/ndfs/ loads.
-#include <catch2/catch.hpp>
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -45,7 +45,8 @@ std::vector<double> jittered_angles(int n, double lo, double hi, std::uint64_t s
 // The CSV text of D at those angles (a column the reader ignores included), every double to 17 digits.
 std::string csv_of(const std::vector<double>& theta_deg, const std::function<double(double)>& D) {
     std::string s = "theta_deg,D,note\n";
-    for (double t : theta_deg) s += smithlab::format_g17(t) + "," + smithlab::format_g17(D(std::cos(t * pi / 180.0))) + ",x\n";
+    for (double t : theta_deg)
+        s += smithlab::format_g17(t) + "," + smithlab::format_g17(D(std::cos(t * pi / 180.0))) + ",x\n";
     return s;
 }
 
@@ -72,7 +73,8 @@ std::string ggx_table(double scale = 1.0) {
 
 }  // namespace
 
-TEST_CASE("tabulated: Lambda of sampled GGX, Beckmann and GTR 1.5 against their own, by number of rows", "[tabulated][sweep]") {
+TEST_CASE("tabulated: Lambda of sampled GGX, Beckmann and GTR 1.5 against their own, by number of rows",
+          "[tabulated][sweep]") {
     const smithlab::Ggx g01 = smithlab::ggx(0.1), g05 = smithlab::ggx(0.5);
     const smithlab::Beckmann b03 = smithlab::beckmann(0.3);
     const smithlab::Gtr gt = smithlab::gtr(0.3, 1.5);
@@ -99,9 +101,9 @@ TEST_CASE("tabulated: Lambda of sampled GGX, Beckmann and GTR 1.5 against their 
         double bound[4];  // per case
     };
     const Sampling samplings[] = {
-        {60, 0.0, 85.0, {8e-4, 4.5e-4, 4.5e-5, 4e-4}},  {100, 0.0, 85.0, {6e-4, 3.5e-4, 2.5e-5, 3e-4}},
-        {200, 0.0, 85.0, {4e-4, 2.2e-4, 8e-7, 2e-4}},   {60, 0.4, 89.0, {1.5e-4, 6e-6, 4.5e-5, 5e-6}},
-        {100, 0.4, 89.0, {2.5e-5, 3e-6, 2e-5, 3e-6}},   {200, 0.4, 89.0, {2e-6, 1.1e-6, 9e-7, 1e-6}},
+        {60, 0.0, 85.0, {8e-4, 4.5e-4, 4.5e-5, 4e-4}}, {100, 0.0, 85.0, {6e-4, 3.5e-4, 2.5e-5, 3e-4}},
+        {200, 0.0, 85.0, {4e-4, 2.2e-4, 8e-7, 2e-4}},  {60, 0.4, 89.0, {1.5e-4, 6e-6, 4.5e-5, 5e-6}},
+        {100, 0.4, 89.0, {2.5e-5, 3e-6, 2e-5, 3e-6}},  {200, 0.4, 89.0, {2e-6, 1.1e-6, 9e-7, 1e-6}},
     };
     std::printf("tabulated NDF: worst relative error of Lambda over mu in [0.01, 100] (Lambda > 1e-12)\n");
     std::printf("%-14s %5s %12s %10s %8s %10s\n", "ndf", "rows", "degrees", "error", "at mu", "bound");
@@ -123,8 +125,10 @@ TEST_CASE("tabulated: Lambda of sampled GGX, Beckmann and GTR 1.5 against their 
                     CHECK(std::abs(got - want[j]) <= 1e-12);
                 }
             }
-            std::printf("%-14s %5d %5.1f-%-5.1f %10.2e %8.3g %10.1e\n", cs.name, s.n, s.lo, s.hi, worst, at, s.bound[k]);
-            INFO(cs.name << ", " << s.n << " rows over [" << s.lo << ", " << s.hi << "] deg: worst " << worst << " at mu " << at);
+            std::printf("%-14s %5d %5.1f-%-5.1f %10.2e %8.3g %10.1e\n", cs.name, s.n, s.lo, s.hi, worst, at,
+                        s.bound[k]);
+            INFO(cs.name << ", " << s.n << " rows over [" << s.lo << ", " << s.hi << "] deg: worst " << worst
+                         << " at mu " << at);
             CHECK(worst <= s.bound[k]);
         }
     }
@@ -143,7 +147,8 @@ TEST_CASE("tabulated: the per-NDF checks pass on a tabulated GGX", "[tabulated]"
     smithlab::CheckOptions co;
     co.backend = smithlab::Backend::gsl;
     for (const smithlab::CheckResult& r : smithlab::run_checks(tab, co)) {
-        INFO(r.name << " " << r.where << ": " << r.value << " vs " << r.expected << " (residual " << r.residual() << ")");
+        INFO(r.name << " " << r.where << ": " << r.value << " vs " << r.expected << " (residual " << r.residual()
+                    << ")");
         CHECK(r.passed());
     }
 }
@@ -162,8 +167,8 @@ TEST_CASE("tabulated: D and P22 are finite, >= 0, agree, and reproduce the rows"
             const double r2 = (1.0 - c) * (1.0 + c) / (c * c), p = tab.slope_density(r2);
             REQUIRE(std::isfinite(p));
             REQUIRE(p >= 0.0);
-            // theta from cos (D) and from tan^2 (P22) differ by rounding: relative 1e-16 times |d ln D / d theta|, up to
-            // ~4000 for Beckmann(0.3) at 80 degrees.
+            // theta from cos (D) and from tan^2 (P22) differ by rounding: relative 1e-16 times |d ln D / d theta|, up
+            // to ~4000 for Beckmann(0.3) at 80 degrees.
             if (c > 1e-60) CHECK(std::abs(p - d * c * c * c * c) <= 1e-10 * d * c * c * c * c + 1e-300);
         }
         CHECK(tab.slope_density(INFINITY) == 0.0);
@@ -224,7 +229,8 @@ TEST_CASE("tabulated: every refusal names the file, the line and the value", "[t
         {h + "0,1\nfive,1\n", "ndf.csv:3: theta_deg is not a number: 'five'"},
         {h + "0,1\n5,inf\n", "ndf.csv:3: D must be finite and >= 0, got inf"},
         {h + "0,1\n5,nan\n", "ndf.csv:3: D must be finite and >= 0, got nan"},
-        {h + "0,1\n5,0.5\n10,0.2\n15,0.1\n20,0.05\n25,0.02\n30,-0.3\n", "ndf.csv:8: D must be finite and >= 0, got -0.3"},
+        {h + "0,1\n5,0.5\n10,0.2\n15,0.1\n20,0.05\n25,0.02\n30,-0.3\n",
+         "ndf.csv:8: D must be finite and >= 0, got -0.3"},
         {h + "0,1\n5,0.5\n5,0.4\n", "ndf.csv:4: theta_deg must increase from row to row, got 5 after 5 (line 3)"},
         {h + "0,1\n5,0.5\n4.9,0.4\n", "ndf.csv:4: theta_deg must increase from row to row, got 4.9 after 5 (line 3)"},
         {"cos_theta,D\n1,1\n0.9,0.5\n0.95,0.4\n",
@@ -252,8 +258,9 @@ TEST_CASE("tabulated: every refusal names the file, the line and the value", "[t
     // A file that is not there, or a directory.
     CHECK(refusal([] { smithlab::read_tabulated_ndf("/nonexistent/ndf.csv"); }) ==
           "tabulated ndf: cannot open '/nonexistent/ndf.csv'");
-    CHECK(refusal([] { smithlab::read_tabulated_ndf(std::filesystem::temp_directory_path()); }).find("is a directory") !=
-          std::string::npos);
+    CHECK(refusal([] {
+              smithlab::read_tabulated_ndf(std::filesystem::temp_directory_path());
+          }).find("is a directory") != std::string::npos);
 }
 
 TEST_CASE("tabulated: normalize divides D by its projected area", "[tabulated]") {
@@ -326,7 +333,8 @@ TEST_CASE("tabulated: 1 % noise per row keeps the projected area well inside its
         for (double t : th) {
             const double c = std::cos(t * pi / 180.0);
             const double z = std::sqrt(-2.0 * std::log(1.0 - u())) * std::cos(2.0 * pi * u());
-            text += smithlab::format_g17(t) + "," + smithlab::format_g17((0.3 * g.D(c) + 0.7 * b.D(c)) * std::exp(0.01 * z)) + "\n";
+            text += smithlab::format_g17(t) + "," +
+                smithlab::format_g17((0.3 * g.D(c) + 0.7 * b.D(c)) * std::exp(0.01 * z)) + "\n";
         }
         const double a = smithlab::tabulated_ndf_from_csv(text, "noisy.csv").area_as_read() - 1.0;
         s1 += a;
@@ -334,14 +342,16 @@ TEST_CASE("tabulated: 1 % noise per row keeps the projected area well inside its
         worst = std::max(worst, std::abs(a));
     }
     const double mean = s1 / draws, sd = std::sqrt(s2 / draws - mean * mean);
-    std::printf("tabulated NDF, 1 %% noise on 120 rows: area - 1 mean %.2e, sd %.2e, worst of %d %.2e (tolerance %.0e)\n",
-                mean, sd, draws, worst, smithlab::tabulated_area_tolerance);
+    std::printf(
+        "tabulated NDF, 1 %% noise on 120 rows: area - 1 mean %.2e, sd %.2e, worst of %d %.2e (tolerance %.0e)\n", mean,
+        sd, draws, worst, smithlab::tabulated_area_tolerance);
     CHECK(worst < smithlab::tabulated_area_tolerance / 2.0);
     CHECK(std::abs(mean) + 5.0 * sd < smithlab::tabulated_area_tolerance);
 }
 
 TEST_CASE("tabulated: the example table experiments/ndfs/two_lobe.csv", "[tabulated]") {
-    const std::filesystem::path p = std::filesystem::path(SMITHLAB_SOURCE_DIR) / "experiments" / "ndfs" / "two_lobe.csv";
+    const std::filesystem::path p =
+        std::filesystem::path(SMITHLAB_SOURCE_DIR) / "experiments" / "ndfs" / "two_lobe.csv";
     const TabulatedNdf tab = smithlab::read_tabulated_ndf(p);  // normalized by its maker to within the tolerance
     CHECK(tab.points() == 120);
     CHECK(tab.theta_min_deg() == 0.0);
@@ -363,7 +373,8 @@ TEST_CASE("tabulated: the example table experiments/ndfs/two_lobe.csv", "[tabula
     CHECK(n.content_id() == tab.content_id());
 }
 
-TEST_CASE("tabulated: a walk on the table's microsurface scatters as on GGX's, order by order", "[tabulated][walk][slow]") {
+TEST_CASE("tabulated: a walk on the table's microsurface scatters as on GGX's, order by order",
+          "[tabulated][walk][slow]") {
     const smithlab::Ggx g = smithlab::ggx(0.5);
     const TabulatedNdf tab = smithlab::tabulated_ndf_from_csv(
         csv_of(jittered_angles(200, 0.0, 89.0, 13), [&](double c) { return g.D(c); }), "ggx.csv");
@@ -380,7 +391,8 @@ TEST_CASE("tabulated: a walk on the table's microsurface scatters as on GGX's, o
     for (int order = 0; order < walk::order_bins; ++order) {
         const walk::Estimate x = a.albedo.albedo(walk::Hemisphere::reflection, order, walk::Component::all);
         const walk::Estimate y = b.albedo.albedo(walk::Hemisphere::reflection, order, walk::Component::all);
-        INFO("order bin " << order << ": table " << x.value << " +- " << x.stderr_ << ", ggx " << y.value << " +- " << y.stderr_);
+        INFO("order bin " << order << ": table " << x.value << " +- " << x.stderr_ << ", ggx " << y.value << " +- "
+                          << y.stderr_);
         CHECK(std::abs(x.value - y.value) < 4.0 * std::hypot(x.stderr_, y.stderr_));
     }
 }

@@ -42,13 +42,13 @@ TEST_CASE("every variant carries the route it computes by", "[variants]") {
     for (const LambdaVariant& v : variants.list()) {
         INFO(v.name);
         const auto starts = [&](const char* prefix) { return v.name.rfind(prefix, 0) == 0; };
-        const LambdaRoute want = starts("q1d-boost-")   ? LambdaRoute::q1d_boost
-                                 : starts("q2d-boost-") ? LambdaRoute::q2d_boost
-                                 : starts("q1d-gsl-")   ? LambdaRoute::q1d_gsl
-                                 : starts("q2d-gsl-")   ? LambdaRoute::q2d_gsl
-                                 : v.name == "closed-form" ? LambdaRoute::closed
-                                 : v.name == "table"       ? LambdaRoute::table
-                                                           : LambdaRoute::other;
+        const LambdaRoute want = starts("q1d-boost-") ? LambdaRoute::q1d_boost
+            : starts("q2d-boost-")                    ? LambdaRoute::q2d_boost
+            : starts("q1d-gsl-")                      ? LambdaRoute::q1d_gsl
+            : starts("q2d-gsl-")                      ? LambdaRoute::q2d_gsl
+            : v.name == "closed-form"                 ? LambdaRoute::closed
+            : v.name == "table"                       ? LambdaRoute::table
+                                                      : LambdaRoute::other;
         CHECK(v.route == want);
         CHECK(is_quadrature(v.route) == (starts("q1d-") || starts("q2d-")));
     }
@@ -61,7 +61,8 @@ TEST_CASE("every variant carries the route it computes by", "[variants]") {
 TEST_CASE("quadrature variants meet their relative tolerance against the closed forms", "[variants]") {
     const NdfRegistry ndfs = builtin_registry();
     const VariantRegistry variants = builtin_variants();
-    for (const char* spec : {"ggx(alpha=0.01)", "gtr(alpha=0.3, gamma=1)", "gtr(alpha=0.05, gamma=10)", "beckmann(alpha=0.5)"}) {
+    for (const char* spec :
+         {"ggx(alpha=0.01)", "gtr(alpha=0.3, gamma=1)", "gtr(alpha=0.05, gamma=10)", "beckmann(alpha=0.5)"}) {
         const AnyNdf ndf = ndfs.make(spec);
         for (const LambdaVariant& v : variants.list()) {
             if (v.name.rfind("q1d-", 0) != 0 && v.name.rfind("q2d-", 0) != 0) continue;
@@ -79,7 +80,8 @@ TEST_CASE("the approximations are the published formulas", "[variants]") {
     for (double alpha : {0.05, 0.5, 1.0})
         for (double mu : {0.01, 0.3, 1.0, 5.0}) {
             const double NdotV = mu / std::sqrt(1.0 + mu * mu);
-            // Hammon 2017: G1 ~ 2 NdotV / (NdotV (2 - alpha) + alpha); Unreal: NdotV / (NdotV (1 - k) + k), k = alpha/2.
+            // Hammon 2017: G1 ~ 2 NdotV / (NdotV (2 - alpha) + alpha); Unreal: NdotV / (NdotV (1 - k) + k), k =
+            // alpha/2.
             const double hammon = 2.0 * NdotV / (NdotV * (2.0 - alpha) + alpha);
             const double k = alpha / 2.0, unreal = NdotV / (NdotV * (1.0 - k) + k);
             CHECK(1.0 / (1.0 + Lambda_schlick_ggx(alpha, mu)) == Approx(hammon).epsilon(1e-14));
@@ -91,20 +93,21 @@ TEST_CASE("the approximations are the published formulas", "[variants]") {
         }
 }
 
-TEST_CASE("interpolants across gamma: exact at the knots, and beyond gamma = 4 far better than Dimov's clamp", "[variants]") {
+TEST_CASE("interpolants across gamma: exact at the knots, and beyond gamma = 4 far better than Dimov's clamp",
+          "[variants]") {
     using K = GammaInterpolant::Kind;
     using Q = GammaInterpolant::Quantity;
     for (double alpha : {0.01, 0.3, 0.9})
         for (double mu : {0.05, 1.0, 20.0}) {
-            for (const GammaInterpolant how : {GammaInterpolant{K::akima, Q::G1, 4}, GammaInterpolant{K::steffen, Q::log_Lambda, 10},
-                                               GammaInterpolant{K::cspline, Q::log_Lambda, 20}}) {
+            for (const GammaInterpolant how :
+                 {GammaInterpolant{K::akima, Q::G1, 4}, GammaInterpolant{K::steffen, Q::log_Lambda, 10},
+                  GammaInterpolant{K::cspline, Q::log_Lambda, 20}}) {
                 const double exact = gtr(alpha, 3.0).Lambda(mu);
                 INFO(name_of(how) << " alpha=" << alpha << " mu=" << mu);
                 if (how.quantity == Q::G1)
                     CHECK(1.0 / (1.0 + Lambda_gtr_interpolated(alpha, 3.0, mu, how)) ==
                           Approx(1.0 / (1.0 + exact)).epsilon(1e-15));
-                else
-                    CHECK(Lambda_gtr_interpolated(alpha, 3.0, mu, how) == Approx(exact).epsilon(1e-13));
+                else CHECK(Lambda_gtr_interpolated(alpha, 3.0, mu, how) == Approx(exact).epsilon(1e-13));
             }
             // Above gamma = 4, against 1D quadrature: Dimov clamps to 4; log Lambda through knots 0..20 follows gamma.
             // (Between 0 and 4 the knots are as far apart for every variant, and none is uniformly better: the

@@ -1,14 +1,15 @@
 // The microsurface walk (lib/include/smithlab/walk/) against what it must reproduce: energy conservation (white
 // furnace, by both estimators), the analytic single-scattering BRDF for its first bounce, reciprocity, independence
 // of the height law, the same bits for any number of threads; and a wrong walk (a Lambda that does not belong to D)
-// is caught by the furnace. The statistical cases are [slow]: the sanitized CI build runs the others (tests/CMakeLists.txt).
-#include <catch2/catch.hpp>
+// is caught by the furnace. The statistical cases are [slow]: the sanitized CI build runs the others
+// (tests/CMakeLists.txt).
 #include <algorithm>
 #include <boost/math/quadrature/gauss_kronrod.hpp>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <numbers>
-#include <smithlab/smithlab.hpp>
 #include <smithlab/single_scattering.hpp>
+#include <smithlab/smithlab.hpp>
 #include <smithlab/walk/trace.hpp>
 #include <string>
 #include <vector>
@@ -73,13 +74,17 @@ TEST_CASE("white furnace, sample estimator: every walk leaves with all its energ
                 walk::CellRequest r;
                 r.wi = dir(theta, 0.0);
                 r.walks = 20'000;
-                const walk::CellResult c = std::visit([&](const auto& m) { return walk::trace_cell(ms, m, r); }, material);
+                const walk::CellResult c =
+                    std::visit([&](const auto& m) { return walk::trace_cell(ms, m, r); }, material);
                 INFO("alpha " << alpha << " " << walk::format_material(material) << " theta_i " << theta);
                 CHECK(c.albedo.capped == 0);
-                const walk::Estimate all = c.albedo.albedo(walk::Hemisphere::all, walk::all_orders, walk::Component::all);
+                const walk::Estimate all =
+                    c.albedo.albedo(walk::Hemisphere::all, walk::all_orders, walk::Component::all);
                 CHECK(all.value == Approx(1.0).margin(1e-12));
-                const double t = c.albedo.albedo(walk::Hemisphere::transmission, walk::all_orders, walk::Component::all).value;
-                if (walk::transmits(material)) CHECK(t > 0.3);  // eta 1.5: a flat interface transmits 0.96 at 0, 0.39 at 85 deg
+                const double t =
+                    c.albedo.albedo(walk::Hemisphere::transmission, walk::all_orders, walk::Component::all).value;
+                if (walk::transmits(material))
+                    CHECK(t > 0.3);  // eta 1.5: a flat interface transmits 0.96 at 0, 0.39 at 85 deg
                 else CHECK(t == 0.0);
             }
         }
@@ -89,7 +94,8 @@ TEST_CASE("white furnace, sample estimator: every walk leaves with all its energ
 TEST_CASE("white furnace, eval estimator: the hemisphere integral of f cos is 1", "[walk][slow]") {
     const Vec3 wi = dir(60.0, 0.0);
     auto check = [&](const auto& ms, const walk::Material& material, const std::string& what) {
-        const walk::Estimate e = std::visit([&](const auto& m) { return eval_albedo(ms, m, wi, 40'000, 5, 99).all; }, material);
+        const walk::Estimate e =
+            std::visit([&](const auto& m) { return eval_albedo(ms, m, wi, 40'000, 5, 99).all; }, material);
         INFO(what << " " << walk::format_material(material) << ": " << e.value << " +- " << e.stderr_);
         CHECK(std::abs(e.value - 1.0) < 4.0 * e.stderr_ + 1e-3);
         CHECK(e.stderr_ < 0.02);
@@ -136,27 +142,26 @@ TEST_CASE("the first bounce is the analytic single-scattering BRDF", "[walk][slo
 TEST_CASE("reciprocity: f(wi, wo) = f(wo, wi) over 20 pairs, grazing ones included", "[walk][slow]") {
     const walk::Microsurface ms(smithlab::ggx(0.6));
     // 20 pairs (theta_i, phi_i, theta_o, phi_o): back- and forward-scattering, side lobes, and grazing ones to 89 deg.
-    const std::array<std::array<double, 4>, 20> pairs = {{{20, 0, 60, 180},  {45, 0, 80, 90},   {75, 30, 10, 250},
-                                                          {88, 0, 60, 120},  {50, 10, 87, 200}, {0, 0, 40, 0},
-                                                          {30, 0, 30, 0},    {60, 0, 60, 10},   {85, 0, 85, 180},
-                                                          {89, 0, 30, 180},  {89, 0, 89, 90},   {10, 45, 70, 300},
-                                                          {65, 120, 35, 330}, {80, 0, 20, 20},  {40, 200, 75, 20},
-                                                          {55, 0, 5, 180},   {70, 90, 70, 270}, {15, 0, 88, 0},
-                                                          {35, 60, 62, 100}, {86, 0, 45, 180}}};
+    const std::array<std::array<double, 4>, 20> pairs = {
+        {{20, 0, 60, 180}, {45, 0, 80, 90},   {75, 30, 10, 250},  {88, 0, 60, 120},  {50, 10, 87, 200},
+         {0, 0, 40, 0},    {30, 0, 30, 0},    {60, 0, 60, 10},    {85, 0, 85, 180},  {89, 0, 30, 180},
+         {89, 0, 89, 90},  {10, 45, 70, 300}, {65, 120, 35, 330}, {80, 0, 20, 20},   {40, 200, 75, 20},
+         {55, 0, 5, 180},  {70, 90, 70, 270}, {15, 0, 88, 0},     {35, 60, 62, 100}, {86, 0, 45, 180}}};
     for (const walk::Material& material : {walk::Material{walk::Mirror{}}, walk::Material{walk::Lambert{0.8}},
                                            walk::Material{walk::FresnelDiffuse{0.04, 0.9}}}) {
         for (const auto& p : pairs) {
             const Vec3 a = dir(p[0], p[1]), b = dir(p[2], p[3]);
             auto f = [&](const Vec3& wi, const Vec3& wo, std::uint64_t cell) {
                 walk::EvalRequest r{.wi = wi, .wo = wo, .cell = cell, .walks = 40'000};
-                const walk::EvalTally t = std::visit([&](const auto& m) { return walk::eval_cell(ms, m, r); }, material);
+                const walk::EvalTally t =
+                    std::visit([&](const auto& m) { return walk::eval_cell(ms, m, r); }, material);
                 const walk::Estimate e = t.value();
                 return walk::Estimate{e.value / wo.z(), e.stderr_ / wo.z()};
             };
             const walk::Estimate ab = f(a, b, 1), ba = f(b, a, 2);
-            INFO(walk::format_material(material) << " (" << p[0] << "," << p[1] << ") <-> (" << p[2] << "," << p[3]
-                                                 << "): " << ab.value << " +- " << ab.stderr_ << " vs " << ba.value
-                                                 << " +- " << ba.stderr_);
+            INFO(walk::format_material(material)
+                 << " (" << p[0] << "," << p[1] << ") <-> (" << p[2] << "," << p[3] << "): " << ab.value << " +- "
+                 << ab.stderr_ << " vs " << ba.value << " +- " << ba.stderr_);
             CHECK(std::abs(ab.value - ba.value) < 4.0 * std::hypot(ab.stderr_, ba.stderr_));
         }
     }
@@ -175,7 +180,8 @@ TEST_CASE("the height law does not change the result", "[walk][slow]") {
     for (int order = 0; order < walk::order_bins; ++order) {
         const walk::Estimate x = a.albedo.albedo(walk::Hemisphere::reflection, order, walk::Component::all);
         const walk::Estimate y = b.albedo.albedo(walk::Hemisphere::reflection, order, walk::Component::all);
-        INFO("order bin " << order << ": " << x.value << " +- " << x.stderr_ << " vs " << y.value << " +- " << y.stderr_);
+        INFO("order bin " << order << ": " << x.value << " +- " << x.stderr_ << " vs " << y.value << " +- "
+                          << y.stderr_);
         CHECK(std::abs(x.value - y.value) < 4.0 * std::hypot(x.stderr_, y.stderr_));
     }
 }
@@ -196,7 +202,8 @@ TEST_CASE("the same bits for any number of threads, and orders not asked for are
             CHECK(one.albedo.bins[i].sum == many.albedo.bins[i].sum);
             CHECK(one.albedo.bins[i].sum2 == many.albedo.bins[i].sum2);
         }
-        for (std::size_t i = 0; i < one.brdf->cells.size(); ++i) CHECK(one.brdf->cells[i].sum == many.brdf->cells[i].sum);
+        for (std::size_t i = 0; i < one.brdf->cells.size(); ++i)
+            CHECK(one.brdf->cells[i].sum == many.brdf->cells[i].sum);
         CHECK(one.albedo.events == many.albedo.events);
     }
     r.limits.max_order = 1;
@@ -224,17 +231,17 @@ TEST_CASE("material specs: named, validated, refused with the item named", "[wal
 
 TEST_CASE("Hammon's transmission lobe is sampled from its CDF", "[walk]") {
     // The reference: Y inverted by bisection in long double (Y increasing on [0, 1]), 120 halvings.
-    auto Y = [](long double c) {
-        return c * c * c * (3.5L + c * (-5.25L + c * (4.2L + c * (-1.75L + c * 0.3L))));
-    };
+    auto Y = [](long double c) { return c * c * c * (3.5L + c * (-5.25L + c * (4.2L + c * (-1.75L + c * 0.3L)))); };
     auto inverse = [&](double u) {
         long double lo = 0, hi = 1;
         for (int i = 0; i < 120; ++i) (Y((lo + hi) / 2) > u ? hi : lo) = (lo + hi) / 2;
         return (lo + hi) / 2;
     };
-    std::vector<double> us = {0x1p-53, 1e-15, 1e-12, 1e-6, 0.000999, 0.001, 0.01, 0.3, 0.5, 0.9, 0.999999, 1.0 - 0x1p-53};
+    std::vector<double> us = {0x1p-53, 1e-15, 1e-12, 1e-6, 0.000999, 0.001,
+                              0.01,    0.3,   0.5,   0.9,  0.999999, 1.0 - 0x1p-53};
     smithlab::Rng g = smithlab::make_rng(7);
-    for (int i = 0; i < 2000; ++i) us.push_back(i % 2 ? smithlab::uniform01(g) : std::pow(10.0, -16.0 * smithlab::uniform01(g)));
+    for (int i = 0; i < 2000; ++i)
+        us.push_back(i % 2 ? smithlab::uniform01(g) : std::pow(10.0, -16.0 * smithlab::uniform01(g)));
     double worst = 0.0;
     for (double u : us) {
         const long double want = inverse(u);
@@ -270,7 +277,8 @@ TEST_CASE("the two estimators agree, order by order", "[walk][slow]") {
 
 // ---- the dielectric: both sides of the surface --------------------------------------------------------------------
 
-TEST_CASE("dielectric: the eval estimator's energy over both hemispheres is 1, from above and from below", "[walk][slow]") {
+TEST_CASE("dielectric: the eval estimator's energy over both hemispheres is 1, from above and from below",
+          "[walk][slow]") {
     // (alpha 0.3 and up: wo ~ cos has too much variance for a sharper lobe; the sample estimator's furnace, every walk
     // leaving with its energy, covers alpha = 0.01.)
     for (double alpha : {0.3, 0.6, 1.0}) {
@@ -295,8 +303,9 @@ TEST_CASE("dielectric: the first bounce is Walter's reflection and transmission 
         const walk::Microsurface ms(ggx);
         const walk::Dielectric glass{1.5};
         auto F = [](double c) { return smithlab::fresnel_dielectric(c, 1.5); };
-        for (auto [ti, to, po] : {std::array{30.0, 30.0, 180.0}, std::array{70.0, 60.0, 180.0},
-                                  std::array{30.0, 160.0, 180.0}, std::array{60.0, 150.0, 180.0}, std::array{80.0, 130.0, 150.0}}) {
+        for (auto [ti, to, po] :
+             {std::array{30.0, 30.0, 180.0}, std::array{70.0, 60.0, 180.0}, std::array{30.0, 160.0, 180.0},
+              std::array{60.0, 150.0, 180.0}, std::array{80.0, 130.0, 150.0}}) {
             const Vec3 wi = dir(ti, 0.0), wo = dir(to, po);
             walk::EvalRequest r{.wi = wi, .wo = wo, .walks = 40'000};
             r.limits.max_order = 1;
@@ -321,16 +330,22 @@ TEST_CASE("dielectric: reciprocity, with eta^2 across the surface", "[walk][slow
         const walk::Estimate e = walk::eval_cell(ms, walk::Dielectric{eta}, r).value();
         return walk::Estimate{e.value / std::abs(wo.z()), e.stderr_ / std::abs(wo.z())};
     };
-    const std::array<std::array<double, 4>, 8> pairs = {{{20, 0, 160, 180}, {45, 0, 120, 90}, {75, 30, 170, 250},
-                                                         {60, 0, 100, 180}, {30, 0, 60, 180}, {80, 0, 40, 120},
-                                                         {110, 0, 150, 200}, {130, 0, 100, 90}}};
+    const std::array<std::array<double, 4>, 8> pairs = {{{20, 0, 160, 180},
+                                                         {45, 0, 120, 90},
+                                                         {75, 30, 170, 250},
+                                                         {60, 0, 100, 180},
+                                                         {30, 0, 60, 180},
+                                                         {80, 0, 40, 120},
+                                                         {110, 0, 150, 200},
+                                                         {130, 0, 100, 90}}};
     for (const auto& p : pairs) {
         const Vec3 a = dir(p[0], p[1]), b = dir(p[2], p[3]);
         const double eta_a = a.z() > 0.0 ? 1.0 : eta, eta_b = b.z() > 0.0 ? 1.0 : eta;
         const walk::Estimate ab = f(a, b, 1), ba = f(b, a, 2);
         const double x = ab.value / (eta_b * eta_b), y = ba.value / (eta_a * eta_a);
         const double err = std::hypot(ab.stderr_ / (eta_b * eta_b), ba.stderr_ / (eta_a * eta_a));
-        INFO("(" << p[0] << "," << p[1] << ") <-> (" << p[2] << "," << p[3] << "): f/eta_o^2 " << x << " vs " << y << " +- " << err);
+        INFO("(" << p[0] << "," << p[1] << ") <-> (" << p[2] << "," << p[3] << "): f/eta_o^2 " << x << " vs " << y
+                 << " +- " << err);
         CHECK(x > 0.0);
         CHECK(std::abs(x - y) < 4.0 * err);
     }
@@ -349,8 +364,8 @@ TEST_CASE("dielectric: the two estimators agree, hemisphere by hemisphere and or
             const walk::Hemisphere h = below ? walk::Hemisphere::transmission : walk::Hemisphere::reflection;
             for (int o = 0; o < walk::order_bins; ++o) {
                 const walk::Estimate a = c.albedo.albedo(h, o, walk::Component::all), b = eval.orders[o];
-                INFO("theta_i " << theta << (below ? " below" : " above") << " order bin " << o << ": sample " << a.value
-                                << " +- " << a.stderr_ << ", eval " << b.value << " +- " << b.stderr_);
+                INFO("theta_i " << theta << (below ? " below" : " above") << " order bin " << o << ": sample "
+                                << a.value << " +- " << a.stderr_ << ", eval " << b.value << " +- " << b.stderr_);
                 CHECK(std::abs(a.value - b.value) < 4.0 * std::hypot(a.stderr_, b.stderr_) + 1e-4);
             }
         }
@@ -389,7 +404,8 @@ double ggx_single_albedo(double alpha, double theta_i_deg) {
         std::sort(cuts.begin(), cuts.end());
         double sum = 0.0;
         for (std::size_t k = 0; k + 1 < cuts.size(); ++k)
-            sum += gauss_kronrod<double, 31>::integrate([&](double phi) { return at_phi(r, phi); }, cuts[k], cuts[k + 1], 8, 1e-12);
+            sum += gauss_kronrod<double, 31>::integrate([&](double phi) { return at_phi(r, phi); }, cuts[k],
+                                                        cuts[k + 1], 8, 1e-12);
         return 2.0 * sum * r;  // dp dq = r dr dphi
     };
     // r's own kinks: where the phi cuts enter or leave [0, pi] (cot / r = 1; cot (1 - r^2) / (2 r) = +-1), and the
@@ -399,14 +415,19 @@ double ggx_single_albedo(double alpha, double theta_i_deg) {
     std::sort(rc.begin(), rc.end());
     double sum = 0.0;
     for (std::size_t k = 0; k + 1 < rc.size(); ++k)
-        sum += gauss_kronrod<double, 31>::integrate([&](double t) { const double r = std::exp(t); return over_phi(r) * r; },
-                                                    std::log(rc[k]), std::log(rc[k + 1]), 10, 1e-10);
+        sum += gauss_kronrod<double, 31>::integrate(
+            [&](double t) {
+                const double r = std::exp(t);
+                return over_phi(r) * r;
+            },
+            std::log(rc[k]), std::log(rc[k + 1]), 10, 1e-10);
     return sum;
 }
 
 }  // namespace
 
-TEST_CASE("single scattering, exactly: the order-1 albedo of GGX mirror facets equals its quadrature at 1e7 walks", "[walk][slow]") {
+TEST_CASE("single scattering, exactly: the order-1 albedo of GGX mirror facets equals its quadrature at 1e7 walks",
+          "[walk][slow]") {
     // The reference code's rational GGX visible-normal fit biases this by up to 5e-4 at alpha = 0.1;
     // smithlab's sampler is exact: the difference is within the walk's standard error (a few 1e-5 here).
     for (double alpha : {0.1, 0.01}) {
@@ -419,15 +440,16 @@ TEST_CASE("single scattering, exactly: the order-1 albedo of GGX mirror facets e
             const walk::CellResult c = walk::trace_cell(ms, walk::Mirror{}, r);
             const walk::Estimate e = c.albedo.albedo(walk::Hemisphere::reflection, 0, walk::Component::all);
             const double want = ggx_single_albedo(alpha, theta);
-            INFO("alpha " << alpha << " theta_i " << theta << ": walk " << e.value << " +- " << e.stderr_ << ", quadrature " << want
-                          << " (difference " << (e.value - want) / e.stderr_ << " sigma)");
+            INFO("alpha " << alpha << " theta_i " << theta << ": walk " << e.value << " +- " << e.stderr_
+                          << ", quadrature " << want << " (difference " << (e.value - want) / e.stderr_ << " sigma)");
             CHECK(std::abs(e.value - want) < 4.0 * e.stderr_);
             CHECK(e.stderr_ < 1e-4);
         }
     }
 }
 
-TEST_CASE("single scattering, bin by bin: the order-1 brdf tally equals the analytic BRDF integrated over each bin", "[walk][slow]") {
+TEST_CASE("single scattering, bin by bin: the order-1 brdf tally equals the analytic BRDF integrated over each bin",
+          "[walk][slow]") {
     using boost::math::quadrature::gauss_kronrod;
     const smithlab::Ggx ggx = smithlab::ggx(0.5);
     const walk::Microsurface ms(ggx);
@@ -450,14 +472,16 @@ TEST_CASE("single scattering, bin by bin: the order-1 brdf tally equals the anal
                     return gauss_kronrod<double, 15>::integrate(
                         [&](double phi) {
                             const double so = std::sqrt(std::max(0.0, 1.0 - co * co));
-                            return smithlab::single_scattering_reflection(ggx, r.wi, Vec3(so * std::cos(phi), so * std::sin(phi), co), F);
+                            return smithlab::single_scattering_reflection(
+                                ggx, r.wi, Vec3(so * std::cos(phi), so * std::sin(phi), co), F);
                         },
                         p_lo, p_hi, 10, 1e-10);
                 },
                 c_lo, c_hi, 10, 1e-10);
             const double want = integral / c.brdf->solid_angle();
             const walk::Estimate got = c.brdf->value(0, t, q, 0, walk::Component::specular);
-            INFO("bin theta " << t << " phi " << q << ": " << got.value << " +- " << got.stderr_ << " against " << want);
+            INFO("bin theta " << t << " phi " << q << ": " << got.value << " +- " << got.stderr_ << " against "
+                              << want);
             CHECK(std::abs(got.value - want) < 4.5 * got.stderr_ + 1e-9);
             ++checked;
         }
@@ -502,7 +526,8 @@ TEST_CASE("FastLambda of a direction: GGX's tan^2 and reciprocal forms equal the
             const double d2 = w.x() * w.x() + w.y() * w.y(), az = std::abs(w.z());
             const double want = ggx.Lambda(az / std::hypot(w.x(), w.y()));
             INFO("alpha " << alpha << " theta " << theta << ": Lambda " << want);
-            const double rel[] = {L.at_tan2(smithlab::tan2_theta(w)) / want - 1.0, L.inv_Lambda(d2, az).value() * want - 1.0,
+            const double rel[] = {L.at_tan2(smithlab::tan2_theta(w)) / want - 1.0,
+                                  L.inv_Lambda(d2, az).value() * want - 1.0,
                                   L.inv_1p_Lambda(d2, az).value() * (1.0 + want) - 1.0};
             for (double r : rel) worst = std::max(worst, std::abs(r));
         }
@@ -556,15 +581,17 @@ struct NoHitNormal {
 };
 }  // namespace
 
-TEST_CASE("Hammon's hit normal: the walk runs, keeps every walk's energy, and its first bounce is its own law's", "[walk][slow]") {
+TEST_CASE("Hammon's hit normal: the walk runs, keeps every walk's energy, and its first bounce is its own law's",
+          "[walk][slow]") {
     // Hammon 2017's hit normal, D(m) cos(theta_m) over the normals facing the ray, against the visible normals. What
     // is the same: the first hit's height (it depends on Lambda(wi) only), energy (every walk leaves with all of it:
-    // mirror and lambert(1) total 1, none capped), and, at normal incidence only, the first normal's law (both are D cos
-    // there). What differs: the first normal's law at any other incidence, so the order-1 albedo -- measured with 4e6
-    // walks per cell, GGX mirror 0.3 at 75 degrees: 0.824 visible, 0.675 Hammon (the grazing hit finds steeper facets,
-    // more of whose reflections go down and scatter again). The order-1 albedo of Hammon's walk is checked against its
-    // own law: E[(1 + Lambda_i) / (1 + Lambda_i + Lambda_o)] over m drawn from Hammon's sampler, wo = reflect(wi, m) up
-    // (the height-correlated chance that the first reflection escapes; 0 for wo going down), which involves no height.
+    // mirror and lambert(1) total 1, none capped), and, at normal incidence only, the first normal's law (both are D
+    // cos there). What differs: the first normal's law at any other incidence, so the order-1 albedo -- measured with
+    // 4e6 walks per cell, GGX mirror 0.3 at 75 degrees: 0.824 visible, 0.675 Hammon (the grazing hit finds steeper
+    // facets, more of whose reflections go down and scatter again). The order-1 albedo of Hammon's walk is checked
+    // against its own law: E[(1 + Lambda_i) / (1 + Lambda_i + Lambda_o)] over m drawn from Hammon's sampler, wo =
+    // reflect(wi, m) up (the height-correlated chance that the first reflection escapes; 0 for wo going down), which
+    // involves no height.
     const walk::MicrosurfaceOptions hammon{.hit_normal = walk::HitNormal::hammon_dcos};
     for (double alpha : {0.3, 0.8}) {
         const smithlab::Ggx ggx = smithlab::ggx(alpha);

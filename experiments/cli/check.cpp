@@ -23,17 +23,19 @@ void add_check(CLI::App& app, CheckArgs& a) {
     c->add_option("--ndf", a.ndfs, "NDF spec (repeatable)");
     c->add_flag("--all", a.all, "check every registered NDF at its example parameters (stiff corners included)");
     c->add_flag("--no-2d", a.no_2d, "skip the nested 2D checks (milliseconds per Lambda)");
-    c->add_option("--backend", a.backend,
-                  "quadrature backend: " + join_names(backend_names, " | ", " | ") +
-                      " (default: the one the NDF names, gsl for a tabulated D, whose kinks tanh-sinh does not resolve; "
-                      "else boost)")
+    c->add_option(
+         "--backend", a.backend,
+         "quadrature backend: " + join_names(backend_names, " | ", " | ") +
+             " (default: the one the NDF names, gsl for a tabulated D, whose kinks tanh-sinh does not resolve; "
+             "else boost)")
         ->check(CLI::IsMember(names_of(backend_names)));
 }
 
 int run_check(const CheckArgs& a, const NdfRegistry& registry) {
     std::vector<std::string> specs = a.ndfs;
     if (a.all)
-        for (const NdfInfo* info : registry.list()) specs.insert(specs.end(), info->examples.begin(), info->examples.end());
+        for (const NdfInfo* info : registry.list())
+            specs.insert(specs.end(), info->examples.begin(), info->examples.end());
     if (specs.empty()) throw input_error("check needs --ndf SPEC or --all (see smithlab check --help)");
     std::vector<AnyNdf> ndfs;
     for (const auto& s : specs) ndfs.push_back(registry.make(s));  // validate every spec before any work
@@ -46,12 +48,13 @@ int run_check(const CheckArgs& a, const NdfRegistry& registry) {
     std::printf("%-44s %-40s %-16s %-10s %-9s %s\n", "ndf", "check", "at", "residual", "tolerance", "");
     for (std::size_t i = 0; i < ndfs.size(); ++i) {
         if (ndfs.size() > 1) std::fprintf(stderr, "check: [%zu/%zu] %s\n", i + 1, ndfs.size(), ndfs[i].spec().c_str());
-        opts.backend = a.backend.empty() ? ndfs[i].quadrature_backend().value_or(Backend::boost) : parse_backend(a.backend);
+        opts.backend =
+            a.backend.empty() ? ndfs[i].quadrature_backend().value_or(Backend::boost) : parse_backend(a.backend);
         for (const CheckResult& r : run_checks(ndfs[i], opts)) {
             ++total;
             failed += !r.passed();
-            std::printf("%-44s %-40s %-16s %-10.2e %-9.0e %s\n", ndfs[i].spec().c_str(), r.name.c_str(), r.where.c_str(),
-                        r.residual(), r.tolerance, r.passed() ? "ok" : "FAIL");
+            std::printf("%-44s %-40s %-16s %-10.2e %-9.0e %s\n", ndfs[i].spec().c_str(), r.name.c_str(),
+                        r.where.c_str(), r.residual(), r.tolerance, r.passed() ? "ok" : "FAIL");
         }
     }
     std::printf("%d passed, %d failed\n", total - failed, failed);

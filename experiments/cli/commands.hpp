@@ -56,7 +56,8 @@ int run_sample(const SampleArgs& args, const NdfRegistry& registry);
 
 struct TraceArgs {
     std::string scene;  // a scene file; empty: the cell flags below, or the default sweep when none is given
-    std::string ndf = "ggx(alpha=0.5)", material = "mirror", downward = "smith", hit_normal = "visible", output = "trace";
+    std::string ndf = "ggx(alpha=0.5)", material = "mirror", downward = "smith", hit_normal = "visible",
+                output = "trace";
     double theta_i = 45.0, phi_i = 0.0;
     long long walks = 1'000'000;
     int max_order = 0, threads = 0;

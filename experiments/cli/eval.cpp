@@ -34,7 +34,8 @@ void add_point_options(CLI::App& c, EvalArgs& a) {
         for (CLI::Option* y : points)
             if (x != y) x->excludes(y);
     c.add_option("--ndf", a.ndf, "NDF spec, e.g. 'ggx(alpha=0.2)'")->excludes(in);
-    add_output_option(c, a.output, "output CSV file of --input or a range (default: stdout); written only if every row succeeds");
+    add_output_option(c, a.output,
+                      "output CSV file of --input or a range (default: stdout); written only if every row succeeds");
 }
 
 int list_methods(const VariantRegistry& variants) {
@@ -64,14 +65,13 @@ std::optional<output::OutputTarget> csv_target(const std::string& output, const 
 }
 
 void emit(const std::optional<output::OutputTarget>& target, const std::string& table) {
-    if (target)
-        output::write_output(*target, table);
-    else
-        std::cout << table;
+    if (target) output::write_output(*target, table);
+    else std::cout << table;
 }
 
 void add_eval(CLI::App& app, EvalArgs& a) {
-    CLI::App* c = app.add_subcommand("eval", "Evaluate Smith Lambda and G1 of an NDF at a direction, a range of them, or a CSV file");
+    CLI::App* c = app.add_subcommand(
+        "eval", "Evaluate Smith Lambda and G1 of an NDF at a direction, a range of them, or a CSV file");
     c->footer(
         "Examples:\n"
         "  smithlab eval --ndf 'gtr(alpha=0.3, gamma=1.5)' --mu 0.5\n"
@@ -80,7 +80,8 @@ void add_eval(CLI::App& app, EvalArgs& a) {
         "  smithlab eval --ndf 'student(alpha=0.3, gamma=3)' --theta-range 0:90:19\n"
         "  smithlab eval --input points.csv -o out.csv\n"
         "A range writes CSV: ndf, one column per NDF parameter, theta (--theta-range), mu, lambda, g1.\n"
-        "--input reads CSV (RFC 4180): a header with at least columns ndf and mu (quote the spec: \"ggx(alpha=0.1)\");\n"
+        "--input reads CSV (RFC 4180): a header with at least columns ndf and mu (quote the spec: "
+        "\"ggx(alpha=0.1)\");\n"
         "other columns pass through, then one per NDF parameter not among them, then lambda and g1.\n"
         "Numbers are written with 17 significant digits. A bad row is reported with its line number; then nothing\n"
         "is written and the exit code is 2.\n"
@@ -104,11 +105,13 @@ int run_eval(const EvalArgs& a, const NdfRegistry& registry, const VariantRegist
     if (!a.input.empty()) return eval_csv(a, registry, route);
     const bool range = !a.mu_range.empty() || !a.theta_range.empty();
     if (a.ndf.empty() || (a.mu.empty() && a.theta.empty() && !range))
-        throw input_error("eval needs --ndf SPEC with --mu, --theta, --mu-range or --theta-range, or --input FILE "
-                          "(see smithlab eval --help)");
+        throw input_error(
+            "eval needs --ndf SPEC with --mu, --theta, --mu-range or --theta-range, or --input FILE "
+            "(see smithlab eval --help)");
     const std::vector<EvalPoint> points = eval_points(a.mu, a.theta, a.mu_range, a.theta_range);
     if (!range && !a.output.empty())
-        throw input_error("--output writes the CSV of --input or a range; one point is printed (see smithlab eval --help)");
+        throw input_error(
+            "--output writes the CSV of --input or a range; one point is printed (see smithlab eval --help)");
     return range ? eval_sweep(a, points, registry, route) : eval_one(a, points.front(), registry, route);
 }
 

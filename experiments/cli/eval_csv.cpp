@@ -45,10 +45,12 @@ Columns find_columns(const Input& in) {
         int* col = h == "ndf" ? &ndf : h == "mu" ? &mu : nullptr;
         if (col && *col >= 0) throw input_error(at + "header has two '" + h + "' columns");
         if (col) *col = static_cast<int>(k);
-        if (h == "lambda" || h == "g1") throw input_error(in.source + ": header already has a '" + h + "' column, which eval would write");
+        if (h == "lambda" || h == "g1")
+            throw input_error(in.source + ": header already has a '" + h + "' column, which eval would write");
         names += (names.empty() ? "" : ",") + h;
     }
-    if (ndf < 0 || mu < 0) throw input_error(in.source + ": header must have columns 'ndf' and 'mu' (got: " + names + ")");
+    if (ndf < 0 || mu < 0)
+        throw input_error(in.source + ": header must have columns 'ndf' and 'mu' (got: " + names + ")");
     return {static_cast<std::size_t>(ndf), static_cast<std::size_t>(mu)};
 }
 
@@ -75,7 +77,8 @@ void evaluate_rows(const Input& in, Columns col, const NdfRegistry& registry, co
         try {
             if (!rec.error.empty()) throw input_error(rec.error);
             if (rec.fields.size() != width)
-                throw input_error("expected " + std::to_string(width) + " fields, got " + std::to_string(rec.fields.size()));
+                throw input_error("expected " + std::to_string(width) + " fields, got " +
+                                  std::to_string(rec.fields.size()));
             const std::string& spec = rec.fields[col.ndf];
             auto it = e.cache.find(spec);
             if (it == e.cache.end()) {

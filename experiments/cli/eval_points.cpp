@@ -28,10 +28,8 @@ std::int64_t parse_count(const std::string& text, const std::string& what) {
 std::vector<std::string> split_colons(const std::string& text) {
     std::vector<std::string> out(1);
     for (char ch : text) {
-        if (ch == ':')
-            out.emplace_back();
-        else
-            out.back() += ch;
+        if (ch == ':') out.emplace_back();
+        else out.back() += ch;
     }
     return out;
 }
@@ -48,12 +46,9 @@ double mu_of_theta_deg(double theta, const std::string& what) {
     // relative accuracy everywhere. In long double, so that the angles with an exact cotangent give it (45 degrees:
     // mu = 1, where double's pi/4 gives 0.9999999999999999).
     long double t;
-    if (theta < 45.0)
-        t = 1.0L / std::tan(theta * degree);
-    else if (theta <= 135.0)
-        t = std::tan((90.0L - theta) * degree);
-    else
-        t = -1.0L / std::tan((180.0L - theta) * degree);
+    if (theta < 45.0) t = 1.0L / std::tan(theta * degree);
+    else if (theta <= 135.0) t = std::tan((90.0L - theta) * degree);
+    else t = -1.0L / std::tan((180.0L - theta) * degree);
     return static_cast<double>(t);
 }
 
@@ -81,7 +76,8 @@ std::vector<EvalPoint> eval_points(const std::string& mu, const std::string& the
     if (!mu_range.empty())
         for (double m : parse_range(mu_range, "--mu-range")) out.push_back({std::nullopt, m});
     else
-        for (double t : parse_range(theta_range, "--theta-range")) out.push_back({t, mu_of_theta_deg(t, "--theta-range")});
+        for (double t : parse_range(theta_range, "--theta-range"))
+            out.push_back({t, mu_of_theta_deg(t, "--theta-range")});
     return out;
 }
 

@@ -17,10 +17,8 @@ Route route(const EvalArgs& a, const VariantRegistry& variants) {
     r.options.backend = parse_backend(a.backend);
     r.options.tolerance = a.tolerance;
     r.options.downward = parse_downward(a.downward);
-    if (const Named<Method>* m = find_named(method_names, a.method))
-        r.options.method = m->value;
-    else
-        r.variant = &variants.at(a.method);
+    if (const Named<Method>* m = find_named(method_names, a.method)) r.options.method = m->value;
+    else r.variant = &variants.at(a.method);
     return r;
 }
 

@@ -8,7 +8,8 @@
 
 namespace smithlab::cli {
 
-int eval_sweep(const EvalArgs& a, const std::vector<EvalPoint>& points, const NdfRegistry& registry, const Route& route) {
+int eval_sweep(const EvalArgs& a, const std::vector<EvalPoint>& points, const NdfRegistry& registry,
+               const Route& route) {
     const std::optional<output::OutputTarget> target = csv_target(a.output, {});
     const Prepared p = prepare(a.ndf, registry, route);
     const bool by_angle = !a.theta_range.empty();

@@ -3,9 +3,9 @@
 #include <iostream>
 
 #include "cli/commands.hpp"
+#include "cluster/mpi_world.hpp"
 #include "fit/fit_run.hpp"
 #include "fit/fit_scene.hpp"
-#include "cluster/mpi_world.hpp"
 #include "smithlab/errors.hpp"
 #include "smithlab/fit/diffuse_models.hpp"
 
@@ -15,22 +15,27 @@ void add_fit(CLI::App& app, FitArgs& a) {
     CLI::App* c = app.add_subcommand("fit", "Fit diffuse BRDF models to the path-traced Smith microsurface");
     c->footer(
         "Traces f(wi, wo) |cos theta_o| of a diffuse microsurface (Hammon 2017's fresnel-diffuse facets by default)\n"
-        "by the eval estimator over alpha x (theta_i, theta_o, phi), split by the number of diffuse events so that one\n"
+        "by the eval estimator over alpha x (theta_i, theta_o, phi), split by the number of diffuse events so that "
+        "one\n"
         "trace at albedo 1 serves every albedo; fits every diffuse model's free constants by weighted nonlinear least\n"
         "squares (GSL), and measures every model, fitted or at its published constants, on a validation set the fit\n"
-        "never sees. With no scene it runs the embedded default (GGX; --print-scene shows it and documents every key).\n"
+        "never sees. With no scene it runs the embedded default (GGX; --print-scene shows it and documents every "
+        "key).\n"
         "Examples:\n"
         "  smithlab fit\n"
         "  smithlab fit --print-scene > gtr.toml   # edit: [[ndf]] family = \"gtr\", gamma = [1, 1.5, 2, 3, 4]\n"
         "  smithlab fit gtr.toml -o gtr-fit/ --threads 8\n"
         "Writes into DIR (-o, default fit/): constants.csv (model,ndf,parameter,value,stderr) and constants.json;\n"
-        "errors.csv (model,ndf,rms_rel,max_rel,albedo_rms,chi2_dof: on the validation set, chi2_dof per value with the\n"
+        "errors.csv (model,ndf,rms_rel,max_rel,albedo_rms,chi2_dof: on the validation set, chi2_dof per value with "
+        "the\n"
         "fit's weights; '<model>' at its published constants, '<model>-fitted' refitted); training.csv and\n"
         "validation.csv (the traced values beside every model's); with [compensation] compensation.csv,\n"
-        "compensation_avg.csv and a C header per NDF family; models.glsl and brdf/*.brdf (BRDF Explorer); for a family\n"
+        "compensation_avg.csv and a C header per NDF family; models.glsl and brdf/*.brdf (BRDF Explorer); for a "
+        "family\n"
         "fitted at three or more values of one parameter FAMILY_PARAMETER_trends.csv (gtr_gamma_trends.csv); with\n"
         "[pictures] pictures/ (PNG and CSV); report.md; meta.json; all only\n"
-        "when complete. Traced points are cached in DIR/cache/ as they finish: a killed run resumes, and refitting the\n"
+        "when complete. Traced points are cached in DIR/cache/ as they finish: a killed run resumes, and refitting "
+        "the\n"
         "same data (other models, albedos, floor) traces nothing.");
     add_scene_options(*c, a.scene, a.print_scene, "the embedded default");
     add_output_option(*c, a.output, "output directory")->capture_default_str();
@@ -57,7 +62,8 @@ int run_fit(const FitArgs& a, const NdfRegistry& registry) {
     const std::string source = a.scene.empty() ? "<default scene>" : a.scene;
     const std::string text = a.scene.empty() ? fitrun::default_fit_scene_text() : read_scene_file(a.scene);
     const fitrun::FitScene scene = fitrun::parse_fit_scene(text, source, registry);
-    const fitrun::FitSummary sum = fitrun::run_fit(scene, source, text, registry, a.output, static_cast<unsigned>(a.threads));
+    const fitrun::FitSummary sum =
+        fitrun::run_fit(scene, source, text, registry, a.output, static_cast<unsigned>(a.threads));
     if (mpi::rank() != 0) return exit_ok;  // a rank of a run under mpirun: rank 0 reports
     std::printf("%-28s %-16s %10s %10s %10s %10s\n", "model", "ndf", "rms_rel", "max_rel", "albedo_rms", "chi2_dof");
     for (const fitrun::ErrorRow& r : sum.errors)

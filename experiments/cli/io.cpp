@@ -1,6 +1,6 @@
 // Parsing of option values, reading of scene files, and the options shared by the subcommands.
-#include <cerrno>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -60,7 +60,8 @@ CLI::Option* add_seed_option(CLI::App& command, std::string& seed) {
 }
 
 CLI::Option* add_downward_option(CLI::App& command, std::string& downward) {
-    return command.add_option("--downward", downward, "Lambda for mu < 0: " + join_described(downward_names, " | ", " | "))
+    return command
+        .add_option("--downward", downward, "Lambda for mu < 0: " + join_described(downward_names, " | ", " | "))
         ->capture_default_str()
         ->check(CLI::IsMember(names_of(downward_names)));
 }

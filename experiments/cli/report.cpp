@@ -7,8 +7,8 @@
 #include "cluster/mpi_world.hpp"
 #include "report/report.hpp"
 #include "report/scene.hpp"
-#include "smithlab/errors.hpp"
 #include "report/work_estimate.hpp"
+#include "smithlab/errors.hpp"
 
 namespace smithlab::cli {
 
@@ -38,7 +38,8 @@ void add_report(CLI::App& app, ReportArgs& a) {
     add_scene_options(*c, a.scene, a.print_scene, "the embedded default");
     add_output_option(*c, a.output, "output directory")->capture_default_str();
     a.max_work = report::default_max_work;
-    c->add_option("--max-work", a.max_work, "the most evaluations a scene may cost (inf: no limit)")->capture_default_str();
+    c->add_option("--max-work", a.max_work, "the most evaluations a scene may cost (inf: no limit)")
+        ->capture_default_str();
 }
 
 int run_report(const ReportArgs& a, const NdfRegistry& registry, const VariantRegistry& variants) {
@@ -48,10 +49,13 @@ int run_report(const ReportArgs& a, const NdfRegistry& registry, const VariantRe
     }
     require(a.max_work > 0.0, "--max-work", "> 0 (inf: no limit)", a.max_work);
     const std::string source = a.scene.empty() ? "<default scene>" : a.scene;
-    report::Scene scene = report::parse_scene(a.scene.empty() ? report::default_scene_text() : read_scene_file(a.scene), source, registry);
+    report::Scene scene = report::parse_scene(a.scene.empty() ? report::default_scene_text() : read_scene_file(a.scene),
+                                              source, registry);
     const report::Work work = report::estimate_work(scene, variants);
     report::check_work(work, a.max_work, source);
-    if (mpi::rank() == 0) std::fprintf(stderr, "report: work estimated at %s (limit --max-work %g)\n", report::describe(work).c_str(), a.max_work);
+    if (mpi::rank() == 0)
+        std::fprintf(stderr, "report: work estimated at %s (limit --max-work %g)\n", report::describe(work).c_str(),
+                     a.max_work);
     return report::run_report(scene, a.output, registry, variants);  // under mpirun, every rank (rank 0 reports)
 }
 

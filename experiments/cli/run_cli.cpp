@@ -33,12 +33,14 @@ std::string description(const NdfRegistry& registry) {
     std::string names;
     for (const NdfInfo* info : registry.list()) names += (names.empty() ? "" : ", ") + info->name;
     return std::string("smithlab ") + SMITHLAB_VERSION +
-           ": Smith masking-shadowing, normal sampling, path tracing and diffuse fitting for any isotropic\n"
-           "microfacet NDF registered (here: " + names + ").\n"
-           "NDFs are named by spec strings such as 'ggx(alpha=0.2)' or 'gtr(alpha=0.3, gamma=1.5)';\n"
-           "`smithlab list` shows them all. mu = cot(theta) of the direction; mu < 0 points below the surface;\n"
-           "angles are in degrees. Every command reads `smithlab COMMAND [SCENE] [OPTIONS]`; -o/--output names what\n"
-           "it writes.";
+        ": Smith masking-shadowing, normal sampling, path tracing and diffuse fitting for any isotropic\n"
+        "microfacet NDF registered (here: " +
+        names +
+        ").\n"
+        "NDFs are named by spec strings such as 'ggx(alpha=0.2)' or 'gtr(alpha=0.3, gamma=1.5)';\n"
+        "`smithlab list` shows them all. mu = cot(theta) of the direction; mu < 0 points below the surface;\n"
+        "angles are in degrees. Every command reads `smithlab COMMAND [SCENE] [OPTIONS]`; -o/--output names what\n"
+        "it writes.";
 }
 
 void add_commands(CLI::App& app, Commands& c) {
@@ -85,7 +87,8 @@ std::optional<int> parse(CLI::App& app, int argc, char** argv) {
 
 int dispatch(CLI::App& app, const Commands& c, const NdfRegistry& registry, const VariantRegistry& variants) {
     if (mpi::size() > 1 && !app.got_subcommand("trace") && !app.got_subcommand("fit") && !app.got_subcommand("report"))
-        throw input_error("only trace, fit and report run on several MPI ranks (they trace); run the others without mpirun");
+        throw input_error(
+            "only trace, fit and report run on several MPI ranks (they trace); run the others without mpirun");
     if (app.got_subcommand("eval")) return run_eval(c.eval, registry, variants);
     if (app.got_subcommand("check")) return run_check(c.check, registry);
     if (app.got_subcommand("report")) return run_report(c.report, registry, variants);
@@ -101,7 +104,8 @@ int dispatch(CLI::App& app, const Commands& c, const NdfRegistry& registry, cons
 // others waiting: it ends the whole job.
 int fail(const char* what, const std::exception& e, int code) {
     if (mpi::size() > 1 && mpi::talking()) {
-        std::cerr << "smithlab: " << what << " (rank " << mpi::rank() << " of " << mpi::size() << "): " << e.what() << "\n";
+        std::cerr << "smithlab: " << what << " (rank " << mpi::rank() << " of " << mpi::size() << "): " << e.what()
+                  << "\n";
         mpi::abort(code);
     }
     if (mpi::rank() == 0) std::cerr << "smithlab: " << what << ": " << e.what() << "\n";  // every rank's alike

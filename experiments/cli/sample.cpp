@@ -58,10 +58,8 @@ int run_sample(const SampleArgs& a, const NdfRegistry& registry) {
             if (n >= 1000000 && (i + 1) % (n / 10) == 0) std::cerr << "sample: " << i + 1 << "/" << n << "\n";
         }
     };
-    if (target)
-        output::write_output(*target, write);
-    else
-        write(std::cout);
+    if (target) output::write_output(*target, write);
+    else write(std::cout);
     return exit_ok;
 }
 

@@ -7,8 +7,8 @@
 #include <iostream>
 
 #include "cli/commands.hpp"
-#include "scene/walk_options.hpp"
 #include "cluster/mpi_world.hpp"
+#include "scene/walk_options.hpp"
 #include "smithlab/errors.hpp"
 #include "smithlab/single_scattering.hpp"
 #include "smithlab/walk/trace.hpp"
@@ -25,8 +25,10 @@ Vec3 incident(double theta, double phi, const char* what, const walk::Material& 
     if (walk::transmits(m))
         require(theta >= 0.0 && theta <= 180.0 && theta != 90.0, what, "in [0, 180] degrees, not 90 (grazing)", theta);
     else
-        require(theta >= 0.0 && theta < 90.0, what, "in [0, 90) degrees (light from above the surface; only a dielectric "
-                "takes light from below)", theta);
+        require(theta >= 0.0 && theta < 90.0, what,
+                "in [0, 90) degrees (light from above the surface; only a dielectric "
+                "takes light from below)",
+                theta);
     require(std::isfinite(phi), what, "finite", phi);
     return direction_from_deg(theta, phi);
 }
@@ -34,7 +36,8 @@ Vec3 incident(double theta, double phi, const char* what, const walk::Material& 
 // "THETA,PHI" in degrees: the light's direction (incident), or the viewer's anywhere.
 Vec3 parse_direction(const std::string& text, const char* what, const walk::Material* light_on) {
     const auto comma = text.find(',');
-    if (comma == std::string::npos) throw input_error(std::string(what) + ": expected THETA,PHI in degrees, got '" + text + "'");
+    if (comma == std::string::npos)
+        throw input_error(std::string(what) + ": expected THETA,PHI in degrees, got '" + text + "'");
     const double theta = parse_number(text.substr(0, comma), std::string(what) + " theta");
     const double phi = parse_number(text.substr(comma + 1), std::string(what) + " phi");
     if (light_on) return incident(theta, phi, what, *light_on);
@@ -68,7 +71,8 @@ trace::TraceScene cell_scene(const TraceArgs& a) {
 }  // namespace
 
 void add_trace(CLI::App& app, TraceArgs& a) {
-    CLI::App* c = app.add_subcommand("trace", "Path trace the Smith microsurface: albedo by hemisphere, order, component");
+    CLI::App* c =
+        app.add_subcommand("trace", "Path trace the Smith microsurface: albedo by hemisphere, order, component");
     c->footer(
         "Runs a scene (TOML, read strictly like report's; --print-scene shows the embedded default and documents\n"
         "every key): NDFs x materials x incident directions, one cell each. With neither a scene nor cell flags it\n"
@@ -93,12 +97,16 @@ void add_trace(CLI::App& app, TraceArgs& a) {
     a.cell_options = {
         c->add_option("--ndf", a.ndf, "NDF spec")->capture_default_str(),
         c->add_option("--material", a.material, "facet material spec")->capture_default_str(),
-        c->add_option("--theta-i", a.theta_i, "incident polar angle, degrees in [0, 90) (dielectric: also (90, 180], light from below)")->capture_default_str(),
+        c->add_option("--theta-i", a.theta_i,
+                      "incident polar angle, degrees in [0, 90) (dielectric: also (90, 180], light from below)")
+            ->capture_default_str(),
         c->add_option("--phi-i", a.phi_i, "incident azimuth, degrees")->capture_default_str(),
         c->add_option("--walks", a.walks, "walks in the cell (> 0)")->capture_default_str(),
-        c->add_option("--max-order", a.max_order, "end walks after this many hits (0: no limit)")->capture_default_str(),
+        c->add_option("--max-order", a.max_order, "end walks after this many hits (0: no limit)")
+            ->capture_default_str(),
         add_downward_option(*c, a.downward),
-        c->add_option("--hit-normal", a.hit_normal, "hit normal: " + join_described(trace::hit_normal_names, ", ", " or "))
+        c->add_option("--hit-normal", a.hit_normal,
+                      "hit normal: " + join_described(trace::hit_normal_names, ", ", " or "))
             ->capture_default_str(),
         add_seed_option(*c, a.seed)};
     add_threads_option(*c, a.threads);
@@ -111,14 +119,15 @@ int run_trace(const TraceArgs& a, const NdfRegistry& registry) {
         return exit_ok;
     }
     require_threads(a.threads);
-    const bool flags = std::any_of(a.cell_options.begin(), a.cell_options.end(), [](const CLI::Option* o) { return o->count() > 0; });
+    const bool flags =
+        std::any_of(a.cell_options.begin(), a.cell_options.end(), [](const CLI::Option* o) { return o->count() > 0; });
     if (flags && !a.scene.empty())
         throw input_error("trace: give a scene file or the cell flags (--ndf, --material, ...), not both");
     const std::string source = !a.scene.empty() ? a.scene : flags ? "<flags>" : "<default scene>";
-    const trace::TraceScene scene = flags ? cell_scene(a)
-                                    : trace::parse_trace_scene(a.scene.empty() ? trace::default_trace_scene_text()
-                                                                               : read_scene_file(a.scene),
-                                                               source, registry);
+    const trace::TraceScene scene = flags
+        ? cell_scene(a)
+        : trace::parse_trace_scene(a.scene.empty() ? trace::default_trace_scene_text() : read_scene_file(a.scene),
+                                   source, registry);
     const trace::RunSummary sum = trace::run_scene(scene, source, registry, a.output, static_cast<unsigned>(a.threads));
     if (mpi::rank() != 0) return exit_ok;  // a worker of rank 0's run (mpirun): rank 0 reports
     if (sum.total.size() == 1) std::printf("albedo %.17g\nstderr %.17g\n", sum.total[0].value, sum.total[0].stderr_);
@@ -140,7 +149,8 @@ void add_brdf(CLI::App& app, BrdfArgs& a) {
         "With dielectric facets, --wo below the surface (theta > 90) is transmission.");
     c->add_option("--ndf", a.ndf, "NDF spec")->required();
     c->add_option("--material", a.material, "facet material spec")->required();
-    c->add_option("--wi", a.wi, "THETA,PHI of the light, degrees, theta in [0, 90) (dielectric: also (90, 180])")->required();
+    c->add_option("--wi", a.wi, "THETA,PHI of the light, degrees, theta in [0, 90) (dielectric: also (90, 180])")
+        ->required();
     c->add_option("--wo", a.wo, "THETA,PHI of the viewer, degrees")->required();
     c->add_option("--walks", a.walks, "walks (> 0)")->capture_default_str();
     add_downward_option(*c, a.downward);
@@ -174,8 +184,8 @@ int run_brdf(const BrdfArgs& a, const NdfRegistry& registry) {
         std::printf("single_analytic %.17g\n", single([c](double x) { return fresnel_conductor(x, c->eta, c->k); }));
     if (const auto* d = std::get_if<walk::Dielectric>(&material); d && r.wi.z() > 0.0) {
         auto F = [d](double x) { return fresnel_dielectric(x, d->eta); };
-        std::printf("single_analytic %.17g\n", r.wo.z() > 0.0 ? single(F)
-                                                              : single_scattering_transmission(ndf, r.wi, r.wo, 1.0, d->eta, F));
+        std::printf("single_analytic %.17g\n",
+                    r.wo.z() > 0.0 ? single(F) : single_scattering_transmission(ndf, r.wi, r.wo, 1.0, d->eta, F));
     }
     return exit_ok;
 }

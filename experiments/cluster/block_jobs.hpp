@@ -11,8 +11,9 @@
 //   Runner<Partial> runner(std::size_t j) const;        (job, block) -> Partial, for every job of j's kind
 //   void put(std::vector<char>& out, const Partial&) const;   the bytes another rank sends of a partial
 //   Partial get(mpi::Reader& in, std::size_t j) const;
-//   void finish(std::size_t j, Partial&& total);        rank 0: job j's total, all its blocks merged (jobs in any order)
-//   std::string name(std::size_t j) const;              "cell 12 (ggx(alpha=0.3), mirror, theta_i 45)", for messages
+//   void finish(std::size_t j, Partial&& total);        rank 0: job j's total, all its blocks merged (jobs in any
+//   order) std::string name(std::size_t j) const;              "cell 12 (ggx(alpha=0.3), mirror, theta_i 45)", for
+//   messages
 //
 // Rank 0's threads trace blocks one at a time; its main thread serves the other ranks. Another rank asks for a chunk
 // (blocks of one job, a whole number per thread, about 20 ms of its work), traces it on its threads, and sends the
@@ -27,7 +28,8 @@
 //
 // The pieces: protocol.hpp (the messages, the chunk size), runner_cache.hpp (one runner per kind of job and rank),
 // worker_rank.hpp (a rank other than 0), job_board.hpp (rank 0's hand-out and in-order merge, and its threads' loop),
-// dispatcher.hpp (rank 0's main thread serving the other ranks), ledger.hpp (what each rank holds, for the signal note).
+// dispatcher.hpp (rank 0's main thread serving the other ranks), ledger.hpp (what each rank holds, for the signal
+// note).
 #pragma once
 
 #include <algorithm>

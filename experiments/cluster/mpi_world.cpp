@@ -93,7 +93,8 @@ std::vector<char> receive(MPI_Status& st) {
     int n = 0;
     check(MPI_Get_count(&st, MPI_BYTE, &n), "MPI_Get_count");
     std::vector<char> bytes(static_cast<std::size_t>(n));
-    check(MPI_Recv(bytes.data(), n, MPI_BYTE, st.MPI_SOURCE, st.MPI_TAG, MPI_COMM_WORLD, MPI_STATUS_IGNORE), "MPI_Recv");
+    check(MPI_Recv(bytes.data(), n, MPI_BYTE, st.MPI_SOURCE, st.MPI_TAG, MPI_COMM_WORLD, MPI_STATUS_IGNORE),
+          "MPI_Recv");
     return bytes;
 }
 }  // namespace

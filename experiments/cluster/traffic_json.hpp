@@ -3,8 +3,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cluster/traffic.hpp"
 #include "cluster/mpi_world.hpp"
+#include "cluster/traffic.hpp"
 
 namespace smithlab::cluster {
 

@@ -56,8 +56,8 @@ std::vector<Group> data_groups(const FitScene::Training& training, const FitScen
     std::vector<fit::Directions> albedo_dirs;
     for (double t : validation.albedo_theta) albedo_dirs.push_back({t, 0.0, 0.0});
     for (std::size_t a = 0; a < validation_alphas.size(); ++a) {
-        out.push_back({validation_set, a, validation_alphas[a],
-                       validation_directions(seed, ndf, a, validation.points), validation.walks});
+        out.push_back({validation_set, a, validation_alphas[a], validation_directions(seed, ndf, a, validation.points),
+                       validation.walks});
         out.push_back({albedo_set, a, validation_alphas[a], albedo_dirs, validation.albedo_walks});
     }
     return out;

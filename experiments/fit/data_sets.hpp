@@ -1,8 +1,8 @@
 // The fitter's traced sets and their layout (the job plan): for each NDF family, one group per alpha of each set
 // (training, validation, directional albedo), its points' directions, and each point's random stream.
 //
-// Point j of group g of NDF n draws its walks from WalkRng(seed, stream, k), stream = set << 48 | n << 32 | g << 16 | j:
-// the same bits for any --threads, resumed or not.
+// Point j of group g of NDF n draws its walks from WalkRng(seed, stream, k), stream = set << 48 | n << 32 | g << 16 |
+// j: the same bits for any --threads, resumed or not.
 #pragma once
 
 #include <cstdint>

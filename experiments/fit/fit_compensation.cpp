@@ -33,7 +33,8 @@ std::string markdown(const std::vector<FitFamily>& families, const std::vector<d
         char a[32];
         std::snprintf(a, sizeof a, "%.4g", alphas[i]);
         md << "| " << a << " |";
-        for (std::size_t n = 0; n < families.size(); ++n) md << " " << std::fixed << std::setprecision(4) << avg[n][i] << " |";
+        for (std::size_t n = 0; n < families.size(); ++n)
+            md << " " << std::fixed << std::setprecision(4) << avg[n][i] << " |";
         md << std::defaultfloat << "\n";
     }
     return md.str();

@@ -43,7 +43,8 @@ std::vector<Plan> plan_ndfs(const DataSpec& s, const NdfRegistry& registry) {
 // A group's cache file: OUT/cache/NDF/SET-G.csv, its points' fields their directions.
 CacheFile group_file(const DataSpec& s, const fs::path& cache, const Plan& p, std::size_t i, std::uint64_t n) {
     const Group& g = p.groups[i];
-    CacheFile f{cache / cache_directory_name(p.data.label) / (std::string(set_name(g.set)) + "-" + std::to_string(g.index) + ".csv"),
+    CacheFile f{cache / cache_directory_name(p.data.label) /
+                    (std::string(set_name(g.set)) + "-" + std::to_string(g.index) + ".csv"),
                 cache_key(p.ndfs[i], s.material, set_name(g.set), g.walks, s.seed, data_stream(g.set, n, g.index, 0),
                           g.dirs.size()),
                 {"theta_i", "theta_o", "phi"},
@@ -90,9 +91,9 @@ std::vector<NdfData> assemble(std::vector<Plan>& plans, const std::vector<Place>
         Plan& p = plans[at[j].n];
         const Group& g = p.groups[at[j].i];
         if (!traced[j]) p.data.reused += static_cast<std::int64_t>(g.dirs.size());
-        std::vector<fit::DataPoint>& dest = g.set == training_set     ? p.data.training
-                                            : g.set == validation_set ? p.data.validation
-                                                                      : p.data.albedo;
+        std::vector<fit::DataPoint>& dest = g.set == training_set ? p.data.training
+            : g.set == validation_set                             ? p.data.validation
+                                                                  : p.data.albedo;
         for (std::size_t k = 0; k < g.dirs.size(); ++k) dest.push_back({g.alpha, g.dirs[k], (*at[j].moments)[k]});
     }
     std::vector<NdfData> out;

@@ -21,7 +21,7 @@ namespace smithlab::fitrun {
 
 struct NdfData {
     FitFamily family;
-    std::string label;                      // "ggx", "gtr(gamma=1.5)"
+    std::string label;  // "ggx", "gtr(gamma=1.5)"
     std::vector<fit::DataPoint> training, validation, albedo;
     std::vector<double> validation_alphas;  // the geometric midpoints of training.alpha
     std::int64_t traced = 0, reused = 0;    // points

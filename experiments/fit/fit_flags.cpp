@@ -16,7 +16,8 @@ std::string g5(double v) {
 // "[0, 1.5708]", "[0, inf)", "(-inf, inf)".
 std::string range_text(const fit::ParameterRange& r) {
     char b[80];
-    std::snprintf(b, sizeof b, "%s%.5g, %.5g%s", r.lo == -INFINITY ? "(" : "[", r.lo, r.hi, r.hi == INFINITY ? ")" : "]");
+    std::snprintf(b, sizeof b, "%s%.5g, %.5g%s", r.lo == -INFINITY ? "(" : "[", r.lo, r.hi,
+                  r.hi == INFINITY ? ")" : "]");
     return b;
 }
 
@@ -25,8 +26,9 @@ void flag_ranges(std::vector<Flag>& out, const Measured& m, const std::string& n
         if (const fit::ParameterRange* r = fit::outside_range(*m.model, i, m.params[i])) {
             const bool at = m.params[i] == r->lo || m.params[i] == r->hi;
             out.push_back({m.name, ndf,
-                           std::string(m.model->parameters[i]) + " = " + g5(m.params[i]) + (at ? " is at a bound of" : " is beyond") +
-                               " its range " + range_text(*r) + ": " + std::string(r->why)});
+                           std::string(m.model->parameters[i]) + " = " + g5(m.params[i]) +
+                               (at ? " is at a bound of" : " is beyond") + " its range " + range_text(*r) + ": " +
+                               std::string(r->why)});
         }
 }
 

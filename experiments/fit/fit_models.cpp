@@ -42,8 +42,8 @@ std::vector<const fit::DiffuseModel*> selected_models(const std::vector<std::str
 }
 
 void FitProgress::starting(const std::string& ndf, std::size_t k, std::size_t n, const std::string& model) const {
-    std::fprintf(stderr, "fit: %s: fitting and measuring model %zu of %zu (%s), %.0f s elapsed\n", ndf.c_str(), k + 1, n,
-                 model.c_str(), std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count());
+    std::fprintf(stderr, "fit: %s: fitting and measuring model %zu of %zu (%s), %.0f s elapsed\n", ndf.c_str(), k + 1,
+                 n, model.c_str(), std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count());
 }
 
 NdfFits fit_and_measure(const NdfData& d, const std::vector<const fit::DiffuseModel*>& models, const FitSettings& s,

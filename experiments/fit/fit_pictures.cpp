@@ -16,8 +16,7 @@ namespace {
 // The walks the pictures hold, whether traced by this run or read from the cache.
 std::int64_t picture_walks(const FitScene::Pictures& p, const SphereGroup& spheres, const std::vector<Pair>& slices,
                            std::size_t ndfs) {
-    const std::int64_t per_ndf =
-        static_cast<std::int64_t>(p.sphere_alpha.size()) *
+    const std::int64_t per_ndf = static_cast<std::int64_t>(p.sphere_alpha.size()) *
             (2 * static_cast<std::int64_t>(spheres.traced.size()) * p.walks +
              static_cast<std::int64_t>(std::size(missing_theta)) * missing_walks) +
         static_cast<std::int64_t>(p.slice_alpha.size()) * static_cast<std::int64_t>(slices.size()) * p.walks;
@@ -25,8 +24,9 @@ std::int64_t picture_walks(const FitScene::Pictures& p, const SphereGroup& spher
 }
 
 // Every NDF's rows of the pictures' CSV files, from its traces; the missing light and the checks into the report.
-void write_tables(PictureFiles& f, const FitScene::Pictures& p, const Results& r, const std::vector<PictureData>& traced,
-                  const SphereGroup& spheres, const std::vector<Pair>& slices, PictureReport& report) {
+void write_tables(PictureFiles& f, const FitScene::Pictures& p, const Results& r,
+                  const std::vector<PictureData>& traced, const SphereGroup& spheres, const std::vector<Pair>& slices,
+                  PictureReport& report) {
     const int P = static_cast<int>(p.pixels);
     for (std::size_t n = 0; n < r.data.size(); ++n) {
         const std::string& label = r.data[n].label;
@@ -36,7 +36,8 @@ void write_tables(PictureFiles& f, const FitScene::Pictures& p, const Results& r
         for (std::size_t a = 0; a < p.sphere_alpha.size(); ++a) {
             const double alpha = p.sphere_alpha[a];
             f.spheres(label, alpha, spheres, t.spheres[a], t.lambert_spheres[a], models);
-            if (a == 0 && alpha <= 0.01) report.checks.push_back({label, alpha, lambert_check(spheres, t.lambert_spheres[a])});
+            if (a == 0 && alpha <= 0.01)
+                report.checks.push_back({label, alpha, lambert_check(spheres, t.lambert_spheres[a])});
             for (Missing& m : f.missing(label, alpha, t.lambert_albedo[a])) report.missing.push_back(std::move(m));
         }
         for (std::size_t a = 0; a < p.slice_alpha.size(); ++a)

@@ -14,9 +14,9 @@
 namespace smithlab::fitrun {
 
 // Writes the pictures' data and PNGs into dir/pictures when the scene asks (spec.pictures.enabled; otherwise traces
-// nothing and returns ""), and returns the Markdown that shows them in report.md (links relative to dir). Per NDF family
-// of results.data, at the scene's seed on Philox streams of their own (fit/picture_traces.hpp), the same bits for any
-// `threads`, cached in `cache` (a second run traces nothing):
+// nothing and returns ""), and returns the Markdown that shows them in report.md (links relative to dir). Per NDF
+// family of results.data, at the scene's seed on Philox streams of their own (fit/picture_traces.hpp), the same bits
+// for any `threads`, cached in `cache` (a second run traces nothing):
 //   spheres.csv   Hammon 2017's lit spheres (sphere_alpha x light 0/90/135 degrees x albedo 0.75/0.5/0.25), per lit
 //                 pixel: the traced diffuse part and total (the scene's material), Lambertian facets' direct, direct
 //                 plus indirect and indirect light, and every fitted model with lambert, disney and eon as measured;
@@ -26,8 +26,8 @@ namespace smithlab::fitrun {
 //                 two values or more;
 // and spheres_NDF.png, lambert_spheres_NDF.png, slices_NDF.png, missing_NDF.png, constants_vs_*.png drawn by
 // experiments/plots/fit_plots.py (a warning, and a note in the Markdown, when it cannot run).
-std::string write_pictures(const std::filesystem::path& dir, const std::filesystem::path& cache, const PictureSpec& spec,
-                           const Results& results, const LabelColumns& columns, const NdfRegistry& registry,
-                           unsigned threads);
+std::string write_pictures(const std::filesystem::path& dir, const std::filesystem::path& cache,
+                           const PictureSpec& spec, const Results& results, const LabelColumns& columns,
+                           const NdfRegistry& registry, unsigned threads);
 
 }  // namespace smithlab::fitrun

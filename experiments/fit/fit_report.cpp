@@ -33,7 +33,8 @@ void write_errors_table(std::ostream& md, const NdfData& d, const std::vector<do
     md << "\n## " << d.label << ": errors on the validation set (" << d.validation.size() << " points, "
        << d.albedo.size() << " directional albedos; never fitted)\n\n";
     md << "(The split's last bin, k >= " << fit::diffuse_bins - 1 << " diffuse events, weighted albedo^"
-       << fit::diffuse_bins - 1 << ": at most " << tail_share(d, albedos) << " of any training value at these albedos.)\n\n";
+       << fit::diffuse_bins - 1 << ": at most " << tail_share(d, albedos)
+       << " of any training value at these albedos.)\n\n";
     md << "| model | RMS rel. error of f cos | max rel. error | RMS error of the directional albedo | chi^2 / value "
        << "| largest albedo at albedo 1 (alpha, theta_i) | asymmetry | smallest f |\n"
        << "|---|---:|---:|---:|---:|---:|---:|---:|\n";
@@ -42,9 +43,9 @@ void write_errors_table(std::ostream& md, const NdfData& d, const std::vector<do
         const char* bold = e.peak.albedo > 1.0 + 1e-3 ? "**" : "";
         const char* negative = e.grid.min_f < 0.0 ? "**" : "";
         std::snprintf(line, sizeof line,
-                      "| %s | %.4f | %.4f | %.5f | %.3g | %s%.4f%s (%.3g, %.0f) | %.1e | %s%.3g%s |\n",
-                      e.model.c_str(), e.rms_rel, e.max_rel, e.albedo_rms, e.chi2_dof, bold, e.peak.albedo, bold,
-                      e.peak.alpha, e.peak.theta_i, e.grid.asymmetry, negative, e.grid.min_f, negative);
+                      "| %s | %.4f | %.4f | %.5f | %.3g | %s%.4f%s (%.3g, %.0f) | %.1e | %s%.3g%s |\n", e.model.c_str(),
+                      e.rms_rel, e.max_rel, e.albedo_rms, e.chi2_dof, bold, e.peak.albedo, bold, e.peak.alpha,
+                      e.peak.theta_i, e.grid.asymmetry, negative, e.grid.min_f, negative);
         md << line;
     }
 }
@@ -77,7 +78,8 @@ void write_report(const fs::path& dir, const ReportHeading& h, const Results& r,
     md << " (the diffuse part: paths with at least one diffuse event), weights with a relative floor of "
        << format_shortest(h.floor) << ".\n";
     for (const NdfData& d : r.data) write_errors_table(md, d, h.albedos, errors);
-    md << "\nLargest albedo: the directional albedo at albedo 1, largest over the training alphas and theta_i from 0 to 89 "
+    md << "\nLargest albedo: the directional albedo at albedo 1, largest over the training alphas and theta_i from 0 "
+          "to 89 "
           "degrees (in bold where above 1: the model makes energy there). Asymmetry: the largest relative difference "
           "|f(l, v) - f(v, l)| / f over the training alphas and a grid of direction pairs (0 for a reciprocal BRDF). "
           "Smallest f: the least BRDF value on that grid at albedo 0.5 and 1 (bold where negative: not a BRDF there). "

@@ -51,14 +51,16 @@ void print_trace_line(const std::vector<NdfData>& data, double seconds, unsigned
     for (const NdfData& d : data) points += d.traced, walks += d.walks_traced, reused += d.reused;
     if (reused) std::fprintf(stderr, "fit: %lld points read from the cache\n", static_cast<long long>(reused));
     if (points)
-        std::fprintf(stderr, "fit: traced %lld points, %.4g walks, in %.1f s (%.0f ns a walk on %u threads x %d ranks)\n",
+        std::fprintf(stderr,
+                     "fit: traced %lld points, %.4g walks, in %.1f s (%.0f ns a walk on %u threads x %d ranks)\n",
                      static_cast<long long>(points), static_cast<double>(walks), seconds,
                      seconds / static_cast<double>(walks) * 1e9, util::thread_count(threads), mpi::size());
 }
 
 // Every output but meta.json into dir.
 void write_outputs(const fs::path& dir, const FitScene& s, const Results& r, const std::vector<ErrorRow>& errors,
-                   const std::vector<Flag>& flags, const NdfRegistry& registry, unsigned threads, const fs::path& cache) {
+                   const std::vector<Flag>& flags, const NdfRegistry& registry, unsigned threads,
+                   const fs::path& cache) {
     const LabelColumns columns = label_columns(r.data, registry, s.training.alpha.front());
     write_constants(dir, r, columns);
     write_errors(dir, errors, columns);
@@ -66,7 +68,8 @@ void write_outputs(const fs::path& dir, const FitScene& s, const Results& r, con
     write_values(dir / "validation.csv", r, ValueSet::validation, s.albedos, columns);
     write_shaders(dir, r);
     if (!s.compensation.alpha.empty())
-        std::fprintf(stderr, "fit: compensation tables: %zu NDFs x %zu alphas\n", s.ndfs.size(), s.compensation.alpha.size());
+        std::fprintf(stderr, "fit: compensation tables: %zu NDFs x %zu alphas\n", s.ndfs.size(),
+                     s.compensation.alpha.size());
     const std::string compensation = write_compensation(dir, s.ndfs, s.compensation, registry);
     const std::string pictures =
         write_pictures(dir, cache, {s.pictures, s.material, s.seed}, r, columns, registry, threads);
@@ -80,11 +83,17 @@ void write_meta(const fs::path& dir, const FitScene& s, const std::string& sourc
                 const cluster::Traffic& traffic) {
     std::int64_t walks = 0;
     for (const NdfData& d : data) walks += d.walks_traced;
-    nlohmann::ordered_json meta = {
-        {"title", s.title},      {"source", source},         {"scene", scene_text},
-        {"version", SMITHLAB_VERSION}, {"seed", s.seed},      {"points_traced", sum.traced},
-        {"points_reused", sum.reused}, {"walks_traced", walks}, {"seconds", sum.seconds}, {"trace_seconds", trace_seconds},
-        {"threads", util::thread_count(threads)}};
+    nlohmann::ordered_json meta = {{"title", s.title},
+                                   {"source", source},
+                                   {"scene", scene_text},
+                                   {"version", SMITHLAB_VERSION},
+                                   {"seed", s.seed},
+                                   {"points_traced", sum.traced},
+                                   {"points_reused", sum.reused},
+                                   {"walks_traced", walks},
+                                   {"seconds", sum.seconds},
+                                   {"trace_seconds", trace_seconds},
+                                   {"threads", util::thread_count(threads)}};
     if (mpi::size() > 1) meta["mpi"] = cluster::traffic_json(traffic);  // and threads is per rank
     output::write_file(dir / "meta.json", meta.dump(2) + "\n");
 }

@@ -4,11 +4,11 @@
 #include <limits>
 #include <variant>
 
+#include "scene/strict_table.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/fit/diffuse_models.hpp"
 #include "smithlab/spec.hpp"
 #include "smithlab/walk/facets.hpp"
-#include "scene/strict_table.hpp"
 
 namespace smithlab::fitrun {
 
@@ -36,7 +36,8 @@ void check_material(StrictTable& doc, const std::string& spec) {
     if (albedo < 0.0)
         doc.fail("material", "must be lambert or fresnel-diffuse facets (a diffuse material), got '" + spec + "'");
     if (albedo != 1.0)
-        doc.fail("material", "is traced at albedo 1 (every albedo comes from that one trace: set albedos), got '" + spec + "'");
+        doc.fail("material",
+                 "is traced at albedo 1 (every albedo comes from that one trace: set albedos), got '" + spec + "'");
 }
 
 std::vector<double> read_bounded(StrictTable& t, const std::string& key, double lo, double hi, bool open_lo,
@@ -73,10 +74,13 @@ std::vector<FitFamily> read_ndfs(StrictTable& doc, const NdfRegistry& registry) 
     for (StrictTable& n : doc.tables("ndf", report::ndf_table_keys(registry))) {
         const report::NdfEntry e = report::read_ndf_entry(n, registry);
         if (!e.takes_alpha)
-            n.fail("family", "'" + e.family + "' has no parameter alpha and declares no roughness mapping to one: the "
-                             "fit sweeps alpha over training.alpha");
+            n.fail("family",
+                   "'" + e.family +
+                       "' has no parameter alpha and declares no roughness mapping to one: the "
+                       "fit sweeps alpha over training.alpha");
         if (e.roughness_given)
-            n.fail("family", "'" + e.family + "' is given its roughness here: the fit sweeps alpha over training.alpha");
+            n.fail("family",
+                   "'" + e.family + "' is given its roughness here: the fit sweeps alpha over training.alpha");
         for (const report::ParamPoint& p : e.points()) out.push_back({e, p});
         n.done();
     }
@@ -96,8 +100,9 @@ FitScene::Training read_training(StrictTable& doc, FitScene::Training t) {
         for (std::size_t o = i; o < t.theta.size(); ++o)
             pairs += t.theta[i] == 0.0 || t.theta[o] == 0.0 ? 1 : t.phi.size();
     if (pairs > max_points)
-        table.fail("theta", "and phi make " + std::to_string(pairs) + " direction pairs per alpha; at most " +
-                                std::to_string(max_points) + " (each point's random stream holds its index in 16 bits)");
+        table.fail("theta",
+                   "and phi make " + std::to_string(pairs) + " direction pairs per alpha; at most " +
+                       std::to_string(max_points) + " (each point's random stream holds its index in 16 bits)");
     if (t.alpha.size() > max_points) table.fail("alpha", "has more than " + std::to_string(max_points) + " values");
     table.done();
     return t;
@@ -142,8 +147,8 @@ FitScene::Pictures read_pictures(StrictTable& doc, FitScene::Pictures p) {
 FitScene parse_fit_scene(const std::string& text, const std::string& source, const NdfRegistry& registry) {
     const toml::value data = report::parse_toml(text, source);
     StrictTable doc(data, source, "",
-                    {"title", "material", "albedos", "models", "floor", "energy_bound", "seed", "ndf", "training", "validation",
-                     "compensation", "pictures"});
+                    {"title", "material", "albedos", "models", "floor", "energy_bound", "seed", "ndf", "training",
+                     "validation", "compensation", "pictures"});
     FitScene s;
     s.title = doc.text("title", s.title);
     s.material = doc.text("material", s.material);

@@ -26,9 +26,9 @@ struct FitScene {
     std::vector<double> albedos{0.25, 0.5, 0.75, 1.0};
     std::vector<std::string> models;  // empty: every model
     double floor = 0.02;
-    bool energy_bound = true;         // fitted models held to a directional albedo <= 1 (fit_model.hpp)
+    bool energy_bound = true;  // fitted models held to a directional albedo <= 1 (fit_model.hpp)
     std::uint64_t seed = 1;
-    std::vector<FitFamily> ndfs;      // the [[ndf]] axes expanded: one entry per fitted NDF
+    std::vector<FitFamily> ndfs;  // the [[ndf]] axes expanded: one entry per fitted NDF
     struct Training {
         std::vector<double> alpha, theta, phi;
         std::int64_t walks = 20000;
@@ -47,10 +47,10 @@ struct FitScene {
     struct Pictures {
         bool enabled = false;
         std::vector<double> sphere_alpha{0.001, 0.0625, 0.25, 0.5625, 1.0};  // Hammon's columns (0 drawn at 0.001)
-        std::int64_t pixels = 32;          // a sphere's diameter in pixels
-        std::int64_t walks = 2000;         // per simulated pixel or slice point
+        std::int64_t pixels = 32;                                            // a sphere's diameter in pixels
+        std::int64_t walks = 2000;                                           // per simulated pixel or slice point
         std::vector<double> slice_alpha{0.25, 1.0};
-        std::int64_t slice_n = 24;         // (theta_h, theta_d) points per side of a slice
+        std::int64_t slice_n = 24;  // (theta_h, theta_d) points per side of a slice
     } pictures;
 };
 

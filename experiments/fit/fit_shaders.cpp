@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "smithlab/errors.hpp"
 #include "output/staged_directory.hpp"
+#include "smithlab/errors.hpp"
 #include "smithlab/fit/glsl.hpp"
 
 namespace smithlab::fitrun {

@@ -23,13 +23,17 @@ void write_constants(const fs::path& dir, const Results& r, const LabelColumns& 
             nlohmann::ordered_json params = nlohmann::ordered_json::object();
             for (std::size_t i = 0; i < m.params.size(); ++i) {
                 const std::string p(m.model->parameters[i]);
-                write_csv_record(csv, columns.row({m.name, data[n].label, p, format_g17(m.params[i]),
-                                                   format_g17(m.stderr_[i])},
-                                                  2, data[n].label));
+                write_csv_record(
+                    csv,
+                    columns.row({m.name, data[n].label, p, format_g17(m.params[i]), format_g17(m.stderr_[i])}, 2,
+                                data[n].label));
                 params[p] = {{"value", m.params[i]}, {"stderr", m.stderr_[i]}};
             }
-            json.push_back({{"model", m.name}, {"ndf", data[n].label}, {"parameters", params},
-                            {"chi2_dof_training", m.chi2_dof_training}, {"iterations", m.iterations}});
+            json.push_back({{"model", m.name},
+                            {"ndf", data[n].label},
+                            {"parameters", params},
+                            {"chi2_dof_training", m.chi2_dof_training},
+                            {"iterations", m.iterations}});
         }
     output::finish(csv, dir / "constants.csv");
     output::write_file(dir / "constants.json", json.dump(2) + "\n");
@@ -41,9 +45,10 @@ void write_errors(const fs::path& dir, const std::vector<ErrorRow>& rows, const 
     std::ofstream csv(dir / "errors.csv", std::ios::binary);
     write_csv_record(csv, columns.header(own, 2));
     for (const ErrorRow& r : rows)
-        write_csv_record(csv, columns.row({r.model, r.ndf, format_g17(r.rms_rel), format_g17(r.max_rel),
-                                           format_g17(r.albedo_rms), format_g17(r.chi2_dof)},
-                                          2, r.ndf));
+        write_csv_record(csv,
+                         columns.row({r.model, r.ndf, format_g17(r.rms_rel), format_g17(r.max_rel),
+                                      format_g17(r.albedo_rms), format_g17(r.chi2_dof)},
+                                     2, r.ndf));
     output::finish(csv, dir / "errors.csv");
 }
 
@@ -59,9 +64,9 @@ void write_values(const fs::path& file, const Results& r, ValueSet set, const st
         for (const fit::DataPoint& p : set == ValueSet::validation ? data[n].validation : data[n].training)
             for (double a : albedos) {
                 const walk::Estimate y = fit::at_albedo(p.moments, {a});
-                std::vector<std::string> row{data[n].label,        format_g17(p.alpha), format_g17(p.dir.theta_i),
-                                             format_g17(p.dir.theta_o), format_g17(p.dir.phi), format_g17(a),
-                                             format_g17(y.value),  format_g17(y.stderr_)};
+                std::vector<std::string> row{
+                    data[n].label,         format_g17(p.alpha), format_g17(p.dir.theta_i), format_g17(p.dir.theta_o),
+                    format_g17(p.dir.phi), format_g17(a),       format_g17(y.value),       format_g17(y.stderr_)};
                 for (const Measured& m : fits[n]) row.push_back(format_g17(fit::model_value(*m.model, m.params, p, a)));
                 write_csv_record(csv, columns.row(std::move(row), 1, data[n].label));
             }

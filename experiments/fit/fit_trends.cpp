@@ -8,8 +8,8 @@
 #include <optional>
 #include <sstream>
 
-#include "smithlab/csv.hpp"
 #include "output/staged_directory.hpp"
+#include "smithlab/csv.hpp"
 
 namespace smithlab::fitrun {
 
@@ -48,7 +48,10 @@ std::string formula(const Trend& t, const std::string& x) {
     std::string out;
     for (Eigen::Index d = 0; d < t.p.size(); ++d) {
         char term[96];
-        std::snprintf(term, sizeof term, "%s%.4g (+-%.2g)", d == 0 ? "" : t.p(d) < 0.0 ? " - " : " + ",
+        std::snprintf(term, sizeof term, "%s%.4g (+-%.2g)",
+                      d == 0             ? ""
+                          : t.p(d) < 0.0 ? " - "
+                                         : " + ",
                       d == 0 ? t.p(d) : std::abs(t.p(d)), t.stderr_(d));
         out += term + (d == 0 ? "" : d == 1 ? " " + x : " " + x + "^2");
     }
@@ -58,16 +61,17 @@ std::string formula(const Trend& t, const std::string& x) {
 std::string write_trends(const fs::path& dir, const Results& r, const ParameterSweep& sweep) {
     const std::string name = sweep.family + "_" + sweep.parameter + "_trends.csv";
     std::ofstream csv(dir / name, std::ios::binary);
-    write_csv_record(csv, {"model", "parameter", "form", "c0", "c1", "c2", "c0_stderr", "c1_stderr", "c2_stderr",
-                           "chi2_dof", "max_deviation"});
+    write_csv_record(csv,
+                     {"model", "parameter", "form", "c0", "c1", "c2", "c0_stderr", "c1_stderr", "c2_stderr", "chi2_dof",
+                      "max_deviation"});
     const std::string x = sweep.parameter;
     std::ostringstream md;
     md << "\n## The fitted constants against " << sweep.family << "'s " << x << "\n\nEach constant of each fitted "
        << "model as a line and as a parabola in " << x << ", by weighted least squares against the constants' "
        << "standard errors (their spread over independent traces), with the coefficients' standard errors; chi^2 / dof "
        << "near 1 where the form holds within that noise, and the form's largest deviation from the fitted constants, "
-       << "its error as a closed expression (" << name << ", and the plot pictures/constants_vs_" << sweep.family
-       << "_" << x << ".png where drawn):\n\n"
+       << "its error as a closed expression (" << name << ", and the plot pictures/constants_vs_" << sweep.family << "_"
+       << x << ".png where drawn):\n\n"
        << "| model | constant | line | chi^2/dof / max dev. | parabola | chi^2/dof / max dev. |\n"
        << "|---|---|---|---:|---|---:|\n";
     for (std::size_t k = 0; k < r.fits[sweep.fits[0]].size(); ++k) {

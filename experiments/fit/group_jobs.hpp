@@ -56,7 +56,8 @@ public:
     Partial get(mpi::Reader& in, std::size_t j) const {
         Partial p(static_cast<std::size_t>(in.get<std::int64_t>()));
         if (p.size() != 1)
-            throw std::runtime_error("fit: another rank sent " + std::to_string(p.size()) + " points for one of " + name(j));
+            throw std::runtime_error("fit: another rank sent " + std::to_string(p.size()) + " points for one of " +
+                                     name(j));
         for (fit::SplitMoments& m : p) m = in.get<fit::SplitMoments>();
         return p;
     }

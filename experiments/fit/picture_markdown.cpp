@@ -42,14 +42,16 @@ void slices_section(std::ostream& md, const FitScene::Pictures& p, const std::ve
     for (double x : p.slice_alpha) alphas += (alphas.empty() ? "" : ", ") + format_g17(x);
     md << "### BRDF slices (Burley 2012's BRDF Explorer layout)\n\n"
           "theta_h across, theta_d down (0 to 90 degrees), phi_d = 90 degrees, at alpha "
-       << alphas << ", albedo " << slice_albedo << ": the BRDF f itself times pi/albedo (Lambert is 1), the simulation's "
+       << alphas << ", albedo " << slice_albedo
+       << ": the BRDF f itself times pi/albedo (Lambert is 1), the simulation's "
        << "diffuse part (its eval estimate divided by cos theta_o) beside each model.\n\n";
     images(md, labels, "slices_");
 }
 
 // One row per NDF and alpha: the largest fraction over the incidences, at each albedo, where it is.
 void missing_table(std::ostream& md, const std::vector<Missing>& missing) {
-    md << "Hammon 2017: \"up to half the light was missing\" (GGX+Smith, numerically integrated, his largest over alpha "
+    md << "Hammon 2017: \"up to half the light was missing\" (GGX+Smith, numerically integrated, his largest over "
+          "alpha "
           "and angles). Measured, the largest 1 - E_1/E over theta_i:\n\n| NDF | alpha |";
     for (double a : missing_albedos) md << " albedo " << format_g17(a) << " | at theta_i |";
     md << "\n|---|---|";

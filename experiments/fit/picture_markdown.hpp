@@ -20,12 +20,12 @@ struct LambertCheck {
 };
 
 struct PictureReport {
-    std::vector<std::string> labels;       // the NDFs, in order
-    std::vector<Missing> missing;          // per NDF and sphere alpha, one per missing albedo
+    std::vector<std::string> labels;  // the NDFs, in order
+    std::vector<Missing> missing;     // per NDF and sphere alpha, one per missing albedo
     std::vector<LambertCheck> checks;
-    std::vector<std::string> swept;        // the constants_vs_* stems
-    bool drawn = false;                    // the plot script ran
-    std::int64_t walks = 0;                // the walks the pictures hold
+    std::vector<std::string> swept;  // the constants_vs_* stems
+    bool drawn = false;              // the plot script ran
+    std::int64_t walks = 0;          // the walks the pictures hold
 };
 
 std::string pictures_markdown(const FitScene::Pictures& pictures, const PictureReport& report);

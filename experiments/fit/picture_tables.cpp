@@ -41,8 +41,9 @@ std::pair<double, double> missing_fraction(const fit::SplitMoments& m, double al
     const walk::Estimate e = fit::at_albedo(m, all), em = fit::at_albedo(m, multi);
     if (!(e.value > 0.0)) return {0.0, 0.0};
     const double r = em.value / e.value;
-    const double var = (em.stderr_ * em.stderr_ - 2.0 * r * fit::covariance(m, all, multi) +
-                        r * r * e.stderr_ * e.stderr_) / (e.value * e.value);
+    const double var =
+        (em.stderr_ * em.stderr_ - 2.0 * r * fit::covariance(m, all, multi) + r * r * e.stderr_ * e.stderr_) /
+        (e.value * e.value);
     return {r, std::sqrt(std::max(0.0, var))};
 }
 
@@ -71,10 +72,15 @@ std::string file_stem(const std::string& label) {
 }
 
 PictureFiles::PictureFiles(const fs::path& d, const LabelColumns& columns)
-    : dir_(d), spheres_columns_(columns.except(spheres_header)), slices_columns_(columns.except(slices_header)),
-      missing_columns_(columns.except(missing_header)), index_columns_(columns.except(index_header)),
-      spheres_(d / "spheres.csv", std::ios::binary), slices_(d / "slices.csv", std::ios::binary),
-      missing_(d / "missing.csv", std::ios::binary), index_(d / "ndfs.csv", std::ios::binary) {
+    : dir_(d),
+      spheres_columns_(columns.except(spheres_header)),
+      slices_columns_(columns.except(slices_header)),
+      missing_columns_(columns.except(missing_header)),
+      index_columns_(columns.except(index_header)),
+      spheres_(d / "spheres.csv", std::ios::binary),
+      slices_(d / "slices.csv", std::ios::binary),
+      missing_(d / "missing.csv", std::ios::binary),
+      index_(d / "ndfs.csv", std::ios::binary) {
     write_csv_record(spheres_, spheres_columns_.header(spheres_header, 1));
     write_csv_record(slices_, slices_columns_.header(slices_header, 1));
     write_csv_record(missing_, missing_columns_.header(missing_header, 1));
@@ -100,10 +106,10 @@ void PictureFiles::spheres(const std::string& label, double alpha, const SphereG
                                      {"lambert facets: indirect only", &lam, 2}};
     const std::string a = format_g17(alpha);
     auto row = [&](const std::string& source, const Pixel& p, double albedo, double v) {
-        write_csv_record(spheres_, spheres_columns_.row({label, source, a, format_g17(light_degrees[p.light]),
-                                                         format_g17(albedo), std::to_string(p.px), std::to_string(p.py),
-                                                         short_g(v)},
-                                                        1, label));
+        write_csv_record(spheres_,
+                         spheres_columns_.row({label, source, a, format_g17(light_degrees[p.light]), format_g17(albedo),
+                                               std::to_string(p.px), std::to_string(p.py), short_g(v)},
+                                              1, label));
     };
     for (const Source& s : traced)
         for (double albedo : sphere_albedos)
@@ -124,13 +130,15 @@ void PictureFiles::slices(const std::string& label, double alpha, int n, const s
         const std::string th = format_g17((static_cast<double>(k % n) + 0.5) * 90.0 / n),
                           td = format_g17((static_cast<double>(k / n) + 0.5) * 90.0 / n);
         const walk::Estimate y = fit::at_albedo(sim[k], {slice_albedo, 1});
-        write_csv_record(slices_, slices_columns_.row({label, "simulation, diffuse only", a, th, td,
-                                                       format_g17(y.value / p.wo.z()), format_g17(y.stderr_ / p.wo.z())},
-                                                      1, label));
+        write_csv_record(slices_,
+                         slices_columns_.row({label, "simulation, diffuse only", a, th, td,
+                                              format_g17(y.value / p.wo.z()), format_g17(y.stderr_ / p.wo.z())},
+                                             1, label));
         for (const Measured* md : models)
-            write_csv_record(slices_, slices_columns_.row({label, md->name, a, th, td,
-                                                           format_g17(model_f(*md, p.wi, p.wo, alpha, slice_albedo)), ""},
-                                                          1, label));
+            write_csv_record(slices_,
+                             slices_columns_.row({label, md->name, a, th, td,
+                                                  format_g17(model_f(*md, p.wi, p.wo, alpha, slice_albedo)), ""},
+                                                 1, label));
     }
 }
 
@@ -142,11 +150,11 @@ std::vector<Missing> PictureFiles::missing(const std::string& label, double alph
         for (std::size_t t = 0; t < alb.size(); ++t) {
             const auto [frac, se] = missing_fraction(alb[t], albedo);
             const double e = fit::at_albedo(alb[t], {albedo, 1}).value;
-            write_csv_record(missing_, missing_columns_.row({label, format_g17(alpha), format_g17(missing_theta[t]),
-                                                             format_g17(albedo), format_g17(e),
-                                                             format_g17(e * (1.0 - frac)), format_g17(frac),
-                                                             format_g17(se)},
-                                                            1, label));
+            write_csv_record(
+                missing_,
+                missing_columns_.row({label, format_g17(alpha), format_g17(missing_theta[t]), format_g17(albedo),
+                                      format_g17(e), format_g17(e * (1.0 - frac)), format_g17(frac), format_g17(se)},
+                                     1, label));
             if (frac > worst.fraction) worst = {label, alpha, albedo, frac, se, missing_theta[t]};
         }
         out.push_back(worst);
@@ -165,8 +173,10 @@ double lambert_check(const SphereGroup& g, const std::vector<fit::SplitMoments>&
     double worst = 0.0;
     for (std::size_t i = 0; i < g.pixels.size(); ++i)
         if (g.pixels[i].cos_light >= 0.1)
-            worst = std::max(worst, std::abs(fit::at_albedo(lam[g.source[i]], {1.0, 1}).value /
-                                                 (g.pixels[i].cos_light / std::numbers::pi) - 1.0));
+            worst = std::max(
+                worst,
+                std::abs(fit::at_albedo(lam[g.source[i]], {1.0, 1}).value / (g.pixels[i].cos_light / std::numbers::pi) -
+                         1.0));
     return worst;
 }
 
@@ -184,10 +194,11 @@ std::vector<std::string> write_constants_vs_parameter(const fs::path& dir, const
             for (const Measured& m : r.fits[sweep.fits[k]]) {
                 if (!m.fitted()) continue;
                 for (std::size_t i = 0; i < m.params.size(); ++i)
-                    write_csv_record(csv, columns.row({label, m.name, std::string(m.model->parameters[i]),
-                                                       format_g17(sweep.values[k]), format_g17(m.params[i]),
-                                                       format_g17(m.stderr_[i])},
-                                                      1, label));
+                    write_csv_record(
+                        csv,
+                        columns.row({label, m.name, std::string(m.model->parameters[i]), format_g17(sweep.values[k]),
+                                     format_g17(m.params[i]), format_g17(m.stderr_[i])},
+                                    1, label));
             }
         }
         output::finish(csv, file);

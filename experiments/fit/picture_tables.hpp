@@ -35,8 +35,9 @@ public:
     void ndf(const std::string& label, int pixels);
     // Every source of one sphere group: the traced diffuse part and total (sim), Lambertian facets' direct, direct
     // plus indirect and indirect light (lam), and each model; radiance f(l, v) cos theta_l per lit pixel.
-    void spheres(const std::string& label, double alpha, const SphereGroup& g, const std::vector<fit::SplitMoments>& sim,
-                 const std::vector<fit::SplitMoments>& lam, const std::vector<const Measured*>& models);
+    void spheres(const std::string& label, double alpha, const SphereGroup& g,
+                 const std::vector<fit::SplitMoments>& sim, const std::vector<fit::SplitMoments>& lam,
+                 const std::vector<const Measured*>& models);
     // The slice's BRDF f itself (the eval estimate divided by cos theta_o: its diffuse part) and each model's.
     void slices(const std::string& label, double alpha, int n, const std::vector<Pair>& points,
                 const std::vector<fit::SplitMoments>& sim, const std::vector<const Measured*>& models);

@@ -20,10 +20,14 @@ enum PictureSet : std::uint64_t { sphere_set = 3, slice_set = 4, lambert_sphere_
 
 const char* picture_set_name(PictureSet set) {
     switch (set) {
-        case sphere_set: return "spheres";
-        case slice_set: return "slices";
-        case lambert_sphere_set: return "lambert-spheres";
-        case lambert_albedo_set: return "lambert-albedo";
+        case sphere_set:
+            return "spheres";
+        case slice_set:
+            return "slices";
+        case lambert_sphere_set:
+            return "lambert-spheres";
+        case lambert_albedo_set:
+            return "lambert-albedo";
     }
     return "";
 }
@@ -60,8 +64,14 @@ struct TracePlace {
 Trace make_trace(const TracePlace& at, AnyNdf ndf, const std::string& material, const std::vector<Pair>& pairs,
                  std::int64_t walks, std::uint64_t seed, const fs::path& cache, std::vector<fit::SplitMoments>* into) {
     const std::string set = picture_set_name(at.set);
-    Trace t{at.label + ", alpha " + format_shortest(at.alpha) + ": " + set, std::move(ndf), material,
-            at.set == lambert_albedo_set ? Estimator::albedo : Estimator::eval, walks, {}, {}, into};
+    Trace t{at.label + ", alpha " + format_shortest(at.alpha) + ": " + set,
+            std::move(ndf),
+            material,
+            at.set == lambert_albedo_set ? Estimator::albedo : Estimator::eval,
+            walks,
+            {},
+            {},
+            into};
     t.file = {cache / cache_directory_name(at.label) / "pictures" / (set + "-" + std::to_string(at.a) + ".csv"),
               cache_key(t.ndf, material, set, walks, seed, picture_stream(at.set, at.n, at.a, 0), pairs.size()),
               {"wi_x", "wi_y", "wi_z", "wo_x", "wo_y", "wo_z"},
@@ -70,8 +80,8 @@ Trace make_trace(const TracePlace& at, AnyNdf ndf, const std::string& material, 
     for (std::size_t j = 0; j < pairs.size(); ++j) {
         const Pair& p = pairs[j];
         t.points.push_back({p.wi, p.wo, picture_stream(at.set, at.n, at.a, j)});
-        t.file.points.push_back({format_g17(p.wi.x()), format_g17(p.wi.y()), format_g17(p.wi.z()),
-                                 format_g17(p.wo.x()), format_g17(p.wo.y()), format_g17(p.wo.z())});
+        t.file.points.push_back({format_g17(p.wi.x()), format_g17(p.wi.y()), format_g17(p.wi.z()), format_g17(p.wo.x()),
+                                 format_g17(p.wo.y()), format_g17(p.wo.z())});
     }
     return t;
 }
@@ -98,8 +108,8 @@ std::vector<Trace> plan(const PictureSpec& s, const std::vector<NdfData>& data, 
             const AnyNdf ndf = make_ndf(registry, data[n].family, alpha);
             traces.push_back(make_trace({n, label, a, alpha, sphere_set}, ndf, s.material, spheres.traced, p.walks,
                                         s.seed, cache, &o.spheres[a]));
-            traces.push_back(make_trace({n, label, a, alpha, lambert_sphere_set}, ndf, lambert, spheres.traced,
-                                        p.walks, s.seed, cache, &o.lambert_spheres[a]));
+            traces.push_back(make_trace({n, label, a, alpha, lambert_sphere_set}, ndf, lambert, spheres.traced, p.walks,
+                                        s.seed, cache, &o.lambert_spheres[a]));
             traces.push_back(make_trace({n, label, a, alpha, lambert_albedo_set}, ndf, lambert, albedo_points,
                                         missing_walks, s.seed, cache, &o.lambert_albedo[a]));
         }
@@ -119,7 +129,7 @@ struct Progress {
     void report(std::int64_t now_done) {
         line(static_cast<double>(now_done) / static_cast<double>(total), [&] {
             return "fit: pictures: traced " + std::to_string(now_done / 1000000) + " of " +
-                   std::to_string(total / 1000000) + " walks (millions)";
+                std::to_string(total / 1000000) + " walks (millions)";
         });
     }
 };
@@ -127,8 +137,9 @@ struct Progress {
 void run(Trace& t, std::uint64_t seed, unsigned threads, Progress& progress) {
     std::fprintf(stderr, "fit: pictures: %s\n", t.what.c_str());
     const std::int64_t before = progress.done;
-    t.moments = trace_points(t.ndf, walk::parse_material(t.material), t.points, t.estimator, seed, t.walks, threads,
-                             [&](std::uint64_t k) { progress.report(before + static_cast<std::int64_t>(k) * t.walks); });
+    t.moments =
+        trace_points(t.ndf, walk::parse_material(t.material), t.points, t.estimator, seed, t.walks, threads,
+                     [&](std::uint64_t k) { progress.report(before + static_cast<std::int64_t>(k) * t.walks); });
     progress.done += static_cast<std::int64_t>(t.points.size()) * t.walks;
     write_cache(t.file, *t.moments);
 }
@@ -155,7 +166,8 @@ std::vector<PictureData> trace_pictures(const PictureSpec& s, const std::vector<
         *t.into = std::move(*t.moments);
     }
     if (progress.total)
-        std::fprintf(stderr, "fit: pictures: traced %.1f million walks in %.1f s\n", static_cast<double>(progress.total) / 1e6,
+        std::fprintf(stderr, "fit: pictures: traced %.1f million walks in %.1f s\n",
+                     static_cast<double>(progress.total) / 1e6,
                      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     walks_traced = progress.total;
     return out;

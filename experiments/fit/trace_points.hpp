@@ -1,5 +1,6 @@
-// Tracing the fitter's points on one microsurface: each point's walks split by diffuse events (smithlab/fit/dataset.hpp),
-// by the eval estimator (f(wi, wo) |cos theta_o|) or the sample estimator (the directional albedo from wi).
+// Tracing the fitter's points on one microsurface: each point's walks split by diffuse events
+// (smithlab/fit/dataset.hpp), by the eval estimator (f(wi, wo) |cos theta_o|) or the sample estimator (the directional
+// albedo from wi).
 #pragma once
 
 #include <cstdint>

@@ -7,7 +7,9 @@
 namespace smithlab::output {
 
 namespace {
-bool contains(const std::vector<std::string>& v, const std::string& s) { return std::find(v.begin(), v.end(), s) != v.end(); }
+bool contains(const std::vector<std::string>& v, const std::string& s) {
+    return std::find(v.begin(), v.end(), s) != v.end();
+}
 }  // namespace
 
 NdfColumns ndf_columns(std::span<const AnyNdf> ndfs, const std::vector<std::string>& taken) {

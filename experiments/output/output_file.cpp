@@ -39,7 +39,7 @@ bool same_file(const fs::path& a, const std::string& b) {
 }
 
 bool writable(const fs::path& p) {
-    struct stat st{};
+    struct stat st {};
     if (::stat(p.c_str(), &st) != 0) return false;
     // root may write anything: the mode bits say whether the owner meant the file to be written.
     return (st.st_mode & (S_IWUSR | S_IWGRP | S_IWOTH)) != 0 && ::access(p.c_str(), W_OK) == 0;
@@ -47,16 +47,15 @@ bool writable(const fs::path& p) {
 
 }  // namespace
 
-std::string temporary_name(const std::string& name) {
-    return "." + name + "." + std::to_string(::getpid()) + suffix;
-}
+std::string temporary_name(const std::string& name) { return "." + name + "." + std::to_string(::getpid()) + suffix; }
 
 void remove_stale_temporaries(const fs::path& dir, const std::string& name) {
     std::error_code ec;
     const std::string prefix = "." + name + ".";
     for (const auto& entry : fs::directory_iterator(dir.empty() ? "." : dir, ec)) {
         const std::string f = entry.path().filename().string();
-        if (f.size() <= prefix.size() + std::strlen(suffix) || f.rfind(prefix, 0) != 0 || !f.ends_with(suffix)) continue;
+        if (f.size() <= prefix.size() + std::strlen(suffix) || f.rfind(prefix, 0) != 0 || !f.ends_with(suffix))
+            continue;
         const std::string pid = f.substr(prefix.size(), f.size() - prefix.size() - std::strlen(suffix));
         if (pid.empty() || pid.find_first_not_of("0123456789") != std::string::npos || pid.size() > 9) continue;
         const pid_t p = static_cast<pid_t>(std::stol(pid));
@@ -83,9 +82,12 @@ OutputTarget resolve_output(const std::string& path, const std::vector<std::stri
             if (!writable(p)) refuse(path, "is read-only; not replaced");
             return {p, false, path};
         case fs::file_type::character:
-        case fs::file_type::fifo: return {p, true, path};
-        case fs::file_type::directory: refuse(path, "is a directory");
-        default: refuse(path, "is not a regular file, a character device or a FIFO");
+        case fs::file_type::fifo:
+            return {p, true, path};
+        case fs::file_type::directory:
+            refuse(path, "is a directory");
+        default:
+            refuse(path, "is not a regular file, a character device or a FIFO");
     }
 }
 
@@ -128,7 +130,8 @@ void require_readable_input(const std::string& path, const std::string& what) {
     const fs::file_status st = fs::status(path, ec);
     if (st.type() == fs::file_type::not_found) throw input_error(what + " '" + path + "' does not exist");
     if (st.type() == fs::file_type::directory) throw input_error(what + " '" + path + "' is a directory");
-    if (::access(path.c_str(), R_OK) != 0) throw input_error(what + " '" + path + "' cannot be read: " + std::strerror(errno));
+    if (::access(path.c_str(), R_OK) != 0)
+        throw input_error(what + " '" + path + "' cannot be read: " + std::strerror(errno));
 }
 
 }  // namespace smithlab::output

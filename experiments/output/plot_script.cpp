@@ -35,8 +35,10 @@ bool run_plot_script(const std::string& name, const fs::path& fallback, const fs
     if (WIFSIGNALED(status) && (WTERMSIG(status) == SIGINT || WTERMSIG(status) == SIGTERM))
         end_as_signalled(WTERMSIG(status));  // the user's Ctrl-C reached the plot script too
     if (status == 0) return true;
-    std::fprintf(stderr, "%s: warning: the figures were not drawn; their data is in %s (needs Debian's "
-                         "python3-matplotlib, see .ci/deps)\n", who.c_str(), dir.string().c_str());
+    std::fprintf(stderr,
+                 "%s: warning: the figures were not drawn; their data is in %s (needs Debian's "
+                 "python3-matplotlib, see .ci/deps)\n",
+                 who.c_str(), dir.string().c_str());
     return false;
 }
 

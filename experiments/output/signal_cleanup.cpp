@@ -7,10 +7,10 @@
 #include <algorithm>
 #include <cstdio>
 #include <mutex>
-#include <vector>
 #include <set>
 #include <system_error>
 #include <thread>
+#include <vector>
 
 namespace smithlab::output {
 

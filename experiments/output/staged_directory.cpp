@@ -19,7 +19,8 @@ void require_output_directory(const fs::path& out) {
 StagedDirectory::StagedDirectory(const fs::path& out, const std::string& name) : out_(out) {
     require_output_directory(out);
     std::error_code ec;
-    for (fs::path p = fs::absolute(out, ec); !ec && !p.empty() && !fs::exists(p, ec); p = p.parent_path()) created_.push_back(p);
+    for (fs::path p = fs::absolute(out, ec); !ec && !p.empty() && !fs::exists(p, ec); p = p.parent_path())
+        created_.push_back(p);
     fs::create_directories(out, ec);
     if (ec) throw input_error("output directory '" + out.string() + "' cannot be created: " + ec.message());
     remove_stale_temporaries(out, name);

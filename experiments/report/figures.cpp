@@ -32,7 +32,8 @@ void write_dimov_heightfields(const fs::path& dir) {
     for (int g = 0; g <= 4; ++g)
         for (double a : lin(0.1, 0.5, 41))
             for (double mu : lin(0.0, 5.0, 51))
-                write_csv_record(out, {std::to_string(g), format_g17(a), format_g17(mu), format_g17(G1(gtr(a, g), mu))});
+                write_csv_record(out,
+                                 {std::to_string(g), format_g17(a), format_g17(mu), format_g17(G1(gtr(a, g), mu))});
 }
 
 // Dimov 2015 sec. 5: "the mean difference was 0.001", against Monte Carlo, domain unstated. Here: his plot's
@@ -44,17 +45,19 @@ void write_dimov_spline_mean(std::ostream& md) {
         for (double mu : lin(0.25, 5.0, 20))
             for (double g : lin(0.25, 3.75, 15)) {
                 const auto ndf = gtr(a, g);
-                const double d = std::abs(G1(ndf, mu, {.method = Method::spline}) - G1(ndf, mu, {.method = Method::quadrature}));
+                const double d =
+                    std::abs(G1(ndf, mu, {.method = Method::spline}) - G1(ndf, mu, {.method = Method::quadrature}));
                 sum += d;
                 worst = std::max(worst, d);
                 ++n;
             }
     char line[400];
-    std::snprintf(line, sizeof line,
-                  "\n## Dimov 2015, sec. 5: the spline's mean difference\n\nPublished: about 0.001 (against Monte "
-                  "Carlo). Measured against 1D quadrature on alpha in [0.1, 0.5], mu in [0.25, 5], 15 gamma between the "
-                  "knots (%d points): mean |dG1| = %.2e, max |dG1| = %.2e.\n",
-                  n, sum / n, worst);
+    std::snprintf(
+        line, sizeof line,
+        "\n## Dimov 2015, sec. 5: the spline's mean difference\n\nPublished: about 0.001 (against Monte "
+        "Carlo). Measured against 1D quadrature on alpha in [0.1, 0.5], mu in [0.25, 5], 15 gamma between the "
+        "knots (%d points): mean |dG1| = %.2e, max |dG1| = %.2e.\n",
+        n, sum / n, worst);
     md << line;
 }
 
@@ -88,8 +91,10 @@ void write_figures(const Settings::Figures& fig, const fs::path& dir) {
     if (fig.dimov_spline_mean) write_dimov_spline_mean(md);
     if (fig.dimov_gamma4_vs_10) write_dimov_gamma4_vs_10(dir, md);
     if (fig.pareto) md << "\n## Error against cost\n\n![](pareto.png)\n";
-    if (fig.error_maps) md << "\n## Where each variant fails: |dG1| over (alpha, mu), worst over gamma\n\n![](error_maps.png)\n";
-    if (fig.dimov_heightfields) md << "\n## Dimov 2015, sec. 4: G1 height fields, gamma = 0..4\n\n![](dimov_heightfields.png)\n";
+    if (fig.error_maps)
+        md << "\n## Where each variant fails: |dG1| over (alpha, mu), worst over gamma\n\n![](error_maps.png)\n";
+    if (fig.dimov_heightfields)
+        md << "\n## Dimov 2015, sec. 4: G1 height fields, gamma = 0..4\n\n![](dimov_heightfields.png)\n";
 }
 
 bool draws_figures(const Settings::Figures& fig) {

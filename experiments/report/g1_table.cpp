@@ -88,7 +88,8 @@ void measure_stream(G1Row& row, const G1Table& table, std::size_t n, const std::
     std::vector<double> G1(mus.size());
     GtrFamilyStream::get().G1_up(alpha.data(), gamma.data(), mus.data(), G1.data(), mus.size());
     const LambdaRoute route = route_for(*row.variant, ndf);
-    for (std::size_t i = 0; i < mus.size(); ++i) add_stream_point(row, n, mus[i], G1[i], cache.get(ndf, mus[i], route), keep_errors);
+    for (std::size_t i = 0; i < mus.size(); ++i)
+        add_stream_point(row, n, mus[i], G1[i], cache.get(ndf, mus[i], route), keep_errors);
 }
 
 std::string worst_at(const G1Row& r, const G1Table& table) {
@@ -98,8 +99,8 @@ std::string worst_at(const G1Row& r, const G1Table& table) {
 
 void write_csv(const G1Table& table, const fs::path& dir) {
     const output::NdfColumns params = output::ndf_columns(table.ndfs);
-    std::vector<std::string> head = {"variant", "points", "max_abs_dG1", "mean_abs_dG1", "max_rel_dLambda", "worst_at",
-                                     "ns_per_eval", "description", "worst_ndf", "worst_mu"};
+    std::vector<std::string> head = {"variant",  "points",      "max_abs_dG1", "mean_abs_dG1", "max_rel_dLambda",
+                                     "worst_at", "ns_per_eval", "description", "worst_ndf",    "worst_mu"};
     for (const std::string& p : params.names) head.push_back("worst_" + p);
     std::ofstream csv(dir / "variants.csv");
     write_csv_record(csv, head);
@@ -107,9 +108,16 @@ void write_csv(const G1Table& table, const fs::path& dir) {
         std::vector<std::string> f = {r.name(), std::to_string(r.points), "", "", "", "", "", r.description(), "", ""};
         const bool located = r.points > 0 && !std::isnan(r.worst_mu);
         if (r.points > 0) {  // else selected, but it applies to no NDF of this scene
-            f = {r.name(), std::to_string(r.points), format_g17(r.max_dG1), format_g17(r.sum_dG1 / r.points),
-                 r.stream ? "" : format_g17(r.max_rel), worst_at(r, table), format_g17(r.ns),
-                 r.description(), located ? table.ndfs[r.worst_ndf].spec() : "", located ? format_g17(r.worst_mu) : ""};
+            f = {r.name(),
+                 std::to_string(r.points),
+                 format_g17(r.max_dG1),
+                 format_g17(r.sum_dG1 / r.points),
+                 r.stream ? "" : format_g17(r.max_rel),
+                 worst_at(r, table),
+                 format_g17(r.ns),
+                 r.description(),
+                 located ? table.ndfs[r.worst_ndf].spec() : "",
+                 located ? format_g17(r.worst_mu) : ""};
         }
         for (const std::string& cell : params.cells(table.ndfs[r.worst_ndf])) f.push_back(located ? cell : "");
         write_csv_record(csv, f);
@@ -121,7 +129,8 @@ void write_markdown(const G1Table& table, const std::vector<double>& alphas, con
     std::ofstream md(dir / "report.md", std::ios::app);
     md << "Grid: " << alphas.size() << " alpha x " << mus.size() << " mu per NDF, " << table.ndfs.size()
        << " NDFs. Reference: the closed form where the NDF has one, else a different quadrature route than the "
-          "variant's (Boost 1D at 1e-13, or the nested 2D route for the Boost 1D variants); never the variant's own (closed-form: Boost 1D; table: Boost 1D or 2D). Sorted by cost.\n\n"
+          "variant's (Boost 1D at 1e-13, or the nested 2D route for the Boost 1D variants); never the variant's own "
+          "(closed-form: Boost 1D; table: Boost 1D or 2D). Sorted by cost.\n\n"
        << "| variant | points | max abs dG1 | mean abs dG1 | max rel dLambda | ns/eval | worst at |\n"
        << "|---|---:|---:|---:|---:|---:|---|\n";
     for (const G1Row& r : table.rows) {
@@ -172,8 +181,8 @@ void require_g1_domain(const G1Table& table, const std::vector<double>& mus) {
             for (double mu : mus) try {
                     require_row_domain(*row.variant, table.ndfs[n], mu);
                 } catch (const input_error& e) {
-                    throw input_error("scene: grid.mu = " + format_g17(mu) + " for " + table.ndfs[n].spec() + " (variant " +
-                                      row.variant->name + "): " + e.what());
+                    throw input_error("scene: grid.mu = " + format_g17(mu) + " for " + table.ndfs[n].spec() +
+                                      " (variant " + row.variant->name + "): " + e.what());
                 }
 }
 
@@ -197,11 +206,13 @@ void add_g1_timing(G1Table& table, const std::vector<double>& mus, Timing& timin
         for (std::size_t n : r.ndfs) ndfs.push_back(table.ndfs[n]);
         GtrStreamPoints points = gtr_stream_timing_points(ndfs, mus);
         const std::size_t n = points.size();
-        timing.add_stream(r.name(), n, [points = std::move(points)](double* out) { points.G1(out); }, &r.ns);
+        timing.add_stream(
+            r.name(), n, [points = std::move(points)](double* out) { points.G1(out); }, &r.ns);
     }
 }
 
-void write_g1_table(G1Table& table, const std::vector<double>& alphas, const std::vector<double>& mus, const fs::path& dir) {
+void write_g1_table(G1Table& table, const std::vector<double>& alphas, const std::vector<double>& mus,
+                    const fs::path& dir) {
     // By cost; a row not timed (it applies to no NDF of the scene) last.
     std::stable_sort(table.rows.begin(), table.rows.end(), [](const G1Row& a, const G1Row& b) {
         return a.ns < b.ns || (!std::isnan(a.ns) && std::isnan(b.ns));
@@ -223,7 +234,8 @@ void write_g1_points(const G1Table& table, const fs::path& dir) {
         write_csv_record(out, head);
         for (const PointError& e : row.errors) {
             const AnyNdf& ndf = table.ndfs[e.ndf];
-            std::vector<std::string> f = {format_g17(table.alphas[e.ndf]), format_g17(ndf.has_param("gamma") ? ndf.param("gamma") : NAN),
+            std::vector<std::string> f = {format_g17(table.alphas[e.ndf]),
+                                          format_g17(ndf.has_param("gamma") ? ndf.param("gamma") : NAN),
                                           format_g17(e.mu), format_g17(e.dG1), format_g17(e.rel)};
             for (const std::string& cell : params.cells(ndf)) f.push_back(cell);
             write_csv_record(out, f);

@@ -25,13 +25,13 @@ struct PointError {
 
 struct G1Row {
     const LambdaVariant* variant;
-    bool stream = false;             // the family evaluator's stream (G1 at many points a call), not one call
-    std::vector<std::size_t> ndfs;   // the NDFs it applies to (into G1Table::ndfs)
+    bool stream = false;               // the family evaluator's stream (G1 at many points a call), not one call
+    std::vector<std::size_t> ndfs;     // the NDFs it applies to (into G1Table::ndfs)
     std::vector<LambdaOfMu> prepared;  // one call: the variant prepared for each of them
-    std::vector<PointError> errors;  // per point, kept only for the figures
+    std::vector<PointError> errors;    // per point, kept only for the figures
     std::size_t points = 0;
     double max_dG1 = 0.0, sum_dG1 = 0.0, max_rel = 0.0;  // max_rel: not measured for the stream (its G1 only)
-    std::size_t worst_ndf = 0;  // where the worst error is: max_rel, or for the stream max_dG1
+    std::size_t worst_ndf = 0;                           // where the worst error is: max_rel, or for the stream max_dG1
     double worst_mu = NAN;
     double ns = NAN;
     std::string name() const { return stream ? variant->name + "-stream" : variant->name; }
@@ -39,9 +39,9 @@ struct G1Row {
 };
 
 struct G1Table {
-    std::vector<AnyNdf> ndfs;     // each [[ndf]]'s points x alpha
-    std::vector<double> alphas;   // the roughness each was made at (NaN: none, an entry that gives its own)
-    std::vector<G1Row> rows;      // one per selected variant, and the stream after the family evaluator's
+    std::vector<AnyNdf> ndfs;    // each [[ndf]]'s points x alpha
+    std::vector<double> alphas;  // the roughness each was made at (NaN: none, an entry that gives its own)
+    std::vector<G1Row> rows;     // one per selected variant, and the stream after the family evaluator's
 };
 
 // The grid's NDFs and the selected variants: input_error for an unknown family or a scene that selects no variant.

@@ -16,7 +16,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::vector<AnyNdf> g2_ndfs(const std::vector<std::string>& families, const std::vector<double>& alphas, const NdfRegistry& ndfs) {
+std::vector<AnyNdf> g2_ndfs(const std::vector<std::string>& families, const std::vector<double>& alphas,
+                            const NdfRegistry& ndfs) {
     std::vector<AnyNdf> out;
     for (const std::string& family : families)
         for (double a : alphas) out.push_back(ndfs.make(family, {{"alpha", a}}));
@@ -58,8 +59,9 @@ std::string worst_at(const G2Row& r) {
 // A row's cells: the table's, then where its worst point is (the NDF, one column per parameter, mu_i and mu_o).
 std::vector<std::string> csv_fields(const G2Row& r, const output::NdfColumns& params) {
     const std::size_t n = r.grid.size();
-    std::vector<std::string> f = {r.variant.name, std::to_string(n), format_g17(r.max_d), n ? format_g17(r.sum_d / n) : "",
-                                  worst_at(r), format_g17(r.ns), r.variant.description};
+    std::vector<std::string> f = {
+        r.variant.name, std::to_string(n), format_g17(r.max_d),  n ? format_g17(r.sum_d / n) : "",
+        worst_at(r),    format_g17(r.ns),  r.variant.description};
     if (n == 0) {
         f.resize(f.size() + 3 + params.names.size());
         return f;
@@ -98,15 +100,17 @@ void add_g2_timing(G2Table& table, Timing& timing) {
     for (G2Row& r : table.rows) {
         std::vector<G2Point> points;
         for (const GridIndex& i : timing_points(1, r.grid.size())) points.push_back(r.grid[i.mu]);
-        timing.add(r.variant.name, std::move(points), [G2 = r.variant.G2](const G2Point& p) { return G2(p.ndf, p.mu_i, p.mu_o); },
-                   &r.ns);
+        timing.add(
+            r.variant.name, std::move(points),
+            [G2 = r.variant.G2](const G2Point& p) { return G2(p.ndf, p.mu_i, p.mu_o); }, &r.ns);
     }
 }
 
 void write_g2_table(const G2Table& table, const fs::path& dir) {
     if (table.rows.empty()) return;
     const output::NdfColumns params = output::ndf_columns(table.ndfs);
-    std::vector<std::string> head = {"variant", "points", "max_abs_dG2", "mean_abs_dG2", "worst_at", "ns_per_eval", "description", "worst_ndf"};
+    std::vector<std::string> head = {"variant",  "points",      "max_abs_dG2", "mean_abs_dG2",
+                                     "worst_at", "ns_per_eval", "description", "worst_ndf"};
     for (const std::string& p : params.names) head.push_back("worst_" + p);
     head.push_back("worst_mu_i");
     head.push_back("worst_mu_o");
@@ -114,7 +118,8 @@ void write_g2_table(const G2Table& table, const fs::path& dir) {
     write_csv_record(csv, head);
     std::ofstream md(dir / "report.md", std::ios::app);
     md << "\n## G2 variants (two directions, reflection)\n\nAgainst the exact height-correlated G2 = 1/(1 + Lambda_i + "
-          "Lambda_o), on alpha x mu_i x mu_o.\n\n| variant | points | max abs dG2 | mean abs dG2 | ns/eval | worst at |\n"
+          "Lambda_o), on alpha x mu_i x mu_o.\n\n| variant | points | max abs dG2 | mean abs dG2 | ns/eval | worst at "
+          "|\n"
           "|---|---:|---:|---:|---:|---|\n";
     for (const G2Row& r : table.rows) {
         const std::size_t n = r.grid.size();

@@ -28,8 +28,8 @@ struct G2Row {
 };
 
 struct G2Table {
-    std::vector<AnyNdf> ndfs;         // families x alpha; none without [g2]
-    std::vector<G2Row> rows;          // one per selected variant
+    std::vector<AnyNdf> ndfs;  // families x alpha; none without [g2]
+    std::vector<G2Row> rows;   // one per selected variant
 };
 
 // The NDFs (families x alphas) and the variants include selects, checked: input_error for an unknown family, or a

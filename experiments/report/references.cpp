@@ -28,10 +28,14 @@ LambdaRoute route_for(const LambdaVariant& v, const AnyNdf& ndf) {
 
 double compute_reference(const AnyNdf& ndf, double mu, LambdaRoute r) {
     switch (r) {
-        case LambdaRoute::closed: return ndf.Lambda(mu);
-        case LambdaRoute::q1d_boost: return Lambda_1d(ndf, mu, {Backend::boost, 1e-13});
-        case LambdaRoute::q2d_boost: return Lambda_2d(ndf, mu, {Backend::boost, 1e-12});
-        default: return NAN;  // not a reference route
+        case LambdaRoute::closed:
+            return ndf.Lambda(mu);
+        case LambdaRoute::q1d_boost:
+            return Lambda_1d(ndf, mu, {Backend::boost, 1e-13});
+        case LambdaRoute::q2d_boost:
+            return Lambda_2d(ndf, mu, {Backend::boost, 1e-12});
+        default:
+            return NAN;  // not a reference route
     }
 }
 
@@ -43,7 +47,8 @@ namespace {
 
 // A record's check: FNV-1a (64 bit) of its fields, in hex. A record cut short, edited or half-written does not
 // match it and is computed again.
-std::string check_of(const std::string& spec, const std::string& mu, const std::string& route, const std::string& lambda) {
+std::string check_of(const std::string& spec, const std::string& mu, const std::string& route,
+                     const std::string& lambda) {
     std::uint64_t h = 14695981039346656037ull;
     for (const std::string* f : {&spec, &mu, &route, &lambda}) {
         for (unsigned char c : *f) h = (h ^ c) * 1099511628211ull;
@@ -84,7 +89,9 @@ double ReferenceCache::get(const AnyNdf& ndf, double mu, LambdaRoute r) {
 void ReferenceCache::save() const {
     std::error_code ec;
     fs::create_directories(file_.parent_path(), ec);
-    if (ec) throw input_error("cannot create the reference cache's directory '" + file_.parent_path().string() + "': " + ec.message());
+    if (ec)
+        throw input_error("cannot create the reference cache's directory '" + file_.parent_path().string() +
+                          "': " + ec.message());
     output::write_output(output::resolve_output(file_.string()), [&](std::ostream& out) {
         write_csv_record(out, {"spec", "mu", "route", "lambda", "check"});
         for (const auto& [key, v] : values_) {

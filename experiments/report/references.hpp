@@ -17,8 +17,7 @@ namespace smithlab::report {
 // nested 2D route at 1e-12 (the closed-form row is checked by Boost 1D, the table by Boost 1D or 2D, a Boost 1D
 // variant by the closed form or the 2D route). The quadratures agree with the test suite's 50-digit references to
 // ~1e-15; GSL's QAG can stop at ~1e-11, so it is never a reference.
-inline constexpr LambdaRoute reference_routes[] = {LambdaRoute::closed, LambdaRoute::q1d_boost,
-                                                   LambdaRoute::q2d_boost};
+inline constexpr LambdaRoute reference_routes[] = {LambdaRoute::closed, LambdaRoute::q1d_boost, LambdaRoute::q2d_boost};
 
 // A reference route as the cache keys it: "closed", "q1d-boost-1e-13", "q2d-boost-1e-12".
 const char* name_of(LambdaRoute r);

@@ -32,7 +32,8 @@ void measure_sections(Scene& scene, const fs::path& cache_file) {
     ReferenceCache cache(cache_file);
     for (auto& section : scene.sections) section->measure(cache);
     cache.save();
-    std::fprintf(stderr, "report: references: %zu reused from the cache, %zu computed", cache.loaded(), cache.computed());
+    std::fprintf(stderr, "report: references: %zu reused from the cache, %zu computed", cache.loaded(),
+                 cache.computed());
     if (cache.discarded()) std::fprintf(stderr, " (%zu damaged cache records discarded)", cache.discarded());
     std::fprintf(stderr, "\n");
 }
@@ -66,8 +67,9 @@ void draw_figures(const Scene& scene, const fs::path& dir) {
     std::fprintf(stderr, "report: figures %s in %.1f s\n", drawn ? "drawn" : "not drawn",
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     if (!drawn)
-        std::ofstream(dir / "report.md", std::ios::app) << "\n**The figures were not drawn** (python3-matplotlib missing?); "
-                                                            "their data is beside this file.\n";
+        std::ofstream(dir / "report.md", std::ios::app)
+            << "\n**The figures were not drawn** (python3-matplotlib missing?); "
+               "their data is beside this file.\n";
 }
 
 // Rank 0, after every section computed: the references, the timing, and the files, staged and then published.

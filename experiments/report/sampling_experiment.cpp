@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <memory>
 #include <numbers>
 #include <utility>
@@ -59,13 +59,13 @@ namespace {
 
 // One sample of each strategy's weight (sampling_strategies' order) for ndf seen from wo.
 std::vector<std::function<double(Rng&)>> strategy_weights(const AnyNdf& ndf, const Vec3& wo,
-                                                         const std::vector<SamplerInfo>& samplers) {
+                                                          const std::vector<SamplerInfo>& samplers) {
     const auto c = std::make_shared<const Conductor>(Conductor{ndf, wo, Lambda(ndf, cot_theta(wo))});
     const BoundSampler dcos = prepare(find_sampler(samplers, "dcos"), ndf, wo);
     // Visible normals in closed form where the NDF offers one (its capability, ndf.hpp), else by rejection.
-    const char* visible = !std::isnan(ggx_alpha(ndf))        ? "vndf-ggx"
-                          : !std::isnan(beckmann_alpha(ndf)) ? "vndf-beckmann"
-                                                             : "vndf";
+    const char* visible = !std::isnan(ggx_alpha(ndf)) ? "vndf-ggx"
+        : !std::isnan(beckmann_alpha(ndf))            ? "vndf-beckmann"
+                                                      : "vndf";
     const BoundSampler vndf = prepare(find_sampler(samplers, visible), ndf, wo);
     const double cos_o = wo.z();
     return {
@@ -113,7 +113,8 @@ std::vector<SamplingRow> run_sampling_experiment(const std::vector<AnyNdf>& list
     std::vector<SamplingRow> rows;
     for (const AnyNdf& ndf : list) {
         progress(static_cast<double>(rows.size()) / static_cast<double>(estimates), [&] {
-            return "report: sampling experiment, " + std::to_string(rows.size()) + "/" + std::to_string(estimates) + " estimates";
+            return "report: sampling experiment, " + std::to_string(rows.size()) + "/" + std::to_string(estimates) +
+                " estimates";
         });
         const std::vector<std::function<double(Rng&)>> weights = strategy_weights(ndf, wo, samplers);
         for (std::size_t k = 0; k < weights.size(); ++k) {
@@ -129,31 +130,36 @@ void add_sampling_timing(std::vector<SamplingRow>& rows, const SamplingScene& s,
     for (SamplingRow& r : rows) {
         auto g = std::make_shared<Rng>(make_rng(s.seed, 1u << 20));
         // One point, nothing in it: each call draws from the row's own stream.
-        timing.add("sampling/" + r.family + "(" + format_g17(r.alpha) + ")/" + r.strategy, std::vector<char>(1),
-                   [w = r.weight, g](char) { return w(*g); }, &r.ns);
+        timing.add(
+            "sampling/" + r.family + "(" + format_g17(r.alpha) + ")/" + r.strategy, std::vector<char>(1),
+            [w = r.weight, g](char) { return w(*g); }, &r.ns);
     }
 }
 
-void write_sampling_section(const std::vector<SamplingRow>& rows, const SamplingScene& s, const std::filesystem::path& dir) {
+void write_sampling_section(const std::vector<SamplingRow>& rows, const SamplingScene& s,
+                            const std::filesystem::path& dir) {
     std::ofstream csv(dir / "sampling.csv");
-    write_csv_record(csv, {"family", "alpha", "strategy", "samples", "mean", "stderr", "variance", "ns_per_sample", "efficiency"});
+    write_csv_record(
+        csv, {"family", "alpha", "strategy", "samples", "mean", "stderr", "variance", "ns_per_sample", "efficiency"});
     std::ofstream md(dir / "report.md", std::ios::app);
     char head[600];
-    std::snprintf(head, sizeof head,
-                  "\n## Sampling efficiency: cosine, D cos and visible-normal sampling\n\nDirectional albedo of a white "
-                  "conductor (F = 1, height-correlated G2) seen from theta_o = %g deg under a uniform white environment, "
-                  "%zu samples per estimate. Efficiency = 1 / (variance x seconds per sample); time per sample by Google "
-                  "Benchmark on one core. The three means estimate the same albedo.\n\n![](sampling_efficiency.png)\n\n",
-                  s.theta_o, s.samples);
+    std::snprintf(
+        head, sizeof head,
+        "\n## Sampling efficiency: cosine, D cos and visible-normal sampling\n\nDirectional albedo of a white "
+        "conductor (F = 1, height-correlated G2) seen from theta_o = %g deg under a uniform white environment, "
+        "%zu samples per estimate. Efficiency = 1 / (variance x seconds per sample); time per sample by Google "
+        "Benchmark on one core. The three means estimate the same albedo.\n\n![](sampling_efficiency.png)\n\n",
+        s.theta_o, s.samples);
     md << head << "| ndf | strategy | albedo (mean +- stderr) | variance | ns/sample | efficiency (1/s) |\n"
        << "|---|---|---|---:|---:|---:|\n";
     for (const SamplingRow& r : rows) {
         const double se = std::sqrt(r.variance / static_cast<double>(r.samples)), eff = 1e9 / (r.variance * r.ns);
-        write_csv_record(csv, {r.family, format_g17(r.alpha), r.strategy, std::to_string(r.samples), format_g17(r.mean),
-                               format_g17(se), format_g17(r.variance), format_g17(r.ns), format_g17(eff)});
+        write_csv_record(csv,
+                         {r.family, format_g17(r.alpha), r.strategy, std::to_string(r.samples), format_g17(r.mean),
+                          format_g17(se), format_g17(r.variance), format_g17(r.ns), format_g17(eff)});
         char line[300];
-        std::snprintf(line, sizeof line, "| %s(%g) | %s | %.5f +- %.5f | %.3e | %.0f | %.3e |\n", r.family.c_str(), r.alpha,
-                      r.strategy.c_str(), r.mean, se, r.variance, r.ns, eff);
+        std::snprintf(line, sizeof line, "| %s(%g) | %s | %.5f +- %.5f | %.3e | %.0f | %.3e |\n", r.family.c_str(),
+                      r.alpha, r.strategy.c_str(), r.mean, se, r.variance, r.ns, eff);
         md << line;
     }
 }

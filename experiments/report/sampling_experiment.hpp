@@ -36,8 +36,8 @@ struct SamplingRow {
     std::string family, strategy;
     double alpha = 0.0;
     std::size_t samples = 0;
-    double mean = 0.0, variance = 0.0;  // of the per-sample weight
-    double ns = 0.0;                    // per sample, set by the timing
+    double mean = 0.0, variance = 0.0;   // of the per-sample weight
+    double ns = 0.0;                     // per sample, set by the timing
     std::function<double(Rng&)> weight;  // one sample of the estimator (for the timing)
 };
 
@@ -55,6 +55,7 @@ std::vector<SamplingRow> run_sampling_experiment(const std::vector<AnyNdf>& ndfs
 void add_sampling_timing(std::vector<SamplingRow>& rows, const SamplingScene& s, Timing& timing);
 
 // DIR/sampling.csv and the section appended to DIR/report.md: per (family, alpha) the strategies side by side.
-void write_sampling_section(const std::vector<SamplingRow>& rows, const SamplingScene& s, const std::filesystem::path& dir);
+void write_sampling_section(const std::vector<SamplingRow>& rows, const SamplingScene& s,
+                            const std::filesystem::path& dir);
 
 }  // namespace smithlab::report

@@ -25,7 +25,8 @@ void read_timing(StrictTable& doc, Settings& s) {
 }
 
 void read_figures(StrictTable& doc, Settings::Figures& fig) {
-    auto f = doc.optional_table("figures", {"pareto", "error_maps", "dimov_heightfields", "dimov_spline_mean", "dimov_gamma4_vs_10"});
+    auto f = doc.optional_table(
+        "figures", {"pareto", "error_maps", "dimov_heightfields", "dimov_spline_mean", "dimov_gamma4_vs_10"});
     if (!f) return;
     fig.pareto = f->flag("pareto", false);
     fig.error_maps = f->flag("error_maps", false);

@@ -8,11 +8,13 @@
 
 namespace smithlab::report {
 
-std::unique_ptr<Section> g1_section();        // [[ndf]], [variants]: every Lambda variant on the grid (g1_table.hpp)
-std::unique_ptr<Section> g2_section();        // [g2]: the G2 approximations (g2_table.hpp)
-std::unique_ptr<Section> sampling_section();  // [sampling]: the sampling-efficiency experiment (sampling_experiment.hpp)
-std::unique_ptr<Section> walk_section();      // [walk]: albedo by scattering order, path-traced (walk_section.hpp)
-std::unique_ptr<Section> figures_section();   // [figures]: the Dimov 2015 reproductions and the figures' part of report.md
+std::unique_ptr<Section> g1_section();  // [[ndf]], [variants]: every Lambda variant on the grid (g1_table.hpp)
+std::unique_ptr<Section> g2_section();  // [g2]: the G2 approximations (g2_table.hpp)
+std::unique_ptr<Section>
+sampling_section();                       // [sampling]: the sampling-efficiency experiment (sampling_experiment.hpp)
+std::unique_ptr<Section> walk_section();  // [walk]: albedo by scattering order, path-traced (walk_section.hpp)
+std::unique_ptr<Section>
+figures_section();  // [figures]: the Dimov 2015 reproductions and the figures' part of report.md
 
 // All of the above, in that order: report.md's order.
 Sections builtin_sections();

@@ -17,7 +17,8 @@ struct Settings {
         bool error_maps = false;          // |dG1| over (alpha, mu), worst over gamma, one map per variant
         bool dimov_heightfields = false;  // Dimov 2015 sec. 4: G1 for gamma = 0..4, alpha in (0.1, 0.5), mu in (0, 5)
         bool dimov_spline_mean = false;   // Dimov 2015 sec. 5: the spline's mean |dG1| (published: about 0.001)
-        bool dimov_gamma4_vs_10 = false;  // Dimov 2015 sec. 6: |G1(gamma=4) - G1(gamma=10)|, alpha in (0,1), mu in (0,2)
+        bool dimov_gamma4_vs_10 =
+            false;  // Dimov 2015 sec. 6: |G1(gamma=4) - G1(gamma=10)|, alpha in (0,1), mu in (0,2)
     } figures;
 };
 

@@ -19,7 +19,8 @@ public:
         benchmark::JSONReporter::ReportRuns(runs);
         done_ += runs.size();
         progress_(static_cast<double>(done_) / static_cast<double>(items_), [&] {
-            return "report: timing " + std::to_string(done_) + "/" + std::to_string(items_) + " variants and estimators";
+            return "report: timing " + std::to_string(done_) + "/" + std::to_string(items_) +
+                " variants and estimators";
         });
     }
 

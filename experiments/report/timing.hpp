@@ -42,7 +42,8 @@ private:
         std::string name;
         std::size_t per_run;  // evaluations an iteration
         double* ns;
-        std::function<void(benchmark::State&)> body;  // registered with Google Benchmark: called once per run, not per evaluation
+        std::function<void(benchmark::State&)>
+            body;  // registered with Google Benchmark: called once per run, not per evaluation
     };
     std::vector<Item> items_;
 };

@@ -39,7 +39,8 @@ struct LambdaPoint {
 inline double lambda_point_value(const LambdaPoint& p) { return (*p.Lambda)(p.mu); }
 // The timing points of a variant prepared for each NDF of a grid (prepared[n] for NDF n) over mus. prepared must
 // outlive the points.
-inline std::vector<LambdaPoint> lambda_timing_points(std::span<const LambdaOfMu> prepared, std::span<const double> mus) {
+inline std::vector<LambdaPoint> lambda_timing_points(std::span<const LambdaOfMu> prepared,
+                                                     std::span<const double> mus) {
     std::vector<LambdaPoint> out;
     for (const GridIndex& i : timing_points(prepared.size(), mus.size())) out.push_back({&prepared[i.ndf], mus[i.mu]});
     return out;
@@ -87,9 +88,8 @@ void time_stream(benchmark::State& state, std::size_t n, const Stream& stream) {
         benchmark::ClobberMemory();
     }
     state.SetItemsProcessed(state.iterations() * static_cast<benchmark::IterationCount>(n));
-    state.counters["ns_per_eval"] = benchmark::Counter(static_cast<double>(n) * 1e-9,
-                                                       benchmark::Counter::kIsIterationInvariantRate |
-                                                           benchmark::Counter::kInvert);
+    state.counters["ns_per_eval"] = benchmark::Counter(
+        static_cast<double>(n) * 1e-9, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
 }  // namespace smithlab::report

@@ -1,19 +1,19 @@
 #include "report/walk_section.hpp"
 
 #include <cmath>
-#include <optional>
 #include <cstdio>
 #include <fstream>
+#include <optional>
 #include <thread>
 #include <variant>
 
 #include "output/ndf_columns.hpp"
 #include "output/progress.hpp"
-#include "trace/cell_jobs.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
 #include "smithlab/spec.hpp"
 #include "smithlab/walk/trace.hpp"
+#include "trace/cell_jobs.hpp"
 
 namespace smithlab::report {
 
@@ -51,9 +51,9 @@ std::vector<WalkCell> walk_cells(const WalkScene& w, const NdfRegistry& registry
     std::vector<WalkCell> cells;
     for (const NdfEntry& e : w.ndfs)
         for (const ParamPoint& p : e.points()) {
-            const std::vector<std::optional<double>> alphas =
-                e.roughness_given ? std::vector<std::optional<double>>{std::nullopt}
-                                  : std::vector<std::optional<double>>(w.alphas.begin(), w.alphas.end());
+            const std::vector<std::optional<double>> alphas = e.roughness_given
+                ? std::vector<std::optional<double>>{std::nullopt}
+                : std::vector<std::optional<double>>(w.alphas.begin(), w.alphas.end());
             for (const std::optional<double>& a : alphas) {
                 const AnyNdf ndf = make_entry_ndf(e, registry, p, a);
                 try {
@@ -93,9 +93,8 @@ std::vector<WalkResult> trace_walk_cells(const std::vector<WalkCell>& cells, con
     });
     output::ProgressLine progress;
     cluster::run_jobs(plan, 0, [&](std::uint64_t merged, std::uint64_t all) {
-        progress(static_cast<double>(merged) / static_cast<double>(all), [&] {
-            return "report: walk section, " + std::to_string(merged * 100 / all) + "% of the walks";
-        });
+        progress(static_cast<double>(merged) / static_cast<double>(all),
+                 [&] { return "report: walk section, " + std::to_string(merged * 100 / all) + "% of the walks"; });
     });
     std::vector<WalkResult> out;  // rank 0's; none on the others
     for (std::optional<WalkResult>& r : done)
@@ -109,8 +108,8 @@ void write_walk_csv(const std::vector<WalkResult>& results, const WalkScene& w, 
     std::vector<AnyNdf> ndfs;
     for (const WalkResult& r : results) ndfs.push_back(r.cell.ndf);
     const output::NdfColumns params = output::ndf_columns(ndfs, {"alpha", "gamma"});
-    std::vector<std::string> head = {"ndf", "family", "gamma", "alpha", "material", "theta_i", "order", "albedo", "stderr",
-                                     "walks", "label"};
+    std::vector<std::string> head = {"ndf",   "family", "gamma",  "alpha", "material", "theta_i",
+                                     "order", "albedo", "stderr", "walks", "label"};
     head.insert(head.end(), params.names.begin(), params.names.end());
     std::ofstream csv(dir / "walk_albedo.csv");
     write_csv_record(csv, head);
@@ -118,17 +117,25 @@ void write_walk_csv(const std::vector<WalkResult>& results, const WalkScene& w, 
         const WalkCell& c = r.cell;
         const std::vector<std::string> param_cells = params.cells(c.ndf);
         for (std::size_t o = 0; o < walk_orders.size(); ++o) {
-            std::vector<std::string> f = {c.ndf.spec(), c.family, c.ndf.has_param("gamma") ? format_g17(c.ndf.param("gamma")) : "",
-                                          format_g17(c.alpha), walk::format_material(c.material), format_shortest(c.theta_i),
-                                          walk_orders[o], format_g17(r.albedo[o].value), format_g17(r.albedo[o].stderr_),
-                                          std::to_string(w.walks), family_label(c)};
+            std::vector<std::string> f = {c.ndf.spec(),
+                                          c.family,
+                                          c.ndf.has_param("gamma") ? format_g17(c.ndf.param("gamma")) : "",
+                                          format_g17(c.alpha),
+                                          walk::format_material(c.material),
+                                          format_shortest(c.theta_i),
+                                          walk_orders[o],
+                                          format_g17(r.albedo[o].value),
+                                          format_g17(r.albedo[o].stderr_),
+                                          std::to_string(w.walks),
+                                          family_label(c)};
             f.insert(f.end(), param_cells.begin(), param_cells.end());
             write_csv_record(csv, f);
         }
     }
 }
 
-void write_walk_markdown(const std::vector<WalkResult>& results, const WalkScene& w, double seconds, const fs::path& dir) {
+void write_walk_markdown(const std::vector<WalkResult>& results, const WalkScene& w, double seconds,
+                         const fs::path& dir) {
     std::int64_t events = 0, capped = 0;
     for (const WalkResult& r : results) {
         events += r.events;
@@ -138,17 +145,18 @@ void write_walk_markdown(const std::vector<WalkResult>& results, const WalkScene
     const std::string threads = std::to_string(util::thread_count(0)) + " threads",
                       where = mpi::size() > 1 ? std::to_string(mpi::size()) + " MPI ranks x " + threads : threads;
     char head[1200];
-    std::snprintf(head, sizeof head,
-                  "\n## Multiple scattering: albedo by scattering order (path-traced)\n\nThe Smith microsurface traced "
-                  "by smithlab's random walk (Heitz, Hanika, d'Eon and Dachsbacher 2016, alg. 1-3: uniform heights, "
-                  "Smith's downward Lambda, hit normals the visible normals of the ray): the fraction of the incident "
-                  "energy that leaves after exactly 1, 2, 3 and 4 or more facet events, %lld walks per cell (seed %llu), "
-                  "+- one standard error. **lost** = orders 2+: the energy a single-scattering BRDF drops, 1 - order 1 "
-                  "where the facets absorb nothing (mirror, lambert(albedo=1)), what a multiple-scattering model must "
-                  "restore. %zu cells, %.3g walks, %.3g events (%lld walks capped), %.1f s on %s.\n\n"
-                  "![](walk_albedo.png)\n\n",
-                  static_cast<long long>(w.walks), w.seed, results.size(), static_cast<double>(results.size()) * w.walks,
-                  static_cast<double>(events), static_cast<long long>(capped), seconds, where.c_str());
+    std::snprintf(
+        head, sizeof head,
+        "\n## Multiple scattering: albedo by scattering order (path-traced)\n\nThe Smith microsurface traced "
+        "by smithlab's random walk (Heitz, Hanika, d'Eon and Dachsbacher 2016, alg. 1-3: uniform heights, "
+        "Smith's downward Lambda, hit normals the visible normals of the ray): the fraction of the incident "
+        "energy that leaves after exactly 1, 2, 3 and 4 or more facet events, %lld walks per cell (seed %llu), "
+        "+- one standard error. **lost** = orders 2+: the energy a single-scattering BRDF drops, 1 - order 1 "
+        "where the facets absorb nothing (mirror, lambert(albedo=1)), what a multiple-scattering model must "
+        "restore. %zu cells, %.3g walks, %.3g events (%lld walks capped), %.1f s on %s.\n\n"
+        "![](walk_albedo.png)\n\n",
+        static_cast<long long>(w.walks), w.seed, results.size(), static_cast<double>(results.size()) * w.walks,
+        static_cast<double>(events), static_cast<long long>(capped), seconds, where.c_str());
     md << head << "| ndf | material | alpha | theta_i | order 1 | order 2 | order 3 | order 4+ | lost (2+) | all |\n"
        << "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const WalkResult& r : results) {
@@ -165,7 +173,8 @@ void write_walk_markdown(const std::vector<WalkResult>& results, const WalkScene
 
 }  // namespace
 
-void write_walk_section(const std::vector<WalkResult>& results, const WalkScene& w, double seconds, const fs::path& dir) {
+void write_walk_section(const std::vector<WalkResult>& results, const WalkScene& w, double seconds,
+                        const fs::path& dir) {
     write_walk_csv(results, w, dir);
     write_walk_markdown(results, w, seconds, dir);
 }

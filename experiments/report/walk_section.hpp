@@ -31,8 +31,8 @@ struct WalkScene {
     unsigned long long seed = 1;
 };
 
-// One cell of the sweep, checked: NDFs (each [[walk.ndf]]'s points x alpha) outermost, then materials, then theta_i; its
-// place in that order keys its random stream (walk::WalkRng(seed, index, walk)).
+// One cell of the sweep, checked: NDFs (each [[walk.ndf]]'s points x alpha) outermost, then materials, then theta_i;
+// its place in that order keys its random stream (walk::WalkRng(seed, index, walk)).
 struct WalkCell {
     std::uint64_t index;
     std::string family;

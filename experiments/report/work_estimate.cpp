@@ -55,15 +55,18 @@ Work estimate_work(const Scene& scene, const VariantRegistry& variants) {
 std::string describe(const Work& work) {
     std::string parts;
     for (const Work::Part& p : work.parts)
-        if (p.count > 0.0 || p.shown_when_zero) parts += (parts.empty() ? "" : ", ") + p.name + " " + short_number(p.count);
+        if (p.count > 0.0 || p.shown_when_zero)
+            parts += (parts.empty() ? "" : ", ") + p.name + " " + short_number(p.count);
     return short_number(work.total()) + " evaluations (" + parts + ")";
 }
 
 void check_work(const Work& work, double max_work, const std::string& source) {
     if (work.total() <= max_work) return;
     throw input_error(source + ": the scene's work is estimated at " + describe(work) + ", above the limit of " +
-                      short_number(max_work) + " evaluations; nothing was computed. Make the grid smaller, select fewer " +
-                      "variants, samples or walks, or raise the limit: smithlab report --max-work " + short_number(rounded_up(work.total())));
+                      short_number(max_work) +
+                      " evaluations; nothing was computed. Make the grid smaller, select fewer " +
+                      "variants, samples or walks, or raise the limit: smithlab report --max-work " +
+                      short_number(rounded_up(work.total())));
 }
 
 }  // namespace smithlab::report

@@ -4,13 +4,13 @@
 // reference Lambda, a sample of the sampling experiment, a walk of the walk section at alpha <= 1 (1 to 2.5 events
 // on average, 0.1-1 us on one core; nothing of a walk is kept but its cell's sums). Above alpha = 1 a walk counts
 // alpha: its length grows like 1.6 alpha events (GGX mirror facets, theta_i = 45: 5 at alpha 3, 16 at 10, 157 at
-// 100, 1.6e4 at 1e4), so that a scene of very rough surfaces is refused, not run for hours. It is an upper bound: a variant is counted on every NDF
-// of the grid, also those it does not apply to, and every reference is counted as computed, also those a cache
-// already holds. Measured (Release, one core): 1e6 Lambda evaluations + 1e6 references (schlick-ggx on a
-// 1000 x 1000 GGX grid) take 12 s and 184 MB, ~90 bytes per evaluation kept (grid points, the reference cache); so
-// the default limit, 1e8, bounds the report to ~9 GB and tens of minutes, while the default scene (1.2e7, nearly
-// all of it the sampling experiment's samples, which are not kept) and the tests' scenes (< 1e6) are far inside.
-// The figures pareto and error_maps draw every Lambda evaluation in Python, at ~700 bytes a point: keep a scene
+// 100, 1.6e4 at 1e4), so that a scene of very rough surfaces is refused, not run for hours. It is an upper bound: a
+// variant is counted on every NDF of the grid, also those it does not apply to, and every reference is counted as
+// computed, also those a cache already holds. Measured (Release, one core): 1e6 Lambda evaluations + 1e6 references
+// (schlick-ggx on a 1000 x 1000 GGX grid) take 12 s and 184 MB, ~90 bytes per evaluation kept (grid points, the
+// reference cache); so the default limit, 1e8, bounds the report to ~9 GB and tens of minutes, while the default scene
+// (1.2e7, nearly all of it the sampling experiment's samples, which are not kept) and the tests' scenes (< 1e6) are far
+// inside. The figures pareto and error_maps draw every Lambda evaluation in Python, at ~700 bytes a point: keep a scene
 // that draws them near 1e7.
 #pragma once
 

@@ -63,8 +63,11 @@ NdfEntry read_ndf_entry(StrictTable& t, const NdfRegistry& registry) {
     std::string listed;
     for (const std::string& p : own) listed += (listed.empty() ? "" : ", ") + p;
     for (const std::string& p : ndf_table_keys(registry))
-        if (p != "family" && t.has(p) && std::find(own.begin(), own.end(), p) == own.end() && registry_declares(registry, p))
-            t.fail(p, "is not a parameter of '" + e.family + "' (its parameters: " + (listed.empty() ? "none" : listed) + ")");
+        if (p != "family" && t.has(p) && std::find(own.begin(), own.end(), p) == own.end() &&
+            registry_declares(registry, p))
+            t.fail(p,
+                   "is not a parameter of '" + e.family + "' (its parameters: " + (listed.empty() ? "none" : listed) +
+                       ")");
     for (const std::string& p : info->text_parameters)
         if (t.has(p)) e.texts.emplace_back(p, t.text(p));
     for (const std::string& p : info->parameters)

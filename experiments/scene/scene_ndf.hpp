@@ -14,8 +14,8 @@
 #include <utility>
 #include <vector>
 
-#include "smithlab/registry.hpp"
 #include "scene/strict_table.hpp"
+#include "smithlab/registry.hpp"
 
 namespace smithlab::report {
 

@@ -46,14 +46,22 @@ std::string describe_toml(const toml::value& v) {
         return std::string(kind) + " (" + text + ")";
     };
     switch (v.type()) {
-        case toml::value_t::boolean: return shown("a boolean");
-        case toml::value_t::integer: return shown("an integer");
-        case toml::value_t::floating: return shown("a real");
-        case toml::value_t::string: return shown("a string");
-        case toml::value_t::array: return "a list";
-        case toml::value_t::table: return "a table";
-        case toml::value_t::empty: return "nothing";
-        default: return shown("a date or time");
+        case toml::value_t::boolean:
+            return shown("a boolean");
+        case toml::value_t::integer:
+            return shown("an integer");
+        case toml::value_t::floating:
+            return shown("a real");
+        case toml::value_t::string:
+            return shown("a string");
+        case toml::value_t::array:
+            return "a list";
+        case toml::value_t::table:
+            return "a table";
+        case toml::value_t::empty:
+            return "nothing";
+        default:
+            return shown("a date or time");
     }
 }
 
@@ -67,9 +75,11 @@ void StrictTable::refuse_unknown_keys() const {
     for (const auto& [key, value] : table_->as_table()) {
         if (std::find(known_.begin(), known_.end(), key) != known_.end()) continue;
         const std::string near = nearest_name(key, known_);
-        const std::string hint = near.empty() ? " (known here: " + joined(known_) + ")" : " (did you mean '" + name_of(near) + "'?)";
-        lines.push_back({value.location().line(), source_ + ":" + std::to_string(value.location().line()) + ": unknown " +
-                                                      (is_section(value) ? "section '" : "key '") + name_of(key) + "'" + hint});
+        const std::string hint =
+            near.empty() ? " (known here: " + joined(known_) + ")" : " (did you mean '" + name_of(near) + "'?)";
+        lines.push_back({value.location().line(),
+                         source_ + ":" + std::to_string(value.location().line()) + ": unknown " +
+                             (is_section(value) ? "section '" : "key '") + name_of(key) + "'" + hint});
     }
     if (lines.empty()) return;
     std::sort(lines.begin(), lines.end());
@@ -84,12 +94,15 @@ std::string StrictTable::name_of(const std::string& key) const { return path_.em
 
 std::string StrictTable::where(const std::string& key) const {
     const auto found = table_->as_table().find(key);
-    if (found != table_->as_table().end()) return source_ + ":" + std::to_string(found->second.location().line()) + ": " + name_of(key);
+    if (found != table_->as_table().end())
+        return source_ + ":" + std::to_string(found->second.location().line()) + ": " + name_of(key);
     if (path_.empty()) return source_ + ": " + name_of(key);  // the document has no line of its own
     return source_ + ":" + std::to_string(table_->location().line()) + ": " + name_of(key);
 }
 
-void StrictTable::fail(const std::string& key, const std::string& message) const { throw input_error(where(key) + " " + message); }
+void StrictTable::fail(const std::string& key, const std::string& message) const {
+    throw input_error(where(key) + " " + message);
+}
 
 const toml::value& StrictTable::need(const std::string& key) {
     if (!has(key)) fail(key, "is missing");
@@ -105,7 +118,9 @@ std::string StrictTable::text(const std::string& key) {
     return v.as_string().str;
 }
 
-std::string StrictTable::text(const std::string& key, const std::string& fallback) { return has(key) ? text(key) : fallback; }
+std::string StrictTable::text(const std::string& key, const std::string& fallback) {
+    return has(key) ? text(key) : fallback;
+}
 
 double StrictTable::real(const std::string& key) {
     const toml::value& v = need(key);
@@ -120,7 +135,8 @@ std::int64_t StrictTable::integer(const std::string& key, std::int64_t lo, std::
     const toml::value& v = need(key);
     const std::string range = "[" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
     if (!v.is_integer()) fail(key, "must be an integer in " + range + ", got " + describe_toml(v));
-    if (v.as_integer() < lo || v.as_integer() > hi) fail(key, "must be an integer in " + range + ", got " + std::to_string(v.as_integer()));
+    if (v.as_integer() < lo || v.as_integer() > hi)
+        fail(key, "must be an integer in " + range + ", got " + std::to_string(v.as_integer()));
     return v.as_integer();
 }
 
@@ -206,7 +222,10 @@ std::vector<double> read_axis(StrictTable& t, const std::string& key) {
         if (out.empty()) t.fail(key, "is an empty list");
         return out;
     }
-    if (!v.is_table()) t.fail(key, "must be a list of numbers, {log = [lo, hi], n = N} or {lin = [lo, hi], n = N}, got " + describe_toml(v));
+    if (!v.is_table())
+        t.fail(
+            key,
+            "must be a list of numbers, {log = [lo, hi], n = N} or {lin = [lo, hi], n = N}, got " + describe_toml(v));
     StrictTable spacing = t.table(key, {"log", "lin", "n"});
     const bool log = spacing.has("log");
     if (log == spacing.has("lin")) t.fail(key, "must hold exactly one of log = [lo, hi] and lin = [lo, hi]");
@@ -214,10 +233,10 @@ std::vector<double> read_axis(StrictTable& t, const std::string& key) {
     const std::vector<double> range = spacing.reals(range_key);
     const std::int64_t n = spacing.integer("n", 2, max_axis_points);
     spacing.done();
-    if (range.size() != 2 || !std::isfinite(range[0]) || !std::isfinite(range[1]) || !(range[0] < range[1]) || (log && !(range[0] > 0)))
+    if (range.size() != 2 || !std::isfinite(range[0]) || !std::isfinite(range[1]) || !(range[0] < range[1]) ||
+        (log && !(range[0] > 0)))
         spacing.fail(range_key, "must be [lo, hi], finite, with lo < hi (and lo > 0 for log)");
     return spaced(range[0], range[1], n, log);
 }
-
 
 }  // namespace smithlab::report

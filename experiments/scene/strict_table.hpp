@@ -57,7 +57,7 @@ public:
 
 private:
     std::string name_of(const std::string& key) const;  // "grid.mu"
-    const toml::value& need(const std::string& key);      // present, or refused as missing; marks read
+    const toml::value& need(const std::string& key);    // present, or refused as missing; marks read
     void refuse_unknown_keys() const;
 
     const toml::value* table_;

@@ -34,7 +34,9 @@ inline walk::MicrosurfaceOptions parse_walk_options(const std::string& downward,
                                                     const std::string& where) {
     walk::MicrosurfaceOptions o;
     const Named<Downward>* d = find_named(downward_names, downward);
-    if (!d) throw input_error(where + "downward must be " + join_names(downward_names, ", ", " or ") + ", got '" + downward + "'");
+    if (!d)
+        throw input_error(where + "downward must be " + join_names(downward_names, ", ", " or ") + ", got '" +
+                          downward + "'");
     o.downward = d->value;
     const Named<walk::HitNormal>* h = find_named(hit_normal_names, hit_normal);
     if (!h)

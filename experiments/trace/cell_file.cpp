@@ -64,12 +64,9 @@ bool read_total(std::istream& in, walk::Estimate& e) {
 // The "a," and "b," lines to the end; false at any other line.
 bool read_rows(std::istream& in, CellRows& rows) {
     for (std::string line; std::getline(in, line);) {
-        if (line.rfind("a,", 0) == 0)
-            rows.albedo.push_back(line.substr(2));
-        else if (line.rfind("b,", 0) == 0)
-            rows.brdf.push_back(line.substr(2));
-        else
-            return false;
+        if (line.rfind("a,", 0) == 0) rows.albedo.push_back(line.substr(2));
+        else if (line.rfind("b,", 0) == 0) rows.brdf.push_back(line.substr(2));
+        else return false;
     }
     return true;
 }

@@ -82,10 +82,8 @@ std::size_t first_field_end(const std::string& row) {
     if (row.empty() || row[0] != '"') return row.find(',');
     for (std::size_t i = 1; i < row.size(); ++i)
         if (row[i] == '"') {
-            if (i + 1 < row.size() && row[i + 1] == '"')
-                ++i;
-            else
-                return i + 1;
+            if (i + 1 < row.size() && row[i + 1] == '"') ++i;
+            else return i + 1;
         }
     return std::string::npos;
 }

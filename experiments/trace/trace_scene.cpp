@@ -3,11 +3,11 @@
 #include <cmath>
 #include <limits>
 
-#include "smithlab/csv.hpp"
-#include "smithlab/spec.hpp"
 #include "scene/scene_ndf.hpp"
 #include "scene/strict_table.hpp"
 #include "scene/walk_options.hpp"
+#include "smithlab/csv.hpp"
+#include "smithlab/spec.hpp"
 
 namespace smithlab::trace {
 
@@ -69,8 +69,10 @@ TraceScene parse_trace_scene(const std::string& text, const std::string& source,
     s.theta_i = report::read_axis(grid, "theta_i");
     for (double t : s.theta_i)
         if (!(t >= 0.0 && t <= 180.0 && t != 90.0))
-            grid.fail("theta_i", "must be in [0, 90) degrees (light from above), or (90, 180] for light from below into a "
-                                 "dielectric, got " + format_shortest(t));
+            grid.fail("theta_i",
+                      "must be in [0, 90) degrees (light from above), or (90, 180] for light from below into a "
+                      "dielectric, got " +
+                          format_shortest(t));
     s.phi_i = grid.has("phi_i") ? report::read_axis(grid, "phi_i") : std::vector<double>{0.0};
     for (double p : s.phi_i)
         if (!std::isfinite(p)) grid.fail("phi_i", "must be finite");

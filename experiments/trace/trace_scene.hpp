@@ -60,7 +60,8 @@ struct TraceCell {
 // Refuses (input_error "SOURCE:LINE: key ...") an unknown key or section, a value of the wrong type, an integer out
 // of its bounds (walks.n in [1, 1e12], walks.max_order in [0, 1e6], brdf bins in [1, 1e4]), a theta_i outside
 // [0, 180] or at 90 (grazing), or a non-finite phi_i; light from below (theta_i > 90) is checked against each
-// material when the cells are prepared (only a dielectric takes it). NDF and material specs are checked by their parsers when the cells are prepared.
+// material when the cells are prepared (only a dielectric takes it). NDF and material specs are checked by their
+// parsers when the cells are prepared.
 // [[ndf]] tables are read as every scene's (scene/scene_ndf.hpp): a family with an axis for any of its parameters,
 // swept over grid.alpha unless it gives its own roughness axis; each point is made (checked) by the registry here.
 TraceScene parse_trace_scene(const std::string& text, const std::string& source, const NdfRegistry& registry);

@@ -9,48 +9,56 @@
 namespace smithlab {
 
 void register_gtr_ndfs(NdfRegistry& r) {
-    r.add({"gtr",
-           {"alpha", "gamma"},
-           "Generalized Trowbridge-Reitz (Burley 2012), any real gamma >= 0; closed-form Lambda at integer gamma = 0.." +
-               std::to_string(gtr_max_closed_gamma) + " (Dimov 2015 for 0..4, generated beyond), else by quadrature",
-           {"gtr(alpha=1e-4, gamma=0.5)", "gtr(alpha=0.3, gamma=1)", "gtr(alpha=0.3, gamma=1.000000001)",
-            "gtr(alpha=0.999999, gamma=1)", "gtr(alpha=1, gamma=3)", "gtr(alpha=0.2, gamma=0)",
-            "gtr(alpha=0.5, gamma=2.5)", "gtr(alpha=0.05, gamma=4)", "gtr(alpha=0.05, gamma=10)"}},
-          [](const NdfParams& p) { return gtr(p.at("alpha"), p.at("gamma")); });
+    r.add(
+        {"gtr",
+         {"alpha", "gamma"},
+         "Generalized Trowbridge-Reitz (Burley 2012), any real gamma >= 0; closed-form Lambda at integer gamma = 0.." +
+             std::to_string(gtr_max_closed_gamma) + " (Dimov 2015 for 0..4, generated beyond), else by quadrature",
+         {"gtr(alpha=1e-4, gamma=0.5)", "gtr(alpha=0.3, gamma=1)", "gtr(alpha=0.3, gamma=1.000000001)",
+          "gtr(alpha=0.999999, gamma=1)", "gtr(alpha=1, gamma=3)", "gtr(alpha=0.2, gamma=0)",
+          "gtr(alpha=0.5, gamma=2.5)", "gtr(alpha=0.05, gamma=4)", "gtr(alpha=0.05, gamma=10)"}},
+        [](const NdfParams& p) { return gtr(p.at("alpha"), p.at("gamma")); });
 }
 
 void register_gtr_variants(VariantRegistry& r) {
     auto is_gtr = [](const AnyNdf& n) { return n.family() == "gtr"; };
     r.add({"dimov-spline", "Dimov 2015 / V-Ray: natural cubic spline of G1 through gamma = 0..4, clamped above 4",
-           is_gtr, [](const AnyNdf& n) -> LambdaOfMu {
+           is_gtr,
+           [](const AnyNdf& n) -> LambdaOfMu {
                return [a = n.param("alpha"), g = n.param("gamma")](double mu) {
                    return Lambda_of_interpolated_G1(G1_gtr_dimov_spline(a, g, mu));
                };
            },
            LambdaRoute::other});
     // One evaluator for the whole family (family.hpp): no per-NDF work, alpha in [1e-4, 1], gamma in [0, 20].
-    r.add({"family",
-           "compiled-in trees of polynomial patches over (alpha, gamma, mu), in two charts, for every GTR with alpha in "
-           "[1e-4, 1], gamma in [0, 20], generated at build time (family.hpp)",
-           [](const AnyNdf& n) {
-               if (n.family() != "gtr") return false;
-               const double a = n.param("alpha"), g = n.param("gamma");
-               return a >= GtrFamily::alpha_min && a <= 1.0 && g >= 0.0 && g <= GtrFamily::gamma_max;
-           },
-           [](const AnyNdf& n) -> LambdaOfMu {
-               const double a = n.param("alpha"), g = n.param("gamma");
-               require_gtr_family_domain(a, g);
-               return [&t = GtrFamily::get(), a, g](double mu) { return t.Lambda_up(a, g, mu); };
-           },
-           LambdaRoute::other});
+    r.add(
+        {"family",
+         "compiled-in trees of polynomial patches over (alpha, gamma, mu), in two charts, for every GTR with alpha in "
+         "[1e-4, 1], gamma in [0, 20], generated at build time (family.hpp)",
+         [](const AnyNdf& n) {
+             if (n.family() != "gtr") return false;
+             const double a = n.param("alpha"), g = n.param("gamma");
+             return a >= GtrFamily::alpha_min && a <= 1.0 && g >= 0.0 && g <= GtrFamily::gamma_max;
+         },
+         [](const AnyNdf& n) -> LambdaOfMu {
+             const double a = n.param("alpha"), g = n.param("gamma");
+             require_gtr_family_domain(a, g);
+             return [&t = GtrFamily::get(), a, g](double mu) { return t.Lambda_up(a, g, mu); };
+         },
+         LambdaRoute::other});
     using K = GammaInterpolant::Kind;
     using Q = GammaInterpolant::Quantity;
-    const GammaInterpolant choices[] = {
-        {K::akima, Q::G1, 4},           {K::steffen, Q::G1, 4},          {K::cspline, Q::Lambda, 4},
-        {K::cspline, Q::log_Lambda, 4}, {K::cspline, Q::log_Lambda, 10}, {K::steffen, Q::log_Lambda, 10},
-        {K::cspline, Q::log_Lambda, 20}, {K::akima, Q::log_Lambda, 20}};
+    const GammaInterpolant choices[] = {{K::akima, Q::G1, 4},
+                                        {K::steffen, Q::G1, 4},
+                                        {K::cspline, Q::Lambda, 4},
+                                        {K::cspline, Q::log_Lambda, 4},
+                                        {K::cspline, Q::log_Lambda, 10},
+                                        {K::steffen, Q::log_Lambda, 10},
+                                        {K::cspline, Q::log_Lambda, 20},
+                                        {K::akima, Q::log_Lambda, 20}};
     for (const GammaInterpolant& how : choices)
-        r.add({name_of(how), description_of(how), is_gtr, [how](const AnyNdf& n) -> LambdaOfMu {
+        r.add({name_of(how), description_of(how), is_gtr,
+               [how](const AnyNdf& n) -> LambdaOfMu {
                    return [a = n.param("alpha"), g = n.param("gamma"), how](double mu) {
                        return Lambda_gtr_interpolated(a, g, mu, how);
                    };

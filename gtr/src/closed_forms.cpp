@@ -1,8 +1,8 @@
 #include "smithlab/gtr/closed_forms.hpp"
 
+#include <algorithm>
 #include <array>
 #include <boost/math/quadrature/gauss.hpp>
-#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>

@@ -35,10 +35,8 @@ GtrFamilyStream::Lanes make_lanes() {
             by_length[gtr_family_degree - i - j - k0 + 1].push_back({i, j, k0});
         }
     GtrFamilyStream::Lanes L{};
-    const std::array<std::array<int, 8>, 4> lengths = {{{5, 5, 5, 5, 5, 5, 4, 4},
-                                                        {4, 4, 3, 3, 3, 3, 3, 2},
-                                                        {2, 2, 2, 2, 2, 1, 1, 1},
-                                                        {1, 1, 1, 1, 0, 0, 0, 0}}};
+    const std::array<std::array<int, 8>, 4> lengths = {
+        {{5, 5, 5, 5, 5, 5, 4, 4}, {4, 4, 3, 3, 3, 3, 3, 2}, {2, 2, 2, 2, 2, 1, 1, 1}, {1, 1, 1, 1, 0, 0, 0, 0}}};
     for (int g = 0; g < 4; ++g) {
         for (int l = 0; l < 8; ++l) {
             Row r{7, 7, 7};  // a zero lane: its coefficients are 0, its factor any power (s^7)

@@ -25,8 +25,7 @@ namespace {
     return _mm512_mul_pd(_mm512_mul_pd(a, b), _mm512_mask_blend_pd(0xF0, one, x4));
 }
 
-[[gnu::target("avx512f,avx512vl,avx2,fma"), gnu::always_inline]] inline __m512d terms(
-    const float* c) {
+[[gnu::target("avx512f,avx512vl,avx2,fma"), gnu::always_inline]] inline __m512d terms(const float* c) {
     return _mm512_cvtps_pd(_mm256_loadu_ps(c));
 }
 
@@ -53,15 +52,15 @@ struct LaneIndex {
     const __m512d sum = _mm512_add_pd(_mm512_fmadd_pd(h[0], factor[0], _mm512_mul_pd(h[1], factor[1])),
                                       _mm512_fmadd_pd(h[2], factor[2], _mm512_mul_pd(h[3], factor[3])));
     return (leaf.c0 + leaf.linear[0] * s[0]) + (leaf.linear[1] * s[1] + leaf.linear[2] * s[2]) +
-           _mm512_reduce_add_pd(sum);
+        _mm512_reduce_add_pd(sum);
 }
 
 }  // namespace
 
 // n: a multiple of 16. G1 as family.hpp's GtrFamily::G1_up, the same leaves, by the route of family_stream.hpp.
-[[gnu::target("avx512f,avx512vl,avx2,fma")]] void family_stream_avx512(
-    const GtrFamilyStream& stream, const double* alpha, const double* gamma, const double* mu, double* out,
-    std::size_t n) {
+[[gnu::target("avx512f,avx512vl,avx2,fma")]] void family_stream_avx512(const GtrFamilyStream& stream,
+                                                                       const double* alpha, const double* gamma,
+                                                                       const double* mu, double* out, std::size_t n) {
     constexpr int block = 16;
     const GtrFamilyStream::Lanes& lanes = stream.lanes();
     LaneIndex L;
@@ -91,10 +90,10 @@ struct LaneIndex {
             __m512d t[3];
             __m256i top[3];
             for (int d = 0; d < 3; ++d) {
-                const __m512d lo = _mm512_mask_blend_pd(c1, _mm512_set1_pd(GtrFamily::lo[0][d]),
-                                                        _mm512_set1_pd(GtrFamily::lo[1][d]));
-                const __m512d hi = _mm512_mask_blend_pd(c1, _mm512_set1_pd(GtrFamily::hi[0][d]),
-                                                        _mm512_set1_pd(GtrFamily::hi[1][d]));
+                const __m512d lo =
+                    _mm512_mask_blend_pd(c1, _mm512_set1_pd(GtrFamily::lo[0][d]), _mm512_set1_pd(GtrFamily::lo[1][d]));
+                const __m512d hi =
+                    _mm512_mask_blend_pd(c1, _mm512_set1_pd(GtrFamily::hi[0][d]), _mm512_set1_pd(GtrFamily::hi[1][d]));
                 const __m512d inv = _mm512_mask_blend_pd(c1, _mm512_set1_pd(GtrFamily::inv_step(0, d)),
                                                          _mm512_set1_pd(GtrFamily::inv_step(1, d)));
                 // as GtrFamily::locate: x >= lo ? min(x, hi) : lo (NaN to lo)
@@ -118,21 +117,20 @@ struct LaneIndex {
                 const __m256i k = _mm256_and_si256(_mm256_srli_epi32(depth, 8 * d), _mm256_set1_epi32(0xFF));
                 const __m256i cells_d = _mm256_sllv_epi32(_mm256_set1_epi32(1), k);
                 const __m512d in_box = _mm512_sub_pd(t[d], _mm512_cvtepi32_pd(top[d]));
-                const __m256i j = _mm256_min_epi32(
-                    _mm512_cvttpd_epi32(_mm512_mul_pd(in_box, _mm512_cvtepi32_pd(cells_d))),
-                    _mm256_sub_epi32(cells_d, _mm256_set1_epi32(1)));
+                const __m256i j =
+                    _mm256_min_epi32(_mm512_cvttpd_epi32(_mm512_mul_pd(in_box, _mm512_cvtepi32_pd(cells_d))),
+                                     _mm256_sub_epi32(cells_d, _mm256_set1_epi32(1)));
                 fine = _mm256_add_epi32(_mm256_sllv_epi32(fine, k), j);
             }
             // the 16-bit leaf numbers, read 32 bits at a time (ids ends in a spare zero)
-            const __m256i leaf = _mm256_and_si256(
-                _mm256_i32gather_epi32(ids, _mm256_add_epi32(offset, fine), 2), _mm256_set1_epi32(0xFFFF));
+            const __m256i leaf = _mm256_and_si256(_mm256_i32gather_epi32(ids, _mm256_add_epi32(offset, fine), 2),
+                                                  _mm256_set1_epi32(0xFFFF));
             _mm256_store_si256(reinterpret_cast<__m256i*>(id + h), leaf);
             // family.hpp's asymptotes: below xi_lo in chart 0 (a flag), beyond eta_hi (slope -1 in ln mu: a shift
             // min(0, eta_hi - eta) of ln(mu Lambda))
             const __mmask8 low = _mm512_kandn(c1, _mm512_cmp_pd_mask(z, _mm512_set1_pd(GtrFamily::xi_lo), _CMP_LT_OQ));
             _mm512_store_pd(below + h, _mm512_maskz_mov_pd(low, one));
-            _mm512_store_pd(shift + h,
-                            _mm512_min_pd(zero, _mm512_sub_pd(_mm512_set1_pd(GtrFamily::eta_hi), eta)));
+            _mm512_store_pd(shift + h, _mm512_min_pd(zero, _mm512_sub_pd(_mm512_set1_pd(GtrFamily::eta_hi), eta)));
         }
         for (int i = 0; i < block; ++i) {
             const char* p = reinterpret_cast<const char*>(leaves + id[i]);
@@ -148,11 +146,10 @@ struct LaneIndex {
         // 3. eight at once: G1 = 1 / (1 - P/2 + (e^f + P alpha mu_lo / 2) / mu); mu = 0 gives 0, mu = inf 1
         for (int h = 0; h < block; h += 8) {
             const __m512d e = _ZGVeN8v_exp(_mm512_load_pd(f + h)), P = _mm512_load_pd(below + h);
-            const __m512d k = _mm512_mul_pd(_mm512_mul_pd(P, _mm512_loadu_pd(alpha + b + h)),
-                                            _mm512_set1_pd(0.5 * mu_lo_rel));
+            const __m512d k =
+                _mm512_mul_pd(_mm512_mul_pd(P, _mm512_loadu_pd(alpha + b + h)), _mm512_set1_pd(0.5 * mu_lo_rel));
             const __m512d m = _mm512_abs_pd(_mm512_loadu_pd(mu + b + h));
-            const __m512d Lambda = _mm512_sub_pd(_mm512_div_pd(_mm512_add_pd(e, k), m),
-                                                 _mm512_mul_pd(half, P));
+            const __m512d Lambda = _mm512_sub_pd(_mm512_div_pd(_mm512_add_pd(e, k), m), _mm512_mul_pd(half, P));
             _mm512_storeu_pd(out + b + h, _mm512_div_pd(one, _mm512_add_pd(one, Lambda)));
         }
     }

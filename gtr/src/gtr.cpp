@@ -74,14 +74,15 @@ double Gtr::Dcos_r2(double v) const {
         d = std::abs(y) < 0.5 ? -std::log1p(-y) / k : -std::log(v + (1.0 - v) * std::exp(-kL)) / k;
     }
     if (d < 0.5 * L) {
-        const double one_minus_t = -std::expm1(-d);  // t - alpha^2 = (1 - alpha^2) - (1 - t): no cancellation at d < L/2
+        const double one_minus_t =
+            -std::expm1(-d);  // t - alpha^2 = (1 - alpha^2) - (1 - t): no cancellation at d < L/2
         return std::max(0.0, a2 * one_minus_t / (one_minus_a2 - one_minus_t));
     }
     // The tail: L_c = log1p(v expm1(kL)) / k; past kL = 700, where expm1 overflows (gamma = 20 at alpha = 1e-16),
     // as L + log(v + (1 - v) e^{-kL}) / k, which cancels nothing there: v >= 2^-53 > e^{-kL}.
     const double Lc = e == 0.0 ? v * L
-                      : kL > 700.0 ? L + std::log(v + (1.0 - v) * std::exp(-kL)) / -e
-                                 : -std::log1p(v * std::expm1(kL)) / e;
+        : kL > 700.0           ? L + std::log(v + (1.0 - v) * std::exp(-kL)) / -e
+                               : -std::log1p(v * std::expm1(kL)) / e;
     return std::max(0.0, one_minus_a2 / std::expm1(Lc) - a2);
 }
 
@@ -98,8 +99,6 @@ double Lambda_from_cos_slow(const Gtr& ndf, double c) {
     return smithlab::Lambda(ndf, c / std::sqrt((1.0 - c) * (1.0 + c)));
 }
 
-double Gtr::Lambda_spline(double mu) const {
-    return Lambda_of_interpolated_G1(G1_gtr_dimov_spline(alpha, gamma, mu));
-}
+double Gtr::Lambda_spline(double mu) const { return Lambda_of_interpolated_G1(G1_gtr_dimov_spline(alpha, gamma, mu)); }
 
 }  // namespace smithlab

@@ -31,12 +31,12 @@ const char* quantity_name(GammaInterpolant::Quantity q, bool long_form) {
 
 std::string name_of(const GammaInterpolant& how) {
     return std::string("interp-") + kind_name(how.kind, false) + "-" + quantity_name(how.quantity, false) + "-k" +
-           std::to_string(how.max_knot);
+        std::to_string(how.max_knot);
 }
 
 std::string description_of(const GammaInterpolant& how) {
     return std::string(kind_name(how.kind, true)) + " of " + quantity_name(how.quantity, true) +
-           " through the closed forms at gamma = 0.." + std::to_string(how.max_knot) + ", clamped above";
+        " through the closed forms at gamma = 0.." + std::to_string(how.max_knot) + ", clamped above";
 }
 
 double Lambda_gtr_interpolated(double alpha, double gamma, double mu, const GammaInterpolant& how) {
@@ -55,10 +55,12 @@ double Lambda_gtr_interpolated(double alpha, double gamma, double mu, const Gamm
         const double L = Lambda_gtr_closed(alpha, static_cast<int>(k), mu);
         x[k] = static_cast<double>(k);
         // log Lambda of an underflowed Lambda is taken at the smallest denormal: finite, and exp() gives 0 back.
-        y[k] = how.quantity == Q::G1 ? 1.0 / (1.0 + L) : how.quantity == Q::Lambda ? L : std::log(std::max(L, DBL_TRUE_MIN));
+        y[k] = how.quantity == Q::G1    ? 1.0 / (1.0 + L)
+            : how.quantity == Q::Lambda ? L
+                                        : std::log(std::max(L, DBL_TRUE_MIN));
     }
     const gsl_interp_type* type = how.kind == GammaInterpolant::Kind::cspline ? gsl_interp_cspline
-                                  : how.kind == GammaInterpolant::Kind::akima ? gsl_interp_akima
+        : how.kind == GammaInterpolant::Kind::akima                           ? gsl_interp_akima
                                                                               : gsl_interp_steffen;
     std::unique_ptr<gsl_interp, decltype(&gsl_interp_free)> interp(gsl_interp_alloc(type, n), &gsl_interp_free);
     if (!interp) throw std::bad_alloc();
@@ -66,9 +68,12 @@ double Lambda_gtr_interpolated(double alpha, double gamma, double mu, const Gamm
     const double g = std::min(gamma, x.back());
     const double v = gsl_interp_eval(interp.get(), x.data(), y.data(), g, nullptr);
     switch (how.quantity) {
-        case Q::G1: return Lambda_of_interpolated_G1(v);
-        case Q::Lambda: return std::max(v, 0.0);  // a spline of Lambda overshoots below 0 (G1 > 1): clamped, as G1 is
-        case Q::log_Lambda: return std::exp(v);
+        case Q::G1:
+            return Lambda_of_interpolated_G1(v);
+        case Q::Lambda:
+            return std::max(v, 0.0);  // a spline of Lambda overshoots below 0 (G1 > 1): clamped, as G1 is
+        case Q::log_Lambda:
+            return std::exp(v);
     }
     return v;
 }

@@ -30,7 +30,8 @@ std::array<double, 5> knot_G1(double alpha, double mu) {
     const double s = mu + A, t1 = s * (mu + B), t2 = (A + B) * A, R = 1.0 / (t1 * t2);
     const double inv_s = R * (mu + B) * t2, inv_muB = R * s * t2, inv_AB = R * t1 * A, inv_A = R * t1 * (A + B);
     y[0] = 2.0 * mu * inv_muB;
-    y[1] = alpha == 1.0 ? y[0] : gtr_closed::ratio1_of_x(alpha, (1.0 - alpha) * (1.0 + alpha) * inv_AB * inv_s, A, mu).G1();
+    y[1] = alpha == 1.0 ? y[0]
+                        : gtr_closed::ratio1_of_x(alpha, (1.0 - alpha) * (1.0 + alpha) * inv_AB * inv_s, A, mu).G1();
     y[2] = 2.0 * mu * inv_s;
     {  // ratio3 with w = a2 / s
         const double w = a2 * inv_s;
@@ -69,8 +70,9 @@ double G1_gtr_dimov_spline(double alpha, double gamma, double mu) {
     const double e1 = y[0] - 2.0 * y[1] + y[2];
     const double e2 = y[1] - 2.0 * y[2] + y[3];
     const double e3 = y[2] - 2.0 * y[3] + y[4];
-    const std::array<double, 5> m = {0.0, (15.0 * e1 - 4.0 * e2 + e3) * inv56, (-4.0 * e1 + 16.0 * e2 - 4.0 * e3) * inv56,
-                                     (e1 - 4.0 * e2 + 15.0 * e3) * inv56, 0.0};
+    const std::array<double, 5> m = {0.0, (15.0 * e1 - 4.0 * e2 + e3) * inv56,
+                                     (-4.0 * e1 + 16.0 * e2 - 4.0 * e3) * inv56, (e1 - 4.0 * e2 + 15.0 * e3) * inv56,
+                                     0.0};
     const double g = std::min(gamma, 4.0);
     const int i = std::min(static_cast<int>(g), 3);
     const double b = g - i, a = 1.0 - b;  // distances to the right and left knots

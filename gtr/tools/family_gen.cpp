@@ -21,7 +21,7 @@ namespace {
 
 using smithlab::GtrFamily;
 constexpr int D = GtrFamily::degree;
-constexpr int F = D + 1;      // the tensor Chebyshev interpolant's degree on each axis (F + 1 points)
+constexpr int F = D + 1;  // the tensor Chebyshev interpolant's degree on each axis (F + 1 points)
 constexpr int N = F + 1;
 constexpr int max_depth = 24;
 
@@ -73,14 +73,15 @@ struct Box {
 };
 // A box wholly in the other chart's half (family.hpp: chart 0 holds ln mu < a/2) is no leaf: no point reaches it. The
 // margin 1e-9 is far above the rounding of an evaluator's z (~1e-14), so a box near the boundary is always fitted.
-bool other_half(const Box& b) {
-    return b.chart == 0 ? b.l[2] + 0.5 * b.l[0] > 1e-9 : b.h[2] - 0.5 * b.l[0] < -1e-9;
-}
+bool other_half(const Box& b) { return b.chart == 0 ? b.l[2] + 0.5 * b.l[0] > 1e-9 : b.h[2] - 0.5 * b.l[0] < -1e-9; }
 
 // |dG1| <= rel Lambda * max over the box of Lambda / (1 + Lambda)^2, from ln Lambda at the box's points (their range
 // widened by 0.1)
 double G1_factor(double ln_lambda_min, double ln_lambda_max) {
-    auto q = [](double l) { const double e = std::exp(-std::abs(l)); return e / ((1.0 + e) * (1.0 + e)); };
+    auto q = [](double l) {
+        const double e = std::exp(-std::abs(l));
+        return e / ((1.0 + e) * (1.0 + e));
+    };
     const double lo = ln_lambda_min - 0.1, hi = ln_lambda_max + 0.1;
     return lo <= 0.0 && hi >= 0.0 ? 0.25 : std::max(q(lo), q(hi));
 }
@@ -90,7 +91,7 @@ struct Fit {
     std::array<double, 3> estimate{};  // per axis
     double est = 0.0, g1_factor = 0.0;
     double check = 0.0, G1_check = 0.0;  // the largest |error| of ln(mu Lambda), of G1
-    double float_sum = 0.0;             // sum of |float terms|: rounding them moves the value by <= float_sum 2^-24
+    double float_sum = 0.0;              // sum of |float terms|: rounding them moves the value by <= float_sum 2^-24
     bool ok = false;
 };
 
@@ -147,7 +148,8 @@ Fit fit(const Box& b) {
     for (int i = 0; i < N; ++i)
         for (int j = 0; j < N; ++j)
             for (int k = 0; k < N; ++k)
-                if (i + j + k > D) r.estimate[i >= j && i >= k ? 0 : j >= k ? 1 : 2] += std::abs(v[(i * N + j) * N + k]);
+                if (i + j + k > D)
+                    r.estimate[i >= j && i >= k ? 0 : j >= k ? 1 : 2] += std::abs(v[(i * N + j) * N + k]);
     r.est = r.estimate[0] + r.estimate[1] + r.estimate[2];
     if (r.est > GtrFamily::tolerance || r.est * r.g1_factor > GtrFamily::G1_tolerance) return r;
     // the kept part in monomials of s = (x - centre) * scale: the constant and linear terms as doubles, the rest
@@ -250,7 +252,8 @@ int main(int argc, char** argv) {
                         {c,
                          {GtrFamily::edge(c, 0, i), GtrFamily::edge(c, 1, j), GtrFamily::edge(c, 2, k)},
                          {GtrFamily::edge(c, 0, i + 1), GtrFamily::edge(c, 1, j + 1), GtrFamily::edge(c, 2, k + 1)},
-                         static_cast<int>(c * GtrFamily::top_cells) + (i * top[1] + j) * top[2] + k, 0});
+                         static_cast<int>(c * GtrFamily::top_cells) + (i * top[1] + j) * top[2] + k,
+                         0});
     std::vector<int> no_leaf;  // the slots of boxes in the other chart's half
     std::vector<smithlab::GtrFamilyLeaf> leaf_data;
     std::size_t leaves = 0;
@@ -260,7 +263,9 @@ int main(int argc, char** argv) {
         std::vector<Fit> fits(pending.size());
         std::vector<char> no(pending.size());
         for (std::size_t i = 0; i < pending.size(); ++i) no[i] = other_half(pending[i]);
-        parallel_for(pending.size(), [&](std::size_t i) { if (!no[i]) fits[i] = fit(pending[i]); });
+        parallel_for(pending.size(), [&](std::size_t i) {
+            if (!no[i]) fits[i] = fit(pending[i]);
+        });
         std::vector<Box> next;
         for (std::size_t i = 0; i < pending.size(); ++i) {
             const Box& b = pending[i];
@@ -279,12 +284,14 @@ int main(int argc, char** argv) {
                 continue;
             }
             if (b.depth == max_depth) {
-                std::fprintf(stderr, "smithlab_family_gen: no fit within the tolerance at depth %d, chart %d box a "
-                             "[%g, %g] gamma [%g, %g] z [%g, %g] (estimate %g)\n", max_depth, b.chart, b.l[0], b.h[0],
-                             b.l[1], b.h[1], b.l[2], b.h[2], f.est);
+                std::fprintf(stderr,
+                             "smithlab_family_gen: no fit within the tolerance at depth %d, chart %d box a "
+                             "[%g, %g] gamma [%g, %g] z [%g, %g] (estimate %g)\n",
+                             max_depth, b.chart, b.l[0], b.h[0], b.l[1], b.h[1], b.l[2], b.h[2], f.est);
                 return 1;
             }
-            const int axis = static_cast<int>(std::max_element(f.estimate.begin(), f.estimate.end()) - f.estimate.begin());
+            const int axis =
+                static_cast<int>(std::max_element(f.estimate.begin(), f.estimate.end()) - f.estimate.begin());
             const auto first = static_cast<std::int32_t>(nodes.size());
             const double split = 0.5 * (b.l[axis] + b.h[axis]);
             nodes[b.slot] = {split, first, axis};
@@ -306,9 +313,10 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "smithlab_family_gen: cannot write %s\n", tmp.c_str());
         return 1;
     }
-    std::fprintf(out, "// Generated by smithlab_family_gen (gtr/tools/family_gen.cpp) at build time: do not edit.\n"
-                      "#include \"smithlab/gtr/family.hpp\"\n\nnamespace smithlab {\nnamespace {\n"
-                      "const GtrFamilyNode nodes[] = {\n");
+    std::fprintf(out,
+                 "// Generated by smithlab_family_gen (gtr/tools/family_gen.cpp) at build time: do not edit.\n"
+                 "#include \"smithlab/gtr/family.hpp\"\n\nnamespace smithlab {\nnamespace {\n"
+                 "const GtrFamilyNode nodes[] = {\n");
     for (std::size_t i = 0; i < nodes.size(); ++i)
         std::fprintf(out, "{%a,%d,%d},%s", nodes[i].split, nodes[i].next, nodes[i].axis, i % 4 == 3 ? "\n" : "");
     std::fprintf(out, "};\nconst GtrFamilyLeaf leaves[] = {\n");
@@ -318,9 +326,10 @@ int main(int argc, char** argv) {
         for (float c : l.higher) std::fprintf(out, "%af,", static_cast<double>(c));
         std::fprintf(out, "}},\n");
     }
-    std::fprintf(out, "{},\n};\n}  // namespace\n\n"
-                      "const GtrFamilyData gtr_family_data = {nodes, %zu, leaves, %zu, %a, %d};\n\n"
-                      "}  // namespace smithlab\n",
+    std::fprintf(out,
+                 "{},\n};\n}  // namespace\n\n"
+                 "const GtrFamilyData gtr_family_data = {nodes, %zu, leaves, %zu, %a, %d};\n\n"
+                 "}  // namespace smithlab\n",
                  nodes.size(), leaves, asymptotes, depth_max);
     if (std::fclose(out) != 0 || std::rename(tmp.c_str(), out_path.c_str()) != 0) {
         std::fprintf(stderr, "smithlab_family_gen: cannot write %s\n", out_path.c_str());
@@ -328,9 +337,10 @@ int main(int argc, char** argv) {
     }
     const double bytes = static_cast<double>(leaf_data.size() * sizeof(smithlab::GtrFamilyLeaf) +
                                              nodes.size() * sizeof(smithlab::GtrFamilyNode));
-    std::printf("smithlab_family_gen: %zu leaves and %zu nodes (%.1f MB), depth <= %d, estimates <= %.3g / %.3g (G1), "
-                "checks <= %.3g / %.3g, float terms' |sum| <= %.3g (rounding <= %.2g), asymptotes %.3g, %.1f s\n",
-                leaves, nodes.size(), bytes / 1e6, depth_max, est_max, g1_est_max, check_max, g1_check_max,
-                float_sum_max, std::ldexp(float_sum_max, -24), asymptotes, seconds);
+    std::printf(
+        "smithlab_family_gen: %zu leaves and %zu nodes (%.1f MB), depth <= %d, estimates <= %.3g / %.3g (G1), "
+        "checks <= %.3g / %.3g, float terms' |sum| <= %.3g (rounding <= %.2g), asymptotes %.3g, %.1f s\n",
+        leaves, nodes.size(), bytes / 1e6, depth_max, est_max, g1_est_max, check_max, g1_check_max, float_sum_max,
+        std::ldexp(float_sum_max, -24), asymptotes, seconds);
     return 0;
 }

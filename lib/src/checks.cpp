@@ -13,8 +13,6 @@ double clamped_cosine_azimuth(double a, double b) {
     return 2.0 * (a * std::sin(phi0) + b * phi0);
 }
 
-std::string format_where(const char* name, double value) {
-    return std::string(name) + "=" + format_shortest(value);
-}
+std::string format_where(const char* name, double value) { return std::string(name) + "=" + format_shortest(value); }
 
 }  // namespace smithlab::detail

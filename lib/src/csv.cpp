@@ -13,7 +13,9 @@ std::vector<CsvRecord> read_csv(std::istream& in) {
     std::vector<CsvRecord> records;
     std::size_t i = 0, line = 1;
     const std::size_t n = text.size();
-    auto at_eol = [&](std::size_t k) { return k >= n || text[k] == '\n' || (text[k] == '\r' && (k + 1 >= n || text[k + 1] == '\n')); };
+    auto at_eol = [&](std::size_t k) {
+        return k >= n || text[k] == '\n' || (text[k] == '\r' && (k + 1 >= n || text[k + 1] == '\n'));
+    };
     auto skip_eol = [&] {
         if (i < n && text[i] == '\r') ++i;
         if (i < n && text[i] == '\n') ++i;

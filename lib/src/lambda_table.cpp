@@ -12,10 +12,10 @@ namespace smithlab {
 
 namespace {
 
-constexpr double coarse = 0.5;      // the step of the search for the ends, and the first step of the grid, in ln mu
+constexpr double coarse = 0.5;  // the step of the search for the ends, and the first step of the grid, in ln mu
 constexpr int max_halvings = 12;
-constexpr double floor_Lambda = 1e-290;  // below: "underflowed" (the exact routes' digits are not held there)
-constexpr double x_limit = 690.0;        // the ends are searched for within mu in [1e-300, 1e300]
+constexpr double floor_Lambda = 1e-290;   // below: "underflowed" (the exact routes' digits are not held there)
+constexpr double x_limit = 690.0;         // the ends are searched for within mu in [1e-300, 1e300]
 constexpr double underflow_width = 1e-6;  // the bisection for where Lambda crosses floor_Lambda, in ln mu
 constexpr double past_scale = 1e-5;       // the large-mu end has mu Lambda below this much of its limit c0 at mu -> 0
 
@@ -41,8 +41,8 @@ struct Exact {
         } catch (const input_error& e) {
             const std::string what = e.what();
             if (what.rfind("cannot tabulate", 0) == 0) throw;
-            throw input_error(std::string("cannot tabulate Lambda: ") + why + ", and the exact route refuses mu = " +
-                              num(std::exp(x)) + ": " + what);
+            throw input_error(std::string("cannot tabulate Lambda: ") + why +
+                              ", and the exact route refuses mu = " + num(std::exp(x)) + ": " + what);
         }
     }
 };
@@ -75,7 +75,7 @@ double large_mu_error(const double* f, double x_n) {
 // S = y_i + (dy - h^2 (2 M_i + M_{i+1})/6) u + (h^2 M_i/2) u^2 + (h^2 (M_{i+1} - M_i)/6) u^3.
 std::vector<std::array<double, 4>> spline(const std::vector<double>& y) {
     const std::size_t n = y.size() - 1;  // n >= 8
-    std::vector<double> M(n + 1);  // h^2 M
+    std::vector<double> M(n + 1);        // h^2 M
     M[0] = (35.0 * y[0] - 104.0 * y[1] + 114.0 * y[2] - 56.0 * y[3] + 11.0 * y[4]) / 12.0;
     M[n] = (35.0 * y[n] - 104.0 * y[n - 1] + 114.0 * y[n - 2] - 56.0 * y[n - 3] + 11.0 * y[n - 4]) / 12.0;
     std::vector<double> cp(n), dp(n);  // the forward sweep over rows 1..n-1, then back substitution
@@ -99,7 +99,8 @@ std::vector<std::array<double, 4>> spline(const std::vector<double>& y) {
 
 LambdaTable::LambdaTable(const std::function<double(double)>& exact_fn, const LambdaTableOptions& opts) {
     require(opts.mu_min > 0.0 && std::isfinite(opts.mu_min), "table mu_min", "finite and > 0", opts.mu_min);
-    require(opts.mu_max > opts.mu_min && std::isfinite(opts.mu_max), "table mu_max", "finite and > mu_min", opts.mu_max);
+    require(opts.mu_max > opts.mu_min && std::isfinite(opts.mu_max), "table mu_max", "finite and > mu_min",
+            opts.mu_max);
     require(opts.tolerance > 0.0, "table tolerance", "> 0", opts.tolerance);
     const Exact exact{exact_fn};
     const double end_tol = opts.tolerance / 4.0;
@@ -167,15 +168,16 @@ LambdaTable::LambdaTable(const std::function<double(double)>& exact_fn, const La
     x_lo_ = x_front;
     x_hi_ = x_hi;
     if (!(x_hi_ > x_lo_ + 8.0 * underflow_width))
-        throw input_error("cannot tabulate Lambda: it drops from its small-mu asymptote to below 1e-290 at once, near mu = " +
-                          num(std::exp(x_lo_)));
+        throw input_error(
+            "cannot tabulate Lambda: it drops from its small-mu asymptote to below 1e-290 at once, near mu = " +
+            num(std::exp(x_lo_)));
 
     // 2. The spline on [x_lo, x_hi], refined until its estimate meets the tolerance.
     auto f = [&](double x) {
         const double Lx = exact(x);
         if (!(Lx >= floor_Lambda * 0.5))
-            throw input_error("cannot tabulate Lambda: it is " + std::to_string(Lx) + " at mu = " + std::to_string(std::exp(x)) +
-                              ", inside the table (Lambda must not increase with mu)");
+            throw input_error("cannot tabulate Lambda: it is " + std::to_string(Lx) + " at mu = " +
+                              std::to_string(std::exp(x)) + ", inside the table (Lambda must not increase with mu)");
         return x + std::log(Lx);
     };
     const double span = x_hi_ - x_lo_;

@@ -66,10 +66,8 @@ double integrate_gsl(FunctionRef f, double a, double b, double tol) {
     F.params = &f;
     const double epsrel = std::max(tol, 1.2e-14);
     double result = 0.0, abserr = 0.0;
-    if (std::isinf(b))
-        gsl_integration_qagiu(&F, a, 0.0, epsrel, limit, ws.get(), &result, &abserr);
-    else
-        gsl_integration_qag(&F, a, b, 0.0, epsrel, limit, GSL_INTEG_GAUSS21, ws.get(), &result, &abserr);
+    if (std::isinf(b)) gsl_integration_qagiu(&F, a, 0.0, epsrel, limit, ws.get(), &result, &abserr);
+    else gsl_integration_qag(&F, a, b, 0.0, epsrel, limit, GSL_INTEG_GAUSS21, ws.get(), &result, &abserr);
     // A status of GSL_EROUND (round-off limits the error estimate) still comes with the best estimate, which is
     // what we want at tolerances near machine precision; accuracy is established by the tests, not the status.
     return result;
@@ -83,7 +81,8 @@ double integrate(FunctionRef f, double a, double b, const QuadratureOptions& opt
     const double r = opts.backend == Backend::boost ? integrate_boost(f, a, b, opts.tolerance)
                                                     : integrate_gsl(f, a, b, opts.tolerance);
     if (!std::isfinite(r))
-        throw std::runtime_error("quadrature (" + std::string(to_string(opts.backend)) + ") did not converge to a finite value");
+        throw std::runtime_error("quadrature (" + std::string(to_string(opts.backend)) +
+                                 ") did not converge to a finite value");
     return r;
 }
 

@@ -1,9 +1,9 @@
 #include "smithlab/radial_table.hpp"
 
 #include <algorithm>
-#include <functional>
 #include <boost/math/quadrature/gauss.hpp>
 #include <cmath>
+#include <functional>
 #include <string>
 
 #include "smithlab/errors.hpp"
@@ -33,7 +33,8 @@ RadialTable::RadialTable(const std::function<double(double s)>& w) {
     auto g = [&](double y) {
         const double s = std::exp(y), v = w(s);
         if (!(v >= 0.0 && v < INFINITY))
-            throw input_error("cannot tabulate a density that is " + std::to_string(v) + " at tan^2 = " + std::to_string(s));
+            throw input_error("cannot tabulate a density that is " + std::to_string(v) +
+                              " at tan^2 = " + std::to_string(s));
         return s * v;
     };
     const auto n = static_cast<std::size_t>(std::lround((y_max - y_min) / h));
@@ -51,8 +52,9 @@ RadialTable::RadialTable(const std::function<double(double s)>& w) {
     // The law must live well inside the range: at most 1e-12 of it within 4 (in ln tan^2) of either end.
     const auto edge = static_cast<std::size_t>(4.0 / h);
     if ((S_[0] - S_[edge]) / total_ > 1e-12 || S_[n - edge] / total_ > 1e-12)
-        throw input_error("cannot tabulate a law of tan^2(theta_m) with mass near 1e-100 or 1e100 (alpha beyond ~1e-45 "
-                          "or ~1e45?): the table spans tan^2 in [1e-100, 1e100]");
+        throw input_error(
+            "cannot tabulate a law of tan^2(theta_m) with mass near 1e-100 or 1e100 (alpha beyond ~1e-45 "
+            "or ~1e45?): the table spans tan^2 in [1e-100, 1e100]");
     for (std::size_t k = 0; k <= n; ++k) {
         S_[k] /= total_;
         dS_[k] = -h * g(y_min + h * static_cast<double>(k)) / total_;
@@ -77,7 +79,7 @@ RadialTable::RadialTable(const std::function<double(double s)>& w) {
 double RadialTable::hermite(std::size_t k, double t) const {
     const double t2 = t * t, t3 = t2 * t;
     return (2 * t3 - 3 * t2 + 1) * S_[k] + (t3 - 2 * t2 + t) * dS_[k] + (-2 * t3 + 3 * t2) * S_[k + 1] +
-           (t3 - t2) * dS_[k + 1];
+        (t3 - t2) * dS_[k + 1];
 }
 
 double RadialTable::sf(double s) const {
@@ -104,7 +106,8 @@ double RadialTable::isf(double v) const {
         if (f < 0.0) hi = t;
         else lo = t;
         const double t2 = t * t;
-        const double d = (6 * t2 - 6 * t) * (S_[k] - S_[k + 1]) + (3 * t2 - 4 * t + 1) * dS_[k] + (3 * t2 - 2 * t) * dS_[k + 1];
+        const double d =
+            (6 * t2 - 6 * t) * (S_[k] - S_[k + 1]) + (3 * t2 - 4 * t + 1) * dS_[k] + (3 * t2 - 2 * t) * dS_[k + 1];
         double next = d < 0.0 ? t - f / d : 0.5 * (lo + hi);
         if (std::abs(next - t) <= 0x1p-30 && next >= 0.0 && next <= 1.0) {
             t = next;

@@ -39,7 +39,8 @@ void NdfRegistry::add_erased(NdfInfo info, Factory make) {
         throw input_error("ndf '" + info.name + "': its roughness sets '" + info.roughness->parameter +
                           "', which is not one of its parameters");
     for (const auto& [key, v] : info.defaults)
-        if (!declared(key)) throw input_error("ndf '" + info.name + "': a default for '" + key + "', not one of its parameters");
+        if (!declared(key))
+            throw input_error("ndf '" + info.name + "': a default for '" + key + "', not one of its parameters");
     entries_.emplace_back(std::move(info), std::move(make));
 }
 
@@ -83,11 +84,12 @@ AnyNdf NdfRegistry::make_at_alpha(std::string_view family, double alpha,
     } else if (info->roughness) {
         std::map<std::string, double> given(others.begin(), others.end());
         for (const auto& [key, v] : info->defaults) given.emplace(key, v);  // what the spec may leave out
-        params.emplace_back(info->roughness->parameter,
-                            info->roughness->from_alpha(alpha, NdfParams(info->name, std::move(given),
-                                                                         {texts.begin(), texts.end()})));
+        params.emplace_back(
+            info->roughness->parameter,
+            info->roughness->from_alpha(alpha, NdfParams(info->name, std::move(given), {texts.begin(), texts.end()})));
     } else {
-        throw input_error("ndf '" + info->name + "' has no parameter 'alpha' and declares no roughness mapping to one " +
+        throw input_error("ndf '" + info->name +
+                          "' has no parameter 'alpha' and declares no roughness mapping to one " +
                           "(its parameters: " + parameter_list(*info) + "): it cannot be swept over alpha");
     }
     return make(family, params, texts);
@@ -116,9 +118,10 @@ AnyNdf NdfRegistry::make(std::string_view family, const std::vector<std::pair<st
     std::vector<std::pair<std::string, std::string>> canonical_texts;
     for (const auto& [key, v] : texts) {
         if (std::find(info.text_parameters.begin(), info.text_parameters.end(), key) == info.text_parameters.end())
-            throw input_error("ndf '" + name + "': unknown parameter '" + key + "' (its parameters: " +
-                              parameter_list(info) + ")");
-        if (!text_values.emplace(key, v).second) throw input_error("ndf '" + name + "': parameter '" + key + "' given twice");
+            throw input_error("ndf '" + name + "': unknown parameter '" + key +
+                              "' (its parameters: " + parameter_list(info) + ")");
+        if (!text_values.emplace(key, v).second)
+            throw input_error("ndf '" + name + "': parameter '" + key + "' given twice");
     }
     for (const auto& key : info.text_parameters) {
         const auto v = text_values.find(key);
@@ -127,12 +130,14 @@ AnyNdf NdfRegistry::make(std::string_view family, const std::vector<std::pair<st
     }
     for (const auto& [key, v] : params) {
         if (std::find(info.parameters.begin(), info.parameters.end(), key) == info.parameters.end())
-            throw input_error("ndf '" + name + "': unknown parameter '" + key + "' (its parameters: " +
-                              parameter_list(info) + ")");
-        if (!values.emplace(key, v).second) throw input_error("ndf '" + name + "': parameter '" + key + "' given twice");
+            throw input_error("ndf '" + name + "': unknown parameter '" + key +
+                              "' (its parameters: " + parameter_list(info) + ")");
+        if (!values.emplace(key, v).second)
+            throw input_error("ndf '" + name + "': parameter '" + key + "' given twice");
     }
     for (const auto& key : info.parameters) {
-        const auto d = std::find_if(info.defaults.begin(), info.defaults.end(), [&](const auto& x) { return x.first == key; });
+        const auto d =
+            std::find_if(info.defaults.begin(), info.defaults.end(), [&](const auto& x) { return x.first == key; });
         auto v = values.find(key);
         if (v == values.end()) {
             if (d == info.defaults.end()) throw input_error("ndf '" + name + "': missing parameter '" + key + "'");
@@ -145,27 +150,35 @@ AnyNdf NdfRegistry::make(std::string_view family, const std::vector<std::pair<st
 }
 
 void register_core_ndfs(NdfRegistry& r) {
-    r.add({"ggx", {"alpha"}, "GGX / Trowbridge-Reitz (Walter 2007), closed-form Lambda",
+    r.add({"ggx",
+           {"alpha"},
+           "GGX / Trowbridge-Reitz (Walter 2007), closed-form Lambda",
            {"ggx(alpha=1e-4)", "ggx(alpha=0.01)", "ggx(alpha=0.3)", "ggx(alpha=1)"}},
           [](const NdfParams& p) { return ggx(p.at("alpha")); });
-    r.add({"beckmann", {"alpha"}, "Beckmann (Walter 2007), closed-form Lambda",
+    r.add({"beckmann",
+           {"alpha"},
+           "Beckmann (Walter 2007), closed-form Lambda",
            {"beckmann(alpha=1e-4)", "beckmann(alpha=0.05)", "beckmann(alpha=0.5)", "beckmann(alpha=1)"}},
           [](const NdfParams& p) { return beckmann(p.at("alpha")); });
     // A roughness alpha sets n = 2 / alpha^2 - 2, the exponent at the Beckmann alpha it resembles (Walter et al.
     // 2007, sec. 5.2).
-    r.add({"blinn", {"n"}, "Blinn-Phong, D = (n+2)/(2 pi) cos^n; Lambda by quadrature",
+    r.add({"blinn",
+           {"n"},
+           "Blinn-Phong, D = (n+2)/(2 pi) cos^n; Lambda by quadrature",
            {"blinn(n=0.5)", "blinn(n=20)", "blinn(n=1000)"},
            NdfInfo::Roughness{"n", [](double alpha, const NdfParams&) { return 2.0 / (alpha * alpha) - 2.0; }}},
           [](const NdfParams& p) { return blinn(p.at("n")); });
-    r.add({"student", {"alpha", "gamma"},
+    r.add({"student",
+           {"alpha", "gamma"},
            "Student's t-distribution of slopes (Ribardiere et al. 2017), gamma in [1.65, 1e6]: GGX at 2, Beckmann as "
            "gamma -> inf; closed-form Lambda",
            {"student(alpha=1e-4, gamma=1.65)", "student(alpha=0.3, gamma=1.65)", "student(alpha=0.3, gamma=2)",
             "student(alpha=1, gamma=3)", "student(alpha=0.05, gamma=7.5)", "student(alpha=0.5, gamma=30)",
             "student(alpha=0.2, gamma=1e6)"}},
           [](const NdfParams& p) { return student(p.at("alpha"), p.at("gamma")); });
-    // A measured NDF from a CSV table (tabulated.hpp), its slopes stretched by `scale`; a roughness alpha sets the scale
-    // that makes its core slope scale (ndf.hpp) alpha: at alpha, a GGX or Beckmann table is that family's of alpha.
+    // A measured NDF from a CSV table (tabulated.hpp), its slopes stretched by `scale`; a roughness alpha sets the
+    // scale that makes its core slope scale (ndf.hpp) alpha: at alpha, a GGX or Beckmann table is that family's of
+    // alpha.
     const auto read = [](const NdfParams& p) {
         const double normalize = p.at("normalize");
         require(normalize == 0.0 || normalize == 1.0, "tabulated: normalize", "0 or 1", normalize);
@@ -177,9 +190,9 @@ void register_core_ndfs(NdfRegistry& r) {
                           "(tabulated.hpp); scale stretches its slopes (default 1), normalize=1 divides D by its "
                           "projected area; Lambda by quadrature",
            .examples = {},
-           .roughness = NdfInfo::Roughness{"scale", [read](double alpha, const NdfParams& p) {
-               return alpha / core_slope_scale(read(p));
-           }},
+           .roughness =
+               NdfInfo::Roughness{
+                   "scale", [read](double alpha, const NdfParams& p) { return alpha / core_slope_scale(read(p)); }},
            .text_parameters = {"file"},
            .defaults = {{"scale", 1.0}, {"normalize", 0.0}}},
           [read](const NdfParams& p) { return read(p).scaled(p.at("scale")); });

@@ -35,21 +35,29 @@ BoundSampler visible(const AnyNdf& ndf, const Vec3& wi, VisibleRoute route) {
 
 std::vector<SamplerInfo> builtin_samplers() {
     return {
-        {"dcos", "D(m) cos(theta_m): the NDF's analytic inversion (GGX, Beckmann, Blinn, GTR by Burley 2012), else tabulated",
+        {"dcos",
+         "D(m) cos(theta_m): the NDF's analytic inversion (GGX, Beckmann, Blinn, GTR by Burley 2012), else tabulated",
          Incidence::ignored, any_ndf, [](const AnyNdf& n, const Vec3&) { return dcos(n, false); }},
         {"dcos-table", "D(m) cos(theta_m) by a tabulated inverse CDF of pi P22(tan^2), for any NDF", Incidence::ignored,
          any_ndf, [](const AnyNdf& n, const Vec3&) { return dcos(n, true); }},
-        {"vndf", "visible normals <wi.m>^+ D / A(wi), wi anywhere, any NDF: slope-space rejection (Heitz & d'Eon 2014 law)",
-         Incidence::any, any_ndf, [](const AnyNdf& n, const Vec3& wi) { return visible(n, wi, VisibleRoute::rejection); }},
+        {"vndf",
+         "visible normals <wi.m>^+ D / A(wi), wi anywhere, any NDF: slope-space rejection (Heitz & d'Eon 2014 law)",
+         Incidence::any, any_ndf,
+         [](const AnyNdf& n, const Vec3& wi) { return visible(n, wi, VisibleRoute::rejection); }},
         {"vndf-table", "visible normals as vndf, with the D cos part tabulated too (what a D-only NDF gets)",
-         Incidence::any, any_ndf, [](const AnyNdf& n, const Vec3& wi) { return visible(n, wi, VisibleRoute::tabulated); }},
+         Incidence::any, any_ndf,
+         [](const AnyNdf& n, const Vec3& wi) { return visible(n, wi, VisibleRoute::tabulated); }},
         {"vndf-ggx", "GGX visible normals in closed form, spherical caps (Dupuy & Benyoub 2023), wi anywhere",
-         Incidence::any, is_ggx, [](const AnyNdf& n, const Vec3& wi) { return visible(n, wi, VisibleRoute::automatic); }},
-        {"vndf-beckmann", "Beckmann visible normals in closed form (Heitz & d'Eon 2014 slopes, Newton on ierfc), wi anywhere",
+         Incidence::any, is_ggx,
+         [](const AnyNdf& n, const Vec3& wi) { return visible(n, wi, VisibleRoute::automatic); }},
+        {"vndf-beckmann",
+         "Beckmann visible normals in closed form (Heitz & d'Eon 2014 slopes, Newton on ierfc), wi anywhere",
          Incidence::any, is_beckmann,
          [](const AnyNdf& n, const Vec3& wi) { return visible(n, wi, VisibleRoute::automatic); }},
-        {"hammon", "D(m) cos(theta_m) over the normals facing wi, Hammon 2017's shrunk range (ray T = -wi; wi may be below)",
-         Incidence::any, any_ndf, [](const AnyNdf& n, const Vec3& wi) -> BoundSampler {
+        {"hammon",
+         "D(m) cos(theta_m) over the normals facing wi, Hammon 2017's shrunk range (ray T = -wi; wi may be below)",
+         Incidence::any, any_ndf,
+         [](const AnyNdf& n, const Vec3& wi) -> BoundSampler {
              auto s = std::make_shared<const HammonSampler>(n);
              const double Z = s->facing_fraction(wi);
              if (!(Z > 0.0)) throw input_error("hammon sampler: no microfacet faces this direction");
@@ -74,9 +82,11 @@ const SamplerInfo& find_sampler(const std::vector<SamplerInfo>& samplers, std::s
 BoundSampler prepare(const SamplerInfo& sampler, const AnyNdf& ndf, const Vec3& wi) {
     if (!sampler.applies(ndf))
         throw input_error("sampler '" + sampler.name + "' does not apply to ndf '" + ndf.spec() + "'");
-    if (!(std::abs(wi.squaredNorm() - 1.0) < 1e-9)) throw input_error("sampler '" + sampler.name + "': wi is not a unit vector");
+    if (!(std::abs(wi.squaredNorm() - 1.0) < 1e-9))
+        throw input_error("sampler '" + sampler.name + "': wi is not a unit vector");
     if (sampler.incidence == SamplerInfo::Incidence::upper && !(wi.z() > 0.0))
-        throw input_error("sampler '" + sampler.name + "' needs an incident direction above the surface (theta_i < 90)");
+        throw input_error("sampler '" + sampler.name +
+                          "' needs an incident direction above the surface (theta_i < 90)");
     return sampler.prepare(ndf, wi);
 }
 

@@ -42,8 +42,9 @@ NormalSample visible_sample(const VisibleNormals<N>& normals, const Vec3& wi, Rn
         const double p = std::isnan(m.x()) ? 0.0 : normals.pdf(wi, m);
         if (p > 0.0 && p < INFINITY) return {m, p};
         if (!(normals.projected_area(wi) > 0.0))
-            throw input_error(who + ": no microfacet normal is visible from wi (straight down, or a projected area that "
-                                    "underflows in double)");
+            throw input_error(who +
+                              ": no microfacet normal is visible from wi (straight down, or a projected area that "
+                              "underflows in double)");
         if (std::isnan(m.x())) give_up(who);
     }
     give_up(who);
@@ -85,7 +86,9 @@ NormalSample sample_ggx_visible(double alpha, const Vec3& wi, Rng& g) {
     return visible_sample(VisibleNormals<Ggx>(Ggx{alpha}), wi, g, "ggx visible-normal sampler");
 }
 
-double pdf_ggx_visible(double alpha, const Vec3& wi, const Vec3& m) { return VisibleNormals<Ggx>(Ggx{alpha}).pdf(wi, m); }
+double pdf_ggx_visible(double alpha, const Vec3& wi, const Vec3& m) {
+    return VisibleNormals<Ggx>(Ggx{alpha}).pdf(wi, m);
+}
 
 // Newton's method on ln N, concave (N is the survival function of a log-concave density), so that from either side
 // of the root its steps converge, monotonically once right of it; kept inside the bracket [lo, hi] all the same. Once

@@ -9,7 +9,8 @@ namespace smithlab {
 
 Method parse_method(std::string_view name) {
     if (const Named<Method>* m = find_named(method_names, name)) return m->value;
-    throw input_error("unknown method '" + std::string(name) + "' (expected " + join_names(method_names, ", ", " or ") + ")");
+    throw input_error("unknown method '" + std::string(name) + "' (expected " + join_names(method_names, ", ", " or ") +
+                      ")");
 }
 
 std::string_view to_string(Method m) { return name_of(method_names, m); }
@@ -26,10 +27,10 @@ double tan_minus_x(double t, double tan_t) {
     if (t >= 0.5) return tan_t - t;  // cancellation at most a factor 11 here
     // Coefficients of t^3, t^5, ..., t^33 in tan(t) - t; at t = 0.5 the next term is below 1e-16 of the sum.
     static constexpr std::array<double, 16> c = {
-        0.333333333333333333333,    0.133333333333333333333,    0.0539682539682539682540,
-        0.0218694885361552028219,   0.00886323552990219656886,  0.00359212803657248101693,
-        0.00145583438705131826825,  0.000590027440945585981378, 0.000239129114243552481486,
-        0.0000969153795692945032560, 0.0000392783238833168340534, 0.0000159189050693289647407,
+        0.333333333333333333333,      0.133333333333333333333,      0.0539682539682539682540,
+        0.0218694885361552028219,     0.00886323552990219656886,    0.00359212803657248101693,
+        0.00145583438705131826825,    0.000590027440945585981378,   0.000239129114243552481486,
+        0.0000969153795692945032560,  0.0000392783238833168340534,  0.0000159189050693289647407,
         0.00000645168921565543076319, 0.00000261477115129075455426, 0.00000105972683201046543509,
         4.29491107827380585482e-7};
     const double t2 = t * t;
@@ -41,7 +42,8 @@ double tan_minus_x(double t, double tan_t) {
 // Below 1e-12 the grazing peak at s ~ mu/alpha and above 1e12 the underflow of f(r^2) r^2 leave the quadrature's
 // tested range; closed forms have no such limit.
 void require_mu(double mu) {
-    require(mu >= 1e-12 && mu <= 1e12, "mu", "in [1e-12, 1e12] for the quadrature methods (0 and inf are handled exactly)", mu);
+    require(mu >= 1e-12 && mu <= 1e12, "mu",
+            "in [1e-12, 1e12] for the quadrature methods (0 and inf are handled exactly)", mu);
 }
 
 void require_quadrature_scale(double mu, double P22_at_pole, const char* method) {

@@ -21,7 +21,8 @@ std::string_view trim(std::string_view s) {
 
 bool is_identifier(std::string_view s) {
     if (s.empty() || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_')) return false;
-    return std::all_of(s.begin(), s.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+    return std::all_of(s.begin(), s.end(),
+                       [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
 }
 
 namespace {
@@ -34,7 +35,8 @@ namespace {
 
 bool is_spec_name(std::string_view s) {
     return !s.empty() && s[0] != '-' && s.back() != '-' && is_identifier(s.substr(0, 1)) &&
-           std::all_of(s.begin(), s.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-'; });
+        std::all_of(s.begin(), s.end(),
+                    [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-'; });
 }
 
 namespace {
@@ -66,17 +68,21 @@ NdfSpec parse_spec(std::string_view text, std::string_view what, const std::vect
             if (body[end] == '"') quoted = !quoted;
         const std::string_view item = trim(body.substr(0, end));
         const auto eq = item.find('=');
-        if (eq == std::string_view::npos) bad_spec(what, text, "parameter '" + std::string(item) + "' is not key=value");
+        if (eq == std::string_view::npos)
+            bad_spec(what, text, "parameter '" + std::string(item) + "' is not key=value");
         const std::string key(trim(item.substr(0, eq)));
         const std::string value(trim(item.substr(eq + 1)));
         if (!is_identifier(key)) bad_spec(what, text, "bad parameter name '" + key + "'");
         if (!seen.insert(key).second) bad_spec(what, text, "parameter '" + key + "' given twice");
         if (std::find(text_keys.begin(), text_keys.end(), key) != text_keys.end()) {
             const bool quoted = value.size() >= 2 && value.front() == '"' && value.back() == '"' &&
-                                value.find('"', 1) == value.size() - 1;
+                value.find('"', 1) == value.size() - 1;
             if (!quoted && !is_bare_text(value))
-                bad_spec(what, text, "value of '" + key + "' must be text, bare (no blank, comma, parenthesis or "
-                                     "quote) or in double quotes, got '" + value + "'");
+                bad_spec(what, text,
+                         "value of '" + key +
+                             "' must be text, bare (no blank, comma, parenthesis or "
+                             "quote) or in double quotes, got '" +
+                             value + "'");
             const std::string v = quoted ? value.substr(1, value.size() - 2) : value;
             if (v.empty()) bad_spec(what, text, "value of '" + key + "' is empty");
             spec.texts.emplace_back(key, v);

@@ -1,8 +1,8 @@
 #include "smithlab/student_t.hpp"
 
-#include <boost/math/special_functions/gamma.hpp>
 #include <algorithm>
 #include <array>
+#include <boost/math/special_functions/gamma.hpp>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -25,7 +25,7 @@ StudentT student(double alpha, double gamma) {
     // double: its error is multiplied by up to 6.9 near z = 0.7, Lambda below).
     const long double g = gamma - 1.0L, A = gamma - 1.5L;  // both exact
     const long double P = boost::math::tgamma_delta_ratio(gamma - 0.5L, 0.5L) * std::sqrt(g) /
-                          (4.0L * A * std::sqrt(std::numbers::pi_v<long double>));
+        (4.0L * A * std::sqrt(std::numbers::pi_v<long double>));
     return {alpha, gamma, static_cast<double>(P)};
 }
 
@@ -119,7 +119,7 @@ double Phi_continued_fraction(double g, double y) {
         const double m = static_cast<double>(j / 2);
         const double d_odd = (1.5 + m) * (g + m) / ((g + 2.0 * m) * (g + 2.0 * m + 1.0)) * y;
         const double d_even = (m + 1.0) * (g - 0.5 + m) / ((g + 2.0 * m + 1.0) * (g + 2.0 * m + 2.0)) * y;
-        const double A2 = A1 + d_odd * A0, B2 = B1 + d_odd * B0;  // j (odd)
+        const double A2 = A1 + d_odd * A0, B2 = B1 + d_odd * B0;    // j (odd)
         const double A3 = A2 + d_even * A1, B3 = B2 + d_even * B1;  // j + 1 (even)
         if (std::abs(A3 * B2 - A2 * B3) <= 1e-16 * A3 * B2) return B3 / A3;
         A0 = A2, A1 = A3, B0 = B2, B1 = B3;
@@ -172,12 +172,12 @@ double StudentT::Lambda(double mu) const {
     const double s = 1.0 + w, s_b = s - 1.0, s_lo = ((1.0 - (s - s_b)) + (w - s_b)) + w_lo;  // 1 + w = s + s_lo
     if (z <= 0.7) {
         const double tA_z = std::pow(s, -A) * (1.0 - A * (s_lo / s)) / z * (1.0 - z_lo / z);  // (1 + w)^-A / z
-        const double x = w / s, x_lo = (std::fma(-x, s, w) + w_lo - x * s_lo) / s;  // w / (1 + w)
+        const double x = w / s, x_lo = (std::fma(-x, s, w) + w_lo - x * s_lo) / s;            // w / (1 + w)
         return 2.0 * g * P * tA_z * H_series(A, x, x_lo) - 0.5;
     }
     const double y = 1.0 / w * (1.0 - w_lo / w);
     const double lead = std::pow(s, 1.0 - A) * (1.0 + (1.0 - A) * (s_lo / s)) / (w * z) *
-                        (1.0 - w_lo / w - z_lo / z);  // (1 + w)^(1 - A) / (w z)
+        (1.0 - w_lo / w - z_lo / z);  // (1 + w)^(1 - A) / (w z)
     return P * lead * Phi_continued_fraction(g, y);
 }
 

@@ -19,9 +19,9 @@ namespace detail {
 // The interpolant of tabulated.hpp: nodes (theta_i, D_i), y_i = ln D_i (-inf where D_i = 0), Steffen slopes dy_i.
 struct TabulatedTable {
     std::vector<double> theta, D, y, dy;
-    double pole_b = 0.0;           // ln D = y_0 + pole_b (theta^2 - theta_0^2) below theta_0
-    double D0 = 0.0, D1 = 0.0;     // the tail: D = D0 + D1 cos^2 past theta_n
-    double c2_last = 1.0;          // cos^2 theta_n
+    double pole_b = 0.0;        // ln D = y_0 + pole_b (theta^2 - theta_0^2) below theta_0
+    double D0 = 0.0, D1 = 0.0;  // the tail: D = D0 + D1 cos^2 past theta_n
+    double c2_last = 1.0;       // cos^2 theta_n
     double area = 1.0, factor = 1.0;
     double theta_min_deg = 0.0, theta_max_deg = 0.0;
     std::uint64_t hash = 0;
@@ -29,7 +29,8 @@ struct TabulatedTable {
 
     // D at theta in [0, pi/2), the tail excluded (theta <= theta_n).
     double D_inside(double t) const {
-        if (t < theta.front()) return D.front() > 0.0 ? std::exp(y.front() + pole_b * (t * t - theta.front() * theta.front())) : 0.0;
+        if (t < theta.front())
+            return D.front() > 0.0 ? std::exp(y.front() + pole_b * (t * t - theta.front() * theta.front())) : 0.0;
         const std::size_t n = theta.size();
         const std::size_t i = std::min<std::size_t>(
             static_cast<std::size_t>(std::upper_bound(theta.begin(), theta.end(), t) - theta.begin()) - 1, n - 2);
@@ -37,7 +38,7 @@ struct TabulatedTable {
         if (D[i] > 0.0 && D[i + 1] > 0.0) {  // cubic Hermite of ln D
             const double u2 = u * u, u3 = u2 * u;
             const double v = (2.0 * u3 - 3.0 * u2 + 1.0) * y[i] + (u3 - 2.0 * u2 + u) * h * dy[i] +
-                             (3.0 * u2 - 2.0 * u3) * y[i + 1] + (u3 - u2) * h * dy[i + 1];
+                (3.0 * u2 - 2.0 * u3) * y[i + 1] + (u3 - u2) * h * dy[i + 1];
             return std::exp(v);
         }
         return D[i] + (D[i + 1] - D[i]) * u;  // a zero end: linear in D
@@ -195,8 +196,9 @@ TabulatedNdf tabulated_ndf_from_csv(const std::string& text, const std::string& 
         const CsvRecord& rec = records[r];
         if (!rec.error.empty()) refuse(source, rec.line, rec.error);
         if (rec.fields.size() != head.fields.size())
-            refuse(source, rec.line, "expected " + std::to_string(head.fields.size()) + " fields, got " +
-                                         std::to_string(rec.fields.size()));
+            refuse(
+                source, rec.line,
+                "expected " + std::to_string(head.fields.size()) + " fields, got " + std::to_string(rec.fields.size()));
         const std::string& a_text = rec.fields[angle_col];
         const std::string& d_text = rec.fields[D_col];
         double a = 0.0, d = 0.0;
@@ -218,9 +220,9 @@ TabulatedNdf tabulated_ndf_from_csv(const std::string& text, const std::string& 
         if (!t.theta.empty() && !(theta > t.theta.back()))
             refuse(source, rec.line,
                    by_cos ? "cos_theta must decrease from row to row (theta_m increasing), got " + a_text + " after " +
-                                prev_text + " (line " + std::to_string(prev_line) + ")"
+                           prev_text + " (line " + std::to_string(prev_line) + ")"
                           : "theta_deg must increase from row to row, got " + a_text + " after " + prev_text +
-                                " (line " + std::to_string(prev_line) + ")");
+                           " (line " + std::to_string(prev_line) + ")");
         t.theta.push_back(theta);
         t.D.push_back(d);
         prev_text = a_text;
@@ -228,9 +230,9 @@ TabulatedNdf tabulated_ndf_from_csv(const std::string& text, const std::string& 
     }
     const std::size_t n = t.theta.size();
     if (n < tabulated_min_points)
-        refuse(source, records.back().line, "the table ends after " + std::to_string(n) + " data row" +
-                                                (n == 1 ? "" : "s") + "; the interpolation needs at least " +
-                                                std::to_string(tabulated_min_points));
+        refuse(source, records.back().line,
+               "the table ends after " + std::to_string(n) + " data row" + (n == 1 ? "" : "s") +
+                   "; the interpolation needs at least " + std::to_string(tabulated_min_points));
 
     // ln D and Steffen's slopes on each run of positive D.
     t.y.resize(n);
@@ -267,10 +269,12 @@ TabulatedNdf tabulated_ndf_from_csv(const std::string& text, const std::string& 
     t.area = projected_area(t);
     if (!(std::abs(t.area - 1.0) <= tabulated_area_tolerance)) {
         if (!opts.normalize)
-            throw input_error(source + ": the projected area of D (2 pi times the integral of D cos sin dtheta, the "
-                              "interpolant's) must be within " + format_value(tabulated_area_tolerance) +
-                              " of 1, got " + format_value(t.area) + " (rows at lines " +
-                              std::to_string(records[1].line) + "-" + std::to_string(records.back().line) +
+            throw input_error(source +
+                              ": the projected area of D (2 pi times the integral of D cos sin dtheta, the "
+                              "interpolant's) must be within " +
+                              format_value(tabulated_area_tolerance) + " of 1, got " + format_value(t.area) +
+                              " (rows at lines " + std::to_string(records[1].line) + "-" +
+                              std::to_string(records.back().line) +
                               "); to divide D by it, give normalize=1 (tabulated(file=..., normalize=1))");
         if (!(t.area > 0.0 && t.area < INFINITY))
             throw input_error(source + ": the projected area of D is " + format_value(t.area) +
@@ -335,8 +339,8 @@ double TabulatedNdf::slope_density(double r2) const {
 std::string TabulatedNdf::note() const {
     if (std::abs(area_as_read() - 1.0) < 1e-9) return "";  // as normalized as its rows' digits carry: nothing to say
     char text[160];
-    std::snprintf(text, sizeof text, "D multiplied by %.9g (its projected area was %.9g, not 1)", normalization_factor(),
-                  area_as_read());
+    std::snprintf(text, sizeof text, "D multiplied by %.9g (its projected area was %.9g, not 1)",
+                  normalization_factor(), area_as_read());
     return source() + ": " + text;
 }
 

@@ -33,7 +33,8 @@ LambdaRoute route_on(const LambdaVariant& variant, const AnyNdf& ndf) {
 }
 
 bool is_quadrature(LambdaRoute r) {
-    return r == LambdaRoute::q1d_boost || r == LambdaRoute::q2d_boost || r == LambdaRoute::q1d_gsl || r == LambdaRoute::q2d_gsl;
+    return r == LambdaRoute::q1d_boost || r == LambdaRoute::q2d_boost || r == LambdaRoute::q1d_gsl ||
+        r == LambdaRoute::q2d_gsl;
 }
 
 LambdaOfMu prepare(const LambdaVariant& variant, const AnyNdf& ndf, Downward downward) {
@@ -78,8 +79,9 @@ std::vector<G2Variant> builtin_G2_variants() {
              const double a = ggx_alpha(n);
              return 1.0 / ((1.0 + Lambda_schlick_ggx(a, mi)) * (1.0 + Lambda_schlick_ggx(a, mo)));
          }},
-        {"g2-hammon-lerp", "Hammon 2017 height-correlated G2 approximation for GGX, 2 NL NV / lerp(2 NL NV, NL + NV, alpha)",
-         is_ggx_like, [](const AnyNdf& n, double mi, double mo) { return G2_hammon_lerp(ggx_alpha(n), mi, mo); }},
+        {"g2-hammon-lerp",
+         "Hammon 2017 height-correlated G2 approximation for GGX, 2 NL NV / lerp(2 NL NV, NL + NV, alpha)", is_ggx_like,
+         [](const AnyNdf& n, double mi, double mo) { return G2_hammon_lerp(ggx_alpha(n), mi, mo); }},
     };
 }
 
@@ -97,34 +99,38 @@ void register_core_variants(VariantRegistry& r) {
     for (const Way& way : backends)
         for (const auto& [tname, tol] : tolerances) {
             const QuadratureOptions q{way.backend, tol};
-            r.add({std::string("q1d-") + way.name + "-" + tname,
-                   std::string("reduced 1D quadrature, ") + (way.backend == Backend::boost ? "Boost tanh-sinh" : "GSL QAG") +
-                       ", relative tolerance " + tname,
-                   any, [q](const AnyNdf& n) -> LambdaOfMu { return [n, q](double mu) { return Lambda_1d(n, mu, q); }; },
-                   way.q1d});
+            r.add(
+                {std::string("q1d-") + way.name + "-" + tname,
+                 std::string("reduced 1D quadrature, ") +
+                     (way.backend == Backend::boost ? "Boost tanh-sinh" : "GSL QAG") + ", relative tolerance " + tname,
+                 any, [q](const AnyNdf& n) -> LambdaOfMu { return [n, q](double mu) { return Lambda_1d(n, mu, q); }; },
+                 way.q1d});
             if (tol < 1e-8) continue;
-            r.add({std::string("q2d-") + way.name + "-" + tname,
-                   std::string("nested 2D quadrature P22 -> P2 -> Lambda, ") + way.name + ", relative tolerance " + tname, any,
-                   [q](const AnyNdf& n) -> LambdaOfMu { return [n, q](double mu) { return Lambda_2d(n, mu, q); }; }, way.q2d});
+            r.add(
+                {std::string("q2d-") + way.name + "-" + tname,
+                 std::string("nested 2D quadrature P22 -> P2 -> Lambda, ") + way.name + ", relative tolerance " + tname,
+                 any, [q](const AnyNdf& n) -> LambdaOfMu { return [n, q](double mu) { return Lambda_2d(n, mu, q); }; },
+                 way.q2d});
         }
     r.add({"closed-form", "the NDF's closed form (GGX, Beckmann, GTR at every integer gamma <= 31, Student-t)",
            [](const AnyNdf& n) { return n.has_closed_Lambda(); },
            [](const AnyNdf& n) -> LambdaOfMu { return [n](double mu) { return n.Lambda(mu); }; }, LambdaRoute::closed});
-    r.add({"table",
-           "cubic spline of ln(mu Lambda) in ln mu, built per NDF from the exact route (est. relative 1e-6; ms to build)",
-           any,
-           [](const AnyNdf& n) -> LambdaOfMu {
-               auto t = std::make_shared<const LambdaTable>(tabulate_Lambda(n));
-               return [t](double mu) { return t->Lambda(mu); };
-           },
-           LambdaRoute::table});
+    r.add(
+        {"table",
+         "cubic spline of ln(mu Lambda) in ln mu, built per NDF from the exact route (est. relative 1e-6; ms to build)",
+         any,
+         [](const AnyNdf& n) -> LambdaOfMu {
+             auto t = std::make_shared<const LambdaTable>(tabulate_Lambda(n));
+             return [t](double mu) { return t->Lambda(mu); };
+         },
+         LambdaRoute::table});
     r.add({"schlick-ggx", "Hammon 2017 / Unreal Schlick-style G1 for GGX, k = alpha/2", is_ggx_like,
            [](const AnyNdf& n) -> LambdaOfMu {
                return [a = ggx_alpha(n)](double mu) { return Lambda_schlick_ggx(a, mu); };
            },
            LambdaRoute::other});
-    r.add({"beckmann-rational", "Walter 2007 eq. 27 rational approximation of Beckmann G1",
-           is_beckmann, [](const AnyNdf& n) -> LambdaOfMu {
+    r.add({"beckmann-rational", "Walter 2007 eq. 27 rational approximation of Beckmann G1", is_beckmann,
+           [](const AnyNdf& n) -> LambdaOfMu {
                return [a = beckmann_alpha(n)](double mu) { return Lambda_beckmann_rational(a, mu); };
            },
            LambdaRoute::other});

@@ -35,7 +35,8 @@ public:
     void add_work(Work& work, const Settings& s, const VariantRegistry& variants) const override {
         double selected = 0.0, ndfs = 0.0;
         for (const LambdaVariant& v : variants.list())
-            if (matches_any(include_, v.name) && !matches_any(exclude_, v.name)) selected += v.name == "family" ? 2.0 : 1.0;
+            if (matches_any(include_, v.name) && !matches_any(exclude_, v.name))
+                selected += v.name == "family" ? 2.0 : 1.0;
         for (const NdfEntry& e : entries_) ndfs += static_cast<double>(e.count(s.alphas.size()));
         const double points = ndfs * static_cast<double>(s.mus.size());
         work.add("Lambda", selected * points);

@@ -28,9 +28,11 @@ public:
         double selected = 0.0;
         if (!include_.empty())
             for (const G2Variant& v : builtin_G2_variants())
-                if (std::any_of(include_.begin(), include_.end(), [&](const std::string& p) { return glob_match(p, v.name); }))
+                if (std::any_of(include_.begin(), include_.end(),
+                                [&](const std::string& p) { return glob_match(p, v.name); }))
                     selected += 1.0;
-        const double ndfs = static_cast<double>(families_.size() * s.alphas.size()), mus = static_cast<double>(mus_.size());
+        const double ndfs = static_cast<double>(families_.size() * s.alphas.size()),
+                     mus = static_cast<double>(mus_.size());
         work.add("G2", selected * ndfs * mus * mus);
         if (selected > 0.0) work.add("references", ndfs * mus);
     }

@@ -28,8 +28,9 @@ public:
 
     // samples: families x alpha x strategies x samples.
     void add_work(Work& work, const Settings&, const VariantRegistry&) const override {
-        work.add("samples", static_cast<double>(scene_.families.size() * scene_.alphas.size() * sampling_strategies.size()) *
-                                static_cast<double>(scene_.samples));
+        work.add("samples",
+                 static_cast<double>(scene_.families.size() * scene_.alphas.size() * sampling_strategies.size()) *
+                     static_cast<double>(scene_.samples));
     }
 
     void check(const Settings&, const NdfRegistry& ndfs, const VariantRegistry&) override {

@@ -32,7 +32,8 @@ void read_axes(StrictTable& w, WalkScene& walk) {
         if (!std::isfinite(a)) w.fail("alpha", "must be finite, got " + format_shortest(a));
     if (w.has("theta_i")) walk.theta_i = read_axis(w, "theta_i");
     for (double t : walk.theta_i)
-        if (!(t >= 0.0 && t < 90.0)) w.fail("theta_i", "must be in [0, 90) degrees (light from above), got " + format_shortest(t));
+        if (!(t >= 0.0 && t < 90.0))
+            w.fail("theta_i", "must be in [0, 90) degrees (light from above), got " + format_shortest(t));
 }
 
 class WalkSection : public Section {
@@ -60,18 +61,23 @@ public:
         double ndfs = 0.0, alphas = 0.0;
         for (const NdfEntry& e : scene_.ndfs) ndfs += static_cast<double>(e.count(1));
         for (double a : scene_.alphas) alphas += std::max(1.0, a);
-        work.add("walks", ndfs * alphas * static_cast<double>(scene_.materials.size() * scene_.theta_i.size()) *
-                              static_cast<double>(scene_.walks), false);
+        work.add("walks",
+                 ndfs * alphas * static_cast<double>(scene_.materials.size() * scene_.theta_i.size()) *
+                     static_cast<double>(scene_.walks),
+                 false);
     }
 
-    void check(const Settings&, const NdfRegistry& ndfs, const VariantRegistry&) override { cells_ = walk_cells(scene_, ndfs); }
+    void check(const Settings&, const NdfRegistry& ndfs, const VariantRegistry&) override {
+        cells_ = walk_cells(scene_, ndfs);
+    }
 
     bool on_all_ranks() const override { return true; }
 
     void compute() override {
         if (cells_.empty()) return;
         if (mpi::rank() == 0)
-            std::fprintf(stderr, "report: walk section, %zu cells of %lld walks\n", cells_.size(), static_cast<long long>(scene_.walks));
+            std::fprintf(stderr, "report: walk section, %zu cells of %lld walks\n", cells_.size(),
+                         static_cast<long long>(scene_.walks));
         const auto t0 = std::chrono::steady_clock::now();
         results_ = trace_walk_cells(cells_, scene_);
         seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -24,7 +24,9 @@ class AnyNdf {
 public:
     template <Ndf N>
     AnyNdf(N ndf, NdfSpec spec)
-        : self_(std::make_shared<const Model<N>>(std::move(ndf))), parts_(std::move(spec)), spec_(format_spec(parts_)) {}
+        : self_(std::make_shared<const Model<N>>(std::move(ndf))),
+          parts_(std::move(spec)),
+          spec_(format_spec(parts_)) {}
 
     double D(double cos_theta_m) const { return self_->D(cos_theta_m); }
     double slope_density(double r2) const { return self_->slope_density(r2); }

@@ -67,8 +67,8 @@ double projected_area(const N& ndf, Backend backend = Backend::boost) {
 template <Ndf N>
 double visible_projected_area(const N& ndf, double theta_v, Backend backend = Backend::boost) {
     const double sv = std::sin(theta_v), cv = std::cos(theta_v), r0 = core_slope_scale(ndf), kink = cv / sv;
-    // D sin(theta) Phi(sin theta_v sin theta, cos theta_v cos theta) dtheta = D cos^4 r Phi(r sin theta_v, cos theta_v) dr,
-    // Phi being homogeneous of degree 1.
+    // D sin(theta) Phi(sin theta_v sin theta, cos theta_v cos theta) dtheta = D cos^4 r Phi(r sin theta_v, cos theta_v)
+    // dr, Phi being homogeneous of degree 1.
     auto f = [&](double r) {
         return detail::checked_D_cos4(ndf, r * r, r0) * r * detail::clamped_cosine_azimuth(sv * r, cv);
     };
@@ -85,12 +85,15 @@ std::vector<CheckResult> run_checks(const N& ndf, const CheckOptions& opts = {})
     std::vector<CheckResult> out;
     const QuadratureOptions q{opts.backend, 1e-12};
     const double r0 = core_slope_scale(ndf);
-    require(r0 <= 1e22, "checks: the ndf's slope scale 1/sqrt(pi P22(0))", "<= 1e22 (alpha <= 1e22), where the "
-            "quadrature routes the checks compare have a mu to run at", r0);
+    require(r0 <= 1e22, "checks: the ndf's slope scale 1/sqrt(pi P22(0))",
+            "<= 1e22 (alpha <= 1e22), where the "
+            "quadrature routes the checks compare have a mu to run at",
+            r0);
     out.push_back({"integral D cos dm = 1", "", projected_area(ndf, opts.backend), 1.0, 1e-8});
     if (opts.with_2d) {
-        const double p2 = 2.0 * integrate_log_axis([&](double x) { return P2(ndf, x, q); }, {opts.backend, 1e-11},
-                                                   std::min(r0, 1.0), std::max(r0, 1.0));
+        const double p2 = 2.0 *
+            integrate_log_axis([&](double x) { return P2(ndf, x, q); }, {opts.backend, 1e-11}, std::min(r0, 1.0),
+                               std::max(r0, 1.0));
         out.push_back({"integral P2 dq = 1", "", p2, 1.0, 1e-9});
     }
     LambdaOptions lo;
@@ -105,7 +108,8 @@ std::vector<CheckResult> run_checks(const N& ndf, const CheckOptions& opts = {})
     for (double m : {0.1, 1.0, 10.0}) {
         const double mu = m * scale;
         const double l1 = Lambda_1d(ndf, mu, q);
-        if (opts.with_2d) out.push_back({"Lambda 1D = 2D", detail::format_where("mu", mu), l1, Lambda_2d(ndf, mu, q), 1e-8});
+        if (opts.with_2d)
+            out.push_back({"Lambda 1D = 2D", detail::format_where("mu", mu), l1, Lambda_2d(ndf, mu, q), 1e-8});
         if (has_closed_Lambda(ndf)) {
             lo.method = Method::closed;
             out.push_back({"Lambda 1D = closed form", detail::format_where("mu", mu), l1, Lambda(ndf, mu, lo), 1e-10});

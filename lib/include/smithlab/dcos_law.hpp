@@ -24,7 +24,8 @@ namespace smithlab {
 // What a sampler returns when it cannot draw (a law that cannot be drawn in double, or no normal faces the direction).
 inline Vec3 no_normal() { return Vec3::Constant(std::numeric_limits<double>::quiet_NaN()); }
 // Rejection loops stop after this many tries and return no_normal() instead of hanging: every loop here accepts with
-// a probability bounded away from 0 for any accepted NDF and direction, so reaching it means a law that cannot be drawn.
+// a probability bounded away from 0 for any accepted NDF and direction, so reaching it means a law that cannot be
+// drawn.
 inline constexpr long max_tries = 10'000'000;
 
 template <Ndf N>

@@ -15,12 +15,12 @@
 // panels [2j, 2j + 2] of u, j < J, then the tail u >= 2J in s = pi/2 - t = atan(1/sinh u) in [0, s_J] (the t-form
 // of smith.hpp, where a power tail of f is smooth: f ~ r^-4 makes the integrand tend to a constant as s -> 0),
 // with J the first panel edge beyond ln(2 max(r0, 1)/mu), at least 1 (the tail then starts past every feature it
-// knows of: its nearest singularity, at s ~ i mu/r_f, is at least one tail length off its end point s = 0). A panel of width 2 puts a
-// singularity pi/2 off its middle at Bernstein ellipse parameter rho = 3.4 (Trefethen 2008, "Is Gauss quadrature
-// better than Clenshaw-Curtis?", thm 4.5: error ~ rho^-2n): 15-point Gauss ~ 1e-16, 31-point Kronrod far below, of
-// the panel's size. (Gauss-Kronrod 10-21 on these panels stopped ~1e-9 short of QUADPACK's test at u ~ 0, where the
-// triple pole of 1/cosh^3 sits, and bisected there.)
-// Error estimate per piece: QUADPACK's QK21 (Piessens, de Doncker-Kapenga, Ueberhuber, Kahaner 1983, sec. 3.2),
+// knows of: its nearest singularity, at s ~ i mu/r_f, is at least one tail length off its end point s = 0). A panel of
+// width 2 puts a singularity pi/2 off its middle at Bernstein ellipse parameter rho = 3.4 (Trefethen 2008, "Is Gauss
+// quadrature better than Clenshaw-Curtis?", thm 4.5: error ~ rho^-2n): 15-point Gauss ~ 1e-16, 31-point Kronrod far
+// below, of the panel's size. (Gauss-Kronrod 10-21 on these panels stopped ~1e-9 short of QUADPACK's test at u ~ 0,
+// where the triple pole of 1/cosh^3 sits, and bisected there.) Error estimate per piece: QUADPACK's QK21 (Piessens, de
+// Doncker-Kapenga, Ueberhuber, Kahaner 1983, sec. 3.2),
 //   E = resasc min(1, (200 |K - G| / resasc)^1.5), at least 50 eps resabs;
 // accepted when the sum of E over the pieces is <= tolerance x |Lambda| (tests/test_quadrature.cpp checks that E
 // bounds the error). Otherwise the worst piece is bisected (nodes computed on the fly), up to max_pieces pieces;
@@ -44,11 +44,11 @@ double tan_minus_x(double t, double tan_t);  // smith.cpp
 
 namespace fixed_rule {
 
-inline constexpr int nodes = 31;           // Gauss-Kronrod 15-31
+inline constexpr int nodes = 31;            // Gauss-Kronrod 15-31
 inline constexpr double panel_width = 2.0;  // in u
-inline constexpr int max_panels = 32;      // u up to 64: mu down to ~1e-27 max(r0, 1)
-inline constexpr int max_pieces = 64;      // the bisection's limits before the adaptive route takes over:
-inline constexpr int max_untabled = 4;     // pieces, and bisections below the trees' depth (each ~5 us)
+inline constexpr int max_panels = 32;       // u up to 64: mu down to ~1e-27 max(r0, 1)
+inline constexpr int max_pieces = 64;       // the bisection's limits before the adaptive route takes over:
+inline constexpr int max_untabled = 4;      // pieces, and bisections below the trees' depth (each ~5 us)
 // Each fixed piece comes with its bisections to depth 3, precomputed: a tree in heap order, tree[1] the piece,
 // tree[2i] and tree[2i + 1] the halves of tree[i]. Deeper halves get their nodes computed on the fly (~80 ns a node
 // against ~0 from the table: sinh, cosh, atan).
@@ -64,8 +64,8 @@ struct Piece {
 using Tree = std::array<Piece, tree_size>;
 
 struct Tables {
-    std::array<Tree, max_panels> panel;      // [1]: u in [2j, 2j + 2]
-    std::array<Tree, max_panels + 1> tail;   // [1]: u >= 2J, in s from atan(1 / sinh(2J)) down to 0
+    std::array<Tree, max_panels> panel;         // [1]: u in [2j, 2j + 2]
+    std::array<Tree, max_panels + 1> tail;      // [1]: u >= 2J, in s from atan(1 / sinh(2J)) down to 0
     std::array<double, max_panels + 1> s_edge;  // s at u = 2J
 };
 
@@ -219,7 +219,8 @@ FixedLambda Lambda_fixed_rule(const N& ndf, double mu, double tolerance = 1e-12)
         if (!tabled && (++untabled > max_untabled || (p.in_s && p.a == 0.0))) break;
         const int child = tabled ? 2 * p.node : tree_size;
         const double h = 0.5 * (m - p.a);
-        const PieceResult left = tabled ? eval_piece(ndf, mu2, (*p.tree)[child], h) : eval_interval(ndf, mu2, p.a, m, p.in_s);
+        const PieceResult left =
+            tabled ? eval_piece(ndf, mu2, (*p.tree)[child], h) : eval_interval(ndf, mu2, p.a, m, p.in_s);
         const PieceResult right =
             tabled ? eval_piece(ndf, mu2, (*p.tree)[child + 1], h) : eval_interval(ndf, mu2, m, p.b, p.in_s);
         out.evaluations += 2 * nodes;

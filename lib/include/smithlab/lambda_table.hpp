@@ -40,7 +40,7 @@ namespace smithlab {
 struct LambdaTableOptions {
     double mu_min = 1e-5;  // the spline covers at least [mu_min, mu_max], less where Lambda drops below 1e-290
     double mu_max = 1e5;
-    double tolerance = 1e-6;  // on the relative error of Lambda, as estimated (measured: ~5x below)
+    double tolerance = 1e-6;   // on the relative error of Lambda, as estimated (measured: ~5x below)
     LambdaOptions exact = {};  // the route the knots are computed by
 };
 
@@ -60,9 +60,9 @@ public:
             const std::array<double, 4>& c = coef_[i];
             return std::exp(((c[3] * u + c[2]) * u + c[1]) * u + c[0] - x);
         }
-        if (x < x_lo_) return g_lo_ / mu - 0.5;                          // mu = 0: +inf
+        if (x < x_lo_) return g_lo_ / mu - 0.5;                                   // mu = 0: +inf
         if (x > x_hi_) return std::exp(ln_Lambda_hi_ + slope_hi_ * (x - x_hi_));  // mu = +inf: 0
-        return x;                                                        // NaN, mu < 0
+        return x;                                                                 // NaN, mu < 0
     }
     double G1(double mu) const { return 1.0 / (1.0 + Lambda(std::abs(mu))); }
 
@@ -70,12 +70,12 @@ public:
     double mu_max() const { return std::exp(x_hi_); }
     double step() const { return 1.0 / inv_h_; }  // in ln mu
     std::size_t knots() const { return coef_.size() + 1; }
-    bool underflows() const { return underflows_; }  // beyond mu_max(), Lambda < 1e-290
+    bool underflows() const { return underflows_; }            // beyond mu_max(), Lambda < 1e-290
     double error_estimate() const { return error_estimate_; }  // relative, of Lambda, the worst of the three pieces
 
 private:
     double x_lo_ = 0.0, x_hi_ = 0.0, inv_h_ = 1.0;
-    double g_lo_ = 0.0;                             // c0 + R(mu_lo)
+    double g_lo_ = 0.0;                            // c0 + R(mu_lo)
     double ln_Lambda_hi_ = 0.0, slope_hi_ = -1.0;  // ln Lambda at mu_hi, and its slope in ln mu beyond
     bool underflows_ = false;
     double error_estimate_ = 0.0;

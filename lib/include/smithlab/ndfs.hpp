@@ -25,12 +25,12 @@ struct Ggx {
         const double s = r2 + alpha * alpha;
         return alpha * alpha / (std::numbers::pi * s * s);
     }
-    // Heitz 2014 eq. 72, rewritten: (sqrt(1 + alpha^2/mu^2) - 1)/2 = alpha^2 / (2 mu (mu + A)), A = sqrt(mu^2 + alpha^2),
-    // as (alpha / (mu + A)) (alpha / (2 mu)): each factor stays in range where alpha^2 / (2 mu (mu + A)) would not
-    // (alpha = 1e-50 at mu = 1e-308: the denominator underflows; the true Lambda is 2e257). A by sqrt, within 1.25 ulp
-    // as hypot's is: mu^2 underflowing is harmless (A = alpha then); past mu = 1e150, where mu^2 would overflow
-    // (a predictable branch), by hypot.
-    // Between mu = 1e-100 and 1e150 (a predictable branch) as one quotient: 2 mu (mu + A) lies in [2e-150, 8e300].
+    // Heitz 2014 eq. 72, rewritten: (sqrt(1 + alpha^2/mu^2) - 1)/2 = alpha^2 / (2 mu (mu + A)), A = sqrt(mu^2 +
+    // alpha^2), as (alpha / (mu + A)) (alpha / (2 mu)): each factor stays in range where alpha^2 / (2 mu (mu + A))
+    // would not (alpha = 1e-50 at mu = 1e-308: the denominator underflows; the true Lambda is 2e257). A by sqrt,
+    // within 1.25 ulp as hypot's is: mu^2 underflowing is harmless (A = alpha then); past mu = 1e150, where mu^2 would
+    // overflow (a predictable branch), by hypot. Between mu = 1e-100 and 1e150 (a predictable branch) as one quotient:
+    // 2 mu (mu + A) lies in [2e-150, 8e300].
     double Lambda(double mu) const {
         if (mu >= 1e-100 && mu < 1e150) return alpha * alpha / (2.0 * mu * (mu + std::sqrt(mu * mu + alpha * alpha)));
         return alpha / (mu + A_of(mu)) * (alpha / (2.0 * mu));
@@ -55,8 +55,8 @@ struct Beckmann {
     double alpha;
     double D(double c) const;
     double slope_density(double r2) const;
-    // Walter 2007 eq. 26: Lambda = (erf-based) = ierfc(a) / (2 a), a = mu / alpha, ierfc(a) = e^{-a^2}/sqrt(pi) - a erfc(a),
-    // the first repeated integral of erfc (Abramowitz & Stegun 7.2.5), evaluated without cancellation.
+    // Walter 2007 eq. 26: Lambda = (erf-based) = ierfc(a) / (2 a), a = mu / alpha, ierfc(a) = e^{-a^2}/sqrt(pi) - a
+    // erfc(a), the first repeated integral of erfc (Abramowitz & Stegun 7.2.5), evaluated without cancellation.
     double Lambda(double mu) const;
     // D cos sampling, Walter 2007 eq. 28-29 (the blog's arctan form): S = exp(-r^2/alpha^2), tan^2 = -alpha^2 ln v.
     double Dcos_sf(double r2) const { return std::exp(-r2 / (alpha * alpha)); }
@@ -70,7 +70,8 @@ struct BlinnPhong {
     double n;
     double D(double c) const;
     double slope_density(double r2) const;  // (n+2)/(2 pi) (1 + r^2)^{-(n+4)/2}
-    // D cos sampling, Walter 2007 eq. 31-32 in r^2 (the blog's cos = v^{1/(n+2)}): S = cos^{n+2} = (1 + r^2)^{-(n+2)/2}.
+    // D cos sampling, Walter 2007 eq. 31-32 in r^2 (the blog's cos = v^{1/(n+2)}): S = cos^{n+2} = (1 +
+    // r^2)^{-(n+2)/2}.
     double Dcos_sf(double r2) const { return std::exp(-0.5 * (n + 2.0) * std::log1p(r2)); }
     double Dcos_r2(double v) const { return std::expm1(-2.0 / (n + 2.0) * std::log(v)); }
 };

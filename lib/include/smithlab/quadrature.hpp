@@ -41,8 +41,8 @@ struct QuadratureOptions {
 class FunctionRef {
 public:
     template <class F>
-        requires(!std::is_same_v<std::remove_cvref_t<F>, FunctionRef>)
-    FunctionRef(const F& f)  // NOLINT(google-explicit-constructor): implicit by design
+    requires(!std::is_same_v<std::remove_cvref_t<F>, FunctionRef>)
+        FunctionRef(const F& f)  // NOLINT(google-explicit-constructor): implicit by design
         : obj_(&f), call_([](const void* o, double x) { return (*static_cast<const F*>(o))(x); }) {}
     double operator()(double x) const { return call_(obj_, x); }
 
@@ -114,7 +114,7 @@ double integrate_log_axis(const H& h, const QuadratureOptions& opts, double x0, 
         return h(x) * x;
     };
     return integrate(down, 0.0, INFINITY, opts) + integrate(mid, std::log(x0), std::log(x1), opts) +
-           integrate(up, 0.0, INFINITY, opts);
+        integrate(up, 0.0, INFINITY, opts);
 }
 
 }  // namespace smithlab

@@ -18,8 +18,8 @@
 #include <memory>
 #include <optional>
 #include <string>
-#include <type_traits>
 #include <string_view>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -33,9 +33,10 @@ class NdfParams {
 public:
     NdfParams(std::string ndf, std::map<std::string, double> values, std::map<std::string, std::string> texts = {})
         : ndf_(std::move(ndf)), values_(std::move(values)), texts_(std::move(texts)) {}
-    double at(const std::string& key) const;              // throws input_error naming the missing key
+    double at(const std::string& key) const;                // throws input_error naming the missing key
     const std::string& text(const std::string& key) const;  // a text parameter (NdfInfo::text_parameters)
     const std::string& ndf() const { return ndf_; }
+
 private:
     std::string ndf_;
     std::map<std::string, double> values_;

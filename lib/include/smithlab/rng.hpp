@@ -37,7 +37,8 @@ public:
     // Small enough to inline where it is called (a sampler keeps its registers); the next block, every 4 numbers, is
     // out of line.
     result_type operator()() {
-        if (next_ == 4) [[unlikely]] refill();
+        if (next_ == 4) [[unlikely]]
+            refill();
         return block_.v[next_++];
     }
 
@@ -57,8 +58,8 @@ private:
 // Uniform in [0, 1): the top 53 bits, so every value is a multiple of 2^-53 and 1 is never returned. Always inlined
 // (with WalkRng: a load, a shift, a conversion).
 template <class G>
-    requires std::uniform_random_bit_generator<G> && (G::min() == 0) && (G::max() == ~std::uint64_t{0})
-[[gnu::always_inline]] inline double uniform01(G& g) {
+requires std::uniform_random_bit_generator<G> &&(G::min() == 0) &&
+    (G::max() == ~std::uint64_t{0}) [[gnu::always_inline]] inline double uniform01(G& g) {
     return static_cast<double>(g() >> 11) * 0x1.0p-53;
 }
 
@@ -69,8 +70,8 @@ struct SquarePoint {
     double a, b;
 };
 template <class G>
-    requires std::uniform_random_bit_generator<G> && (G::min() == 0) && (G::max() == ~std::uint64_t{0})
-[[gnu::always_inline]] inline SquarePoint uniform_square(G& g) {
+requires std::uniform_random_bit_generator<G> &&(G::min() == 0) &&
+    (G::max() == ~std::uint64_t{0}) [[gnu::always_inline]] inline SquarePoint uniform_square(G& g) {
     const std::uint64_t x = g();
     const auto hi = static_cast<std::int32_t>(static_cast<std::uint32_t>(x >> 32));
     const auto lo = static_cast<std::int32_t>(static_cast<std::uint32_t>(x));

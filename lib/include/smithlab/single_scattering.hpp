@@ -24,7 +24,8 @@ double D_of_normal(const N& ndf, const Vec3& m) {
 
 // f(wi, wo) |cos theta_o| in reflection (wi.z > 0, wo.z > 0; 0 otherwise).
 template <Ndf N, class Fresnel>
-double single_scattering_reflection(const N& ndf, const Vec3& wi, const Vec3& wo, Fresnel F, const LambdaOptions& opts = {}) {
+double single_scattering_reflection(const N& ndf, const Vec3& wi, const Vec3& wo, Fresnel F,
+                                    const LambdaOptions& opts = {}) {
     if (!(wi.z() > 0.0 && wo.z() > 0.0)) return 0.0;
     const Vec3 h = (wi + wo).normalized();
     const double G2 = G2_from_Lambdas(Lambda(ndf, cot_theta(wi), opts), Lambda(ndf, cot_theta(wo), opts), true,

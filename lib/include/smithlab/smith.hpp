@@ -139,12 +139,15 @@ double P2(const N& ndf, double q, const QuadratureOptions& opts = {}) {
     if (std::abs(q) < 1e-150)
         return 2.0 * integrate_log_axis([&](double p) { return slope_density(ndf, p * p); }, opts);
     const double q2 = q * q;
-    return 2.0 * std::abs(q) * integrate_quarter_turn([&](double, double, double sec2) {
-        const double r2 = q2 * sec2;
-        if (!(r2 < INFINITY)) return 0.0;
-        const double f = slope_density(ndf, r2);
-        return f == 0.0 ? 0.0 : f * sec2;
-    }, opts, detail::grazing_breaks(ndf, std::abs(q)));
+    return 2.0 * std::abs(q) *
+        integrate_quarter_turn(
+               [&](double, double, double sec2) {
+                   const double r2 = q2 * sec2;
+                   if (!(r2 < INFINITY)) return 0.0;
+                   const double f = slope_density(ndf, r2);
+                   return f == 0.0 ? 0.0 : f * sec2;
+               },
+               opts, detail::grazing_breaks(ndf, std::abs(q)));
 }
 
 // Lambda by the book: the nested route P22 -> P2 -> Lambda, Walter 2007 eq. 48. Cost: milliseconds.
@@ -155,12 +158,15 @@ double Lambda_2d(const N& ndf, double mu, const QuadratureOptions& opts = {}) {
     require_quadrature_domain(ndf, mu, "quadrature2d");
     QuadratureOptions inner = opts;
     inner.tolerance = opts.tolerance * 0.1;
-    return mu * integrate_quarter_turn([&](double, double tn, double sec2) {
-        const double sec = std::sqrt(sec2), q = mu * sec;
-        if (!(q < INFINITY)) return 0.0;
-        const double p2 = P2(ndf, q, inner);
-        return p2 == 0.0 ? 0.0 : sec / (sec + 1.0) * (tn * (tn * (tn * p2)));
-    }, opts, detail::grazing_breaks(ndf, mu));
+    return mu *
+        integrate_quarter_turn(
+               [&](double, double tn, double sec2) {
+                   const double sec = std::sqrt(sec2), q = mu * sec;
+                   if (!(q < INFINITY)) return 0.0;
+                   const double p2 = P2(ndf, q, inner);
+                   return p2 == 0.0 ? 0.0 : sec / (sec + 1.0) * (tn * (tn * (tn * p2)));
+               },
+               opts, detail::grazing_breaks(ndf, mu));
 }
 
 // Lambda by the reduced route. Doing the azimuthal integral of Walter eq. 48 in closed form (docs/math.md):
@@ -173,12 +179,15 @@ template <Ndf N>
 double Lambda_1d(const N& ndf, double mu, const QuadratureOptions& opts = {}) {
     require_quadrature_domain(ndf, mu);
     const double mu2 = mu * mu;
-    return 2.0 * integrate_quarter_turn([&](double t, double tn, double sec2) {
-        const double r2 = mu2 * sec2;
-        if (!(r2 < INFINITY)) return 0.0;
-        const double f = slope_density(ndf, r2);
-        return f == 0.0 ? 0.0 : f * r2 * tn * detail::tan_minus_x(t, tn);
-    }, opts, detail::grazing_breaks(ndf, mu));
+    return 2.0 *
+        integrate_quarter_turn(
+               [&](double t, double tn, double sec2) {
+                   const double r2 = mu2 * sec2;
+                   if (!(r2 < INFINITY)) return 0.0;
+                   const double f = slope_density(ndf, r2);
+                   return f == 0.0 ? 0.0 : f * r2 * tn * detail::tan_minus_x(t, tn);
+               },
+               opts, detail::grazing_breaks(ndf, mu));
 }
 
 // The same integral by the fixed rule of lambda_fixed.hpp (Gauss-Kronrod 15-31 panels in u = acosh(r/mu) on

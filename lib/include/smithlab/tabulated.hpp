@@ -5,8 +5,9 @@
 // `cos_theta` (in (0, 1]), and `D` (per steradian of m, normalized so that the integral of D(m) cos(theta_m) over the
 // hemisphere is 1, Walter et al. 2007 eq. 4); other columns are ignored. Then one row per angle, theta_m strictly
 // increasing (cos_theta strictly decreasing), D finite and >= 0. RFC 4180 as csv.hpp reads it; a line whose first
-// character is '#' (outside a quoted field) is a comment, and a leading UTF-8 byte order mark is skipped. Every refusal is an input_error "FILE:LINE: ..." naming the
-// value (the area's names the rows' lines), and comes before any TabulatedNdf exists.
+// character is '#' (outside a quoted field) is a comment, and a leading UTF-8 byte order mark is skipped. Every refusal
+// is an input_error "FILE:LINE: ..." naming the value (the area's names the rows' lines), and comes before any
+// TabulatedNdf exists.
 //
 // The interpolation, chosen by measurement (tests/test_tabulated.cpp prints the table; see "Measured" below):
 //   nodes      y_i = ln D_i against theta_i in radians: D is what a measurement gives as a function of theta, and ln D
@@ -92,11 +93,11 @@ public:
     // P22(r^2) = D cos^4 at r^2 = tan^2 theta_m (Walter 2007 eq. 42); 0 at r^2 = inf.
     double slope_density(double r2) const;
 
-    std::size_t points() const;         // rows in the table
-    double theta_min_deg() const;       // the table's first and last angle, in degrees
+    std::size_t points() const;    // rows in the table
+    double theta_min_deg() const;  // the table's first and last angle, in degrees
     double theta_max_deg() const;
-    double horizon_D() const;           // D_0: D at theta_m = 90 degrees, from the tail law
-    double area_as_read() const;        // A before any rescaling
+    double horizon_D() const;             // D_0: D at theta_m = 90 degrees, from the tail law
+    double area_as_read() const;          // A before any rescaling
     double normalization_factor() const;  // 1 / A: what D was multiplied by
     std::uint64_t content_hash() const;   // FNV-1a 64 of the CSV bytes as read
     std::string content_id() const;       // "fnv1a64:" and the hash as 16 hex digits
@@ -123,7 +124,8 @@ private:
 
 // The NDF of CSV `text`; `source` names it in messages ("SOURCE:LINE: ...") and in source(). input_error on any
 // refusal above.
-TabulatedNdf tabulated_ndf_from_csv(const std::string& text, const std::string& source, const TabulatedOptions& opts = {});
+TabulatedNdf tabulated_ndf_from_csv(const std::string& text, const std::string& source,
+                                    const TabulatedOptions& opts = {});
 // The same from a file, read as bytes; the path as given is the source. input_error when it cannot be read.
 TabulatedNdf read_tabulated_ndf(const std::filesystem::path& path, const TabulatedOptions& opts = {});
 

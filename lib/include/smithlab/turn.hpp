@@ -2,10 +2,10 @@
 // sampler draws, without libm's argument reduction (the walk draws one or two per bounce).
 //
 // u from uniform01 is a multiple of 2^-53, so the reduction is exact: q = nearest integer to 4u, r = 4u - q in
-// [-1/2, 1/2] (both exact), x = r pi/2 in [-pi/4, pi/4] (pi/2 in two parts: half an ulp and a little), and (cos, sin)(2 pi u) is
-// (cos x, sin x) turned by q quarter turns. cos x and sin x are fdlibm's kernels (Sun Microsystems 1993, k_cos.c and
-// k_sin.c, __kernel_cos / __kernel_sin with a zero tail; their minimax polynomials on [-pi/4, pi/4] are within 2^-58
-// of the functions): within an ulp or so, the accuracy of std::cos(2 pi u) itself.
+// [-1/2, 1/2] (both exact), x = r pi/2 in [-pi/4, pi/4] (pi/2 in two parts: half an ulp and a little), and (cos, sin)(2
+// pi u) is (cos x, sin x) turned by q quarter turns. cos x and sin x are fdlibm's kernels (Sun Microsystems 1993,
+// k_cos.c and k_sin.c, __kernel_cos / __kernel_sin with a zero tail; their minimax polynomials on [-pi/4, pi/4] are
+// within 2^-58 of the functions): within an ulp or so, the accuracy of std::cos(2 pi u) itself.
 #pragma once
 
 #include <bit>
@@ -30,9 +30,9 @@ namespace detail {
 // fdlibm k_cos.c, y = 0: 1 - x^2/2 + x^4 (C1 + ... + x^10 C6), with 1 - x^2/2 split as (1 - qx) - (x^2/2 - qx) above
 // |x| = 0.3 (qx = |x|/4 truncated to its high word, or 0.28125 above 0.78125) so that the subtraction keeps its digits.
 [[gnu::always_inline]] inline double kernel_cos(double x) {
-    constexpr double C1 = 4.16666666666666019037e-02, C2 = -1.38888888888741095749e-03,
-                     C3 = 2.48015872894767294178e-05, C4 = -2.75573143513906633035e-07,
-                     C5 = 2.08757232129817482790e-09, C6 = -1.13596475577881948265e-11;
+    constexpr double C1 = 4.16666666666666019037e-02, C2 = -1.38888888888741095749e-03, C3 = 2.48015872894767294178e-05,
+                     C4 = -2.75573143513906633035e-07, C5 = 2.08757232129817482790e-09,
+                     C6 = -1.13596475577881948265e-11;
     const double z = x * x, r = z * (C1 + z * (C2 + z * (C3 + z * (C4 + z * (C5 + z * C6)))));
     const double ax = std::abs(x);
     if (ax < 0.3) return 1.0 - (0.5 * z - z * r);

@@ -38,14 +38,15 @@ struct LambdaVariant {
     LambdaRoute route = LambdaRoute::other;
 };
 
-// The route variant takes on ndf: a table's is the route it was built from (closed or q1d_boost), the others' their own.
+// The route variant takes on ndf: a table's is the route it was built from (closed or q1d_boost), the others' their
+// own.
 LambdaRoute route_on(const LambdaVariant& variant, const AnyNdf& ndf);
 // Lambda_1d or Lambda_2d, by either backend.
 bool is_quadrature(LambdaRoute route);
 
 class VariantRegistry {
 public:
-    void add(LambdaVariant v);                             // input_error on a duplicate name
+    void add(LambdaVariant v);  // input_error on a duplicate name
     const LambdaVariant* find(std::string_view name) const;
     const LambdaVariant& at(std::string_view name) const;  // input_error naming the unknown variant
     const std::vector<LambdaVariant>& list() const { return variants_; }

@@ -35,7 +35,8 @@ double grazing_albedo(FunctionRef P22, const FunctionRef& F, double tolerance) {
         const double r = std::tan(t), c = std::cos(t), w = r * r * P22(r * r) / (c * c);  // r^2 P22 dr/dt
         if (!fresnel || w == 0.0) return w;
         const double sin_m = std::sin(t);
-        return w * gk([&](double phi) { return std::cos(phi) * F(sin_m * std::cos(phi)); }, 0.0, pi / 2, 0.1 * tolerance);
+        return w *
+            gk([&](double phi) { return std::cos(phi) * F(sin_m * std::cos(phi)); }, 0.0, pi / 2, 0.1 * tolerance);
     };
     const double num = gk([&](double t) { return radial(t, true); }, 0.0, pi / 2, tolerance);
     const double den = gk([&](double t) { return radial(t, false); }, 0.0, pi / 2, tolerance);  // times integral of cos
@@ -46,14 +47,15 @@ double grazing_albedo(FunctionRef P22, const FunctionRef& F, double tolerance) {
 
 namespace detail {
 
-double single_scattering_albedo(FunctionRef P22, FunctionRef Lambda, const FunctionRef* F, double mu, double tolerance) {
+double single_scattering_albedo(FunctionRef P22, FunctionRef Lambda, const FunctionRef* F, double mu,
+                                double tolerance) {
     require(mu >= 0.0 && mu <= 1.0, "mu = cos(theta_i)", "in [0, 1]", mu);
     if (mu == 0.0) return F ? grazing_albedo(P22, *F, tolerance) : 1.0;
     const double ci = mu, si = std::sqrt((1.0 - mu) * (1.0 + mu));
     const double Li = si > 0.0 ? Lambda(ci / si) : 0.0;
     // The integrand at (r, phi), without the measure r P22(r^2): (cos_i + sin_i r cos phi) G2 F, 0 below the horizon.
     auto facet = [&](double r, double cos_phi) {
-        const double a = ci + si * r * cos_phi, n2 = 1.0 + r * r;  // a = (wi . m) sqrt(n2)
+        const double a = ci + si * r * cos_phi, n2 = 1.0 + r * r;               // a = (wi . m) sqrt(n2)
         const double woz = (ci * (1.0 - r * r) + 2.0 * si * r * cos_phi) / n2;  // wo = 2 (wi.m) m - wi
         if (!(woz > 0.0 && a > 0.0)) return 0.0;
         const double sin_o = std::sqrt((1.0 - woz) * (1.0 + woz));
@@ -64,25 +66,29 @@ double single_scattering_albedo(FunctionRef P22, FunctionRef Lambda, const Funct
     const double inner_tol = 0.1 * tolerance;
     // [0, r1] x [0, pi]: every azimuth reflects above the horizon.
     const double r1 = ci / (1.0 + si), rmax = (1.0 + si) / ci;
-    const double full = gk([&](double r) {
-        const double w = r * P22(r * r);
-        if (w == 0.0) return 0.0;
-        return w * gk([&](double phi) { return facet(r, std::cos(phi)); }, 0.0, pi, inner_tol);
-    }, 0.0, r1, tolerance);
+    const double full = gk(
+        [&](double r) {
+            const double w = r * P22(r * r);
+            if (w == 0.0) return 0.0;
+            return w * gk([&](double phi) { return facet(r, std::cos(phi)); }, 0.0, pi, inner_tol);
+        },
+        0.0, r1, tolerance);
     // (r1, rmax): |phi| < phi_max(r), cos phi_max = -cos_i (1 - r^2) / (2 sin_i r); r = r1 (rmax / r1)^S(u),
     // S(u) = u^2 (3 - 2u): logarithmic in r (rmax / r1 = ((1 + sin_i) / cos_i)^2 grows without bound at grazing
     // incidence, and the slope law's features are O(1) wide in ln r), flat at both ends (dS/du = 0 there).
     double part = 0.0;
     if (si > 0.0 && rmax > r1) {
         const double L = 2.0 * std::log((1.0 + si) / ci);
-        part = gk([&](double u) {
-            const double r = r1 * std::exp(L * u * u * (3.0 - 2.0 * u)), dr = r * L * 6.0 * u * (1.0 - u);
-            const double w = r * P22(r * r) * dr;
-            if (!(w > 0.0) || !(r > 0.0)) return 0.0;
-            const double phi_max = std::acos(std::clamp(-ci * (1.0 - r * r) / (2.0 * si * r), -1.0, 1.0));
-            if (!(phi_max > 0.0)) return 0.0;
-            return w * phi_max * gk([&](double t) { return facet(r, std::cos(phi_max * t)); }, 0.0, 1.0, inner_tol);
-        }, 0.0, 1.0, tolerance);
+        part = gk(
+            [&](double u) {
+                const double r = r1 * std::exp(L * u * u * (3.0 - 2.0 * u)), dr = r * L * 6.0 * u * (1.0 - u);
+                const double w = r * P22(r * r) * dr;
+                if (!(w > 0.0) || !(r > 0.0)) return 0.0;
+                const double phi_max = std::acos(std::clamp(-ci * (1.0 - r * r) / (2.0 * si * r), -1.0, 1.0));
+                if (!(phi_max > 0.0)) return 0.0;
+                return w * phi_max * gk([&](double t) { return facet(r, std::cos(phi_max * t)); }, 0.0, 1.0, inner_tol);
+            },
+            0.0, 1.0, tolerance);
     }
     return 2.0 * (full + part) / ci;
 }
@@ -103,7 +109,8 @@ std::vector<double> compensation_mus(int n) {
 
 double interpolate_E(const CompensationTable& table, double mu) {
     const std::vector<double>& x = table.mus;
-    if (x.size() < 2 || table.E.size() != x.size()) throw input_error("compensation table: malformed (fewer than 2 points, or E and mus differ in size)");
+    if (x.size() < 2 || table.E.size() != x.size())
+        throw input_error("compensation table: malformed (fewer than 2 points, or E and mus differ in size)");
     require(mu >= x.front() && mu <= x.back(), "mu", "within the table's cosines", mu);
     const std::size_t i = std::min<std::size_t>(
         static_cast<std::size_t>(std::upper_bound(x.begin(), x.end(), mu) - x.begin()), x.size() - 1);
@@ -118,9 +125,7 @@ double compensation_lobe(const CompensationTable& table, double mu_i, double mu_
     return (1.0 - interpolate_E(table, mu_i)) * (1.0 - interpolate_E(table, mu_o)) / (pi * missing);
 }
 
-double fresnel_ms(double F_avg, double E_avg) {
-    return F_avg * F_avg * E_avg / (1.0 - F_avg * (1.0 - E_avg));
-}
+double fresnel_ms(double F_avg, double E_avg) { return F_avg * F_avg * E_avg / (1.0 - F_avg * (1.0 - E_avg)); }
 
 double turquin_scale(double E_view, double F0) {
     require(E_view > 0.0, "E(mu_view)", "> 0", E_view);
@@ -208,7 +213,8 @@ void write_compensation_header(std::ostream& out, std::string_view family_name, 
                                const std::vector<double>& mus, const std::vector<std::vector<double>>& E,
                                const std::vector<double>& E_avg) {
     if (alphas.size() < 2 || mus.size() < 2 || E.size() != alphas.size() || E_avg.size() != alphas.size())
-        throw input_error("compensation header: need >= 2 alphas and mus, E[alpha][mu] and E_avg[alpha] of the grid's sizes");
+        throw input_error(
+            "compensation header: need >= 2 alphas and mus, E[alpha][mu] and E_avg[alpha] of the grid's sizes");
     for (const std::vector<double>& row : E)
         if (row.size() != mus.size()) throw input_error("compensation header: a row of E differs in size from mus");
     for (std::size_t i = 1; i < alphas.size(); ++i)
@@ -262,7 +268,8 @@ void write_compensation_header(std::ostream& out, std::string_view family_name, 
         << "    float ta, tm;\n"
         << "    int i = " << id << "_cell(" << id << "_alpha, " << na << ", alpha, &ta);\n"
         << "    int j = " << id << "_cell(" << id << "_mu, " << nm << ", mu, &tm);\n"
-        << "    float lo = " << id << "_E_table[i][j] + tm * (" << id << "_E_table[i][j + 1] - " << id << "_E_table[i][j]);\n"
+        << "    float lo = " << id << "_E_table[i][j] + tm * (" << id << "_E_table[i][j + 1] - " << id
+        << "_E_table[i][j]);\n"
         << "    float hi = " << id << "_E_table[i + 1][j] + tm * (" << id << "_E_table[i + 1][j + 1] - " << id
         << "_E_table[i + 1][j]);\n"
         << "    return lo + ta * (hi - lo);\n"
@@ -271,7 +278,8 @@ void write_compensation_header(std::ostream& out, std::string_view family_name, 
         << "static inline float " << id << "_E_avg(float alpha) {\n"
         << "    float ta;\n"
         << "    int i = " << id << "_cell(" << id << "_alpha, " << na << ", alpha, &ta);\n"
-        << "    return " << id << "_E_avg_table[i] + ta * (" << id << "_E_avg_table[i + 1] - " << id << "_E_avg_table[i]);\n"
+        << "    return " << id << "_E_avg_table[i] + ta * (" << id << "_E_avg_table[i + 1] - " << id
+        << "_E_avg_table[i]);\n"
         << "}\n\n"
         << "#endif /* " << guard << " */\n";
 }

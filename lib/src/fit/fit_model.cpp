@@ -1,7 +1,7 @@
 #include "smithlab/fit/fit_model.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <Eigen/Dense>
+#include <Eigen/Eigenvalues>
 #include <boost/math/quadrature/gauss.hpp>
 #include <cmath>
 #include <numbers>
@@ -220,7 +220,8 @@ GridCheck check_on_grid(const DiffuseModel& m, const std::vector<double>& params
                 for (double phi : {0.0, 45.0, 90.0, 135.0, 180.0})
                     for (double albedo : {0.5, 1.0}) {
                         const Vec3 wi = direction_from_deg(ti, 0.0), wo = direction_from_deg(to, phi);
-                        const double x = m.f(wi, wo, a, albedo, params.data()), y = m.f(wo, wi, a, albedo, params.data());
+                        const double x = m.f(wi, wo, a, albedo, params.data()),
+                                     y = m.f(wo, wi, a, albedo, params.data());
                         out.min_f = std::min({out.min_f, x, y});
                         if (const double big = std::max(x, y); big > 0.0)
                             out.asymmetry = std::max(out.asymmetry, std::abs(x - y) / big);

@@ -18,10 +18,11 @@ namespace {
 std::string helper_constants() {
     constexpr double pi = std::numbers::pi;
     return "const float smithlab_pi = " + glsl_float(pi) + ";\n" +
-           "const float smithlab_inv_pi = " + glsl_float(std::numbers::inv_pi) + ";\n" +
-           "// EON's constants (the paper's constant1_FON and constant2_FON): A = 1/(1 + c1 r), <E_F> = A (1 + c2 r).\n"
-           "const float smithlab_eon_c1 = " + glsl_float(0.5 - 2.0 / (3.0 * pi)) + ";  // 1/2 - 2/(3 pi)\n" +
-           "const float smithlab_eon_c2 = " + glsl_float(2.0 / 3.0 - 28.0 / (15.0 * pi)) + ";  // 2/3 - 28/(15 pi)\n";
+        "const float smithlab_inv_pi = " + glsl_float(std::numbers::inv_pi) + ";\n" +
+        "// EON's constants (the paper's constant1_FON and constant2_FON): A = 1/(1 + c1 r), <E_F> = A (1 + c2 r).\n"
+        "const float smithlab_eon_c1 = " +
+        glsl_float(0.5 - 2.0 / (3.0 * pi)) + ";  // 1/2 - 2/(3 pi)\n" +
+        "const float smithlab_eon_c2 = " + glsl_float(2.0 / 3.0 - 28.0 / (15.0 * pi)) + ";  // 2/3 - 28/(15 pi)\n";
 }
 
 constexpr std::string_view helper_functions = R"(
@@ -287,8 +288,8 @@ std::string glsl_helpers() { return helper_constants() + std::string(helper_func
 std::string glsl_function(const ShaderModel& m) {
     const DiffuseModel& model = *m.model;
     const std::string call = call_of(m);  // refuses a model without GLSL, or the wrong number of constants
-    std::string out = "// " + comment_text(m.name) + " on " + comment_text(m.ndf) + ": " + comment_text(model.source) +
-                      "\n";
+    std::string out =
+        "// " + comment_text(m.name) + " on " + comment_text(m.ndf) + ": " + comment_text(model.source) + "\n";
     if (model.parameters.empty()) {
         out += "// no free constants\n";
     } else {
@@ -301,7 +302,7 @@ std::string glsl_function(const ShaderModel& m) {
         out += "\n";
     }
     out += "float " + glsl_function_name(m) + "(vec3 L, vec3 V, vec3 N, float alpha, float albedo)\n{\n    return " +
-           call + ";\n}\n";
+        call + ";\n}\n";
     return out;
 }
 
@@ -326,18 +327,22 @@ std::string brdf_explorer_file(const ShaderModel& m) {
     std::string out = "analytic\n\n";
     out += "# smithlab: " + comment_text(m.name) + " on " + comment_text(m.ndf) + ", the diffuse BRDF (no cosine).\n";
     out += "# " + comment_text(m.model->source) + "\n";
-    out += "# [type] [name] [min val] [max val] [default val]\n"
-           "::begin parameters\n"
-           "float albedo 0 1 0.75\n"
-           "float alpha 0.001 1 0.25\n"
-           "::end parameters\n\n"
-           "::begin shader\n\n";
+    out +=
+        "# [type] [name] [min val] [max val] [default val]\n"
+        "::begin parameters\n"
+        "float albedo 0 1 0.75\n"
+        "float alpha 0.001 1 0.25\n"
+        "::end parameters\n\n"
+        "::begin shader\n\n";
     out += glsl_helpers() + "\n" + function + "\n";
-    out += "// smithlab's models hold for L and V above the surface only: 0 below it, as Disney's disney.brdf does.\n"
-           "vec3 BRDF( vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y )\n{\n"
-           "    if (dot(N, L) <= 0.0 || dot(N, V) <= 0.0) return vec3(0.0);\n"
-           "    return vec3(" + glsl_function_name(m) + "(L, V, N, alpha, albedo));\n}\n\n"
-           "::end shader\n";
+    out +=
+        "// smithlab's models hold for L and V above the surface only: 0 below it, as Disney's disney.brdf does.\n"
+        "vec3 BRDF( vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y )\n{\n"
+        "    if (dot(N, L) <= 0.0 || dot(N, V) <= 0.0) return vec3(0.0);\n"
+        "    return vec3(" +
+        glsl_function_name(m) +
+        "(L, V, N, alpha, albedo));\n}\n\n"
+        "::end shader\n";
     return out;
 }
 

@@ -36,7 +36,7 @@ LeastSquaresFit least_squares(std::size_t n, std::vector<double> start, const Re
     out.dof = static_cast<std::int64_t>(n) - static_cast<std::int64_t>(p);
     if (p == 0 || out.dof < 1) {
         out.reason = std::to_string(n) + " residuals for " + std::to_string(p) + " parameters (need at least " +
-                     std::to_string(p + 1) + ")";
+            std::to_string(p + 1) + ")";
         return out;
     }
     Problem problem{&r, std::vector<double>(p), std::vector<double>(n)};
@@ -84,8 +84,9 @@ LeastSquaresFit least_squares(std::size_t n, std::vector<double> start, const Re
         finite = finite && std::isfinite(out.params[i]) && std::isfinite(out.stderr_[i]);
     }
     if (status != GSL_SUCCESS) {
-        out.reason = status == GSL_EMAXITER ? "no convergence in " + std::to_string(options.max_iterations) + " iterations"
-                                            : std::string("stopped: ") + gsl_strerror(status);
+        out.reason = status == GSL_EMAXITER
+            ? "no convergence in " + std::to_string(options.max_iterations) + " iterations"
+            : std::string("stopped: ") + gsl_strerror(status);
     } else if (!finite) {
         out.reason = "the solution or its covariance is not finite (a parameter the data does not determine?)";
     } else {

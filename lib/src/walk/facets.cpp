@@ -13,9 +13,10 @@ namespace smithlab::walk {
 namespace detail {
 
 double hammon_lobe_cos(double u) {
-    auto Y = [](double c) {  // Horner form of the slide's polynomial, c^3 (7/2 - 21/4 c + 21/5 c^2 - 7/4 c^3 + 3/10 c^4)
-        return c * c * c * (3.5 + c * (-5.25 + c * (4.2 + c * (-1.75 + c * 0.3))));
-    };
+    auto Y =
+        [](double c) {  // Horner form of the slide's polynomial, c^3 (7/2 - 21/4 c + 21/5 c^2 - 7/4 c^3 + 3/10 c^4)
+            return c * c * c * (3.5 + c * (-5.25 + c * (4.2 + c * (-1.75 + c * 0.3))));
+        };
     auto dY = [](double c) {  // (21/10) c (1 - (1 - c)^5)
         const double t = 1.0 - c, t2 = t * t;
         return 2.1 * c * (1.0 - t2 * t2 * t);
@@ -27,9 +28,9 @@ double hammon_lobe_cos(double u) {
     // is below 2^-26 c leaves an error of about its square, 2^-52 (tests/test_walk.cpp: within 2e-15 of a long-double
     // inversion; 3 steps on average). A step out of the bracket [lo, hi] that the residuals keep is replaced by
     // bisection.
-    double c = u < 1e-3 ? std::cbrt(u / 3.5)
-                        : (0.0114813 + u * (154.4 + u * (13002.4 + u * 38295.9))) /
-                              (1.0 + u * (1483.57 + u * (33596.4 + u * 16520.2)));
+    double c = u < 1e-3
+        ? std::cbrt(u / 3.5)
+        : (0.0114813 + u * (154.4 + u * (13002.4 + u * 38295.9))) / (1.0 + u * (1483.57 + u * (33596.4 + u * 16520.2)));
     double lo = 0.0, hi = 1.0;
     for (int i = 0; i < 100; ++i) {
         const double r = Y(c) - u;
@@ -64,12 +65,12 @@ public:
     double get(const std::string& key, double fallback, double lo, double hi) const {
         const auto it = values_.find(key);
         if (it == values_.end()) {
-            if (std::isnan(fallback)) throw input_error("material '" + name_ + "': parameter '" + key + "' is required");
+            if (std::isnan(fallback))
+                throw input_error("material '" + name_ + "': parameter '" + key + "' is required");
             return fallback;
         }
         const double v = it->second;
-        require(v >= lo && v <= hi, "material '" + name_ + "': " + key,
-                "in [" + num(lo) + ", " + num(hi) + "]", v);
+        require(v >= lo && v <= hi, "material '" + name_ + "': " + key, "in [" + num(lo) + ", " + num(hi) + "]", v);
         return v;
     }
 
@@ -110,14 +111,17 @@ Material parse_material(std::string_view text) {
         MaterialParams p(spec, {"eta"});
         return Dielectric{p.get("eta", 1.5, 1e-3, 1e3)};
     }
-    throw input_error("unknown material '" + n + "' (known: mirror, conductor(eta=, k=), lambert(albedo=1), "
+    throw input_error("unknown material '" + n +
+                      "' (known: mirror, conductor(eta=, k=), lambert(albedo=1), "
                       "fresnel-diffuse(f0=0.02, albedo=1), dielectric(eta=1.5))");
 }
 
 std::string format_material(const Material& material) {
     struct Format {
         std::string operator()(const Mirror&) const { return "mirror"; }
-        std::string operator()(const Conductor& c) const { return format_spec({"conductor", {{"eta", c.eta}, {"k", c.k}}}); }
+        std::string operator()(const Conductor& c) const {
+            return format_spec({"conductor", {{"eta", c.eta}, {"k", c.k}}});
+        }
         std::string operator()(const Lambert& l) const { return format_spec({"lambert", {{"albedo", l.albedo}}}); }
         std::string operator()(const FresnelDiffuse& f) const {
             return format_spec({"fresnel-diffuse", {{"f0", f.f0}, {"albedo", f.albedo}}});

@@ -36,8 +36,9 @@ BrdfTally::BrdfTally(const BrdfBins& b)
     : bins(b), cells(static_cast<std::size_t>((b.transmission ? 2 : 1) * b.n_theta * b.n_phi * order_bins * 2)) {}
 
 std::size_t BrdfTally::index(int hemisphere, int theta, int phi, int order, int component) const {
-    return (((static_cast<std::size_t>(hemisphere) * bins.n_theta + theta) * bins.n_phi + phi) * order_bins + order) * 2 +
-           component;
+    return (((static_cast<std::size_t>(hemisphere) * bins.n_theta + theta) * bins.n_phi + phi) * order_bins + order) *
+        2 +
+        component;
 }
 
 void BrdfTally::add(const WalkSample& s) {

@@ -128,11 +128,16 @@ inline Ratio ratio4_cos(double a2, double c, double s2, double Ac) {
 inline Ratio ratio(double alpha, int gamma, double mu) {
     const double a2 = alpha * alpha;
     switch (gamma) {
-        case 0: return ratio0(mu, root_sum_squares(mu, 1.0));
-        case 1: return ratio1(alpha, mu, root_sum_squares(mu, a2), root_sum_squares(mu, 1.0));
-        case 2: return ratio2(a2, mu, root_sum_squares(mu, a2));
-        case 3: return ratio3(a2, mu, root_sum_squares(mu, a2));
-        default: return ratio4(a2, mu, root_sum_squares(mu, a2));
+        case 0:
+            return ratio0(mu, root_sum_squares(mu, 1.0));
+        case 1:
+            return ratio1(alpha, mu, root_sum_squares(mu, a2), root_sum_squares(mu, 1.0));
+        case 2:
+            return ratio2(a2, mu, root_sum_squares(mu, a2));
+        case 3:
+            return ratio3(a2, mu, root_sum_squares(mu, a2));
+        default:
+            return ratio4(a2, mu, root_sum_squares(mu, a2));
     }
 }
 
@@ -142,10 +147,14 @@ inline Ratio ratio_cos(double alpha, int gamma, double c) {
     if (gamma == 0) return ratio0_cos(c, s2);
     const double Ac = std::sqrt(c * c + a2 * s2);
     switch (gamma) {
-        case 1: return ratio1_cos(alpha, c, s2, Ac);
-        case 2: return ratio2_cos(a2, c, s2, Ac);
-        case 3: return ratio3_cos(a2, c, s2, Ac);
-        default: return ratio4_cos(a2, c, s2, Ac);
+        case 1:
+            return ratio1_cos(alpha, c, s2, Ac);
+        case 2:
+            return ratio2_cos(a2, c, s2, Ac);
+        case 3:
+            return ratio3_cos(a2, c, s2, Ac);
+        default:
+            return ratio4_cos(a2, c, s2, Ac);
     }
 }
 
@@ -175,7 +184,8 @@ double Lambda_gtr_closed_far(double alpha, int gamma, double mu);
 // / mu^2)) above mu = 1e50 (every GTR tail is r^-4), and mu Lambda = E[q+] - mu/2 + O(mu / alpha) below 1e-100;
 // the forms would overflow their intermediate products there (mu^3 s^3 at mu = 1e70, 1/mu at 1e-309).
 inline double Lambda_gtr_closed(double alpha, int gamma, double mu) {
-    if (!(mu >= gtr_closed::mu_small && mu <= gtr_closed::mu_big)) return detail::Lambda_gtr_closed_far(alpha, gamma, mu);
+    if (!(mu >= gtr_closed::mu_small && mu <= gtr_closed::mu_big))
+        return detail::Lambda_gtr_closed_far(alpha, gamma, mu);
     if (static_cast<unsigned>(gamma) > 4u) return Lambda_gtr_integer_sum(alpha, gamma, mu);  // < 0: its input_error
     return gtr_closed::ratio(alpha, gamma, mu).Lambda();
 }

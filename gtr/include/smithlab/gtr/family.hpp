@@ -57,7 +57,7 @@ inline constexpr int gtr_family_degree = 6;  // each leaf's polynomial: total de
 struct GtrFamilyLeaf {
     static constexpr int n_higher = (gtr_family_degree + 1) * (gtr_family_degree + 2) * (gtr_family_degree + 3) / 6 - 4;
     double centre[3], scale[3];
-    double c0, linear[3];  // the terms in 1, s0, s1, s2
+    double c0, linear[3];    // the terms in 1, s0, s1, s2
     float higher[n_higher];  // c_ijk s0^i s1^j s2^k for 2 <= i + j + k <= degree, in gtr_family_plan's order
 };
 // The stored order of a leaf's terms of degree >= 2 (GtrFamilyLeaf::higher): row (i, j) holds c_ijk for k from
@@ -67,8 +67,8 @@ struct GtrFamilyLeaf {
 // (GtrFamily::polynomial) runs the pairs two rows at a time.
 struct GtrFamilyPlan {
     static constexpr int degree = gtr_family_degree;
-    static constexpr int n_rows = (degree + 1) * (degree + 2) / 2;  // the (i, j) with i + j <= degree
-    std::array<int, n_rows> i{}, j{}, k0{}, length{};                        // per row, in (i, j) order
+    static constexpr int n_rows = (degree + 1) * (degree + 2) / 2;                 // the (i, j) with i + j <= degree
+    std::array<int, n_rows> i{}, j{}, k0{}, length{};                              // per row, in (i, j) order
     std::array<int, n_rows> pair_a{}, pair_b{}, pair_at{}, single{}, single_at{};  // rows; where their terms start
     int n_pairs = 0, n_singles = 0, n_terms = 0;
     std::array<std::array<int, 3>, GtrFamilyLeaf::n_higher> term{};
@@ -119,8 +119,8 @@ struct GtrFamilyNode {
     std::int32_t axis;
 };
 struct GtrFamilyData {
-    const GtrFamilyNode* nodes;  // each chart's top boxes first (chart 0's, chart 1's; row-major over a, gamma, z),
-    std::size_t n_nodes;         // then children in pairs
+    const GtrFamilyNode* nodes;   // each chart's top boxes first (chart 0's, chart 1's; row-major over a, gamma, z),
+    std::size_t n_nodes;          // then children in pairs
     const GtrFamilyLeaf* leaves;  // n_leaves + 1: the last, empty, for the boxes that are no leaf
     std::size_t n_leaves;
     double asymptote_bound;  // relative Lambda, beyond the charts
@@ -136,7 +136,7 @@ public:
     // below xi_lo, R(mu_lo) / (mu_lo Lambda) ~ (mu_lo / alpha)^2 gamma < 1e-6; above eta_hi, mu >= 1.8e4, past every
     // GTR's second slope scale (1 and sqrt(gamma), gtr.hpp), where Lambda ~ C mu^-2
     static constexpr int degree = gtr_family_degree;
-    static constexpr double a_lo = -9.2103403719762;  // just below ln 1e-4
+    static constexpr double a_lo = -9.2103403719762;       // just below ln 1e-4
     static constexpr std::array<int, 3> top = {8, 8, 14};  // each chart's
     static constexpr std::array<std::array<double, 3>, 2> lo = {{{a_lo, 0.0, xi_lo}, {a_lo, 0.0, 0.5 * a_lo}}};
     static constexpr std::array<std::array<double, 3>, 2> hi = {
@@ -191,8 +191,9 @@ public:
         const GtrFamilyNode* node = &data_.nodes[c * top_cells + cell];
         while (node->next >= 0) node = &data_.nodes[node->next + (x[node->axis] >= node->split)];
         const GtrFamilyLeaf& leaf = data_.leaves[~node->next];
-        return {&leaf, {(x[0] - leaf.centre[0]) * leaf.scale[0], (x[1] - leaf.centre[1]) * leaf.scale[1],
-                        (x[2] - leaf.centre[2]) * leaf.scale[2]}};
+        return {&leaf,
+                {(x[0] - leaf.centre[0]) * leaf.scale[0], (x[1] - leaf.centre[1]) * leaf.scale[1],
+                 (x[2] - leaf.centre[2]) * leaf.scale[2]}};
     }
 
     // Chart c's top grid's i-th edge on axis d (the generator's boxes are these, halved; the evaluator's top cell is
@@ -259,12 +260,12 @@ private:
         const v2d s2 = {s[2], s[2]};
         v2d pairs = {0.0, 0.0};
         ((pairs += horner_pair<t.length[t.pair_a[P]]>(leaf.higher + t.pair_at[P], s2) *
-                   v2d{factor(t.pair_a[P]), factor(t.pair_b[P])}),
+              v2d{factor(t.pair_a[P]), factor(t.pair_b[P])}),
          ...);
         double singles = 0.0;
         ((singles += horner<t.length[t.single[S]]>(leaf.higher + t.single_at[S], s[2]) * factor(t.single[S])), ...);
         return (leaf.c0 + leaf.linear[0] * s[0]) + (leaf.linear[1] * s[1] + leaf.linear[2] * s[2]) +
-               ((pairs[0] + pairs[1]) + singles);
+            ((pairs[0] + pairs[1]) + singles);
     }
 
 public:
@@ -274,9 +275,7 @@ public:
     double mu_lo_rel() const { return mu_lo_rel_; }
     double G1_error_bound() const { return G1_error_bound_; }
     const GtrFamilyData& data() const { return data_; }
-    std::size_t bytes() const {
-        return data_.n_nodes * sizeof(GtrFamilyNode) + data_.n_leaves * sizeof(GtrFamilyLeaf);
-    }
+    std::size_t bytes() const { return data_.n_nodes * sizeof(GtrFamilyNode) + data_.n_leaves * sizeof(GtrFamilyLeaf); }
 
 private:
     GtrFamily();

@@ -59,7 +59,7 @@ public:
         std::uint8_t depth[3], pad;
     };
     struct Lanes {
-        static constexpr int steps[4] = {5, 4, 2, 1};    // Horner steps of each group
+        static constexpr int steps[4] = {5, 4, 2, 1};      // Horner steps of each group
         static constexpr int offset[4] = {0, 40, 72, 88};  // where each group's 8 x steps floats start in Leaf::c
         std::int64_t i[4][8], j[4][8], k0[4][8];  // row (i, j) of each lane and its first power of s2; 7: a zero lane
     };

@@ -1,6 +1,7 @@
 // smithlab/gtr/gtr.hpp -- the Generalized Trowbridge-Reitz distribution (Burley 2012, eq. in appendix B;
 // Dimov 2015 eq. 1**) for alpha in (0, 1] and every real gamma >= 0:
-//     D(theta) = c / (1 + (alpha^2 - 1) cos^2 theta)^gamma,  c = (gamma - 1)(alpha^2 - 1) / (pi (1 - alpha^{2(1-gamma)})).
+//     D(theta) = c / (1 + (alpha^2 - 1) cos^2 theta)^gamma,  c = (gamma - 1)(alpha^2 - 1) / (pi (1 -
+//     alpha^{2(1-gamma)})).
 // gamma = 2 is GGX, gamma = 1 the log limit c = (alpha^2 - 1) / (pi ln alpha^2), gamma = 0 and alpha = 1 give 1/pi.
 #pragma once
 
@@ -54,7 +55,7 @@ struct Gtr {
 // Inline: the family generator (gtr/tools/family_gen.cpp) uses it without the library.
 inline double gtr_K(double alpha, double gamma) {
     constexpr double pi = std::numbers::pi;
-    if (alpha == 1.0) return 1.0 / pi;  // uniform D
+    if (alpha == 1.0) return 1.0 / pi;                          // uniform D
     const double one_minus_a2 = (1.0 - alpha) * (1.0 + alpha);  // not 1 - alpha*alpha: 5 digits at alpha = 0.999999
     const double log_a = std::log(alpha);
     const double y = 2.0 * (gamma - 1.0) * log_a;  // (gamma - 1) is exact near 1 (Sterbenz)

@@ -25,9 +25,10 @@
 // (r - r1)^(3/2) and (r_max - r)^(3/2) ends of the radial integrand into powers of u; ln r spreads r_max / r1 ~ 4 /
 // mu^2 at grazing incidence), globally adaptive 21-point Gauss-Kronrod (GSL's QAG, quadrature.hpp) meets its relative
 // tolerance in a few panels. Measured: E within 1e-15 of the integral over wo of the BRDF, 8e-14 of this route at
-// 1e-13; a 32 x 32 GGX table with E_avg in 0.6-0.9 s of one core (tests/test_compensation.cpp). E(0) = 1 is the limit: at grazing incidence G2 / cos_i -> 1 / lim mu Lambda(mu)
-// = 1 / E[q+] and every visible normal reflects upward. Lambda is the NDF's closed form, else a LambdaTable
-// (lambda_table.hpp) of the given tolerance built once per NDF: a relative error d in Lambda moves E by less than d.
+// 1e-13; a 32 x 32 GGX table with E_avg in 0.6-0.9 s of one core (tests/test_compensation.cpp). E(0) = 1 is the limit:
+// at grazing incidence G2 / cos_i -> 1 / lim mu Lambda(mu) = 1 / E[q+] and every visible normal reflects upward. Lambda
+// is the NDF's closed form, else a LambdaTable (lambda_table.hpp) of the given tolerance built once per NDF: a relative
+// error d in Lambda moves E by less than d.
 #pragma once
 
 #include <cmath>

@@ -6,8 +6,8 @@
 //     y(a) = sum_k a^k y_k,
 // one trace for every albedo. SplitMoments keeps, per walk, the vector x_k and its sums and sums of products, so the
 // standard error of y(a), and the covariance of y(a) and y(b) (the same walks), are exact. The last bin holds
-// k >= diffuse_bins - 1; it is weighted a^(diffuse_bins - 1), which is exact at a = 1 and 0 and overestimates by at most
-// that bin's value otherwise (tail_bound).
+// k >= diffuse_bins - 1; it is weighted a^(diffuse_bins - 1), which is exact at a = 1 and 0 and overestimates by at
+// most that bin's value otherwise (tail_bound).
 //
 // A point is one eval-estimator value f(wi, wo) |cos theta_o| (walk.hpp, eval_walk) or one directional albedo (the
 // sample estimator, reflection), on one microsurface.

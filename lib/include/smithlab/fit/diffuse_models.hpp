@@ -122,7 +122,7 @@ struct DiffuseModel {
     // Its starting constants make a model of its own, measured as a baseline; false where they make another one
     // (smithlab-2026 starts at hammon-2017).
     bool own_baseline = true;
-    std::vector<ParameterRange> ranges = {};   // per parameter (empty: none bounded)
+    std::vector<ParameterRange> ranges = {};  // per parameter (empty: none bounded)
 };
 
 // Where constant i of m is at or beyond its range: the range, else nullptr.

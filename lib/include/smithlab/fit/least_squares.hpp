@@ -27,7 +27,7 @@ using ResidualFn = std::function<void(std::span<const double> p, std::span<doubl
 
 struct LeastSquaresOptions {
     int max_iterations = 500;
-    double xtol = 1e-8;   // GSL's tests: the step relative to p, the gradient relative to chi^2
+    double xtol = 1e-8;  // GSL's tests: the step relative to p, the gradient relative to chi^2
     double gtol = 1e-8;
 };
 
@@ -37,10 +37,10 @@ struct LeastSquaresFit {
     std::vector<double> jacobian;    // J at the solution, residuals x p row by row
     std::vector<double> residuals;   // r at the solution
     double chi2 = 0.0;
-    std::int64_t dof = 0;            // residuals - parameters
+    std::int64_t dof = 0;  // residuals - parameters
     int iterations = 0;
     bool converged = false;
-    std::string reason;              // why not, when not
+    std::string reason;  // why not, when not
     double chi2_dof() const { return dof > 0 ? chi2 / static_cast<double>(dof) : 0.0; }
 };
 

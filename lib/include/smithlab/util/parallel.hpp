@@ -18,7 +18,9 @@
 namespace smithlab::util {
 
 // The threads a run uses: `threads`, or all cores for 0.
-inline unsigned thread_count(unsigned threads) { return threads ? threads : std::max(1u, std::thread::hardware_concurrency()); }
+inline unsigned thread_count(unsigned threads) {
+    return threads ? threads : std::max(1u, std::thread::hardware_concurrency());
+}
 
 // Partials numbered 0, 1, 2, ... that arrive in any order, merged into a total in number order: a partial waits
 // only until every one before it is merged. Not thread-safe (its users lock). Also the distributed runs'

@@ -2,8 +2,9 @@
 //
 // Each material, in the frame of the macrosurface, with wi pointing away from the facet toward where the light came
 // from and m the facet's normal (wi.m > 0):
-//   sample(wi, m, g)      the next direction and the weight it carries (0: absorbed), and whether the event was diffuse;
-//   phase(ms, wi, wo, g)  the phase function rho(wi -> wo) = integral of D_wi(m) f_m(wi, wo) <wo.m> dm over the visible
+//   sample(wi, m, g)      the next direction and the weight it carries (0: absorbed), and whether the event was
+//   diffuse; phase(ms, wi, wo, g)  the phase function rho(wi -> wo) = integral of D_wi(m) f_m(wi, wo) <wo.m> dm over
+//   the visible
 //                         normals D_wi of wi, the density (with its weight) of the next direction, split into its
 //                         specular and diffuse parts: analytic where the facet is a mirror (the half vector
 //                         decides m: F D(h) / (4 A(wi)), Heitz et al. 2016 eq. 20 with Walter 2007 eq. 14),
@@ -29,7 +30,7 @@ namespace smithlab::walk {
 
 struct Scatter {
     Vec3 wo;
-    double weight;             // 0: absorbed
+    double weight;  // 0: absorbed
     bool diffuse;
     bool transmitted = false;  // through to the other side (two-sided materials only)
 };
@@ -150,13 +151,15 @@ struct Dielectric {
     Scatter sample(const Vec3& wi, const Vec3& m, G& g, bool above) const {
         const double e = above ? eta : 1.0 / eta;
         Vec3 t;
-        if (uniform01(g) < fresnel_dielectric(wi.dot(m), e) || !refract(wi, m, e, t)) return {reflect(wi, m), 1.0, false};
+        if (uniform01(g) < fresnel_dielectric(wi.dot(m), e) || !refract(wi, m, e, t))
+            return {reflect(wi, m), 1.0, false};
         return {t, 1.0, false, true};
     }
     template <class Microsurface, class G>
     Phase phase(const Microsurface& ms, const Vec3& wi, const Vec3& wo, G&, bool above) const {
         const double e = above ? eta : 1.0 / eta;
-        if (wo.z() > 0.0) return {detail::mirror_phase(ms, wi, wo, [e](double c) { return fresnel_dielectric(c, e); }), 0.0};
+        if (wo.z() > 0.0)
+            return {detail::mirror_phase(ms, wi, wo, [e](double c) { return fresnel_dielectric(c, e); }), 0.0};
         Vec3 h = half_vector_transmission(wi, wo, e);
         if (h.z() < 0.0) h = -h;
         const double ci = wi.dot(h);
@@ -168,7 +171,9 @@ struct Dielectric {
 };
 
 template <class M>
-concept TwoSided = requires { requires M::two_sided; };
+concept TwoSided = requires {
+    requires M::two_sided;
+};
 
 using Material = std::variant<Mirror, Conductor, Lambert, FresnelDiffuse, Dielectric>;
 

@@ -88,7 +88,7 @@ public:
                 h = u;
             } else if (const double u = u0 + e * inv_L.value(); u <= 0.0) {
                 h = std::max(u, ln_smallest);  // the bottom of the law (C1 = 0), kept a number
-            }  // else S = 1 with Lambda = -0 (NaN), or a NaN direction: it stays
+            }                                  // else S = 1 with Lambda = -0 (NaN), or a NaN direction: it stays
             return true;
         } else {
             const double k = e * inv_L.value();

@@ -41,7 +41,7 @@ struct AlbedoTally {
 
     static std::size_t index(int hemisphere, int order, int component) {
         return (static_cast<std::size_t>(hemisphere) * order_bins + static_cast<std::size_t>(order)) * 2 +
-               static_cast<std::size_t>(component);
+            static_cast<std::size_t>(component);
     }
     void add(const WalkSample& s) {
         ++walks;

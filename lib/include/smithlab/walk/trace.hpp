@@ -14,13 +14,13 @@
 namespace smithlab::walk {
 
 struct CellRequest {
-    Vec3 wi;                      // toward the light, wi.z > 0
+    Vec3 wi;  // toward the light, wi.z > 0
     std::uint64_t seed = 1, cell = 0;
     std::int64_t walks = 100'000;
     WalkLimits limits{};
-    BrdfBins brdf;                // empty: no directional tally is allocated
-    unsigned threads = 0;         // 0: all cores
-    std::int64_t block = 4096;    // walks per block (part of the result's definition: the merge order)
+    BrdfBins brdf;              // empty: no directional tally is allocated
+    unsigned threads = 0;       // 0: all cores
+    std::int64_t block = 4096;  // walks per block (part of the result's definition: the merge order)
 };
 
 struct CellResult {
@@ -82,7 +82,7 @@ CellResult trace_cell(const Microsurface& ms, const M& material, const CellReque
 }
 
 struct EvalRequest {
-    Vec3 wi, wo;                  // wi.z > 0; wo anywhere (f |cos theta_o| = 0 below for the materials here)
+    Vec3 wi, wo;  // wi.z > 0; wo anywhere (f |cos theta_o| = 0 below for the materials here)
     std::uint64_t seed = 1, cell = 0;
     std::int64_t walks = 100'000;
     WalkLimits limits{};
@@ -96,7 +96,8 @@ EvalTally eval_cell(const Microsurface& ms, const M& material, const EvalRequest
         block_count(r.walks, r.block), r.threads, EvalTally{},
         [&](std::uint64_t b) {
             EvalTally p;
-            const std::int64_t first = static_cast<std::int64_t>(b) * r.block, last = std::min(r.walks, first + r.block);
+            const std::int64_t first = static_cast<std::int64_t>(b) * r.block,
+                               last = std::min(r.walks, first + r.block);
             for (std::int64_t k = first; k < last; ++k) {
                 WalkRng g(r.seed, r.cell, static_cast<std::uint64_t>(k));
                 p.add(eval_walk(ms, material, r.wi, r.wo, g, r.limits));

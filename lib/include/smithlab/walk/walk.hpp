@@ -31,7 +31,7 @@ inline constexpr int order_bins = 4;
 inline int order_bin(std::int64_t order) { return static_cast<int>(std::min<std::int64_t>(order, order_bins)) - 1; }
 
 struct WalkLimits {
-    int max_order = 0;               // > 0: the walk ends after this many hits (the orders beyond are not asked for)
+    int max_order = 0;  // > 0: the walk ends after this many hits (the orders beyond are not asked for)
     std::int64_t max_events = 1'000'000;  // a walk still inside after this many hits ends as `capped` (never a hang)
 };
 
@@ -43,10 +43,10 @@ inline constexpr int diffuse_bins = 16;
 inline int diffuse_bin(int k) { return std::min(k, diffuse_bins - 1); }
 
 struct WalkSample {
-    Vec3 wo;              // the exit direction, when escaped
-    double weight;        // what it carries out (0 when absorbed, truncated or capped)
-    int order;            // hits before it left
-    int diffuse_events;   // diffuse events on the way
+    Vec3 wo;             // the exit direction, when escaped
+    double weight;       // what it carries out (0 when absorbed, truncated or capped)
+    int order;           // hits before it left
+    int diffuse_events;  // diffuse events on the way
     bool escaped;
     bool capped;
     bool diffuse() const { return diffuse_events > 0; }
@@ -75,9 +75,11 @@ WalkSample sample_walk(const Microsurface& ms, const M& material, const Vec3& wi
     int diffuse = 0;
     for (std::int64_t order = 0;; ++order) {
         const Vec3 world = above ? w : -w;
-        if (!ms.next_height(w, h, 1.0 - uniform01(g))) return {world, weight, static_cast<int>(order), diffuse, true, false};
+        if (!ms.next_height(w, h, 1.0 - uniform01(g)))
+            return {world, weight, static_cast<int>(order), diffuse, true, false};
         if (order + 1 > limits.max_events) return {world, 0.0, static_cast<int>(order), diffuse, false, true};
-        if (limits.max_order > 0 && order + 1 > limits.max_order) return {world, 0.0, static_cast<int>(order), diffuse, false, false};
+        if (limits.max_order > 0 && order + 1 > limits.max_order)
+            return {world, 0.0, static_cast<int>(order), diffuse, false, false};
         const Vec3 v = -w;
         const Vec3 m = ms.hit_normal(v, g);
         if (std::isnan(m.z())) return {world, 0.0, static_cast<int>(order), diffuse, false, true};  // none drawn
@@ -96,7 +98,7 @@ WalkSample sample_walk(const Microsurface& ms, const M& material, const Vec3& wi
 
 struct EvalSample {
     std::array<double, order_bins> specular{}, diffuse{};  // f |cos theta_o| by order bin and component
-    std::array<double, diffuse_bins> by_diffuse{};          // the same by diffuse events (diffuse_bin), all orders
+    std::array<double, diffuse_bins> by_diffuse{};         // the same by diffuse events (diffuse_bin), all orders
     std::int64_t events = 0;
     bool capped = false;
 };
@@ -129,7 +131,7 @@ EvalSample eval_walk(const Microsurface& ms, const M& material, const Vec3& wi, 
         // escaping on the other side (where it and the height are negated); one-sided phases are 0 there.
         const Vec3 wo_local = above ? wo : -wo;
         const double e = wo_local.z() > 0.0 ? ms.escape(wo_local, h)
-                         : TwoSided<M>      ? ms.escape(-wo_local, ms.other_side(h))
+            : TwoSided<M>                   ? ms.escape(-wo_local, ms.other_side(h))
                                             : 0.0;
         if (e > 0.0) {
             const Phase p = detail::phase(ms, material, v, wo_local, g, above);
