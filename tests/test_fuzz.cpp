@@ -577,8 +577,7 @@ TEST_CASE("fuzz: CSV reader, in-process (read_csv, write_csv_record round trip)"
     }
 }
 
-// ---- the executable: option values
-// -----------------------------------------------------------------------------------
+// ---- the executable: option values ----------------------------------------------------------------------------
 
 namespace {
 

@@ -11,9 +11,8 @@
 //   Runner<Partial> runner(std::size_t j) const;        (job, block) -> Partial, for every job of j's kind
 //   void put(std::vector<char>& out, const Partial&) const;   the bytes another rank sends of a partial
 //   Partial get(mpi::Reader& in, std::size_t j) const;
-//   void finish(std::size_t j, Partial&& total);        rank 0: job j's total, all its blocks merged (jobs in any
-//   order) std::string name(std::size_t j) const;              "cell 12 (ggx(alpha=0.3), mirror, theta_i 45)", for
-//   messages
+//   void finish(std::size_t j, Partial&& total);        rank 0: job j's total, all its blocks merged (any order)
+//   std::string name(std::size_t j) const;              for messages: "cell 12 (ggx(alpha=0.3), mirror, theta_i 45)"
 //
 // Rank 0's threads trace blocks one at a time; its main thread serves the other ranks. Another rank asks for a chunk
 // (blocks of one job, a whole number per thread, about 20 ms of its work), traces it on its threads, and sends the

@@ -4,8 +4,8 @@
 // brdf, fit and list, each NDF walked and fitted as its own type (registry.hpp, surface.hpp):
 //     int main(int argc, char** argv) {
 //         smithlab::NdfRegistry registry = smithlab::builtin_registry();
-//         registry.add({.name = "mine", .parameters = {"alpha"}, .description = "...", .examples =
-//         {"mine(alpha=0.3)"}},
+//         registry.add({.name = "mine", .parameters = {"alpha"}, .description = "...",
+//                       .examples = {"mine(alpha=0.3)"}},
 //                      [](const smithlab::NdfParams& p) { return Mine{p.at("alpha")}; });
 //         return smithlab::run_cli(argc, argv, registry);
 //     }

@@ -9,8 +9,8 @@
 //   double Lambda(double mu) const         a closed-form Smith Lambda for mu > 0.
 //   double Lambda_spline(double mu) const  an interpolated Lambda (e.g. Dimov's spline across GTR gamma).
 //   double Dcos_sf(double r2) const        with m distributed as D(m) cos(theta_m), the survival function of
-//                                          r^2 = tan^2(theta_m): pi * integral_r2^inf P22(s) ds (the azimuth is
-//                                          uniform);
+//                                          r^2 = tan^2(theta_m): pi * integral_r2^inf P22(s) ds (the azimuth
+//                                          is uniform);
 //   double Dcos_r2(double v) const         and its inverse on (0, 1]: together, an analytic D cos sampler
 //                                          (sampling.hpp tabulates one for an NDF without them). The survival
 //                                          side keeps the tail's digits: Hammon's sampler draws from a tail of

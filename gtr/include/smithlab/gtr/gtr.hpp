@@ -1,7 +1,7 @@
 // smithlab/gtr/gtr.hpp -- the Generalized Trowbridge-Reitz distribution (Burley 2012, eq. in appendix B;
 // Dimov 2015 eq. 1**) for alpha in (0, 1] and every real gamma >= 0:
-//     D(theta) = c / (1 + (alpha^2 - 1) cos^2 theta)^gamma,  c = (gamma - 1)(alpha^2 - 1) / (pi (1 -
-//     alpha^{2(1-gamma)})).
+//     D(theta) = c / (1 + (alpha^2 - 1) cos^2 theta)^gamma,
+//     c = (gamma - 1)(alpha^2 - 1) / (pi (1 - alpha^{2(1-gamma)})).
 // gamma = 2 is GGX, gamma = 1 the log limit c = (alpha^2 - 1) / (pi ln alpha^2), gamma = 0 and alpha = 1 give 1/pi.
 #pragma once
 

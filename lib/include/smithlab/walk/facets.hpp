@@ -2,17 +2,17 @@
 //
 // Each material, in the frame of the macrosurface, with wi pointing away from the facet toward where the light came
 // from and m the facet's normal (wi.m > 0):
-//   sample(wi, m, g)      the next direction and the weight it carries (0: absorbed), and whether the event was
-//   diffuse; phase(ms, wi, wo, g)  the phase function rho(wi -> wo) = integral of D_wi(m) f_m(wi, wo) <wo.m> dm over
-//   the visible
-//                         normals D_wi of wi, the density (with its weight) of the next direction, split into its
-//                         specular and diffuse parts: analytic where the facet is a mirror (the half vector
+//   sample(wi, m, g)      the next direction and the weight it carries (0: absorbed), and whether the event
+//                         was diffuse;
+//   phase(ms, wi, wo, g)  the phase function rho(wi -> wo) = integral of D_wi(m) f_m(wi, wo) <wo.m> dm over the
+//                         visible normals D_wi of wi, the density (with its weight) of the next direction, split
+//                         into its specular and diffuse parts: analytic where the facet is a mirror (the half vector
 //                         decides m: F D(h) / (4 A(wi)), Heitz et al. 2016 eq. 20 with Walter 2007 eq. 14),
 //                         one-sample estimates over m ~ D_wi where it is diffuse (Heitz et al. 2016, sec. 5.3).
 // A two-sided material (TwoSided: the dielectric) lets rays through to the other side of the microsurface. It works,
 // as every material does, in the frame of the side the ray is on (walk.hpp: below the surface, every vector and
 // height negated, where the microsurface looks as it does from above), and is told which side that is.
-// The closed set of materials is a std::variant (Material), visited once per cell, never per bounce.
+// The closed set of materials is a std::variant (Material), visited once per block of walks, never per bounce.
 #pragma once
 
 #include <cmath>
@@ -177,9 +177,9 @@ concept TwoSided = requires {
 
 using Material = std::variant<Mirror, Conductor, Lambert, FresnelDiffuse, Dielectric>;
 
-// "mirror", "conductor(eta=, k=)", "lambert(albedo=1)", "fresnel-diffuse(f0=0.02, albedo=1)", "dielectric(eta=1.5)":
-// input_error naming an
-// unknown material (with the known ones), an unknown or missing parameter, or a value out of its range.
+// "mirror", "conductor(eta=, k=)", "lambert(albedo=1)", "fresnel-diffuse(f0=0.02, albedo=1)", "dielectric(eta=1.5)";
+// input_error naming an unknown material (with the known ones), an unknown or missing parameter, or a value out of
+// its range.
 Material parse_material(std::string_view spec);
 std::string format_material(const Material& material);
 // Whether any event of the material is diffuse (the tallies of the diffuse component exist only then).
