@@ -128,8 +128,8 @@ void register_table() {
                     })
                     ->Unit(benchmark::kMillisecond);
     }
-    // Outside the old range [1e-5, 1e5], where the exact route used to answer: the small-mu asymptote (mu = 1e-7)
-    // and the continued tail (1e7) of a D-only GGX (nothing closed-form), against that exact route at 1e-7.
+    // Far outside [1e-5, 1e5]: the table's small-mu asymptote (mu = 1e-7) and its continued tail (1e7) for a D-only
+    // GGX (nothing closed-form), against the exact route at 1e-7.
     using DOnlyGgx = smithlab::DOnly<smithlab::Ggx>;
     for (const auto& [at, mu] : {std::pair{"1e-7", 1e-7}, std::pair{"1e7", 1e7}}) {
         benchmark::RegisterBenchmark(

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The report's ns/eval beside bench_lambda's, variant by variant, on the same points in the same session.
+"""The report's ns/eval beside bench_lambda's, variant by variant, on the same points, run alternately on the same machine.
 
 bench_lambda times each variant on the first of gtr(alpha=0.3, gamma=1.5), ggx(alpha=0.3), beckmann(alpha=0.3) it
 applies to, at mu = 0.01, 0.1, 1, 10, 100 (the variant/ rows; the GTR family evaluator also as a stream). For each of

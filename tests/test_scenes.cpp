@@ -228,7 +228,7 @@ TEST_CASE(
     "[scenes]") {
     const fs::path d = fresh_dir("domain");
     // closed-form is checked against Boost 1D quadrature, which takes mu in [1e-12, 1e12]: mu = 1e154 is refused
-    // up front, naming the mu, the NDF and the variant (it used to fail mid-run and leave an empty --out).
+    // up front, naming the mu, the NDF and the variant, before anything runs or is written.
     const std::string grid = "[grid]\nalpha = [0.2, 0.6]\nmu = [1e154, 0.5]\n[[ndf]]\nfamily = \"ggx\"\n";
     const std::string err = check_bad_scene(
         d, "closed.toml", grid + "[variants]\ninclude = [\"closed-form\"]\n",
