@@ -592,7 +592,8 @@ std::string line_value(const std::string& out, const std::string& key) {
 
 }  // namespace
 
-TEST_CASE("--version prints the project's version, and --help opens with it and names every registered NDF", "[cli]") {
+TEST_CASE("smithlab --version prints the project's version, and --help opens with it and names every registered NDF",
+          "[cli]") {
     const Run v = run("--version");
     REQUIRE(v.rc == 0);
     std::smatch m;
