@@ -763,10 +763,11 @@ TEST_CASE("one convention: COMMAND [SCENE] -o PATH, shared options checked alike
     // --threads, --walks, --seed and --downward: one rule each, in every command that takes them.
     const std::string brdf = "brdf --ndf 'ggx(alpha=0.5)' --material mirror --wi 45,0 --wo 45,180 ";
     const std::string to_never = " -o '" + (d / "never_dir").string() + "'";
-    for (const std::string bad : {brdf + "--threads -1", brdf + "--walks 0", brdf + "--seed x", brdf + "--downward up",
-                                  "trace --ndf 'ggx(alpha=0.5)' --threads -1" + to_never, "fit --threads -1" + to_never,
-                                  "trace --ndf 'ggx(alpha=0.5)' --downward up" + to_never,
-                                  "trace --ndf 'ggx(alpha=0.5)' --seed x" + to_never}) {
+    for (const std::string& bad :
+         {brdf + "--threads -1", brdf + "--walks 0", brdf + "--seed x", brdf + "--downward up",
+          "trace --ndf 'ggx(alpha=0.5)' --threads -1" + to_never, "fit --threads -1" + to_never,
+          "trace --ndf 'ggx(alpha=0.5)' --downward up" + to_never,
+          "trace --ndf 'ggx(alpha=0.5)' --seed x" + to_never}) {
         const Run r = run(bad);
         INFO(bad << "\nstderr: " << r.err);
         CHECK(r.rc == 2);

@@ -30,7 +30,10 @@ const std::vector<std::string> brdf_columns = {"ndf",        "material",   "thet
 // One CSV record, without its line end.
 std::string record(const std::vector<std::string>& fields) {
     std::string s;
-    for (std::size_t k = 0; k < fields.size(); ++k) s += (k ? "," : "") + csv_field(fields[k]);
+    for (std::size_t k = 0; k < fields.size(); ++k) {
+        if (k) s += ',';
+        s += csv_field(fields[k]);
+    }
     return s;
 }
 
