@@ -146,7 +146,10 @@ void write_tables(const std::filesystem::path& dir, std::span<const AnyNdf> ndfs
     if (brdf) brdf_file.emplace(dir / "brdf.csv", std::ios::binary) << header(brdf_columns, columns.names) << "\n";
     for (std::size_t i = 0; i < rows.size(); ++i) {
         std::string params;
-        for (const std::string& cell : columns.cells(ndfs[i])) params += "," + csv_field(cell);
+        for (const std::string& cell : columns.cells(ndfs[i])) {
+            params += ',';
+            params += csv_field(cell);
+        }
         write_rows(albedo, rows[i].albedo, params);
         if (brdf_file) write_rows(*brdf_file, rows[i].brdf, params);
     }
