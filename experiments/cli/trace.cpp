@@ -5,13 +5,18 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "cli/commands.hpp"
 #include "cluster/mpi_world.hpp"
 #include "scene/walk_options.hpp"
+#include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
 #include "smithlab/single_scattering.hpp"
 #include "smithlab/walk/trace.hpp"
+#include "trace/capped_walks.hpp"
 #include "trace/trace_run.hpp"
 #include "trace/trace_scene.hpp"
 
@@ -66,6 +71,69 @@ trace::TraceScene cell_scene(const TraceArgs& a) {
     s.downward = a.downward;
     s.hit_normal = a.hit_normal;
     return s;
+}
+
+// The eval estimator has no finite value where the BSDF holds a Dirac delta (walk::dirac_at): refused, naming --wo.
+void require_density(const walk::Material& m, const walk::EvalRequest& r, const BrdfArgs& a) {
+    if (walk::dirac_at(m, r.wi, r.wo))
+        throw input_error("--wo " + a.wo + ": '" + walk::format_material(m) +
+                          "' facets are index-matched (eta = 1): they pass every ray straight through, so the BSDF "
+                          "is a Dirac delta at wo = -wi (--wi " +
+                          a.wi + "), which has no finite density to estimate (every other --wo gives 0)");
+}
+
+// Walks cut short leave the eval estimator low by what their next-event terms would still have added, which has no
+// bound (trace/capped_walks.hpp): any such walk leaves no estimate.
+void require_uncapped(const walk::EvalTally& t, const BrdfArgs& a) {
+    if (t.capped > 0)
+        throw input_error("brdf: --ndf '" + a.ndf + "' with --material '" + a.material +
+                          "': " + trace::capped_text(t.capped, t.walks) +
+                          "; the eval estimator cannot bound what they would still have added, so there is no "
+                          "estimate to print");
+}
+
+// A line of brdf's answer: its name, then its numbers.
+struct BrdfLine {
+    std::string name;
+    std::vector<double> numbers;
+};
+
+// value, stderr, order_1 .. order_4+ (value and stderr), and single_analytic where the facets have one.
+std::vector<BrdfLine> brdf_lines(const walk::EvalTally& t, const AnyNdf& ndf, const walk::Material& material,
+                                 const walk::EvalRequest& r) {
+    const walk::Estimate v = t.value();
+    std::vector<BrdfLine> lines = {{"value", {v.value}}, {"stderr", {v.stderr_}}};
+    for (int o = 0; o < walk::order_bins; ++o) {
+        const walk::Estimate e = t.value(o, walk::Component::all);
+        lines.push_back({std::string("order_") + order_name[o], {e.value, e.stderr_}});
+    }
+    auto single = [&](auto F) { return single_scattering_reflection(ndf, r.wi, r.wo, F); };
+    if (std::holds_alternative<walk::Mirror>(material))
+        lines.push_back({"single_analytic", {single([](double) { return 1.0; })}});
+    if (const auto* c = std::get_if<walk::Conductor>(&material))
+        lines.push_back({"single_analytic", {single([c](double x) { return fresnel_conductor(x, c->eta, c->k); })}});
+    if (const auto* d = std::get_if<walk::Dielectric>(&material); d && r.wi.z() > 0.0) {
+        auto F = [d](double x) { return fresnel_dielectric(x, d->eta); };
+        lines.push_back(
+            {"single_analytic",
+             {r.wo.z() > 0.0 ? single(F) : single_scattering_transmission(ndf, r.wi, r.wo, 1.0, d->eta, F)}});
+    }
+    return lines;
+}
+
+// Prints the lines (17 significant digits), or none: a number that is not finite on an accepted input is a defect,
+// reported as such (exit 3) rather than printed.
+void print_brdf_lines(const std::vector<BrdfLine>& lines, const BrdfArgs& a) {
+    for (const BrdfLine& l : lines)
+        for (double x : l.numbers)
+            if (!std::isfinite(x))
+                throw std::runtime_error("brdf: " + l.name + " at --wi " + a.wi + " --wo " + a.wo + " is " +
+                                         format_shortest(x) + ", not a finite number; nothing printed");
+    for (const BrdfLine& l : lines) {
+        std::printf("%s", l.name.c_str());
+        for (double x : l.numbers) std::printf(" %.17g", x);
+        std::printf("\n");
+    }
 }
 
 }  // namespace
@@ -169,24 +237,11 @@ int run_brdf(const BrdfArgs& a, const NdfRegistry& registry) {
     r.seed = seed;
     r.walks = a.walks;
     r.threads = static_cast<unsigned>(a.threads);
+    require_density(material, r, a);
     const walk::EvalTally t =
         make_surface(ndf, trace::parse_walk_options(a.downward, "visible", "--"))->eval_cell(material, r);
-    const walk::Estimate v = t.value();
-    std::printf("value %.17g\nstderr %.17g\n", v.value, v.stderr_);
-    for (int o = 0; o < walk::order_bins; ++o) {
-        const walk::Estimate e = t.value(o, walk::Component::all);
-        std::printf("order_%s %.17g %.17g\n", order_name[o], e.value, e.stderr_);
-    }
-    auto single = [&](auto F) { return single_scattering_reflection(ndf, r.wi, r.wo, F); };
-    if (std::holds_alternative<walk::Mirror>(material))
-        std::printf("single_analytic %.17g\n", single([](double) { return 1.0; }));
-    if (const auto* c = std::get_if<walk::Conductor>(&material))
-        std::printf("single_analytic %.17g\n", single([c](double x) { return fresnel_conductor(x, c->eta, c->k); }));
-    if (const auto* d = std::get_if<walk::Dielectric>(&material); d && r.wi.z() > 0.0) {
-        auto F = [d](double x) { return fresnel_dielectric(x, d->eta); };
-        std::printf("single_analytic %.17g\n",
-                    r.wo.z() > 0.0 ? single(F) : single_scattering_transmission(ndf, r.wi, r.wo, 1.0, d->eta, F));
-    }
+    require_uncapped(t, a);
+    print_brdf_lines(brdf_lines(t, ndf, material, r), a);
     return exit_ok;
 }
 

@@ -20,6 +20,7 @@
 #include "output/progress.hpp"
 #include "output/staged_directory.hpp"
 #include "smithlab/util/parallel.hpp"
+#include "trace/capped_walks.hpp"
 
 namespace smithlab::fitrun {
 
@@ -55,6 +56,20 @@ void print_trace_line(const std::vector<NdfData>& data, double seconds, unsigned
                      "fit: traced %lld points, %.4g walks, in %.1f s (%.0f ns a walk on %u threads x %d ranks)\n",
                      static_cast<long long>(points), static_cast<double>(walks), seconds,
                      seconds / static_cast<double>(walks) * 1e9, util::thread_count(threads), mpi::size());
+}
+
+// Says on stderr how many of the walks traced were cut short (trace/capped_walks.hpp): their energy is missing from
+// the points' values (the fitter's alpha <= 1 keeps walks far below the cap).
+void print_capped(const std::vector<NdfData>& data) {
+    std::int64_t capped = 0, walks = 0;
+    for (const NdfData& d : data) {
+        walks += d.walks_traced;
+        for (const auto* set : {&d.training, &d.validation, &d.albedo})
+            for (const fit::DataPoint& p : *set) capped += p.moments.capped;
+    }
+    if (capped > 0)
+        std::fprintf(stderr, "fit: warning: %s: the points' values miss the energy they would have carried\n",
+                     trace::capped_text(capped, walks).c_str());
 }
 
 // Every output but meta.json into dir.
@@ -123,6 +138,7 @@ FitSummary run_fit(const FitScene& s, const std::string& source, const std::stri
     if (mpi::rank() != 0) return {};
     const double trace_seconds = seconds_since(t0);
     print_trace_line(r.data, trace_seconds, threads);
+    print_capped(r.data);
     FitSummary sum;
     for (const NdfData& d : r.data) sum.traced += d.traced, sum.reused += d.reused;
     sum.points = sum.traced + sum.reused;

@@ -1,8 +1,10 @@
 #include "fit/trace_points.hpp"
 
+#include <cstdio>
 #include <memory>
 
 #include "smithlab/util/parallel.hpp"
+#include "trace/capped_walks.hpp"
 
 namespace smithlab::fitrun {
 
@@ -17,7 +19,7 @@ std::vector<fit::SplitMoments> trace_points(const AnyNdf& ndf, const walk::Mater
                                             std::uint64_t seed, std::int64_t walks, unsigned threads,
                                             const std::function<void(std::uint64_t)>& done) {
     const std::shared_ptr<const AnySurface> surface = make_surface(ndf);
-    return util::reduce_blocks(
+    std::vector<fit::SplitMoments> traced = util::reduce_blocks(
         points.size(), threads, std::vector<fit::SplitMoments>{},
         [&](std::uint64_t j) {
             return std::vector<fit::SplitMoments>{trace_point(*surface, material, points[j], estimator, seed, walks)};
@@ -28,6 +30,13 @@ std::vector<fit::SplitMoments> trace_points(const AnyNdf& ndf, const walk::Mater
         [&](std::uint64_t k) {
             if (done) done(k);
         });
+    std::int64_t capped = 0;
+    for (const fit::SplitMoments& m : traced) capped += m.capped;
+    if (capped > 0)
+        std::fprintf(stderr, "fit: warning: %s (%s, %s): their energy is missing from the values drawn\n",
+                     trace::capped_text(capped, walks * static_cast<std::int64_t>(points.size())).c_str(),
+                     ndf.spec().c_str(), walk::format_material(material).c_str());
+    return traced;
 }
 
 }  // namespace smithlab::fitrun

@@ -13,6 +13,7 @@
 #include "smithlab/errors.hpp"
 #include "smithlab/spec.hpp"
 #include "smithlab/walk/trace.hpp"
+#include "trace/capped_walks.hpp"
 #include "trace/cell_jobs.hpp"
 
 namespace smithlab::report {
@@ -43,6 +44,34 @@ std::string family_label(const WalkCell& c) {
     return out.empty() ? c.family : c.family + " (" + out + ")";
 }
 
+std::string cell_name(const WalkCell& c) {
+    return "walk cell " + std::to_string(c.index) + " (" + c.ndf.spec() + ", " + walk::format_material(c.material) +
+        ", theta_i " + format_shortest(c.theta_i) + ")";
+}
+
+// Says on stderr which cells had walks cut short; refuses the first whose capped walks could carry more than its
+// albedo's standard error (the last of walk_orders: every order).
+void answer_capped(const std::vector<WalkResult>& results, std::int64_t walks) {
+    std::int64_t cells = 0, capped = 0;
+    for (const WalkResult& r : results) {
+        const walk::Estimate& all = r.albedo.back();
+        if (trace::capped_beyond_error(r.capped, walks, all.stderr_))
+            throw input_error(r.cell.where + " '" + r.cell.family + "': " + cell_name(r.cell) + ": " +
+                              trace::capped_text(r.capped, walks) + "; the energy they would have carried out (up to " +
+                              format_shortest(static_cast<double>(r.capped) / static_cast<double>(walks)) +
+                              " of the albedo) could exceed its standard error (" + format_shortest(all.stderr_) +
+                              "), so it is no estimate");
+        cells += r.capped > 0;
+        capped += r.capped;
+    }
+    if (capped > 0)
+        std::fprintf(stderr,
+                     "report: warning: walk section: %lld cells with walks cut short, %lld walks in all (the cap: "
+                     "%lld facet events a walk), each within its albedo's standard error (report.md counts them)\n",
+                     static_cast<long long>(cells), static_cast<long long>(capped),
+                     static_cast<long long>(walk::WalkLimits{}.max_events));
+}
+
 }  // namespace
 
 std::vector<WalkCell> walk_cells(const WalkScene& w, const NdfRegistry& registry) {
@@ -69,7 +98,8 @@ std::vector<WalkCell> walk_cells(const WalkScene& w, const NdfRegistry& registry
                     if (name != "alpha" && name != set_by_alpha) shown.emplace_back(name, v);
                 const double alpha = a ? *a : ndf.has_param("alpha") ? ndf.param("alpha") : NAN;
                 for (const walk::Material& m : materials)
-                    for (double t : w.theta_i) cells.push_back({cells.size(), e.family, shown, alpha, ndf, m, t});
+                    for (double t : w.theta_i)
+                        cells.push_back({cells.size(), e.family, shown, alpha, ndf, m, t, e.where});
             }
         }
     return cells;
@@ -83,9 +113,7 @@ std::vector<WalkResult> trace_walk_cells(const std::vector<WalkCell>& cells, con
         r.walks = w.walks;
         r.wi = direction_from_deg(c.theta_i, 0.0);
         r.cell = c.index;
-        jobs.push_back({c.ndf, c.material, r,
-                        "walk cell " + std::to_string(c.index) + " (" + c.ndf.spec() + ", " +
-                            walk::format_material(c.material) + ", theta_i " + format_shortest(c.theta_i) + ")"});
+        jobs.push_back({c.ndf, c.material, r, cell_name(c)});
     }
     std::vector<std::optional<WalkResult>> done(cells.size());
     trace::CellJobs plan(std::move(jobs), {}, [&](std::size_t i, walk::CellPartial&& total) {
@@ -99,6 +127,7 @@ std::vector<WalkResult> trace_walk_cells(const std::vector<WalkCell>& cells, con
     std::vector<WalkResult> out;  // rank 0's; none on the others
     for (std::optional<WalkResult>& r : done)
         if (r) out.push_back(std::move(*r));
+    answer_capped(out, w.walks);
     return out;
 }
 

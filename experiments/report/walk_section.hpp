@@ -40,7 +40,8 @@ struct WalkCell {
     double alpha;       // NaN for an NDF without one, not swept over alpha
     AnyNdf ndf;
     walk::Material material;
-    double theta_i;  // degrees
+    double theta_i;     // degrees
+    std::string where;  // "FILE:LINE: walk.ndf.family": its [[walk.ndf]] entry, for refusals
 };
 
 // What the section reports per cell, in this order: orders 1, 2, 3, 4+; 2+ (what single scattering loses); all.
@@ -57,7 +58,9 @@ struct WalkResult {
 std::vector<WalkCell> walk_cells(const WalkScene& walk, const NdfRegistry& ndfs);
 
 // Traces every cell (walk.walks walks each, on all cores; the same bits for any number of threads), under MPI on
-// every rank (cluster/block_jobs.hpp): rank 0 gets the results, the other ranks none.
+// every rank (cluster/block_jobs.hpp): rank 0 gets the results, the other ranks none. Rank 0 says on stderr which
+// cells had walks cut short, and refuses (input_error naming the cell's [[walk.ndf]] entry) a cell whose capped walks
+// could carry more than its albedo's standard error (trace/capped_walks.hpp).
 std::vector<WalkResult> trace_walk_cells(const std::vector<WalkCell>& cells, const WalkScene& walk);
 
 // DIR/walk_albedo.csv (ndf,family,gamma,alpha,material,theta_i,order,albedo,stderr,walks,label, then one column per

@@ -1,5 +1,6 @@
 #include "trace/trace_run.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -15,6 +16,7 @@
 #include "smithlab/csv.hpp"
 #include "smithlab/util/parallel.hpp"
 #include "smithlab/walk/trace.hpp"
+#include "trace/capped_walks.hpp"
 #include "trace/cell_file.hpp"
 #include "trace/cell_jobs.hpp"
 #include "trace/trace_meta.hpp"
@@ -86,13 +88,15 @@ walk::CellRequest request_for(const CellSettings& w, const Prepared& p) {
     return r;
 }
 
+// "cell 12 (ggx(alpha=0.3), mirror, theta_i 45, phi_i 0)": a cell in messages.
+std::string cell_name(const Prepared& p) {
+    return "cell " + std::to_string(p.cell.index) + " (" + p.ndf.spec() + ", " + walk::format_material(p.material) +
+        ", theta_i " + format_shortest(p.cell.theta_i) + ", phi_i " + format_shortest(p.cell.phi_i) + ")";
+}
+
 std::vector<CellJob> cell_jobs(const std::vector<Prepared>& prepared, const CellSettings& w) {
     std::vector<CellJob> jobs;
-    for (const Prepared& p : prepared)
-        jobs.push_back({p.ndf, p.material, request_for(w, p),
-                        "cell " + std::to_string(p.cell.index) + " (" + p.ndf.spec() + ", " +
-                            walk::format_material(p.material) + ", theta_i " + format_shortest(p.cell.theta_i) +
-                            ", phi_i " + format_shortest(p.cell.phi_i) + ")"});
+    for (const Prepared& p : prepared) jobs.push_back({p.ndf, p.material, request_for(w, p), cell_name(p)});
     return jobs;
 }
 
@@ -150,6 +154,32 @@ cluster::Traffic trace_cells(std::vector<CellJob> jobs, const walk::Microsurface
     return traffic;
 }
 
+// Rank 0, every cell finished: says on stderr which cells had walks cut short (trace/capped_walks.hpp), and refuses
+// the run (input_error, nothing published; the cell files stay) when any cell's capped walks could carry more than
+// its albedo's standard error.
+void answer_capped(const std::vector<Prepared>& prepared, const std::vector<std::optional<CellRows>>& done,
+                   std::int64_t walks, const fs::path& out) {
+    constexpr std::size_t shown = 5;  // cells named in the warning
+    std::vector<std::size_t> capped;
+    for (std::size_t i = 0; i < prepared.size(); ++i)
+        if (done[i]->capped > 0) capped.push_back(i);
+    for (std::size_t i : capped)
+        if (capped_beyond_error(done[i]->capped, walks, done[i]->total.stderr_))
+            throw input_error("trace: " + cell_name(prepared[i]) + ": " + capped_text(done[i]->capped, walks) +
+                              "; the energy they would have carried out (up to " +
+                              format_shortest(static_cast<double>(done[i]->capped) / static_cast<double>(walks)) +
+                              " of the albedo) could exceed the albedo's standard error (" +
+                              format_shortest(done[i]->total.stderr_) + "), so it is no estimate: nothing written (" +
+                              std::to_string(capped.size()) + " cells with capped walks; the traced cells stay in " +
+                              (out / "cells").string() + ")");
+    for (std::size_t k = 0; k < std::min(capped.size(), shown); ++k)
+        std::fprintf(stderr, "trace: warning: %s: %s, within the albedo's standard error (meta.json capped_walks)\n",
+                     cell_name(prepared[capped[k]]).c_str(), capped_text(done[capped[k]]->capped, walks).c_str());
+    if (capped.size() > shown)
+        std::fprintf(stderr, "trace: warning: and %zu more cells with capped walks (meta.json capped_walks)\n",
+                     capped.size() - shown);
+}
+
 // Rank 0, every cell finished: albedo.csv and brdf.csv in dir, and what meta.json lists of the cells; adds the
 // bounces and each cell's total to sum.
 RunMeta write_outputs(const fs::path& dir, const std::vector<Prepared>& prepared,
@@ -198,6 +228,7 @@ RunSummary run_scene(const TraceScene& s, const std::string& source, const NdfRe
         trace_cells(std::move(jobs), opts, prepared, s.walks, out, done, threads, sum.traced);
     if (mpi::rank() != 0) return sum;
 
+    answer_capped(prepared, done, s.walks, out);
     RunMeta run = write_outputs(stage->path(), prepared, std::move(done), !s.brdf.empty(), sum);
     sum.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     run.traced = sum.traced;

@@ -20,6 +20,7 @@ void SplitMoments::merge(const SplitMoments& o) {
     walks += o.walks;
     for (int k = 0; k < diffuse_bins; ++k) sum[k] += o.sum[k];
     for (int p = 0; p < pairs; ++p) cross[p] += o.cross[p];
+    capped += o.capped;
 }
 
 namespace {

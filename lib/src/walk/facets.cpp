@@ -139,4 +139,9 @@ bool has_diffuse(const Material& material) {
 
 bool transmits(const Material& material) { return std::holds_alternative<Dielectric>(material); }
 
+bool dirac_at(const Material& material, const Vec3& wi, const Vec3& wo) {
+    const auto* d = std::get_if<Dielectric>(&material);
+    return d && d->eta == 1.0 && (wi + wo).norm() <= 1e-9;
+}
+
 }  // namespace smithlab::walk

@@ -34,6 +34,7 @@ struct SplitMoments {
     std::int64_t walks = 0;
     Split sum{};
     std::array<double, pairs> cross{};  // sum of x_k x_l, k <= l, row by row
+    std::int64_t capped = 0;            // walks cut short (walk.hpp), counted when traced (the cache keeps no count)
 
     static int pair(int k, int l) {  // k <= l
         return k * diffuse_bins - k * (k - 1) / 2 + (l - k);
@@ -78,7 +79,9 @@ SplitMoments trace_eval_point(const Microsurface& ms, const M& material, const V
     SplitMoments m;
     for (std::int64_t k = 0; k < walks; ++k) {
         WalkRng g(seed, cell, static_cast<std::uint64_t>(k));
-        m.add(walk::eval_walk(ms, material, wi, wo, g).by_diffuse);
+        const walk::EvalSample e = walk::eval_walk(ms, material, wi, wo, g);
+        m.add(e.by_diffuse);
+        m.capped += e.capped;
     }
     return m;
 }
@@ -94,6 +97,7 @@ SplitMoments trace_albedo_point(const Microsurface& ms, const M& material, const
         Split x{};
         if (s.escaped && s.wo.z() > 0.0) x[walk::diffuse_bin(s.diffuse_events)] = s.weight;
         m.add(x);
+        m.capped += s.capped;
     }
     return m;
 }

@@ -186,5 +186,9 @@ std::string format_material(const Material& material);
 bool has_diffuse(const Material& material);
 // Whether light goes through it (the transmission tallies exist only then).
 bool transmits(const Material& material);
+// Whether the material's BSDF holds a Dirac delta at (wi, wo), where it has no finite density for the eval estimator
+// to return: a dielectric of eta = 1 (index-matched) neither reflects nor bends light, so every ray leaves along -wi
+// (wo = -wi, within 1e-9 of a unit vector: the rounding of directions given in degrees), and nowhere else.
+bool dirac_at(const Material& material, const Vec3& wi, const Vec3& wo);
 
 }  // namespace smithlab::walk
