@@ -165,13 +165,13 @@ void answer_capped(const std::vector<Prepared>& prepared, const std::vector<std:
         if (done[i]->capped > 0) capped.push_back(i);
     for (std::size_t i : capped)
         if (capped_beyond_error(done[i]->capped, walks, done[i]->total.stderr_))
-            throw input_error("trace: " + cell_name(prepared[i]) + ": " + capped_text(done[i]->capped, walks) +
-                              "; the energy they would have carried out (up to " +
-                              format_shortest(static_cast<double>(done[i]->capped) / static_cast<double>(walks)) +
-                              " of the albedo) could exceed the albedo's standard error (" +
-                              format_shortest(done[i]->total.stderr_) + "), so it is no estimate: nothing written (" +
-                              std::to_string(capped.size()) + " cells with capped walks; the traced cells stay in " +
-                              (out / "cells").string() + ")");
+            throw input_error(
+                "trace: " + cell_name(prepared[i]) + ": " + capped_text(done[i]->capped, walks) +
+                "; the energy they would have carried out (up to " +
+                format_shortest(static_cast<double>(done[i]->capped) / static_cast<double>(walks)) +
+                " of the albedo) could exceed the albedo's standard error (" + format_shortest(done[i]->total.stderr_) +
+                "), so it is no estimate: nothing written (cells with capped walks: " + std::to_string(capped.size()) +
+                "; the traced cells stay in " + (out / "cells").string() + ")");
     for (std::size_t k = 0; k < std::min(capped.size(), shown); ++k)
         std::fprintf(stderr, "trace: warning: %s: %s, within the albedo's standard error (meta.json capped_walks)\n",
                      cell_name(prepared[capped[k]]).c_str(), capped_text(done[capped[k]]->capped, walks).c_str());
