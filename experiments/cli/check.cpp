@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "cli/commands.hpp"
+#include "output/standard_output.hpp"
 #include "smithlab/checks.hpp"
 #include "smithlab/errors.hpp"
 
@@ -56,6 +57,7 @@ int run_check(const CheckArgs& a, const NdfRegistry& registry) {
             std::printf("%-44s %-40s %-16s %-10.2e %-9.0e %s\n", ndfs[i].spec().c_str(), r.name.c_str(),
                         r.where.c_str(), r.residual(), r.tolerance, r.passed() ? "ok" : "FAIL");
         }
+        output::check_standard_output();  // a table that cannot be written stops here, not after every NDF
     }
     std::printf("%d passed, %d failed\n", total - failed, failed);
     return failed ? exit_failed : exit_ok;

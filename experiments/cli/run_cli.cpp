@@ -8,6 +8,7 @@
 #include "cli/commands.hpp"
 #include "cluster/mpi_world.hpp"
 #include "output/signal_cleanup.hpp"
+#include "output/standard_output.hpp"
 #include "smithlab/cli.hpp"
 #include "smithlab/errors.hpp"
 #include "smithlab/gtr/registry.hpp"
@@ -125,13 +126,16 @@ int run_cli(int argc, char** argv, const NdfRegistry& registry) {
     struct Finalize {
         ~Finalize() { mpi::finalize(); }
     } finalize;
+    const output::StandardOutput standard_output;  // every write to it checked: a failed one is exit 2, named
     const VariantRegistry variants = builtin_variants();
     CLI::App app{cli::description(registry), "smithlab"};
     cli::Commands commands;
     cli::add_commands(app, commands);
-    if (const std::optional<int> done = cli::parse(app, argc, argv)) return *done;
     try {
-        return cli::dispatch(app, commands, registry, variants);
+        const std::optional<int> done = cli::parse(app, argc, argv);
+        const int code = done ? *done : cli::dispatch(app, commands, registry, variants);
+        output::check_standard_output();  // what is still buffered, and what printf wrote
+        return code;
     } catch (const input_error& e) {
         return cli::fail("error", e, cli::exit_bad_input);
     } catch (const std::filesystem::filesystem_error& e) {  // a path the user gave that cannot be used

@@ -1,13 +1,15 @@
 #include "output/output_file.hpp"
 
+#include <fcntl.h>
 #include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstring>
-#include <fstream>
+#include <memory>
 
+#include "output/checked_file.hpp"
 #include "output/signal_cleanup.hpp"
 #include "smithlab/errors.hpp"
 
@@ -38,11 +40,36 @@ bool same_file(const fs::path& a, const std::string& b) {
     return fs::exists(b, ec) && fs::equivalent(a, b, ec);
 }
 
-bool writable(const fs::path& p) {
+}  // namespace
+
+std::string unwritable(const fs::path& p) {
     struct stat st {};
-    if (::stat(p.c_str(), &st) != 0) return false;
-    // root may write anything: the mode bits say whether the owner meant the file to be written.
-    return (st.st_mode & (S_IWUSR | S_IWGRP | S_IWOTH)) != 0 && ::access(p.c_str(), W_OK) == 0;
+    if (::stat(p.c_str(), &st) != 0) return std::string("cannot be examined: ") + std::strerror(errno);
+    if ((st.st_mode & (S_IWUSR | S_IWGRP | S_IWOTH)) == 0) return "is read-only";
+    if (::access(p.c_str(), W_OK) != 0) return std::string("is not writable: ") + std::strerror(errno);
+    return {};
+}
+
+namespace {
+
+// A FIFO opened now, before any work: without a reader, open(2) would wait for one forever (refused instead); with
+// one, the descriptor is held until the write, so that the reader does not see an end of file in between.
+std::shared_ptr<const int> open_fifo(const fs::path& p, const std::string& shown) {
+    const int fd = ::open(p.c_str(), O_WRONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0 && errno == ENXIO) refuse(shown, "is a FIFO with no reader (start the reader first)");
+    if (fd < 0) refuse(shown, std::string("cannot be opened: ") + std::strerror(errno));
+    ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);  // the writes wait for the reader as usual
+    return std::shared_ptr<const int>(new int(fd), [](const int* f) {
+        ::close(*f);
+        delete f;
+    });
+}
+
+// A descriptor for writing to a character device or a FIFO (a duplicate of the FIFO's, which stays open).
+int open_streamed(const OutputTarget& t) {
+    const int fd = t.fifo ? ::fcntl(*t.fifo, F_DUPFD_CLOEXEC, 0) : ::open(t.path.c_str(), O_WRONLY | O_CLOEXEC);
+    if (fd < 0) refuse(t.shown, std::string("cannot be opened: ") + std::strerror(errno));
+    return fd;
 }
 
 }  // namespace
@@ -73,17 +100,20 @@ OutputTarget resolve_output(const std::string& path, const std::vector<std::stri
     std::error_code ec;
     const fs::file_status st = fs::status(p, ec);
     switch (st.type()) {
-        case fs::file_type::not_found: {
+        case fs::file_type::not_found:
+        case fs::file_type::regular: {
             const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
             if (!fs::is_directory(dir)) refuse(path, "its directory '" + dir.string() + "' does not exist");
-            return {p, false, path};
+            if (st.type() == fs::file_type::regular && !unwritable(p).empty())
+                refuse(path, unwritable(p) + "; not replaced");
+            if (const std::string why = unwritable(dir); !why.empty())
+                refuse(path, "its directory '" + dir.string() + "' " + why);
+            return {p, false, path, nullptr};
         }
-        case fs::file_type::regular:
-            if (!writable(p)) refuse(path, "is read-only; not replaced");
-            return {p, false, path};
         case fs::file_type::character:
+            return {p, true, path, nullptr};
         case fs::file_type::fifo:
-            return {p, true, path};
+            return {p, true, path, open_fifo(p, path)};
         case fs::file_type::directory:
             refuse(path, "is a directory");
         default:
@@ -93,11 +123,9 @@ OutputTarget resolve_output(const std::string& path, const std::vector<std::stri
 
 void write_output(const OutputTarget& t, const std::function<void(std::ostream&)>& write) {
     if (t.streamed) {
-        std::ofstream out(t.path, std::ios::binary);
-        if (!out) refuse(t.shown, std::string("cannot be opened: ") + std::strerror(errno));
-        write(out);
-        out.flush();
-        if (!out) refuse(t.shown, "write failed");
+        CheckedFile out(open_streamed(t), t.shown);
+        write(out.stream());
+        out.close();
         return;
     }
     const fs::path dir = t.path.parent_path();
@@ -105,11 +133,9 @@ void write_output(const OutputTarget& t, const std::function<void(std::ostream&)
     remove_stale_temporaries(dir, name);
     const Temporary tmp(dir / temporary_name(name));
     try {
-        std::ofstream out(tmp.path(), std::ios::binary | std::ios::trunc);
-        if (!out) refuse(t.shown, "cannot create '" + tmp.path().string() + "': " + std::strerror(errno));
-        write(out);
+        CheckedFile out(tmp.path().string(), t.shown);
+        write(out.stream());
         out.close();
-        if (!out) refuse(t.shown, "write failed (disk full?)");
         std::error_code ec;
         if (fs::exists(t.path)) fs::permissions(tmp.path(), fs::status(t.path).permissions(), ec);
         fs::rename(tmp.path(), t.path, ec);

@@ -1,8 +1,10 @@
 #include "output/staged_directory.hpp"
 
-#include <stdexcept>
+#include <cerrno>
 
+#include "output/checked_file.hpp"
 #include "output/output_file.hpp"
+#include "output/write_error.hpp"
 #include "smithlab/errors.hpp"
 
 namespace smithlab::output {
@@ -10,10 +12,17 @@ namespace smithlab::output {
 namespace fs = std::filesystem;
 
 void require_output_directory(const fs::path& out) {
+    const std::string shown = "output directory '" + out.string() + "'";
     std::error_code ec;
     const fs::file_status st = fs::status(out, ec);
+    if (st.type() == fs::file_type::not_found && fs::is_symlink(fs::symlink_status(out, ec)))
+        throw input_error(shown + " is a dangling symbolic link to '" + fs::read_symlink(out, ec).string() + "'");
     if (st.type() != fs::file_type::not_found && st.type() != fs::file_type::directory)
-        throw input_error("output directory '" + out.string() + "' exists and is not a directory");
+        throw input_error(shown + " exists and is not a directory");
+    fs::path p = fs::absolute(out, ec);  // the directory, or the nearest existing one it is to be created in
+    while (!p.empty() && p != p.root_path() && !fs::exists(p, ec)) p = p.parent_path();
+    if (const std::string why = unwritable(p); !why.empty())
+        throw input_error(shown + (p == fs::absolute(out, ec) ? " " : ": its parent '" + p.string() + "' ") + why);
 }
 
 StagedDirectory::StagedDirectory(const fs::path& out, const std::string& name) : out_(out) {
@@ -55,14 +64,15 @@ void StagedDirectory::publish() {
 }
 
 void finish(std::ofstream& out, const std::filesystem::path& path) {
+    errno = 0;
     out.close();
-    if (!out) throw std::runtime_error("could not write " + path.string() + " (disk full?)");
+    if (!out) throw write_error(published_name(path.string()), errno);
 }
 
 void write_file(const std::filesystem::path& path, const std::string& text) {
-    std::ofstream out(path, std::ios::binary);
-    out << text;
-    finish(out, path);
+    CheckedFile out(path.string(), published_name(path.string()));
+    out.stream() << text;
+    out.close();
 }
 
 }  // namespace smithlab::output

@@ -33,13 +33,15 @@ private:
     std::vector<std::filesystem::path> created_;  // out and the parents it had to create, innermost first
 };
 
-// Closes a file written into the stage and refuses to go on when any write to it failed (a full disk): the stage is
-// then never published. Throws std::runtime_error naming the file.
+// Closes a file written into the stage and refuses to go on when any write to it failed (a full disk, a file-size
+// limit): the stage is then never published. Throws write_error naming the file as published (OUT/NAME).
 void finish(std::ofstream& out, const std::filesystem::path& path);
 // Writes `text` to a new file of the stage, checked as finish() does.
 void write_file(const std::filesystem::path& path, const std::string& text);
 
-// `out` as a directory to write into: absent (then its parent must exist or be creatable) or a directory.
+// `out` as a directory to write into: absent (then the nearest existing directory above it must be writable) or a
+// writable directory (unwritable(): read-only by its mode bits is refused, for root too); a dangling symbolic link is
+// refused, naming its target. Throws input_error naming `out`.
 void require_output_directory(const std::filesystem::path& out);
 
 }  // namespace smithlab::output

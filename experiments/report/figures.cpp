@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "output/staged_directory.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/gtr/gtr.hpp"
 #include "smithlab/smith.hpp"
@@ -34,6 +35,7 @@ void write_dimov_heightfields(const fs::path& dir) {
             for (double mu : lin(0.0, 5.0, 51))
                 write_csv_record(out,
                                  {std::to_string(g), format_g17(a), format_g17(mu), format_g17(G1(gtr(a, g), mu))});
+    output::finish(out, dir / "dimov" / "heightfields.csv");
 }
 
 // Dimov 2015 sec. 5: "the mean difference was 0.001", against Monte Carlo, domain unstated. Here: his plot's
@@ -72,6 +74,7 @@ void write_dimov_gamma4_vs_10(const fs::path& dir, std::ostream& md) {
             worst = std::max(worst, d);
             write_csv_record(out, {format_g17(a), format_g17(mu), format_g17(d)});
         }
+    output::finish(out, dir / "dimov" / "gamma4_vs_10.csv");
     char line[400];
     std::snprintf(line, sizeof line,
                   "\n## Dimov 2015, sec. 6: |G1(gamma = 4) - G1(gamma = 10)|\n\nPublished: \"up to 0.3\", largest for "
@@ -95,6 +98,7 @@ void write_figures(const Settings::Figures& fig, const fs::path& dir) {
         md << "\n## Where each variant fails: |dG1| over (alpha, mu), worst over gamma\n\n![](error_maps.png)\n";
     if (fig.dimov_heightfields)
         md << "\n## Dimov 2015, sec. 4: G1 height fields, gamma = 0..4\n\n![](dimov_heightfields.png)\n";
+    output::finish(md, dir / "report.md");
 }
 
 bool draws_figures(const Settings::Figures& fig) {

@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "output/ndf_columns.hpp"
+#include "output/staged_directory.hpp"
 #include "report/scene.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
@@ -122,6 +123,7 @@ void write_csv(const G1Table& table, const fs::path& dir) {
         for (const std::string& cell : params.cells(table.ndfs[r.worst_ndf])) f.push_back(located ? cell : "");
         write_csv_record(csv, f);
     }
+    output::finish(csv, dir / "variants.csv");
 }
 
 void write_markdown(const G1Table& table, const std::vector<double>& alphas, const std::vector<double>& mus,
@@ -144,6 +146,7 @@ void write_markdown(const G1Table& table, const std::vector<double>& alphas, con
                       r.max_dG1, r.sum_dG1 / r.points, rel, r.ns, worst_at(r, table).c_str());
         md << line;
     }
+    output::finish(md, dir / "report.md");
 }
 
 }  // namespace
@@ -240,6 +243,7 @@ void write_g1_points(const G1Table& table, const fs::path& dir) {
             for (const std::string& cell : params.cells(ndf)) f.push_back(cell);
             write_csv_record(out, f);
         }
+        output::finish(out, dir / "points" / (row.name() + ".csv"));
     }
 }
 

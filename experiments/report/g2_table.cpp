@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "output/ndf_columns.hpp"
+#include "output/staged_directory.hpp"
 #include "report/scene.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
@@ -129,6 +130,8 @@ void write_g2_table(const G2Table& table, const fs::path& dir) {
                       n ? r.sum_d / n : NAN, r.ns, worst_at(r).c_str());
         md << line;
     }
+    output::finish(csv, dir / "g2_variants.csv");
+    output::finish(md, dir / "report.md");
 }
 
 }  // namespace smithlab::report

@@ -48,13 +48,14 @@ void time_sections(Scene& scene, const fs::path& dir) {
 
 // DIR/report.md begun: the title, the machine, the compiler and the date.
 void write_head(const Settings& settings, const fs::path& dir) {
-    std::ofstream md(dir / "report.md");
+    std::ofstream md(dir / "report.md", std::ios::binary);
     const std::time_t now = std::time(nullptr);
     char date[32];
     std::strftime(date, sizeof date, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
     md << "# " << settings.title << "\n\n"
        << "Machine: " << machine() << ", one core; compiler " << __VERSION__ << ", flags `" << SMITHLAB_BUILD_FLAGS
        << "`; " << date << ".\n\n";
+    output::finish(md, dir / "report.md");
 }
 
 // report_plots.py over the files written, when any section has a figure; a note in report.md when it fails.
@@ -66,10 +67,11 @@ void draw_figures(const Scene& scene, const fs::path& dir) {
     const bool drawn = output::run_plot_script("report_plots.py", SMITHLAB_PLOT_SCRIPT, dir, "report");
     std::fprintf(stderr, "report: figures %s in %.1f s\n", drawn ? "drawn" : "not drawn",
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-    if (!drawn)
-        std::ofstream(dir / "report.md", std::ios::app)
-            << "\n**The figures were not drawn** (python3-matplotlib missing?); "
-               "their data is beside this file.\n";
+    if (!drawn) {
+        std::ofstream md(dir / "report.md", std::ios::binary | std::ios::app);
+        md << "\n**The figures were not drawn** (python3-matplotlib missing?); their data is beside this file.\n";
+        output::finish(md, dir / "report.md");
+    }
 }
 
 // Rank 0, after every section computed: the references, the timing, and the files, staged and then published.

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "output/progress.hpp"
+#include "output/staged_directory.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
 #include "smithlab/samplers.hpp"
@@ -162,6 +163,8 @@ void write_sampling_section(const std::vector<SamplingRow>& rows, const Sampling
                       r.alpha, r.strategy.c_str(), r.mean, se, r.variance, r.ns, eff);
         md << line;
     }
+    output::finish(csv, dir / "sampling.csv");
+    output::finish(md, dir / "report.md");
 }
 
 }  // namespace smithlab::report

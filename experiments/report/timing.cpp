@@ -4,7 +4,9 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "output/checked_file.hpp"
 #include "output/progress.hpp"
+#include "output/write_error.hpp"
 #include "smithlab/csv.hpp"
 
 namespace smithlab::report {
@@ -36,12 +38,14 @@ void run_registered(std::size_t items, double min_time, const std::filesystem::p
     char* argv[] = {arg0, flag.data(), nullptr};
     int argc = 2;
     benchmark::Initialize(&argc, argv);
-    std::ofstream out(json_file);
+    output::CheckedFile out(json_file.string(), output::published_name(json_file.string()));
+    out.stream().exceptions(std::ios::goodbit);  // a failed write is kept for close(): none thrown through the library
     ProgressReporter reporter(items);
-    reporter.SetOutputStream(&out);
+    reporter.SetOutputStream(&out.stream());
     reporter.SetErrorStream(&std::cerr);
     benchmark::RunSpecifiedBenchmarks(&reporter);
     benchmark::ClearRegisteredBenchmarks();
+    out.close();  // a failed write is reported here, naming the file, before anything reads it back
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 
 #include "output/ndf_columns.hpp"
 #include "output/progress.hpp"
+#include "output/staged_directory.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
 #include "smithlab/spec.hpp"
@@ -161,6 +162,7 @@ void write_walk_csv(const std::vector<WalkResult>& results, const WalkScene& w, 
             write_csv_record(csv, f);
         }
     }
+    output::finish(csv, dir / "walk_albedo.csv");
 }
 
 void write_walk_markdown(const std::vector<WalkResult>& results, const WalkScene& w, double seconds,
@@ -198,6 +200,7 @@ void write_walk_markdown(const std::vector<WalkResult>& results, const WalkScene
         }
         md << " |\n";
     }
+    output::finish(md, dir / "report.md");
 }
 
 }  // namespace

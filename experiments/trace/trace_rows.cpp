@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "output/ndf_columns.hpp"
+#include "output/staged_directory.hpp"
 #include "smithlab/csv.hpp"
 
 namespace smithlab::trace {
@@ -153,9 +154,8 @@ void write_tables(const std::filesystem::path& dir, std::span<const AnyNdf> ndfs
         write_rows(albedo, rows[i].albedo, params);
         if (brdf_file) write_rows(*brdf_file, rows[i].brdf, params);
     }
-    albedo.close();
-    if (!albedo || (brdf_file && !brdf_file->flush()))
-        throw std::runtime_error("trace: could not write the outputs (disk full?)");
+    output::finish(albedo, dir / "albedo.csv");
+    if (brdf_file) output::finish(*brdf_file, dir / "brdf.csv");
 }
 
 }  // namespace smithlab::trace

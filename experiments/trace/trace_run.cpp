@@ -238,7 +238,7 @@ RunSummary run_scene(const TraceScene& s, const std::string& source, const NdfRe
     run.threads = util::thread_count(threads);
     nlohmann::ordered_json meta = trace_meta(s, source, run);
     if (mpi::size() > 1) meta["mpi"] = cluster::traffic_json(traffic);  // threads is then per rank
-    std::ofstream(stage->path() / "meta.json") << meta.dump(2) << "\n";
+    output::write_file(stage->path() / "meta.json", meta.dump(2) + "\n");
     stage->publish();
     return sum;
 }
