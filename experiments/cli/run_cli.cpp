@@ -126,7 +126,7 @@ int run_cli(int argc, char** argv, const NdfRegistry& registry) {
     struct Finalize {
         ~Finalize() { mpi::finalize(); }
     } finalize;
-    const output::StandardOutput standard_output;  // every write to it checked: a failed one is exit 2, named
+    output::StandardOutput standard_output;  // every write to it checked: a failed one is exit 2, named
     const VariantRegistry variants = builtin_variants();
     CLI::App app{cli::description(registry), "smithlab"};
     cli::Commands commands;
@@ -137,10 +137,13 @@ int run_cli(int argc, char** argv, const NdfRegistry& registry) {
         output::check_standard_output();  // what is still buffered, and what printf wrote
         return code;
     } catch (const input_error& e) {
+        standard_output.quiet();
         return cli::fail("error", e, cli::exit_bad_input);
     } catch (const std::filesystem::filesystem_error& e) {  // a path the user gave that cannot be used
+        standard_output.quiet();
         return cli::fail("error", e, cli::exit_bad_input);
     } catch (const std::exception& e) {
+        standard_output.quiet();
         return cli::fail("internal error (please report it, with the command)", e, cli::exit_internal);
     }
 }

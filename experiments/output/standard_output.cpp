@@ -27,15 +27,19 @@ std::streamsize StandardOutput::Buffer::xsputn(const char* s, std::streamsize n)
     return n;
 }
 
+// Never throws: std::cerr flushes std::cout before each message (tie), the message of a failed write included. A
+// failure stays in ferror(stdout), for check_standard_output().
 int StandardOutput::Buffer::sync() {
-    check_standard_output();
+    std::fflush(stdout);
     return 0;
 }
 
 StandardOutput::StandardOutput() : previous_(std::cout.rdbuf(&buffer_)) { std::cout.exceptions(std::ios::badbit); }
 
+void StandardOutput::quiet() { std::cout.exceptions(std::ios::goodbit); }
+
 StandardOutput::~StandardOutput() {
-    std::cout.exceptions(std::ios::goodbit);
+    quiet();
     std::cout.clear();
     std::cout.rdbuf(previous_);
 }

@@ -15,6 +15,9 @@ public:
     ~StandardOutput();  // std::cout as it was
     StandardOutput(const StandardOutput&) = delete;
     StandardOutput& operator=(const StandardOutput&) = delete;
+    // std::cout throws no more (a failure stays for check_standard_output): call it before a message goes to
+    // std::cerr, which flushes std::cout first.
+    void quiet();
 
 private:
     class Buffer : public std::streambuf {
