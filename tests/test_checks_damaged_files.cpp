@@ -68,12 +68,12 @@ std::string flip_bit(std::string text) {
     return text;
 }
 
-// Cell files: line 4 is the first "a," row (specular at order 1), line 5 the second (diffuse); field 9 its value.
+// Cell files: line 4 is the first "a," row (specular at order 1), line 5 the second (diffuse); field 8 its value.
 const std::vector<Damage> cell_damages{
-    {"a digit edited", [](std::string t) { return edit_digit(std::move(t), 5, 9); }},
+    {"a digit edited", [](std::string t) { return edit_digit(std::move(t), 5, 8); }},
     {"a bit flipped", flip_bit},
     {"two rows swapped", [](std::string t) { return swap_lines(std::move(t), 4); }},
-    {"nan written in", [](std::string t) { return write_nan(std::move(t), 5, 9); }},
+    {"nan written in", [](std::string t) { return write_nan(std::move(t), 5, 8); }},
 };
 
 // Cache files: line 2 is the first point; field 4 its s0 (the first moment), field 5 s1.
