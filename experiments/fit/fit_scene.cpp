@@ -153,7 +153,8 @@ FitScene parse_fit_scene(const std::string& text, const std::string& source, con
     s.title = doc.text("title", s.title);
     s.material = doc.text("material", s.material);
     check_material(doc, s.material);
-    if (doc.has("albedos")) s.albedos = read_bounded(doc, "albedos", 0.0, 1.0, true, false, "(0, 1]");
+    // Below 1e-100 a point's variance (albedo^2 times its variance at albedo 1) nears underflow: no fit could weigh it.
+    if (doc.has("albedos")) s.albedos = read_bounded(doc, "albedos", 1e-100, 1.0, false, false, "[1e-100, 1]");
     read_models(doc, s);
     s.floor = doc.real("floor", s.floor);
     if (!(s.floor >= 0.0 && s.floor < 1.0)) doc.fail("floor", "must be in [0, 1), got " + format_shortest(s.floor));

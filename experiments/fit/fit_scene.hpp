@@ -55,7 +55,7 @@ struct FitScene {
 };
 
 // Refuses (input_error "SOURCE:LINE: key ...") an unknown key or section, a value of the wrong type, a material that
-// is not lambert or fresnel-diffuse at albedo 1, an albedo outside (0, 1], a model that is not known, a floor
+// is not lambert or fresnel-diffuse at albedo 1, an albedo outside [1e-100, 1], a model that is not known, a floor
 // outside [0, 1), alpha outside (0, 1], theta outside [0, 90), an integer out of its bounds (validation.points in
 // [1, 65534]), more than 65535 training direction pairs per alpha (each point's random stream holds its index in 16
 // bits), an [[ndf]] whose family is not registered, a parameter the family does not have, or an axis for its

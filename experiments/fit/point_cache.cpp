@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 
 #include "output/output_file.hpp"
 #include "smithlab/csv.hpp"
+#include "smithlab/util/checksum.hpp"
 
 namespace smithlab::fitrun {
 
@@ -21,8 +23,17 @@ std::string cache_key(const AnyNdf& ndf, const std::string& material, const std:
 }
 
 std::optional<std::vector<fit::SplitMoments>> read_cache(const CacheFile& file) {
-    std::ifstream in(file.path, std::ios::binary);
-    if (!in) return std::nullopt;
+    std::ifstream whole(file.path, std::ios::binary);
+    if (!whole) return std::nullopt;
+    std::ostringstream bytes;
+    bytes << whole.rdbuf();
+    const std::string text = bytes.str();
+    const std::optional<std::string_view> body = util::unseal(text);
+    if (!body) {
+        std::fprintf(stderr, "fit: cache %s: checksum mismatch, traced again\n", file.path.string().c_str());
+        return std::nullopt;
+    }
+    std::istringstream in{std::string(*body)};
     std::vector<CsvRecord> rows;
     try {
         rows = read_csv(in);
@@ -44,18 +55,20 @@ std::optional<std::vector<fit::SplitMoments>> read_cache(const CacheFile& file) 
 }
 
 void write_cache(const CacheFile& file, const std::vector<fit::SplitMoments>& moments) {
+    std::ostringstream body;
+    write_csv_record(body, {"key", file.key});
+    std::vector<std::string> header = file.columns;
+    for (std::string& c : fit::moment_columns()) header.push_back(std::move(c));
+    write_csv_record(body, header);
+    for (std::size_t j = 0; j < file.points.size(); ++j) {
+        std::vector<std::string> f = file.points[j];
+        for (std::string& x : fit::moment_fields(moments[j])) f.push_back(std::move(x));
+        write_csv_record(body, f);
+    }
+    const std::string text = body.str();
     fs::create_directories(file.path.parent_path());
-    output::write_output(output::resolve_output(file.path.string()), [&](std::ostream& out) {
-        write_csv_record(out, {"key", file.key});
-        std::vector<std::string> header = file.columns;
-        for (std::string& c : fit::moment_columns()) header.push_back(std::move(c));
-        write_csv_record(out, header);
-        for (std::size_t j = 0; j < file.points.size(); ++j) {
-            std::vector<std::string> f = file.points[j];
-            for (std::string& x : fit::moment_fields(moments[j])) f.push_back(std::move(x));
-            write_csv_record(out, f);
-        }
-    });
+    output::write_output(output::resolve_output(file.path.string()),
+                         [&](std::ostream& out) { out << text << util::checksum_line(text); });
 }
 
 std::string cache_directory_name(const std::string& label) {

@@ -1,13 +1,18 @@
 #include "trace/cell_file.hpp"
 
+#include <algorithm>
+#include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <sstream>
+#include <string_view>
 
 #include "output/output_file.hpp"
 #include "smithlab/csv.hpp"
+#include "smithlab/util/checksum.hpp"
 
 namespace smithlab::trace {
 
@@ -29,14 +34,16 @@ std::string cell_key(const CellSettings& w, const TraceCell& c, const AnyNdf& nd
 }
 
 void write_cell(const fs::path& path, const std::string& key, const CellRows& rows) {
-    output::write_output(output::resolve_output(path.string()), [&](std::ostream& out) {
-        out << "key," << csv_field(key) << "\n"
-            << "bounces," << rows.bounces << "\n"
-            << "capped," << rows.capped << "\n"
-            << "total," << format_g17(rows.total.value) << "," << format_g17(rows.total.stderr_) << "\n";
-        for (const std::string& a : rows.albedo) out << "a," << a << "\n";
-        for (const std::string& b : rows.brdf) out << "b," << b << "\n";
-    });
+    std::ostringstream body;
+    body << "key," << csv_field(key) << "\n"
+         << "bounces," << rows.bounces << "\n"
+         << "capped," << rows.capped << "\n"
+         << "total," << format_g17(rows.total.value) << "," << format_g17(rows.total.stderr_) << "\n";
+    for (const std::string& a : rows.albedo) body << "a," << a << "\n";
+    for (const std::string& b : rows.brdf) body << "b," << b << "\n";
+    const std::string text = body.str();
+    output::write_output(output::resolve_output(path.string()),
+                         [&](std::ostream& out) { out << text << util::checksum_line(text); });
 }
 
 namespace {
@@ -58,12 +65,26 @@ bool read_total(std::istream& in, walk::Estimate& e) {
     e.value = std::strtod(line.c_str() + 6, &end);
     if (*end != ',') return false;
     e.stderr_ = std::strtod(end + 1, &end);
-    return *end == '\0';
+    return *end == '\0' && std::isfinite(e.value) && std::isfinite(e.stderr_);
 }
 
-// The "a," and "b," lines to the end; false at any other line.
+// False when a comma-separated piece of `row` reads whole as a number that is not finite ("nan", "inf"). A piece of a
+// quoted field never reads whole as a number, so the plain split is enough.
+bool finite_numbers(std::string_view row) {
+    for (std::size_t at = 0; at <= row.size();) {
+        const std::size_t end = std::min(row.find(',', at), row.size());
+        double x = 0.0;
+        const auto r = std::from_chars(row.data() + at, row.data() + end, x);
+        if (r.ec == std::errc{} && r.ptr == row.data() + end && !std::isfinite(x)) return false;
+        at = end + 1;
+    }
+    return true;
+}
+
+// The "a," and "b," lines to the end; false at any other line or a number that is not finite.
 bool read_rows(std::istream& in, CellRows& rows) {
     for (std::string line; std::getline(in, line);) {
+        if (!finite_numbers(line)) return false;
         if (line.rfind("a,", 0) == 0) rows.albedo.push_back(line.substr(2));
         else if (line.rfind("b,", 0) == 0) rows.brdf.push_back(line.substr(2));
         else return false;
@@ -71,12 +92,32 @@ bool read_rows(std::istream& in, CellRows& rows) {
     return true;
 }
 
+// "cell 3" for OUT/cells/cell-000003.csv (cell_path), else the path.
+std::string cell_name(const fs::path& path) {
+    const std::string stem = path.stem().string();
+    std::uint64_t index = 0;
+    const char* digits = stem.data() + std::min<std::size_t>(5, stem.size());
+    const auto r = std::from_chars(digits, stem.data() + stem.size(), index);
+    if (stem.rfind("cell-", 0) == 0 && r.ec == std::errc{} && r.ptr == stem.data() + stem.size())
+        return "cell " + std::to_string(index);
+    return "cell file " + path.string();
+}
+
 }  // namespace
 
 std::optional<CellRows> read_cell(const fs::path& path, const std::string& key, std::size_t albedo_rows,
                                   std::size_t brdf_rows) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return std::nullopt;
+    std::ifstream file(path, std::ios::binary);
+    if (!file) return std::nullopt;
+    std::ostringstream whole;
+    whole << file.rdbuf();
+    const std::string text = whole.str();
+    const std::optional<std::string_view> body = util::unseal(text);
+    if (!body) {
+        std::fprintf(stderr, "trace: %s: checksum mismatch, traced again\n", cell_name(path).c_str());
+        return std::nullopt;
+    }
+    std::istringstream in{std::string(*body)};
     std::string line;
     if (!std::getline(in, line) || line != "key," + csv_field(key)) return std::nullopt;
     CellRows rows;

@@ -7,7 +7,13 @@
 //   total,VALUE,STDERR the albedo over every hemisphere, order and component
 //   a,ROW              one per row of albedo.csv, as trace_rows.hpp writes it (without the NDF parameter columns)
 //   b,ROW              one per row of brdf.csv, likewise
+//   checksum,HEX       the CRC-64 of every byte above, the key line included (smithlab/util/checksum.hpp)
 // Numbers with 17 significant digits: they round-trip.
+//
+// A file is reused only when its checksum holds, its key is the one asked for, its counts are integers, its numbers
+// finite and its rows as many as the cell has: a file cut short, with a value edited, bits flipped or rows swapped
+// fails the checksum and is traced again, and the run says so on stderr ("trace: cell 3: checksum mismatch, traced
+// again"). A whole file under another key (the scene changed since) is traced again without a word.
 #pragma once
 
 #include <cstdint>
@@ -39,8 +45,8 @@ std::string cell_key(const CellSettings& settings, const TraceCell& cell, const 
 // Written atomically (output::write_output): a killed run leaves the file whole or absent.
 void write_cell(const std::filesystem::path& path, const std::string& key, const CellRows& rows);
 
-// The file's rows, if it is whole, its key is `key`, and it holds `albedo_rows` and `brdf_rows` rows; else none (the
-// cell is traced again).
+// The file's rows, if its checksum holds, its key is `key`, its numbers are finite and it holds `albedo_rows` and
+// `brdf_rows` rows; else none (the cell is traced again; a present file whose checksum fails is named on stderr).
 std::optional<CellRows> read_cell(const std::filesystem::path& path, const std::string& key, std::size_t albedo_rows,
                                   std::size_t brdf_rows);
 

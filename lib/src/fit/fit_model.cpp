@@ -87,11 +87,36 @@ void residuals(const DiffuseModel& m, const std::vector<Block>& bs, const std::v
     }
 }
 
+// True when every diagonal entry of a covariance is finite and not negative.
+bool usable(const Eigen::MatrixXd& cov) {
+    for (Eigen::Index i = 0; i < cov.rows(); ++i)
+        if (!(std::isfinite(cov(i, i)) && cov(i, i) >= 0.0)) return false;
+    return true;
+}
+
+// (J^T J)^-1. Where the plain inverse is not usable, it is computed as D (J'^T J')^-1 D with J' = J D, D scaling
+// each column of J to unit norm (Jacobi equilibration; the same matrix in exact arithmetic): a constant whose effect is
+// tiny beside the others' (one that weighs the albedo^2 terms, fitted at an albedo of 1e-12) makes J^T J singular in
+// double, not J'^T J'. A column of zeros (a constant with no effect on the data at all) is kept apart: its row and
+// column of the result are 0 (data_statistics marks its standard error as not finite).
+Eigen::MatrixXd inverse_normal(const Eigen::MatrixXd& J) {
+    const Eigen::MatrixXd plain = (J.transpose() * J).inverse();
+    if (usable(plain)) return plain;
+    Eigen::VectorXd d(J.cols());
+    for (Eigen::Index i = 0; i < J.cols(); ++i) d(i) = J.col(i).norm() > 0.0 ? 1.0 / J.col(i).norm() : 0.0;
+    const Eigen::MatrixXd Js = J * d.asDiagonal();
+    Eigen::MatrixXd A = Js.transpose() * Js;
+    for (Eigen::Index i = 0; i < J.cols(); ++i)
+        if (d(i) == 0.0) A(i, i) = 1.0;
+    return d.asDiagonal() * A.inverse() * d.asDiagonal();
+}
+
 // chi^2, dof and the constants' covariance from the n data rows alone (the penalty rows after them are constraints,
 // not data). The weights are not the data's inverse covariance where the floor adds to it, so the covariance is the
 // sandwich (J^T J)^-1 J^T N J (J^T J)^-1, N the data's own covariance of the whitened residuals (Block::noise): the
 // spread of the fitted constants over independent traces of the same scene. With floor 0, N = 1 and it is
-// (J^T J)^-1.
+// (J^T J)^-1. A standard error that is not finite (a constant the data does not determine) is left NaN for
+// fit_model to refuse, never shown as 0.
 void data_statistics(LeastSquaresFit& fit, const std::vector<Block>& bs, std::size_t n) {
     const Eigen::Index np = static_cast<Eigen::Index>(fit.params.size());
     const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> J(
@@ -100,7 +125,7 @@ void data_statistics(LeastSquaresFit& fit, const std::vector<Block>& bs, std::si
     for (std::size_t i = 0; i < n; ++i) fit.chi2 += fit.residuals[i] * fit.residuals[i];
     fit.dof = static_cast<std::int64_t>(n) - np;
     const Eigen::MatrixXd Jd = J.topRows(static_cast<Eigen::Index>(n));
-    const Eigen::MatrixXd bread = (Jd.transpose() * Jd).inverse();
+    const Eigen::MatrixXd bread = inverse_normal(Jd);
     Eigen::MatrixXd meat = Eigen::MatrixXd::Zero(np, np);
     Eigen::Index row = 0;
     for (const Block& b : bs) {
@@ -111,8 +136,16 @@ void data_statistics(LeastSquaresFit& fit, const std::vector<Block>& bs, std::si
     const Eigen::MatrixXd cov = bread * meat * bread;
     for (Eigen::Index i = 0; i < np; ++i) {
         for (Eigen::Index j = 0; j < np; ++j) fit.covariance[static_cast<std::size_t>(i * np + j)] = cov(i, j);
-        fit.stderr_[static_cast<std::size_t>(i)] = std::sqrt(std::max(0.0, cov(i, i)));
+        const bool no_effect = !(Jd.col(i).norm() > 0.0);
+        fit.stderr_[static_cast<std::size_t>(i)] = cov(i, i) >= 0.0 && !no_effect ? std::sqrt(cov(i, i)) : std::nan("");
     }
+}
+
+// The first constant of m whose standard error is not finite, or none.
+const std::string_view* undetermined(const DiffuseModel& m, const LeastSquaresFit& fit) {
+    for (std::size_t i = 0; i < fit.stderr_.size(); ++i)
+        if (!std::isfinite(fit.stderr_[i])) return &m.parameters[i];
+    return nullptr;
 }
 
 }  // namespace
@@ -134,6 +167,11 @@ LeastSquaresFit fit_model(const DiffuseModel& m, const FitData& data, const std:
             for (double t : energy_thetas) r[i++] = energy_penalty(model_albedo(m, c, a, t, 1.0));
     });
     if (fit.converged) data_statistics(fit, bs, n);
+    if (const std::string_view* p = fit.converged ? undetermined(m, fit) : nullptr) {
+        fit.converged = false;
+        fit.reason = "the data does not determine its constant '" + std::string(*p) +
+            "' (its standard error is not finite: at these albedos it changes no fitted value)";
+    }
     if (!fit.converged)
         throw input_error("fit of model '" + std::string(m.name) + "' on " + what + " (" + std::to_string(bs.size()) +
                           " points x " + std::to_string(data.albedos.size()) + " albedos, " + std::to_string(n) +

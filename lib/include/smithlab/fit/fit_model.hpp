@@ -37,7 +37,8 @@ inline const std::vector<double> energy_thetas{0.0, 60.0, 80.0, 89.0};
 double model_value(const DiffuseModel& m, const std::vector<double>& params, const DataPoint& p, double albedo);
 
 // Fits m's free constants from its published values. Throws input_error naming the model and `what` (the data's
-// name, e.g. the NDF) when the fit does not converge or the data has too few points for its parameters. With
+// name, e.g. the NDF) when the fit does not converge, the data has too few points for its parameters, or a constant's
+// standard error is not finite (the data does not determine it: naming the constant). With
 // data.energy_alphas, each (alpha, theta_i) adds a residual that is ~0 for E below 1 - 5e-4 and grows as (E - 1) 1e5
 // above 1 (a smooth hinge: fit_model.cpp), E the model's directional albedo at albedo 1 (model_albedo): a penalty that
 // holds the fitted model energy-bounded there (and at lower albedos where each of its albedo^k terms is >= 0). chi^2,
