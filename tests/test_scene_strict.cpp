@@ -65,7 +65,7 @@ TEST_CASE("scene: lists nested past the depth limit are refused before parsing, 
     refused_trace(d, "dotted.toml", "a" + std::string(100, '.') + " = 1\n", {"dotted.toml:1:"});
     // Brackets inside strings and comments do not count.
     write(d / "strings.toml",
-          trace_scene("n = 10 # " + std::string(100, '[')) + "title = \"" + std::string(100, '[') + "\"\n");
+          "title = \"" + std::string(100, '[') + "\"\n" + trace_scene("n = 10 # " + std::string(100, '[')));
     const Run ok = run("trace '" + (d / "strings.toml").string() + "' -o '" + (d / "ok").string() + "'");
     INFO(ok.err);
     CHECK(ok.rc == 0);
@@ -155,7 +155,7 @@ TEST_CASE("scene: a duplicated fit model and an include pattern that matches not
                                    "fit.toml:1: models", "names 'lambert' twice");
     CHECK_FALSE(fs::exists(d / "never"));
     const std::string report = "[grid]\nalpha = [0.5]\nmu = [1.0]\n[[ndf]]\nfamily = \"ggx\"\n[variants]\n";
-    const std::string typo = check_bad_scene(d, "typo.toml", report + "include = [\"schlik-ggx\"]\n",
+    const std::string typo = check_bad_scene(d, "typo.toml", report + "include = [\"schlick-ggx\", \"schlik-ggx\"]\n",
                                              "typo.toml:7: variants.include pattern 'schlik-ggx' matches no name");
     CHECK(typo.find("did you mean 'schlick-ggx'?") != std::string::npos);
     check_bad_scene(d, "exclude.toml", report + "include = [\"*\"]\nexclude = [\"quadrature\"]\n",
