@@ -48,7 +48,10 @@ public:
     void check(const Settings& s, const NdfRegistry& ndfs, const VariantRegistry& variants) override {
         std::vector<std::string> names;
         for (const LambdaVariant& v : variants.list()) names.push_back(v.name);
-        require_matches(include_, names, where_include_);
+        // A selection of nothing is refused by g1_table ("selects no variant"); a pattern of a selection that matches
+        // nothing, here.
+        if (std::any_of(names.begin(), names.end(), [&](const std::string& n) { return matches_any(include_, n); }))
+            require_matches(include_, names, where_include_);
         require_matches(exclude_, names, where_exclude_);
         table_ = g1_table(entries_, s.alphas, ndfs, variants, include_, exclude_);
         require_g1_domain(table_, s.mus);
