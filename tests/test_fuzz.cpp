@@ -28,6 +28,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -1191,6 +1192,90 @@ TEST_CASE("fuzz: report SCENE on mutated tiny scenes", "[fuzz][cli][scene]") {
         std::string why = judge(r, m.refuse);
         if (why.empty() && r.rc == 0) why = nan_in_files(d / out);
         if (why.empty() && r.rc == 2 && fs::exists(d / out)) why = "exit 2 but the output directory was written";
+        if (why.empty()) why = debris(d);
+        c.record(args, r, why, "  mutation: " + m.what + "\n  " + name + ":\n" + m.text);
+        fs::remove_all(d / out);
+        fs::remove(d / name);
+    }
+}
+
+namespace {
+
+// Tiny valid trace and fit scenes and a report scene with a [walk] (tens of walks: each runs in well under a second).
+// Each has an alpha axis (mutate_scene picks one).
+const std::vector<std::pair<std::string, std::string>> walk_scenes = {
+    {"trace",
+     "title = \"t\"\nmaterials = [\"mirror\", \"lambert(albedo=1)\"]\n"
+     "[walks]\nn = 50\nseed = 3\nmax_order = 0\ndownward = \"smith\"\nhit_normal = \"visible\"\n"
+     "[grid]\nalpha = [0.5]\ntheta_i = [0.0, 45.0]\nphi_i = [0.0]\n"
+     "[[ndf]]\nfamily = \"gtr\"\ngamma = [1.5]\n"
+     "[brdf]\ntheta_bins = 2\nphi_bins = 2\n"},
+    {"trace",
+     "materials = [\"dielectric(eta=1.5)\"]\n[walks]\nn = 50\n[grid]\nalpha = [0.3]\n"
+     "theta_i = { lin = [0.0, 60.0], n = 2 }\n[[ndf]]\nfamily = \"ggx\"\n[[ndf]]\nspec = \"ggx(alpha=0.3)\"\n"},
+    {"fit",
+     "title = \"f\"\nmaterial = \"lambert(albedo=1)\"\nalbedos = [0.5, 1.0]\nmodels = [\"lambert\"]\nfloor = 0.02\n"
+     "energy_bound = true\nseed = 2\n"
+     "[[ndf]]\nfamily = \"ggx\"\n"
+     "[training]\nalpha = [0.3, 0.6]\ntheta = [0.0, 45.0]\nphi = [0.0]\nwalks = 100\n"
+     "[validation]\npoints = 2\nwalks = 100\nalbedo_theta = [0.0]\nalbedo_walks = 100\n"
+     "[compensation]\nalpha = [0.5]\nmu = 2\n"},
+    {"report",
+     "[grid]\nalpha = [0.5]\nmu = [1.0]\n[[ndf]]\nfamily = \"ggx\"\n[variants]\ninclude = [\"schlick-ggx\"]\n"
+     "[timing]\nmin_time = 0.01\n"
+     "[walk]\nmaterials = [\"mirror\"]\nalpha = [0.5]\ntheta_i = [45.0]\nwalks = 100\nseed = 1\n"
+     "[[walk.ndf]]\nfamily = \"ggx\"\n"},
+};
+
+// A hostile value for any key: numbers past their types, deep nesting, text where a number goes. Each must be
+// refused (exit 2) or read as what it is; a refusal names the file and line.
+std::string hostile_value(Gen& g) {
+    return g.pick<std::string>({"18446744073709551616", "0xffffffffffffffff", "-9223372036854775809", "1e400", "-1e400",
+                                "1e-400", "[1e400]", "[1e-400, 0.5]", "5e-324", "[5e-324]",
+                                std::string(200, '[') + std::string(200, ']'), "{ a = { b = { c = 1 } } }", "\"1e400\"",
+                                "99999999999999999999", "0b11", "0o777", "1_000", "[[0.5], [0.5]]"});
+}
+
+}  // namespace
+
+TEST_CASE("fuzz: trace and fit SCENE and the report's [walk] on mutated tiny scenes", "[fuzz][cli][scene]") {
+    const std::size_t n = count(40);
+    Gen g = start("walk scenes", n);
+    Campaign c("walk scenes");
+    const fs::path d = fresh_dir("fuzz_walk_scene");
+    for (std::size_t i = 0; i < n && !c.give_up(); ++i) {
+        const auto& [command, base] = g.pick(walk_scenes);
+        Mutated m;
+        if (g.chance(0.5)) {  // a hostile value on one key
+            std::vector<std::string> lines = split_lines(base);
+            std::vector<std::size_t> keys;
+            for (std::size_t k = 0; k < lines.size(); ++k)
+                if (lines[k].find(" = ") != std::string::npos) keys.push_back(k);
+            const std::size_t at = g.pick(keys);
+            const std::string key = lines[at].substr(0, lines[at].find(" = "));
+            lines[at] = key + " = " + hostile_value(g);
+            m = {join_lines(lines), "", lines[at]};
+        } else {
+            m = mutate_scene(g, base);
+            m.refuse.clear();  // mutate_scene's expectations are the report's keys; here only the contract is judged
+        }
+        const std::string name = "w" + std::to_string(i) + ".toml", out = "out" + std::to_string(i);
+        write(d / name, m.text);
+        const std::string args = command == "report"
+            ? report_args(d, name, out)
+            : command + " '" + (d / name).string() + "' --output '" + (d / out).string() + "' --threads 1";
+        const Run r = run(args);
+        std::string why = judge(r, m.refuse);
+        if (why.empty() && r.rc == 0) why = nan_in_files(d / out);
+        if (why.empty() && r.rc == 2 && fs::exists(d / out)) why = "exit 2 but the output directory was written";
+        // A refusal that names the scene file names a line of it ("w3.toml:12: ..."). (An NDF's or material's values
+        // are checked when the cells are prepared, after the read: those messages name the value, not the line.)
+        if (const std::size_t at = r.err.find(name + ":"); why.empty() && r.rc == 2 && at != std::string::npos) {
+            const std::size_t digit = at + name.size() + 1;
+            const bool syntax = r.err.find("malformed scene") != std::string::npos;  // toml11's own line follows
+            if (!syntax && (digit >= r.err.size() || !std::isdigit(static_cast<unsigned char>(r.err[digit]))))
+                why = "refused naming the file without a line: " + r.err;
+        }
         if (why.empty()) why = debris(d);
         c.record(args, r, why, "  mutation: " + m.what + "\n  " + name + ":\n" + m.text);
         fs::remove_all(d / out);

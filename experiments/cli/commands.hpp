@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "scene/limits.hpp"
 #include "smithlab/registry.hpp"
 #include "smithlab/smith.hpp"
 #include "smithlab/variants.hpp"
@@ -64,6 +65,7 @@ struct TraceArgs {
     std::string seed = "1";
     bool print_scene = false;
     std::vector<CLI::Option*> cell_options;  // the flags that name one cell: any given means "trace that cell"
+    report::SizeLimits limits;               // --max-cells, --max-walks
 };
 void add_trace(CLI::App& app, TraceArgs& args);
 int run_trace(const TraceArgs& args, const NdfRegistry& registry);
@@ -82,6 +84,7 @@ struct FitArgs {
     std::string output = "fit";
     int threads = 0;
     bool print_scene = false, list_models = false;
+    report::SizeLimits limits;  // --max-cells, --max-walks
 };
 void add_fit(CLI::App& app, FitArgs& args);
 int run_fit(const FitArgs& args, const NdfRegistry& registry);
@@ -91,7 +94,13 @@ int run_list(const NdfRegistry& registry);
 
 // Parses a double, accepting "inf"; NaN and trailing junk are input errors naming `what`.
 double parse_number(const std::string& text, const std::string& what);
-// The text of a scene file; a directory, a missing or unreadable file is an input error naming it.
+// CLI11 checks for a number option, run on its text before CLI11 converts it: strict_real reads it by parse_double
+// (a value beyond the doubles, a nonzero value that would read as 0, NaN and junk refused), strict_integer as a
+// decimal 64-bit integer (beyond it refused; CLI11 alone clamps and reads 010 as octal). The message names the option.
+CLI::Validator strict_real();
+CLI::Validator strict_integer();
+// The text of a scene file (at most report::max_scene_bytes: a larger file, /dev/zero or an endless pipe is refused); a
+// directory, a missing or unreadable file is an input error naming it.
 std::string read_scene_file(const std::string& path);
 // Parses a seed: decimal digits only, 0 .. 2^64 - 1; anything else is an input error naming `what`.
 unsigned long long parse_seed(const std::string& text, const std::string& what);
@@ -107,6 +116,8 @@ void require_threads(int threads);
 CLI::Option* add_seed_option(CLI::App& command, std::string& seed);
 // --downward, from downward_names (smith.hpp).
 CLI::Option* add_downward_option(CLI::App& command, std::string& downward);
+// --max-cells N and --max-walks N: the size a scene may ask for (scene/limits.hpp), inf for no limit.
+void add_limit_options(CLI::App& command, report::SizeLimits& limits);
 // The optional positional SCENE (a TOML file) and --print-scene, of report, trace and fit.
 void add_scene_options(CLI::App& command, std::string& scene, bool& print_scene, const std::string& none);
 

@@ -95,6 +95,7 @@ void add_eval(CLI::App& app, EvalArgs& a) {
     add_backend_option(*c, a.backend);
     c->add_option("--tolerance", a.tolerance, "relative tolerance of the quadrature methods")
         ->capture_default_str()
+        ->check(strict_real())
         ->check(CLI::Range(1e-15, 0.1));
     add_downward_option(*c, a.downward);
 }

@@ -40,6 +40,7 @@ void add_fit(CLI::App& app, FitArgs& a) {
     add_scene_options(*c, a.scene, a.print_scene, "the embedded default");
     add_output_option(*c, a.output, "output directory")->capture_default_str();
     add_threads_option(*c, a.threads);
+    add_limit_options(*c, a.limits);
     c->add_flag("--list-models", a.list_models, "list the diffuse models, their constants and sources, and exit");
 }
 
@@ -61,7 +62,7 @@ int run_fit(const FitArgs& a, const NdfRegistry& registry) {
     require_threads(a.threads);
     const std::string source = a.scene.empty() ? "<default scene>" : a.scene;
     const std::string text = a.scene.empty() ? fitrun::default_fit_scene_text() : read_scene_file(a.scene);
-    const fitrun::FitScene scene = fitrun::parse_fit_scene(text, source, registry);
+    const fitrun::FitScene scene = fitrun::parse_fit_scene(text, source, registry, a.limits);
     const fitrun::FitSummary sum =
         fitrun::run_fit(scene, source, text, registry, a.output, static_cast<unsigned>(a.threads));
     if (mpi::rank() != 0) return exit_ok;  // a rank of a run under mpirun: rank 0 reports

@@ -1,6 +1,7 @@
 // Parsing of option values, reading of scene files, and the options shared by the subcommands.
 #include <cctype>
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -9,6 +10,7 @@
 #include <sstream>
 
 #include "cli/commands.hpp"
+#include "scene/limits.hpp"
 #include "smithlab/errors.hpp"
 
 namespace smithlab::cli {
@@ -19,15 +21,49 @@ double parse_number(const std::string& text, const std::string& what) {
     return v;
 }
 
+CLI::Validator strict_real() {
+    return CLI::Validator(
+        [](std::string& text) {
+            try {
+                if (std::isnan(parse_double(text, "the value"))) return std::string("the value is NaN");
+            } catch (const input_error& e) {
+                return std::string(e.what());
+            }
+            return std::string();
+        },
+        "", "strict real");
+}
+
+CLI::Validator strict_integer() {
+    return CLI::Validator(
+        [](std::string& text) {
+            long long v = 0;
+            const char* first = text.data() + (!text.empty() && text[0] == '+' ? 1 : 0);
+            const auto [end, ec] = std::from_chars(first, text.data() + text.size(), v);
+            if (ec == std::errc::result_out_of_range)
+                return "the value is out of range: at most 9223372036854775807 in magnitude, got '" + text + "'";
+            if (ec != std::errc() || end != text.data() + text.size() || text.empty())
+                return "the value is not a decimal integer: '" + text + "'";
+            text = std::to_string(v);  // decimal: CLI11 would read 010 as octal
+            return std::string();
+        },
+        "", "strict integer");
+}
+
 std::string read_scene_file(const std::string& path) {
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec)) throw input_error("scene file '" + path + "' is a directory");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw input_error("cannot open scene file '" + path + "': " + std::strerror(errno));
-    std::stringstream text;
-    text << in.rdbuf();
+    // At most one byte past the cap: /dev/zero, an endless pipe or a huge file is refused without being held.
+    std::string text(report::max_scene_bytes + 1, '\0');
+    in.read(text.data(), static_cast<std::streamsize>(text.size()));
     if (in.bad()) throw input_error("cannot read scene file '" + path + "'");
-    return text.str();
+    text.resize(static_cast<std::size_t>(in.gcount()));
+    if (text.size() > report::max_scene_bytes)
+        throw input_error("scene file '" + path + "' is larger than " + std::to_string(report::max_scene_bytes) +
+                          " bytes (1 MiB), the most a scene file may hold");
+    return text;
 }
 
 unsigned long long parse_seed(const std::string& text, const std::string& what) {
@@ -50,7 +86,9 @@ CLI::Option* add_output_option(CLI::App& command, std::string& output, const std
 }
 
 CLI::Option* add_threads_option(CLI::App& command, int& threads) {
-    return command.add_option("--threads", threads, "threads (0: all cores)")->capture_default_str();
+    return command.add_option("--threads", threads, "threads (0: all cores)")
+        ->capture_default_str()
+        ->check(strict_integer());
 }
 
 void require_threads(int threads) { require(threads >= 0, "--threads", ">= 0 (0: all cores)", threads); }
@@ -64,6 +102,17 @@ CLI::Option* add_downward_option(CLI::App& command, std::string& downward) {
         .add_option("--downward", downward, "Lambda for mu < 0: " + join_described(downward_names, " | ", " | "))
         ->capture_default_str()
         ->check(CLI::IsMember(names_of(downward_names)));
+}
+
+void add_limit_options(CLI::App& command, report::SizeLimits& limits) {
+    command
+        .add_option("--max-cells", limits.max_cells,
+                    "the most cells a scene may hold, [brdf] bins counted (inf: no limit)")
+        ->capture_default_str()
+        ->check(strict_real());
+    command.add_option("--max-walks", limits.max_walks, "the most walks a scene may trace in all (inf: no limit)")
+        ->capture_default_str()
+        ->check(strict_real());
 }
 
 void add_scene_options(CLI::App& command, std::string& scene, bool& print_scene, const std::string& none) {

@@ -26,8 +26,12 @@ void add_sample(CLI::App& app, SampleArgs& a) {
     c->add_option("--sampler", a.sampler, "sampler name (see --list-samplers)");
     c->add_option("--theta-i", a.theta_i, "incident polar angle in degrees, [0, 180) (above 90: below the surface)")
         ->capture_default_str()
+        ->check(strict_real())
         ->check(CLI::Range(0.0, 179.999999));
-    c->add_option("--n", a.n, "number of samples")->capture_default_str()->check(CLI::Range(1LL, 1000000000LL));
+    c->add_option("--n", a.n, "number of samples")
+        ->capture_default_str()
+        ->check(strict_integer())
+        ->check(CLI::Range(1LL, 1000000000LL));
     add_seed_option(*c, a.seed);
     add_output_option(*c, a.output, "output CSV file (default: stdout)");
     c->add_flag("--list-samplers", a.list_samplers, "list the samplers with a one-line description");

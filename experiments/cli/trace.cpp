@@ -56,6 +56,9 @@ const char* order_name[] = {"1", "2", "3", "4+"};
 // The one cell the flags name, as a scene.
 trace::TraceScene cell_scene(const TraceArgs& a) {
     require(a.walks > 0, "--walks", "> 0", static_cast<double>(a.walks));
+    require(static_cast<double>(a.walks) <= a.limits.max_walks, "--walks",
+            "<= --max-walks (raise it with --max-walks N)", static_cast<double>(a.walks));
+    require(std::isfinite(a.phi_i), "--phi-i", "finite", a.phi_i);
     require(a.max_order >= 0, "--max-order", ">= 0", a.max_order);
     incident(a.theta_i, a.phi_i, "--theta-i", walk::parse_material(a.material));
     trace::parse_walk_options(a.downward, a.hit_normal, "--");
@@ -167,17 +170,20 @@ void add_trace(CLI::App& app, TraceArgs& a) {
         c->add_option("--material", a.material, "facet material spec")->capture_default_str(),
         c->add_option("--theta-i", a.theta_i,
                       "incident polar angle, degrees in [0, 90) (dielectric: also (90, 180], light from below)")
-            ->capture_default_str(),
-        c->add_option("--phi-i", a.phi_i, "incident azimuth, degrees")->capture_default_str(),
-        c->add_option("--walks", a.walks, "walks in the cell (> 0)")->capture_default_str(),
+            ->capture_default_str()
+            ->check(strict_real()),
+        c->add_option("--phi-i", a.phi_i, "incident azimuth, degrees")->capture_default_str()->check(strict_real()),
+        c->add_option("--walks", a.walks, "walks in the cell (> 0)")->capture_default_str()->check(strict_integer()),
         c->add_option("--max-order", a.max_order, "end walks after this many hits (0: no limit)")
-            ->capture_default_str(),
+            ->capture_default_str()
+            ->check(strict_integer()),
         add_downward_option(*c, a.downward),
         c->add_option("--hit-normal", a.hit_normal,
                       "hit normal: " + join_described(trace::hit_normal_names, ", ", " or "))
             ->capture_default_str(),
         add_seed_option(*c, a.seed)};
     add_threads_option(*c, a.threads);
+    add_limit_options(*c, a.limits);
     add_output_option(*c, a.output, "output directory")->capture_default_str();
 }
 
@@ -195,7 +201,7 @@ int run_trace(const TraceArgs& a, const NdfRegistry& registry) {
     const trace::TraceScene scene = flags
         ? cell_scene(a)
         : trace::parse_trace_scene(a.scene.empty() ? trace::default_trace_scene_text() : read_scene_file(a.scene),
-                                   source, registry);
+                                   source, registry, a.limits);
     const trace::RunSummary sum = trace::run_scene(scene, source, registry, a.output, static_cast<unsigned>(a.threads));
     if (mpi::rank() != 0) return exit_ok;  // a worker of rank 0's run (mpirun): rank 0 reports
     if (sum.total.size() == 1) std::printf("albedo %.17g\nstderr %.17g\n", sum.total[0].value, sum.total[0].stderr_);
@@ -220,7 +226,7 @@ void add_brdf(CLI::App& app, BrdfArgs& a) {
     c->add_option("--wi", a.wi, "THETA,PHI of the light, degrees, theta in [0, 90) (dielectric: also (90, 180])")
         ->required();
     c->add_option("--wo", a.wo, "THETA,PHI of the viewer, degrees")->required();
-    c->add_option("--walks", a.walks, "walks (> 0)")->capture_default_str();
+    c->add_option("--walks", a.walks, "walks (> 0)")->capture_default_str()->check(strict_integer());
     add_downward_option(*c, a.downward);
     add_seed_option(*c, a.seed);
     add_threads_option(*c, a.threads);

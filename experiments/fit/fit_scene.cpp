@@ -1,5 +1,6 @@
 #include "fit/fit_scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <variant>
@@ -59,6 +60,10 @@ namespace {
 
 void read_models(StrictTable& doc, FitScene& s) {
     s.models = doc.texts("models", {});
+    for (std::size_t i = 0; i < s.models.size(); ++i)
+        if (std::find(s.models.begin(), s.models.begin() + static_cast<std::ptrdiff_t>(i), s.models[i]) !=
+            s.models.begin() + static_cast<std::ptrdiff_t>(i))
+            doc.fail("models", "names '" + s.models[i] + "' twice");
     for (const std::string& m : s.models) {
         try {
             fit::find_diffuse_model(m);
@@ -68,9 +73,44 @@ void read_models(StrictTable& doc, FitScene& s) {
     }
 }
 
-// The [[ndf]] tables, each expanded over its axes: one FitFamily per point.
-std::vector<FitFamily> read_ndfs(StrictTable& doc, const NdfRegistry& registry) {
+// The points and walks one fitted NDF traces (fit/data_sets.cpp): the training directions at every training alpha,
+// the validation points and albedo directions at every validation alpha (the midpoints of the training alphas).
+struct PerNdf {
+    double cells = 0.0, walks = 0.0;
+};
+PerNdf per_ndf(const FitScene& s, std::size_t pairs) {
+    const double alphas = static_cast<double>(s.training.alpha.size());
+    const double validation_alphas = alphas < 2 ? alphas : alphas - 1;
+    const double points = static_cast<double>(s.validation.points);
+    const double albedo_dirs = static_cast<double>(s.validation.albedo_theta.size());
+    const double train = alphas * static_cast<double>(pairs);
+    return {train + validation_alphas * (points + albedo_dirs),
+            train * static_cast<double>(s.training.walks) +
+                validation_alphas *
+                    (points * static_cast<double>(s.validation.walks) +
+                     albedo_dirs * static_cast<double>(s.validation.albedo_walks))};
+}
+
+// Refuses, at the [[ndf]] entry that brings the fitted NDFs to `ndfs`, a fit of more points or walks than allowed.
+void check_size(const StrictTable& n, double ndfs, PerNdf each, const report::SizeLimits& limits) {
+    const std::string sweep = format_shortest(ndfs) + " NDFs x ";
+    if (ndfs * each.cells > limits.max_cells)
+        n.fail("family",
+               "makes the fit " + format_shortest(ndfs * each.cells) + " points (" + sweep +
+                   format_shortest(each.cells) + " training and validation points), more than --max-cells " +
+                   format_shortest(limits.max_cells) + " (raise it with --max-cells N)");
+    if (ndfs * each.walks > limits.max_walks)
+        n.fail("family",
+               "makes the fit " + format_shortest(ndfs * each.walks) + " walks (" + sweep +
+                   format_shortest(each.walks) + " walks of training and validation), more than --max-walks " +
+                   format_shortest(limits.max_walks) + " (raise it with --max-walks N)");
+}
+
+// The [[ndf]] tables, each expanded over its axes: one FitFamily per point, the size checked before.
+std::vector<FitFamily> read_ndfs(StrictTable& doc, const NdfRegistry& registry, PerNdf each,
+                                 const report::SizeLimits& limits) {
     std::vector<FitFamily> out;
+    double ndfs = 0.0;
     for (StrictTable& n : doc.tables("ndf", report::ndf_table_keys(registry))) {
         const report::NdfEntry e = report::read_ndf_entry(n, registry);
         if (!e.takes_alpha)
@@ -81,6 +121,9 @@ std::vector<FitFamily> read_ndfs(StrictTable& doc, const NdfRegistry& registry) 
         if (e.roughness_given)
             n.fail("family",
                    "'" + e.family + "' is given its roughness here: the fit sweeps alpha over training.alpha");
+        double points = 1.0;
+        for (const auto& axis : e.axes) points *= static_cast<double>(axis.second.size());
+        check_size(n, ndfs += points, each, limits);
         for (const report::ParamPoint& p : e.points()) out.push_back({e, p});
         n.done();
     }
@@ -88,14 +131,14 @@ std::vector<FitFamily> read_ndfs(StrictTable& doc, const NdfRegistry& registry) 
     return out;
 }
 
-FitScene::Training read_training(StrictTable& doc, FitScene::Training t) {
+FitScene::Training read_training(StrictTable& doc, FitScene::Training t, std::size_t& pairs) {
     StrictTable table = doc.table("training", {"alpha", "theta", "phi", "walks"});
     t.alpha = read_bounded(table, "alpha", 0.0, 1.0, true, false, "(0, 1]");
     t.theta = read_bounded(table, "theta", 0.0, 90.0, false, true, "[0, 90) degrees");
     t.phi = read_bounded(table, "phi", 0.0, 180.0, false, false, "[0, 180] degrees");
     t.walks = table.integer("walks", 100, 1'000'000'000, t.walks);
     // A point's random stream holds its index in 16 bits (fit/data_sets.hpp).
-    std::size_t pairs = 0;
+    pairs = 0;
     for (std::size_t i = 0; i < t.theta.size(); ++i)
         for (std::size_t o = i; o < t.theta.size(); ++o)
             pairs += t.theta[i] == 0.0 || t.theta[o] == 0.0 ? 1 : t.phi.size();
@@ -144,7 +187,8 @@ FitScene::Pictures read_pictures(StrictTable& doc, FitScene::Pictures p) {
 
 }  // namespace
 
-FitScene parse_fit_scene(const std::string& text, const std::string& source, const NdfRegistry& registry) {
+FitScene parse_fit_scene(const std::string& text, const std::string& source, const NdfRegistry& registry,
+                         const report::SizeLimits& limits) {
     const toml::value data = report::parse_toml(text, source);
     StrictTable doc(data, source, "",
                     {"title", "material", "albedos", "models", "floor", "energy_bound", "seed", "ndf", "training",
@@ -160,9 +204,10 @@ FitScene parse_fit_scene(const std::string& text, const std::string& source, con
     if (!(s.floor >= 0.0 && s.floor < 1.0)) doc.fail("floor", "must be in [0, 1), got " + format_shortest(s.floor));
     s.energy_bound = doc.flag("energy_bound", s.energy_bound);
     s.seed = static_cast<std::uint64_t>(doc.integer("seed", 0, std::numeric_limits<std::int64_t>::max(), 1));
-    s.ndfs = read_ndfs(doc, registry);
-    s.training = read_training(doc, s.training);
+    std::size_t pairs = 0;
+    s.training = read_training(doc, s.training, pairs);  // before the NDFs: they size each NDF's work
     s.validation = read_validation(doc, s.validation);
+    s.ndfs = read_ndfs(doc, registry, per_ndf(s, pairs), limits);
     s.compensation = read_compensation(doc, s.compensation);
     s.pictures = read_pictures(doc, s.pictures);
     doc.done();

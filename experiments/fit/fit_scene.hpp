@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "scene/limits.hpp"
 #include "scene/scene_ndf.hpp"
 #include "smithlab/registry.hpp"
 
@@ -60,7 +61,11 @@ struct FitScene {
 // [1, 65534]), more than 65535 training direction pairs per alpha (each point's random stream holds its index in 16
 // bits), an [[ndf]] whose family is not registered, a parameter the family does not have, or an axis for its
 // roughness (alpha is the training set's). Each NDF's values are checked by the registry when the run prepares them.
-FitScene parse_fit_scene(const std::string& text, const std::string& source, const NdfRegistry& registry);
+// The fit's size is checked as its [[ndf]] entries are read, before their NDFs are made: points (training direction
+// pairs x alpha, validation points and albedo directions x validation alpha, per NDF) beyond limits.max_cells or
+// walks in all beyond limits.max_walks are refused at the entry that passes the bound (scene/limits.hpp).
+FitScene parse_fit_scene(const std::string& text, const std::string& source, const NdfRegistry& registry,
+                         const report::SizeLimits& limits = {});
 
 const std::string& default_fit_scene_text();
 

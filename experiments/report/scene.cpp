@@ -1,8 +1,10 @@
 #include "report/scene.hpp"
 
+#include <algorithm>
 #include <toml.hpp>
 
 #include "report/sections.hpp"
+#include "scene/nearest_name.hpp"
 #include "smithlab/errors.hpp"
 
 namespace smithlab::report {
@@ -84,6 +86,16 @@ bool glob_match(const std::string& pattern, const std::string& name) {
     }
     while (p < pattern.size() && pattern[p] == '*') ++p;
     return p == pattern.size();
+}
+
+void require_matches(const std::vector<std::string>& patterns, const std::vector<std::string>& names,
+                     const std::string& where) {
+    for (const std::string& p : patterns) {
+        if (std::any_of(names.begin(), names.end(), [&](const std::string& n) { return glob_match(p, n); })) continue;
+        const std::string near = nearest_name(p, names);
+        throw input_error(where + " pattern '" + p + "' matches no name" +
+                          (near.empty() ? "" : " (did you mean '" + near + "'?)"));
+    }
 }
 
 }  // namespace smithlab::report

@@ -31,4 +31,9 @@ const std::string& default_scene_text();
 // '*' matches any run of characters, everything else itself.
 bool glob_match(const std::string& pattern, const std::string& name);
 
+// Refuses a pattern that matches none of `names`: input_error "WHERE: pattern 'P' matches no name (did you mean
+// 'N'?)", `where` being the key's "FILE:LINE: variants.include" (StrictTable::where).
+void require_matches(const std::vector<std::string>& patterns, const std::vector<std::string>& names,
+                     const std::string& where);
+
 }  // namespace smithlab::report

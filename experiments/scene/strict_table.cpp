@@ -1,10 +1,14 @@
 #include "scene/strict_table.hpp"
 
 #include <algorithm>
+#include <cctype>
+#include <charconv>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <utility>
 
+#include "scene/limits.hpp"
 #include "scene/nearest_name.hpp"
 #include "scene/spaced.hpp"
 #include "smithlab/csv.hpp"
@@ -25,6 +29,30 @@ bool is_section(const toml::value& v) {
     const std::string line = v.location().line_str();  // a copy: location() is a temporary
     const auto first = line.find_first_not_of(" \t");
     return (v.is_table() || v.is_array()) && first != std::string::npos && line[first] == '[';
+}
+
+// The text of a scalar value as the scene writes it ("0xffff_ffff", "1e-400"), without its digit separators.
+std::string token_of(const toml::value& v) {
+    const toml::source_location at = v.location();
+    const std::string& line = at.line_str();
+    if (at.column() < 1 || at.column() - 1 >= line.size()) return "";
+    std::string token = line.substr(at.column() - 1, at.region());
+    token.erase(std::remove(token.begin(), token.end(), '_'), token.end());
+    return token;
+}
+
+// Whether an integer token fits in 64 bits, read exactly (toml11 clamps one that does not to the nearest bound).
+bool fits_int64(std::string token) {
+    if (!token.empty() && token[0] == '+') token.erase(0, 1);
+    const bool negative = !token.empty() && token[0] == '-';
+    int base = 10;
+    if (token.size() > 2 && token[0] == '0' && std::isalpha(static_cast<unsigned char>(token[1]))) {
+        base = token[1] == 'x' ? 16 : token[1] == 'o' ? 8 : 2;
+        token.erase(0, 2);
+    }
+    std::int64_t parsed = 0;
+    const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), parsed, base);
+    return !(negative && base != 10) && ec == std::errc() && end == token.data() + token.size();
 }
 
 }  // namespace
@@ -122,11 +150,39 @@ std::string StrictTable::text(const std::string& key, const std::string& fallbac
     return has(key) ? text(key) : fallback;
 }
 
+std::int64_t StrictTable::integer_of(const toml::value& v, const std::string& key) const {
+    const std::int64_t x = v.as_integer();
+    const bool at_bound =
+        x == std::numeric_limits<std::int64_t>::max() || x == std::numeric_limits<std::int64_t>::min();
+    if (at_bound && !fits_int64(token_of(v)))
+        fail(key,
+             "is out of range: a TOML integer is 64-bit, in [-9223372036854775808, 9223372036854775807], got " +
+                 token_of(v));
+    return x;
+}
+
+double StrictTable::real_of(const toml::value& v, const std::string& key) const {
+    if (v.is_integer()) return static_cast<double>(integer_of(v, key));
+    const double x = v.as_floating();
+    // toml11 reads a real beyond the largest double as +-DBL_MAX and one below the smallest as 0 (or a subnormal
+    // rounded its own way): such a value is read again from its text, strictly.
+    if (x != 0.0 && std::abs(x) >= std::numeric_limits<double>::min() &&
+        std::abs(x) < std::numeric_limits<double>::max())
+        return x;
+    const std::string token = token_of(v);
+    try {
+        return parse_double(token, "value");
+    } catch (const input_error&) {
+        fail(key,
+             "is out of range: a real must lie within the doubles (4.9e-324 to 1.8e308 in magnitude, or 0), got " +
+                 token);
+    }
+}
+
 double StrictTable::real(const std::string& key) {
     const toml::value& v = need(key);
-    if (v.is_integer()) return static_cast<double>(v.as_integer());
-    if (!v.is_floating()) fail(key, "must be a number, got " + describe_toml(v));
-    return v.as_floating();
+    if (!v.is_integer() && !v.is_floating()) fail(key, "must be a number, got " + describe_toml(v));
+    return real_of(v, key);
 }
 
 double StrictTable::real(const std::string& key, double fallback) { return has(key) ? real(key) : fallback; }
@@ -135,9 +191,9 @@ std::int64_t StrictTable::integer(const std::string& key, std::int64_t lo, std::
     const toml::value& v = need(key);
     const std::string range = "[" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
     if (!v.is_integer()) fail(key, "must be an integer in " + range + ", got " + describe_toml(v));
-    if (v.as_integer() < lo || v.as_integer() > hi)
-        fail(key, "must be an integer in " + range + ", got " + std::to_string(v.as_integer()));
-    return v.as_integer();
+    const std::int64_t x = integer_of(v, key);
+    if (x < lo || x > hi) fail(key, "must be an integer in " + range + ", got " + std::to_string(x));
+    return x;
 }
 
 std::int64_t StrictTable::integer(const std::string& key, std::int64_t lo, std::int64_t hi, std::int64_t fallback) {
@@ -171,9 +227,9 @@ std::vector<double> StrictTable::reals(const std::string& key) {
     if (!v.is_array()) fail(key, "must be a list of numbers, got " + describe_toml(v));
     std::vector<double> out;
     for (const toml::value& x : v.as_array()) {
-        if (x.is_integer()) out.push_back(static_cast<double>(x.as_integer()));
-        else if (x.is_floating()) out.push_back(x.as_floating());
-        else fail(key, "must be a list of numbers, got " + describe_toml(x) + " in it");
+        if (!x.is_integer() && !x.is_floating())
+            fail(key, "must be a list of numbers, got " + describe_toml(x) + " in it");
+        out.push_back(real_of(x, key));
     }
     return out;
 }
@@ -205,7 +261,67 @@ void StrictTable::done() const {
         if (!read_.count(key)) fail(key, "is not used by this reader (a key it declares but does not read)");
 }
 
+namespace {
+
+// The index just past a string that opens at text[i] (", ', """ or '''), counting the lines it spans; an unclosed
+// one ends at the end of its line (toml11 then reports it).
+std::size_t skip_string(const std::string& text, std::size_t i, std::size_t& line) {
+    const char quote = text[i];
+    const std::string close(text.compare(i, 3, std::string(3, quote)) == 0 ? 3 : 1, quote);
+    for (i += close.size(); i < text.size(); ++i) {
+        if (text[i] == '\n' && close.size() == 1) return i;  // the caller counts this line
+        if (text[i] == '\n') {
+            ++line;
+        } else if (quote == '"' && text[i] == '\\') {
+            if (i + 1 < text.size() && text[i + 1] == '\n') ++line;
+            ++i;  // the escaped character
+        } else if (text.compare(i, close.size(), close) == 0) {
+            return i + close.size();
+        }
+    }
+    return i;
+}
+
+}  // namespace
+
+void check_scene_text(const std::string& text, const std::string& source) {
+    if (text.size() > max_scene_bytes)
+        throw input_error("scene " + source + " is larger than " + std::to_string(max_scene_bytes) +
+                          " bytes (1 MiB), the most a scene file may hold");
+    // The open lists and tables, and the dots of the key being read: a dotted key a.b.c nests a table per dot.
+    std::string open;
+    int dots = 0;
+    bool in_key = true;  // a line at the top, a table header and an inline table's entries start with a key
+    std::size_t line = 1;
+    for (std::size_t i = 0; i < text.size();) {
+        const char c = text[i];
+        if (c == '"' || c == '\'') {
+            i = skip_string(text, i, line);
+            continue;
+        }
+        if (c == '#') {
+            i = std::min(text.find('\n', i), text.size());
+            continue;
+        }
+        if (c == '\n') ++line;
+        if (c == '[' || c == '{') open.push_back(c);
+        if ((c == ']' || c == '}') && !open.empty()) open.pop_back();
+        if (c == '.' && in_key) ++dots;
+        if (c == '\n' || c == '=' || c == ',' || c == '[' || c == '{' || c == ']' || c == '}') dots = 0;
+        if (c == '\n') in_key = open.empty();
+        if (c == '=' || c == '}') in_key = false;
+        if (c == '{' || c == ',') in_key = c == '{' || (!open.empty() && open.back() == '{');
+        if (c == '[') in_key = in_key && open.size() <= 2 && open.find('{') == std::string::npos;  // [table], [[array]]
+        if (static_cast<int>(open.size()) + dots > max_nesting_depth)
+            throw input_error(source + ":" + std::to_string(line) +
+                              ": lists, tables and dotted keys nested deeper than " +
+                              std::to_string(max_nesting_depth) + " levels, the most a scene may nest");
+        ++i;
+    }
+}
+
 toml::value parse_toml(const std::string& text, const std::string& source) {
+    check_scene_text(text, source);  // before toml11, which reads nesting by recursion
     try {
         std::istringstream in(text);
         return toml::parse(in, source);

@@ -4,7 +4,8 @@
 //     ("scene.toml:7: unknown section 'timng' (did you mean 'timing'?)");
 //   - a value of another type than the getter's is refused, naming the key, file:line and the expected type
 //     (an integer is taken where a real is meant: min_time = 1 is 1.0; samples = 1000.5 is refused);
-//   - integers are read as 64-bit and bounded by the caller ([lo, hi] in the message);
+//   - integers are read as 64-bit and bounded by the caller ([lo, hi] in the message); an integer beyond 64 bits
+//     and a real beyond the doubles (1e400, or 1e-400, which would read as 0) are refused "out of range";
 //   - done() refuses a declared key that was given but never read (a reader that forgot one).
 // Every refusal is an input_error whose message starts "FILE:LINE: ".
 #pragma once
@@ -58,6 +59,10 @@ public:
 private:
     std::string name_of(const std::string& key) const;  // "grid.mu"
     const toml::value& need(const std::string& key);    // present, or refused as missing; marks read
+    // A number of `key` (the value itself or an element of its list): one that toml11 clamped (an integer beyond
+    // 64 bits, a real beyond the doubles or a nonzero real that would read as 0) is refused "out of range".
+    std::int64_t integer_of(const toml::value& v, const std::string& key) const;
+    double real_of(const toml::value& v, const std::string& key) const;
     void refuse_unknown_keys() const;
 
     const toml::value* table_;
@@ -69,7 +74,12 @@ private:
 // "an integer (5)", "a string (\"x\")", "a table": what a value is, for "must be X, got Y".
 std::string describe_toml(const toml::value& v);
 
-// A scene's text parsed as TOML; a syntax error is an input_error "malformed scene SOURCE:" with toml11's line.
+// Refuses a scene's text larger than max_scene_bytes or nesting lists and tables deeper than max_nesting_depth
+// (scene/limits.hpp), naming SOURCE:LINE of the first level too deep; strings and comments are skipped.
+void check_scene_text(const std::string& text, const std::string& source);
+
+// A scene's text parsed as TOML after check_scene_text; a syntax error is an input_error "malformed scene SOURCE:"
+// with toml11's line.
 toml::value parse_toml(const std::string& text, const std::string& source);
 
 // An axis of a scene, the one convention of every scene format: a list of numbers, or {log = [lo, hi], n = N}

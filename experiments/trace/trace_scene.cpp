@@ -15,17 +15,49 @@ namespace {
 
 using report::StrictTable;
 
-void read_ndfs(StrictTable& doc, const std::vector<double>& alphas, const NdfRegistry& registry, TraceScene& s) {
+// The NDFs an entry makes (its axes' points, over grid.alpha unless it gives its roughness), as a double: no overflow.
+double ndf_count(const report::NdfEntry& e, std::size_t alphas) {
+    double n = e.roughness_given ? 1.0 : static_cast<double>(alphas);
+    for (const auto& axis : e.axes) n *= static_cast<double>(axis.second.size());
+    return n;
+}
+
+// Refuses, at the [[ndf]] entry that brings the NDFs to `ndfs`, a scene of more cells or walks than the limits allow.
+void check_size(const StrictTable& n, const std::string& key, double ndfs, const TraceScene& s,
+                const report::SizeLimits& limits) {
+    const double cells = ndfs * static_cast<double>(s.materials.size()) * static_cast<double>(s.theta_i.size()) *
+        static_cast<double>(s.phi_i.size());
+    const double bins = s.brdf.empty() ? 0.0 : static_cast<double>(s.brdf.n_theta) * s.brdf.n_phi;
+    const std::string sweep = format_shortest(ndfs) + " NDFs x " + std::to_string(s.materials.size()) +
+        " materials x " + std::to_string(s.theta_i.size()) + " grid.theta_i x " + std::to_string(s.phi_i.size()) +
+        " grid.phi_i";
+    if (cells * (1.0 + bins) > limits.max_cells)
+        n.fail(key,
+               "makes the scene " + format_shortest(cells * (1.0 + bins)) + " cells (" + sweep +
+                   (bins > 0 ? ", each with " + format_shortest(bins) + " brdf bins counted as cells" : "") +
+                   "), more than --max-cells " + format_shortest(limits.max_cells) + " (raise it with --max-cells N)");
+    if (cells * static_cast<double>(s.walks) > limits.max_walks)
+        n.fail(key,
+               "makes the scene " + format_shortest(cells * static_cast<double>(s.walks)) + " walks (" + sweep +
+                   " x walks.n " + std::to_string(s.walks) + "), more than --max-walks " +
+                   format_shortest(limits.max_walks) + " (raise it with --max-walks N)");
+}
+
+void read_ndfs(StrictTable& doc, const std::vector<double>& alphas, const NdfRegistry& registry,
+               const report::SizeLimits& limits, TraceScene& s) {
     const std::vector<std::string> keys = report::ndf_table_keys(registry, {"spec"});
+    double ndfs = 0.0;
     for (StrictTable& n : doc.tables("ndf", keys)) {
         if (n.has("spec") == n.has("family")) n.fail("spec", "or family: give exactly one of them");
         if (n.has("spec")) {
             for (const std::string& k : keys)
                 if (k != "spec" && n.has(k)) n.fail(k, "goes with family, not with a fixed spec");
+            check_size(n, "spec", ndfs += 1.0, s, limits);
             s.ndfs.push_back({n.text("spec"), std::nullopt});
         } else {
             const report::NdfEntry e = report::read_ndf_entry(n, registry);
             if (!e.roughness_given && alphas.empty()) n.fail("family", "is swept over grid.alpha, which is missing");
+            check_size(n, "family", ndfs += ndf_count(e, alphas.size()), s, limits);
             auto add = [&](const report::ParamPoint& point, std::optional<double> alpha) {
                 const AnyNdf ndf = report::make_entry_ndf(e, registry, point, alpha);
                 s.ndfs.push_back({ndf.spec(), ndf.parts()});
@@ -43,7 +75,8 @@ void read_ndfs(StrictTable& doc, const std::vector<double>& alphas, const NdfReg
 
 }  // namespace
 
-TraceScene parse_trace_scene(const std::string& text, const std::string& source, const NdfRegistry& registry) {
+TraceScene parse_trace_scene(const std::string& text, const std::string& source, const NdfRegistry& registry,
+                             const report::SizeLimits& limits) {
     const toml::value data = report::parse_toml(text, source);
     StrictTable doc(data, source, "", {"title", "materials", "walks", "grid", "ndf", "brdf"});
     TraceScene s;
@@ -76,14 +109,13 @@ TraceScene parse_trace_scene(const std::string& text, const std::string& source,
     s.phi_i = grid.has("phi_i") ? report::read_axis(grid, "phi_i") : std::vector<double>{0.0};
     for (double p : s.phi_i)
         if (!std::isfinite(p)) grid.fail("phi_i", "must be finite");
-    read_ndfs(doc, alphas, registry, s);
-    grid.done();
-
-    if (auto b = doc.optional_table("brdf", {"theta_bins", "phi_bins"})) {
+    if (auto b = doc.optional_table("brdf", {"theta_bins", "phi_bins"})) {  // before the NDFs: it sizes each cell
         s.brdf.n_theta = static_cast<int>(b->integer("theta_bins", 1, 10'000));
         s.brdf.n_phi = static_cast<int>(b->integer("phi_bins", 1, 10'000));
         b->done();
     }
+    read_ndfs(doc, alphas, registry, limits, s);
+    grid.done();
     doc.done();
     return s;
 }

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "scene/limits.hpp"
 #include "smithlab/registry.hpp"
 #include "smithlab/spec.hpp"
 #include "smithlab/walk/tally.hpp"
@@ -64,7 +65,11 @@ struct TraceCell {
 // parsers when the cells are prepared.
 // [[ndf]] tables are read as every scene's (scene/scene_ndf.hpp): a family with an axis for any of its parameters,
 // swept over grid.alpha unless it gives its own roughness axis; each point is made (checked) by the registry here.
-TraceScene parse_trace_scene(const std::string& text, const std::string& source, const NdfRegistry& registry);
+// The scene's size is checked as its [[ndf]] entries are read, before their NDFs are made: cells (each [brdf] bin
+// counted as a cell) beyond limits.max_cells or walks in all beyond limits.max_walks are refused at the entry that
+// passes the bound (scene/limits.hpp).
+TraceScene parse_trace_scene(const std::string& text, const std::string& source, const NdfRegistry& registry,
+                             const report::SizeLimits& limits = {});
 
 // The embedded default, from experiments/scenes/trace_default.toml.
 const std::string& default_trace_scene_text();

@@ -27,6 +27,8 @@ public:
         StrictTable variants = doc.table("variants", {"include", "exclude"});
         include_ = variants.texts("include");
         exclude_ = variants.texts("exclude", {});
+        where_include_ = variants.where("include");
+        where_exclude_ = variants.where("exclude");
         variants.done();
     }
 
@@ -44,6 +46,13 @@ public:
     }
 
     void check(const Settings& s, const NdfRegistry& ndfs, const VariantRegistry& variants) override {
+        std::vector<std::string> names;
+        for (const LambdaVariant& v : variants.list()) names.push_back(v.name);
+        // A selection of nothing is refused by g1_table ("selects no variant"); a pattern of a selection that matches
+        // nothing, here.
+        if (std::any_of(names.begin(), names.end(), [&](const std::string& n) { return matches_any(include_, n); }))
+            require_matches(include_, names, where_include_);
+        require_matches(exclude_, names, where_exclude_);
         table_ = g1_table(entries_, s.alphas, ndfs, variants, include_, exclude_);
         require_g1_domain(table_, s.mus);
         mus_ = s.mus;
@@ -63,6 +72,7 @@ public:
 private:
     std::vector<NdfEntry> entries_;
     std::vector<std::string> include_, exclude_;
+    std::string where_include_, where_exclude_;  // for a pattern that matches no variant
     G1Table table_;
     std::vector<double> mus_;
     bool keep_errors_ = false;  // the figures pareto and error_maps draw every point

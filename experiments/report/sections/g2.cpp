@@ -18,6 +18,9 @@ public:
         auto g2 = doc.optional_table("g2", {"include", "families", "mu"});
         if (!g2) return;
         include_ = g2->texts("include");
+        std::vector<std::string> names;
+        for (const G2Variant& v : builtin_G2_variants()) names.push_back(v.name);
+        require_matches(include_, names, g2->where("include"));
         families_ = g2->texts("families", families_);
         mus_ = read_axis(*g2, "mu");
         g2->done();
