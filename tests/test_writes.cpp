@@ -170,6 +170,16 @@ TEST_CASE("outputs that cannot be written into are refused, naming what they are
         CHECK(slurp(got) == want);
     }
 
+    SECTION("/dev/stdout onto a pipe gets the table") {
+        const std::string got = (d / "got").string(), rc = (d / "rc").string(), err = (d / "err").string();
+        const std::string cmd = "{ '" + std::string(SMITHLAB_EXE) + "' " + eval_csv + " -o /dev/stdout 2> '" + err +
+            "'; echo $? > '" + rc + "'; } | cat > '" + got + "'";
+        REQUIRE(std::system(cmd.c_str()) == 0);
+        INFO(slurp(err));
+        CHECK(slurp(rc) == "0\n");
+        CHECK(slurp(got) == run(eval_csv).out);
+    }
+
     SECTION("a read-only directory, for root too") {
         fs::create_directories(d / "ro");
         fs::permissions(d / "ro", fs::perms::owner_read | fs::perms::owner_exec);

@@ -94,10 +94,20 @@ void remove_stale_temporaries(const fs::path& dir, const std::string& name) {
 
 OutputTarget resolve_output(const std::string& path, const std::vector<std::string>& inputs) {
     if (path.empty()) refuse(path, "empty path");
+    std::error_code ec;
+    // A device or a FIFO as the kernel resolves it (/dev/stdout onto a pipe: a link /proc/self/fd/1 -> "pipe:[N]",
+    // which follow_links would take for a dangling link to a file to create) is written through the path as given.
+    switch (fs::status(path, ec).type()) {
+        case fs::file_type::character:
+            return {path, true, path, nullptr};
+        case fs::file_type::fifo:
+            return {path, true, path, open_fifo(path, path)};
+        default:
+            break;
+    }
     const fs::path p = follow_links(path, path);
     for (const std::string& in : inputs)
         if (same_file(p, in)) refuse(path, "is the input file '" + in + "'; it would be overwritten");
-    std::error_code ec;
     const fs::file_status st = fs::status(p, ec);
     switch (st.type()) {
         case fs::file_type::not_found:
@@ -110,10 +120,6 @@ OutputTarget resolve_output(const std::string& path, const std::vector<std::stri
                 refuse(path, "its directory '" + dir.string() + "' " + why);
             return {p, false, path, nullptr};
         }
-        case fs::file_type::character:
-            return {p, true, path, nullptr};
-        case fs::file_type::fifo:
-            return {p, true, path, open_fifo(p, path)};
         case fs::file_type::directory:
             refuse(path, "is a directory");
         default:
