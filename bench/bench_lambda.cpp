@@ -1,5 +1,5 @@
 // Lambda per method and backend (closed, spline, 1D Boost, 1D GSL, 2D) for GGX, GTR at a few gamma and the Student-t;
-// the table (the fast evaluator) against the closed-form GGX G1; every registered variant.
+// the table (the fast evaluator) against the closed-form GGX G1; the grazing law; every registered variant.
 // Each iteration evaluates one Lambda; mu cycles through 0.01 .. 100 so that no single easy point is timed.
 // The variant/ rows are timed as `smithlab report` times its rows (experiments/report/timing_points.hpp: the same
 // points of a grid, the same loop), so that bench/compare_report_timing.py can set the two side by side; the GTR
@@ -164,6 +164,32 @@ void register_table() {
             ->Unit(benchmark::kMillisecond);
 }
 
+// Below the quadrature domain (mu < 1e-12): the grazing law (grazing.hpp) for GTR(0.3, 1.5) and a D-only GGX. Its
+// constants once per NDF (two quadratures: grazing-law-build), a Lambda from them (grazing-law/Lambda), and
+// smithlab::Lambda by `auto`, which integrates the constants again on every call (no per-NDF state to keep them).
+void register_grazing() {
+    using DOnlyGgx = smithlab::DOnly<smithlab::Ggx>;
+    constexpr std::array<double, 5> tiny = {1e-13, 1e-20, 1e-100, 1e-300, 4.9e-324};
+    auto rows = [&](const std::string& name, const auto& ndf) {
+        benchmark::RegisterBenchmark(("grazing-law-build/" + name).c_str(), [ndf](benchmark::State& s) {
+            for (auto _ : s) benchmark::DoNotOptimize(smithlab::grazing_law(ndf).c);
+        })->Unit(benchmark::kMicrosecond);
+        benchmark::RegisterBenchmark(("grazing-law/Lambda/" + name).c_str(), [ndf, tiny](benchmark::State& s) {
+            const smithlab::GrazingLaw law = smithlab::grazing_law(ndf);
+            std::size_t i = 0;
+            for (auto _ : s) benchmark::DoNotOptimize(smithlab::Lambda_grazing(law, tiny[i++ % tiny.size()]));
+            s.SetItemsProcessed(s.iterations());
+        });
+        benchmark::RegisterBenchmark(("grazing-law/auto-per-call/" + name).c_str(), [ndf, tiny](benchmark::State& s) {
+            std::size_t i = 0;
+            for (auto _ : s) benchmark::DoNotOptimize(smithlab::Lambda(ndf, tiny[i++ % tiny.size()]));
+            s.SetItemsProcessed(s.iterations());
+        })->Unit(benchmark::kMicrosecond);
+    };
+    rows("gtr(0.3,1.5)", smithlab::gtr(0.3, 1.5));
+    rows("donly-ggx(0.3)", DOnlyGgx{smithlab::ggx(0.3)});
+}
+
 // Every registered variant, on the first of GTR(0.3, 1.5), GGX(0.3), Beckmann(0.3) it applies to, at the report's
 // timing points of the grid {that NDF} x mus; the family evaluator also as a stream over the same points.
 void register_variant(const smithlab::LambdaVariant& v, const smithlab::AnyNdf& ndf) {
@@ -201,6 +227,7 @@ void register_variants() {
 int main(int argc, char** argv) {
     register_all();
     register_table();
+    register_grazing();
     register_variants();
     benchmark::Initialize(&argc, argv);
     if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;

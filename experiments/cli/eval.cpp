@@ -52,7 +52,7 @@ int eval_one(const EvalArgs& a, const EvalPoint& x, const NdfRegistry& registry,
     std::cout << "ndf     " << p.ndf.spec() << "\n";
     if (x.theta) std::cout << "theta   " << format_g17(*x.theta) << "\n";
     std::cout << "mu      " << format_g17(x.mu) << "\n"
-              << "method  " << describe(route, a, p.ndf) << "\n"
+              << "method  " << describe(route, a, p.ndf, x.mu) << "\n"
               << "lambda  " << format_g17(v.lambda) << "\ng1      " << format_g17(v.g1) << "\n";
     return exit_ok;
 }
@@ -85,6 +85,9 @@ void add_eval(CLI::App& app, EvalArgs& a) {
         "other columns pass through, then one per NDF parameter not among them, then lambda and g1.\n"
         "Numbers are written with 17 significant digits. A bad row is reported with its line number; then nothing\n"
         "is written and the exit code is 2.\n"
+        "Below the quadratures' domain (mu < 1e-12, or below 1e-12 x the NDF's slope scale 1/sqrt(pi P22(0))),\n"
+        "auto, quadrature, quadrature2d and fixed answer by the grazing law c/mu - 1/2 + P2(0) mu/2, c = E[q+]\n"
+        "(docs/math.md); one point says so on its method line.\n"
         "Methods (--method):\n" +
         described_lines(method_names) +
         "  and every variant of `smithlab eval --list-methods` (fixed tolerances, interpolants, approximations).");

@@ -1,5 +1,6 @@
 #include "cli/eval_route.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
@@ -7,9 +8,9 @@
 
 namespace smithlab::cli {
 
-LambdaOfMu Route::prepare(const AnyNdf& ndf) const {
+LambdaOfMu Route::prepare(const AnyNdf& ndf, const std::shared_ptr<GrazingLawOnce>& law) const {
     if (variant) return smithlab::prepare(*variant, ndf);
-    return [ndf, o = options](double mu) { return smithlab::Lambda(ndf, mu, o); };
+    return [ndf, o = options, law](double mu) { return detail::Lambda_by_method(ndf, mu, o, law.get()); };
 }
 
 Route route(const EvalArgs& a, const VariantRegistry& variants) {
@@ -22,10 +23,16 @@ Route route(const EvalArgs& a, const VariantRegistry& variants) {
     return r;
 }
 
-std::string describe(const Route& r, const EvalArgs& a, const AnyNdf& ndf) {
+std::string describe(const Route& r, const EvalArgs& a, const AnyNdf& ndf, double mu) {
     std::ostringstream out;
     out << a.method;
     if (r.variant) return out.str();
+    const double abs_mu = std::abs(mu);
+    if (abs_mu > 0.0 && abs_mu < INFINITY && detail::answers_by_grazing_law(ndf, abs_mu, r.options)) {
+        out << " (grazing law c/mu - 1/2 + P2(0) mu/2 below the quadrature domain, c = E[q+] by " << a.backend
+            << " quadrature, relative tolerance " << a.tolerance << ")";
+        return out.str();
+    }
     const Method m = r.options.method;
     const bool closed = m == Method::automatic && ndf.has_closed_Lambda();
     // Lambda_by_method (smith.hpp): auto is the closed form where the NDF has one, else the fixed rule, which
@@ -43,8 +50,9 @@ Prepared prepare(const std::string& spec, const NdfRegistry& registry, const Rou
     AnyNdf ndf = registry.make(spec);
     if (!ndf.note().empty()) std::fprintf(stderr, "smithlab: note: %s\n", ndf.note().c_str());
     try {
-        LambdaOfMu up = r.prepare(ndf);
-        return {std::move(ndf), std::move(up)};
+        auto law = std::make_shared<GrazingLawOnce>();
+        LambdaOfMu up = r.prepare(ndf, law);
+        return {std::move(ndf), std::move(up), std::move(law), {r.options.backend, r.options.tolerance}};
     } catch (const input_error& e) {
         throw input_error("ndf '" + ndf.spec() + "': " + e.what());
     }
@@ -53,7 +61,10 @@ Prepared prepare(const std::string& spec, const NdfRegistry& registry, const Rou
 LambdaG1 lambda_g1(const Prepared& p, double mu, Downward downward) {
     try {
         const double up = Lambda_of_abs(mu, p.Lambda_up);
-        return {Lambda_of_sign(mu, up, downward), 1.0 / (1.0 + up)};
+        const double a = std::abs(mu);
+        const bool overflow = up == INFINITY && a > 0.0;
+        return {Lambda_of_sign(mu, up, downward),
+                overflow ? G1_grazing(p.law->get(p.ndf, p.quadrature), a) : 1.0 / (1.0 + up)};
     } catch (const input_error& e) {
         throw input_error("ndf '" + p.ndf.spec() + "': " + e.what());
     }

@@ -1,6 +1,8 @@
 // What `smithlab eval` computes at a point: the route --method names, an NDF prepared for it, Lambda and G1.
 #pragma once
 
+#include <cmath>
+#include <memory>
 #include <string>
 
 #include "cli/commands.hpp"
@@ -12,20 +14,25 @@ namespace smithlab::cli {
 struct Route {
     LambdaOptions options;
     const LambdaVariant* variant = nullptr;
-    // Lambda of ndf at a finite mu > 0, the variant prepared once per NDF (a table variant builds its table there).
-    LambdaOfMu prepare(const AnyNdf& ndf) const;
+    // Lambda of ndf at a finite mu > 0, the variant prepared once per NDF (a table variant builds its table there);
+    // a core method below its quadrature domain by the grazing law, computed once in `law`.
+    LambdaOfMu prepare(const AnyNdf& ndf, const std::shared_ptr<GrazingLawOnce>& law) const;
 };
 Route route(const EvalArgs& args, const VariantRegistry& variants);
 
-// What the route computes for `ndf`, as eval's method line says it: the method's name, and for the quadratures
+// What the route computes for `ndf` at mu, as eval's method line says it: the method's name, and for the quadratures
 // their backend and tolerance ("auto (fixed rule, relative tolerance 1e-12; boost where its error estimate misses
-// it)", "auto (closed form)").
-std::string describe(const Route& route, const EvalArgs& args, const AnyNdf& ndf);
+// it)", "auto (closed form)"), or the grazing law below their domain ("quadrature (grazing law c/mu - 1/2 + P2(0)
+// mu/2, grazing.hpp)").
+std::string describe(const Route& route, const EvalArgs& args, const AnyNdf& ndf, double mu = NAN);
 
-// An NDF of the input and its Lambda by the route, made once per spec.
+// An NDF of the input and its Lambda by the route, made once per spec; its grazing law (computed on first use) for
+// the route's quadratures below their domain and for G1 wherever Lambda overflows (mu > 0 tiny).
 struct Prepared {
     AnyNdf ndf;
     LambdaOfMu Lambda_up;
+    std::shared_ptr<GrazingLawOnce> law;
+    QuadratureOptions quadrature;
 };
 Prepared prepare(const std::string& spec, const NdfRegistry& registry, const Route& route);
 
@@ -33,7 +40,9 @@ struct LambdaG1 {
     double lambda, g1;
 };
 // One Lambda evaluation serves both: G1 takes |mu| (Walter 2007 eq. 44), Lambda(mu < 0) follows the convention
-// (the special values of mu: smith.hpp's Lambda_of_abs and Lambda_of_sign). An input_error names the NDF.
+// (the special values of mu: smith.hpp's Lambda_of_abs and Lambda_of_sign). Where Lambda overflows at mu != 0
+// (c/mu beyond the largest double), G1 = mu / (c + ..) from the grazing law (grazing.hpp). An input_error names the
+// NDF.
 LambdaG1 lambda_g1(const Prepared& p, double mu, Downward downward);
 
 }  // namespace smithlab::cli

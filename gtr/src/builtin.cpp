@@ -1,5 +1,6 @@
 #include <string>
 
+#include "smithlab/csv.hpp"
 #include "smithlab/gtr/family.hpp"
 #include "smithlab/gtr/gtr.hpp"
 #include "smithlab/gtr/interpolants.hpp"
@@ -20,6 +21,19 @@ void register_gtr_ndfs(NdfRegistry& r) {
         [](const NdfParams& p) { return gtr(p.at("alpha"), p.at("gamma")); });
 }
 
+namespace {
+
+// Why the family evaluator does not take n: the parameter outside its domain, its value and the domain.
+std::string gtr_family_refusal(const AnyNdf& n) {
+    const std::string covers = "method 'family' covers gtr with alpha in [1e-4, 1] and gamma in [0, 20]; got ";
+    if (n.family() != "gtr") return covers + "a '" + n.family() + "' ndf";
+    const double a = n.param("alpha"), g = n.param("gamma");
+    if (!GtrFamily::alpha_in_domain(a)) return covers + "alpha = " + format_shortest(a);
+    return covers + "gamma = " + format_shortest(g);
+}
+
+}  // namespace
+
 void register_gtr_variants(VariantRegistry& r) {
     auto is_gtr = [](const AnyNdf& n) { return n.family() == "gtr"; };
     r.add({"dimov-spline", "Dimov 2015 / V-Ray: natural cubic spline of G1 through gamma = 0..4, clamped above 4",
@@ -38,14 +52,14 @@ void register_gtr_variants(VariantRegistry& r) {
          [](const AnyNdf& n) {
              if (n.family() != "gtr") return false;
              const double a = n.param("alpha"), g = n.param("gamma");
-             return a >= GtrFamily::alpha_min && a <= 1.0 && g >= 0.0 && g <= GtrFamily::gamma_max;
+             return GtrFamily::alpha_in_domain(a) && GtrFamily::gamma_in_domain(g);
          },
          [](const AnyNdf& n) -> LambdaOfMu {
              const double a = n.param("alpha"), g = n.param("gamma");
              require_gtr_family_domain(a, g);
              return [&t = GtrFamily::get(), a, g](double mu) { return t.Lambda_up(a, g, mu); };
          },
-         LambdaRoute::other});
+         LambdaRoute::other, gtr_family_refusal});
     using K = GammaInterpolant::Kind;
     using Q = GammaInterpolant::Quantity;
     const GammaInterpolant choices[] = {{K::akima, Q::G1, 4},

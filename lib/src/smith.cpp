@@ -1,5 +1,6 @@
 #include "smithlab/smith.hpp"
 
+#include <algorithm>
 #include <array>
 #include <boost/math/special_functions/beta.hpp>
 #include <sstream>
@@ -46,10 +47,16 @@ void require_mu(double mu) {
             "in [1e-12, 1e12] for the quadrature methods (0 and inf are handled exactly)", mu);
 }
 
+// r0 = 1 where P22(0) is 0 or not finite (no core scale to speak of: a plug-in's D(1) = 0); the factor 1 - 1e-9 lets
+// r0 = 1.0000000000000004 (GTR(0.3, 0)) admit mu = 1e-12.
+double quadrature_mu_min(double P22_at_pole) {
+    return std::max(1e-12, 1e-12 * core_slope_scale(P22_at_pole) * (1.0 - 1e-9));
+}
+
 void require_quadrature_scale(double mu, double P22_at_pole, const char* method) {
     if (!(P22_at_pole > 0.0 && P22_at_pole < INFINITY)) return;  // no core scale to speak of (a plug-in's D(1) = 0)
     const double r0 = core_slope_scale(P22_at_pole);
-    if (mu >= 1e-12 * r0 * (1.0 - 1e-9)) return;  // r0 = 1.0000000000000004 for GTR(0.3, 0) must admit mu = 1e-12
+    if (mu >= 1e-12 * r0 * (1.0 - 1e-9)) return;
     std::ostringstream msg;
     msg.precision(17);
     msg << "mu must be >= 1e-12 x the ndf's slope scale 1/sqrt(pi P22(0)) = " << r0 << " for the " << method
@@ -69,6 +76,28 @@ void require_slope_digits(double P22_at_pole, const char* method) {
         << " is below 1e-3: cos theta_m cannot carry the digits of such slopes (relative error ~1e-16 / scale^2 in "
            "Lambda), so the "
         << method << " methods refuse it; give the NDF a slope_density(r2) member (P22 as a function of tan^2 theta_m)";
+    throw input_error(msg.str());
+}
+
+void require_finite_grazing_c(double T_R, double T_10R, double R) {
+    if (!(T_R >= 0.0 && T_10R >= 0.0)) throw input_error("the grazing law: the slope density is negative or NaN");
+    if (T_R == 0.0 || T_10R <= T_R * 0.8912509381337456) return;  // 10^-0.05: P22 falls faster than r^-3.05
+    std::ostringstream msg;
+    msg.precision(3);
+    msg << "no grazing law (Lambda ~ c/mu as mu -> 0) for this ndf: its slope density falls no faster than r^-3.05 "
+           "near tan(theta_m) = "
+        << R << " (r^3 P22 = " << T_R << " there, " << T_10R
+        << " at 10x), so c = E[q+] = 2 integral r^2 P22 dr is infinite or out of reach; Lambda has no finite value "
+           "below the quadrature domain";
+    throw input_error(msg.str());
+}
+
+void require_grazing_constants(double c, double P2_0) {
+    if (c > 0.0 && c < INFINITY && P2_0 >= 0.0 && P2_0 < INFINITY) return;
+    std::ostringstream msg;
+    msg.precision(3);
+    msg << "no grazing law for this ndf: c = E[q+] = " << c << " and P2(0) = " << P2_0
+        << " (the quadrature of 2 integral r^2 P22 dr and 2 integral P22 dp) must be finite, c > 0";
     throw input_error(msg.str());
 }
 

@@ -39,7 +39,9 @@ bool is_quadrature(LambdaRoute r) {
 
 LambdaOfMu prepare(const LambdaVariant& variant, const AnyNdf& ndf, Downward downward) {
     if (!variant.applies(ndf))
-        throw input_error("method '" + variant.name + "' does not apply to a '" + ndf.family() + "' ndf");
+        throw input_error(variant.refusal
+                              ? variant.refusal(ndf)
+                              : "method '" + variant.name + "' does not apply to a '" + ndf.family() + "' ndf");
     return [up = variant.prepare(ndf), downward](double mu) { return Lambda_at(mu, downward, up); };
 }
 

@@ -17,6 +17,7 @@
 #include "smithlab/fit/least_squares.hpp"
 #include "smithlab/fresnel.hpp"
 #include "smithlab/geometry.hpp"
+#include "smithlab/grazing.hpp"
 #include "smithlab/gtr/closed_forms.hpp"
 #include "smithlab/gtr/family.hpp"
 #include "smithlab/gtr/family_stream.hpp"

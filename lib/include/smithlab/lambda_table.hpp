@@ -60,7 +60,7 @@ public:
             const std::array<double, 4>& c = coef_[i];
             return std::exp(((c[3] * u + c[2]) * u + c[1]) * u + c[0] - x);
         }
-        if (x < x_lo_) return g_lo_ / mu - 0.5;                                   // mu = 0: +inf
+        if (x < x_lo_) return Lambda_grazing({g_lo_, 0.0}, mu);                   // mu = 0: +inf
         if (x > x_hi_) return std::exp(ln_Lambda_hi_ + slope_hi_ * (x - x_hi_));  // mu = +inf: 0
         return x;                                                                 // NaN, mu < 0
     }

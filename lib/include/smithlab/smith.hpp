@@ -12,6 +12,7 @@
 #include <string_view>
 
 #include "smithlab/errors.hpp"
+#include "smithlab/grazing.hpp"
 #include "smithlab/lambda_fixed.hpp"
 #include "smithlab/named.hpp"
 #include "smithlab/ndf.hpp"
@@ -22,7 +23,8 @@ namespace smithlab {
 // How Lambda is computed. `automatic` takes the closed form when the NDF has one, else the fixed rule (below: the
 // reduced 1D integral, 1.4-16x faster than the adaptive routes at 1e-12, which answer where its estimate misses).
 // `fixed` is the reduced 1D integral by fixed Gauss-Kronrod panels on precomputed nodes (lambda_fixed.hpp), the
-// adaptive route (--backend) where its error estimate misses the tolerance.
+// adaptive route (--backend) where its error estimate misses the tolerance. Below the quadrature domain (mu < 1e-12
+// or mu < 1e-12 r0), `automatic`, `quadrature`, `quadrature2d` and `fixed` answer by the grazing law (grazing.hpp).
 enum class Method { automatic, closed, spline, quadrature, quadrature2d, fixed };
 // The methods by name (`smithlab eval --method NAME`) and what `--list-methods` says of each.
 inline constexpr std::array<Named<Method>, 6> method_names = {{
@@ -90,6 +92,9 @@ namespace detail {
 double tan_minus_x(double t, double tan_t);
 // Lambda_1d / Lambda_2d take mu in [1e-12, 1e12]; Lambda() handles 0, inf and the sign.
 void require_mu(double mu);
+// The smallest mu the quadrature routes take for an NDF with P22(0) = P22_at_pole: 1e-12, and 1e-12 r0 where the core
+// slope scale r0 is above 1 (below: the grazing law, grazing.hpp).
+double quadrature_mu_min(double P22_at_pole);
 // ... and mu >= 1e-12 r0, r0 = 1 / sqrt(pi P22(0)) the NDF's core slope scale (alpha for GGX and Beckmann; at most
 // ~1 for GTR and Blinn-Phong): the grazing peak of the integrand sits at pi/2 - t ~ mu / alpha, and below
 // mu / alpha ~ 1e-13 Boost's tanh-sinh steps over it (GGX(1e49) at mu = 0.5 came out 1.85e48 for 1e49; Beckmann at
@@ -202,10 +207,20 @@ double Lambda_fixed(const N& ndf, double mu, const QuadratureOptions& opts = {})
 }
 
 namespace detail {
-// Lambda at a finite mu > 0 by opts.method.
+// Whether opts.method answers ndf at a finite mu > 0 by the grazing law: a quadrature route (`automatic` where there
+// is no closed form) below its domain.
 template <Ndf N>
-double Lambda_by_method(const N& ndf, double mu, const LambdaOptions& opts) {
+bool answers_by_grazing_law(const N& ndf, double mu, const LambdaOptions& opts) {
+    const bool quadrature = opts.method == Method::quadrature || opts.method == Method::quadrature2d ||
+        opts.method == Method::fixed || (opts.method == Method::automatic && !has_closed_Lambda(ndf));
+    return quadrature && mu < quadrature_mu_min(slope_density(ndf, 0.0));
+}
+
+// Lambda at a finite mu > 0 by opts.method; `law` (may be null) holds the NDF's grazing law once computed.
+template <Ndf N>
+double Lambda_by_method(const N& ndf, double mu, const LambdaOptions& opts, GrazingLawOnce* law = nullptr) {
     const QuadratureOptions q{opts.backend, opts.tolerance};
+    if (answers_by_grazing_law(ndf, mu, opts)) return Lambda_grazing(law ? law->get(ndf, q) : grazing_law(ndf, q), mu);
     switch (opts.method) {
         case Method::automatic:
             if (has_closed_Lambda(ndf)) break;
@@ -237,10 +252,17 @@ double Lambda(const N& ndf, double mu, const LambdaOptions& opts = {}) {
 }
 
 // G1 = 1 / (1 + Lambda(mu)), Walter 2007 eq. 51 with mu = |cot theta_v| (eq. 44): a direction below the
-// macrosurface is masked as if seen from its own side, as in transmission.
+// macrosurface is masked as if seen from its own side, as in transmission. Below the quadrature domain, and wherever
+// Lambda overflows at mu != 0 (c/mu beyond DBL_MAX, any method), by the grazing law's own G1 (grazing.hpp).
 template <Ndf N>
 double G1(const N& ndf, double mu, const LambdaOptions& opts = {}) {
-    return 1.0 / (1.0 + Lambda_of_abs(mu, [&](double a) { return detail::Lambda_by_method(ndf, a, opts); }));
+    require_mu_number(mu);
+    const double a = std::abs(mu);
+    const QuadratureOptions q{opts.backend, opts.tolerance};
+    if (a > 0.0 && a < INFINITY && detail::answers_by_grazing_law(ndf, a, opts))
+        return G1_grazing(grazing_law(ndf, q), a);
+    const double L = Lambda_of_abs(mu, [&](double m) { return detail::Lambda_by_method(ndf, m, opts); });
+    return L == INFINITY && a > 0.0 ? G1_grazing(grazing_law(ndf, q), a) : 1.0 / (1.0 + L);
 }
 
 // mu = cot(theta) of c = cos(theta): c / sqrt((1 - c)(1 + c)), sin^2 without the cancellation of 1 - c^2 near c = 1.

@@ -36,6 +36,9 @@ struct LambdaVariant {
     // finite mu > 0, as often as the caller likes.
     std::function<LambdaOfMu(const AnyNdf&)> prepare;
     LambdaRoute route = LambdaRoute::other;
+    // Why it does not apply to an NDF applies() refuses, naming the parameter, its value and the domain it covers
+    // ("method 'family' covers gtr with gamma in [0, 20]; got gamma = 21"); unset: a message naming the NDF's family.
+    std::function<std::string(const AnyNdf&)> refusal = {};
 };
 
 // The route variant takes on ndf: a table's is the route it was built from (closed or q1d_boost), the others' their
@@ -56,7 +59,7 @@ private:
 };
 
 // A variant prepared for ndf, taking any mu: 0 and inf exact, mu < 0 by the convention, input_error on NaN.
-// input_error if the variant does not apply to ndf.
+// input_error if the variant does not apply to ndf (its refusal's message where it has one).
 LambdaOfMu prepare(const LambdaVariant& variant, const AnyNdf& ndf, Downward downward = Downward::smith);
 // One evaluation (prepares each time: for many mu, prepare once).
 double Lambda(const LambdaVariant& variant, const AnyNdf& ndf, double mu, Downward downward = Downward::smith);
