@@ -59,19 +59,21 @@ GrazingLaw grazing_law(const N& ndf, QuadratureOptions opts = {}) {
     if constexpr (requires { ndf.quadrature_backend(); })
         if (const std::optional<Backend> b = ndf.quadrature_backend()) opts.backend = *b;
     const double r0 = core_slope_scale(ndf);
-    // P22 at r^2, 0 where r^2 overflows (r > 1e154: a tail that keeps c finite leaves below 1e-100 of it there for
-    // r0 <= 1e50)
-    auto P22 = [&](double r) {
+    // r^(2k) P22(r^2), 0 where r^2 overflows (r > 1e154: a tail that keeps c finite leaves below 1e-100 of it there
+    // for r0 <= 1e50)
+    auto moment = [&](double r, bool second) {
         const double r2 = r * r;
-        return r2 < INFINITY ? slope_density(ndf, r2) : 0.0;
+        if (!(r2 < INFINITY)) return 0.0;
+        const double f = slope_density(ndf, r2);
+        return second ? r2 * f : f;
     };
     const double R = 1e20 * std::max(r0, 1.0);
-    auto T = [&](double r) { return r * (r * r * P22(r)); };
-    if (100.0 * R * R < INFINITY) detail::require_finite_grazing_c(T(R), T(10.0 * R), R);
+    if (100.0 * R * R < INFINITY)
+        detail::require_finite_grazing_c(R * moment(R, true), 10.0 * R * moment(10.0 * R, true), R);
     const double lo = std::min(r0, 1.0), hi = std::max(r0, 1.0);
     GrazingLaw law;
-    law.c = 2.0 * integrate_log_axis([&](double r) { return r * r * P22(r); }, opts, lo, hi);
-    law.P2_0 = 2.0 * integrate_log_axis(P22, opts, lo, hi);
+    law.c = 2.0 * integrate_log_axis([&](double r) { return moment(r, true); }, opts, lo, hi);
+    law.P2_0 = 2.0 * integrate_log_axis([&](double p) { return moment(p, false); }, opts, lo, hi);
     detail::require_grazing_constants(law.c, law.P2_0);
     return law;
 }
