@@ -48,9 +48,11 @@ void require_mu(double mu) {
 }
 
 // r0 = 1 where P22(0) is 0 or not finite (no core scale to speak of: a plug-in's D(1) = 0); the factor 1 - 1e-9 lets
-// r0 = 1.0000000000000004 (GTR(0.3, 0)) admit mu = 1e-12.
+// r0 = 1.0000000000000004 (GTR(0.3, 0)) admit mu = 1e-12. The cap 1e-8 r0: the law's error bound P2(0) mu^2 / (2c)
+// (grazing.hpp) is (mu/r0)^2 / 2 for GGX, 1e-16 there; above it, for r0 < 1e-4, the quadrature's refusal stands.
 double quadrature_mu_min(double P22_at_pole) {
-    return std::max(1e-12, 1e-12 * core_slope_scale(P22_at_pole) * (1.0 - 1e-9));
+    const double r0 = core_slope_scale(P22_at_pole);
+    return std::min(std::max(1e-12, 1e-12 * r0 * (1.0 - 1e-9)), 1e-8 * r0);
 }
 
 void require_quadrature_scale(double mu, double P22_at_pole, const char* method) {

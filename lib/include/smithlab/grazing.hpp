@@ -12,10 +12,10 @@
 // [0, mu], so relative to Lambda at most P2(0) mu^2 / (2c - mu) for a P22 that does not increase with the slope
 // (0 <= P2 <= P2(0)); O((mu/r0)^2), r0 the core slope scale (GGX: (mu/alpha)^2 / 2). Where P22 is smooth in r^2, as
 // for every built-in family, P2(q) - P2(0) = P2''(0) q^2/2 + .. and the error is |P2''(0)| mu^4 / (24 c) relative,
-// O((mu/r0)^4). smithlab answers by the law only below the quadrature routes' domain (mu < 1e-12 and
-// mu < 1e-12 r0: smith.hpp), where mu/r0 <= 1e-12 / min(r0, 1): the first bound is below double rounding (1e-16)
-// for r0 >= 1e-4, the second for r0 >= 1e-8. The tabulated Lambda (lambda_table.hpp) ends in the same law, its
-// first two terms, with c measured from its knots.
+// O((mu/r0)^4). smithlab answers by the law below the quadrature routes' domain (mu < 1e-12 and mu < 1e-12 r0)
+// and only at mu <= 1e-8 r0 (smith.hpp), where the first bound is ~1e-16, at double rounding; between 1e-8 r0 and
+// 1e-12 (r0 < 1e-4) neither holds and the quadrature's refusal stands. The tabulated Lambda (lambda_table.hpp) ends
+// in the same law, its first two terms, with c measured from its knots.
 // An NDF whose c is infinite (a slope tail P22 ~ r^-3 or heavier) has no such law: mu Lambda grows without bound.
 #pragma once
 

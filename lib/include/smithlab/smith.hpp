@@ -23,8 +23,8 @@ namespace smithlab {
 // How Lambda is computed. `automatic` takes the closed form when the NDF has one, else the fixed rule (below: the
 // reduced 1D integral, 1.4-16x faster than the adaptive routes at 1e-12, which answer where its estimate misses).
 // `fixed` is the reduced 1D integral by fixed Gauss-Kronrod panels on precomputed nodes (lambda_fixed.hpp), the
-// adaptive route (--backend) where its error estimate misses the tolerance. Below the quadrature domain (mu < 1e-12
-// or mu < 1e-12 r0), `automatic`, `quadrature`, `quadrature2d` and `fixed` answer by the grazing law (grazing.hpp).
+// adaptive route (--backend) where its error estimate misses the tolerance. Below the quadrature domain and 1e-8 r0
+// (detail::quadrature_mu_min), `automatic`, `quadrature`, `quadrature2d`, `fixed` answer by the grazing law.
 enum class Method { automatic, closed, spline, quadrature, quadrature2d, fixed };
 // The methods by name (`smithlab eval --method NAME`) and what `--list-methods` says of each.
 inline constexpr std::array<Named<Method>, 6> method_names = {{
@@ -92,8 +92,8 @@ namespace detail {
 double tan_minus_x(double t, double tan_t);
 // Lambda_1d / Lambda_2d take mu in [1e-12, 1e12]; Lambda() handles 0, inf and the sign.
 void require_mu(double mu);
-// The smallest mu the quadrature routes take for an NDF with P22(0) = P22_at_pole: 1e-12, and 1e-12 r0 where the core
-// slope scale r0 is above 1 (below: the grazing law, grazing.hpp).
+// Below it the quadrature methods answer by the grazing law (grazing.hpp), for P22(0) = P22_at_pole: the quadratures'
+// lower end 1e-12 (1e-12 r0 where r0 > 1), capped at 1e-8 r0, where the law's error is at double rounding.
 double quadrature_mu_min(double P22_at_pole);
 // ... and mu >= 1e-12 r0, r0 = 1 / sqrt(pi P22(0)) the NDF's core slope scale (alpha for GGX and Beckmann; at most
 // ~1 for GTR and Blinn-Phong): the grazing peak of the integrand sits at pi/2 - t ~ mu / alpha, and below
