@@ -188,6 +188,11 @@ TEST_CASE("grazing law: the quadrature routes still answer themselves inside the
     // GGX(1e49): its domain starts at mu = 1e37; mu = 0.5 is answered by the law (Lambda = alpha / (2 mu) = 1e49)
     const smithlab::Ggx big = smithlab::ggx(1e49);
     CHECK(smithlab::Lambda(big, 0.5, q) == Approx(1e49).epsilon(1e-12));
+    // GGX(1e-10): the law answers at mu <= 1e-8 r0 = 1e-18; between that and 1e-12 neither it nor the quadrature
+    // holds, and the quadrature refuses.
+    const smithlab::Ggx thin = smithlab::ggx(1e-10);
+    CHECK(smithlab::Lambda(thin, 1e-19, q) == Approx(thin.Lambda(1e-19)).epsilon(1e-12));
+    CHECK_THROWS_AS(smithlab::Lambda(thin, 1e-15, q), smithlab::input_error);
 }
 
 TEST_CASE("grazing law: an NDF whose c is infinite is refused, and the message says why", "[grazing]") {

@@ -85,9 +85,9 @@ void add_eval(CLI::App& app, EvalArgs& a) {
         "other columns pass through, then one per NDF parameter not among them, then lambda and g1.\n"
         "Numbers are written with 17 significant digits. A bad row is reported with its line number; then nothing\n"
         "is written and the exit code is 2.\n"
-        "Below the quadratures' domain (mu < 1e-12, or below 1e-12 x the NDF's slope scale 1/sqrt(pi P22(0))),\n"
-        "auto, quadrature, quadrature2d and fixed answer by the grazing law c/mu - 1/2 + P2(0) mu/2, c = E[q+]\n"
-        "(docs/math.md); one point says so on its method line.\n"
+        "Below the quadratures' domain (mu < 1e-12, or below 1e-12 x the NDF's slope scale r0 = 1/sqrt(pi P22(0)))\n"
+        "and at mu <= 1e-8 r0, auto, quadrature, quadrature2d and fixed answer by the grazing law\n"
+        "c/mu - 1/2 + P2(0) mu/2, c = E[q+] (docs/math.md); one point says so on its method line.\n"
         "Methods (--method):\n" +
         described_lines(method_names) +
         "  and every variant of `smithlab eval --list-methods` (fixed tolerances, interpolants, approximations).");
