@@ -64,7 +64,8 @@ TEST_CASE("brdf refuses the straight-through pair of an index-matched dielectric
     }
 }
 
-TEST_CASE("brdf prints a finite estimate for every material and direction pair, or refuses the pair", "[walks]") {
+TEST_CASE("brdf prints a finite estimate for every material and direction pair, or refuses the pair",
+          "[walks][sweep]") {
     const std::vector<std::string> materials = {"mirror",
                                                 "conductor(eta=0.2, k=3)",
                                                 "lambert(albedo=1)",
