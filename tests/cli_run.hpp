@@ -11,6 +11,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace fs = std::filesystem;
 
@@ -63,6 +64,15 @@ inline std::string check_bad_scene(const fs::path& d, const std::string& name, c
     CHECK_THAT(r.err, Catch::Contains(expected));
     CHECK_FALSE(fs::exists(d / "never"));
     return r.err;
+}
+
+// Every temporary smithlab names ".NAME.PID.smithlab-partial" under dir (recursively).
+inline std::vector<fs::path> temporaries(const fs::path& dir) {
+    std::vector<fs::path> found;
+    std::error_code ec;
+    for (const auto& e : fs::recursive_directory_iterator(dir, ec))
+        if (e.path().filename().string().ends_with(".smithlab-partial")) found.push_back(e.path());
+    return found;
 }
 
 }  // namespace smithlab_test

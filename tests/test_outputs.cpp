@@ -24,15 +24,6 @@ extern char** environ;
 
 namespace {
 
-// Every temporary smithlab names ".NAME.PID.smithlab-partial" under dir (recursively).
-std::vector<fs::path> temporaries(const fs::path& dir) {
-    std::vector<fs::path> found;
-    std::error_code ec;
-    for (const auto& e : fs::recursive_directory_iterator(dir, ec))
-        if (e.path().filename().string().ends_with(".smithlab-partial")) found.push_back(e.path());
-    return found;
-}
-
 // The executable started in the background, its output discarded.
 pid_t spawn(const std::vector<std::string>& args) {
     std::vector<char*> argv{const_cast<char*>(SMITHLAB_EXE)};

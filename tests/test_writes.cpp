@@ -29,15 +29,6 @@ Run run_sh(const std::string& prefix, const std::string& wrapper, const std::str
 // the limit fails with EFBIG.
 const std::string small_files = "trap '' XFSZ; ulimit -f 1;";
 
-// Every temporary smithlab names ".NAME.PID.smithlab-partial" under dir (recursively).
-std::vector<fs::path> temporaries(const fs::path& dir) {
-    std::vector<fs::path> found;
-    std::error_code ec;
-    for (const auto& e : fs::recursive_directory_iterator(dir, ec))
-        if (e.path().filename().string().ends_with(".smithlab-partial")) found.push_back(e.path());
-    return found;
-}
-
 fs::path fresh(const std::string& name) {
     const fs::path d = scratch() / name;
     fs::remove_all(d);
