@@ -7,6 +7,10 @@
 // the same D registered as a plug-in and run through the surface its registration records (smithlab/surface.hpp: one
 // virtual call a block), and through AnyNdf itself (a virtual D and Lambda a call: what an unregistered NDF gets);
 // and GGX's D as a measured table (tabulated.hpp: 100 rows to 89 degrees), registered as `tabulated` is.
+// The ndf/ rows: every built-in family at roughness alpha = 0.1, 0.5, 1 (GTR at gamma 1, 1.5, 3; Student at gamma 4;
+// ABC at c = 2; Blinn by its roughness mapping) and GGX's D as a 100-row table, with mirror and lambert facets, as a
+// command runs them (blocks of 4096 through the registered surface); items_per_second = walks/s, so ns a walk is its
+// inverse. Compare a row with ggx at the same alpha and material, in the same run.
 // Run: build/bench/bench_walk --benchmark_repetitions=7 --benchmark_report_aggregates_only
 #include <benchmark/benchmark.h>
 
@@ -18,6 +22,8 @@
 #include <smithlab/surface.hpp>
 #include <smithlab/walk/trace.hpp>
 #include <string>
+#include <variant>
+#include <vector>
 
 namespace {
 
@@ -110,6 +116,59 @@ void add_block_of(const std::string& name, const smithlab::AnyNdf& ndf) {
     });
 }
 
+// GGX's D at roughness alpha as a table of 100 rows to 89 degrees (CSV text).
+std::string ggx_table(double alpha) {
+    std::string table = "theta_deg,D\n";
+    for (int i = 0; i < 100; ++i) {
+        const double deg = 89.0 * i / 99.0;
+        char row[64];
+        std::snprintf(row, sizeof row, "%.17g,%.17g\n", deg,
+                      smithlab::ggx(alpha).D(std::cos(deg * std::numbers::pi / 180.0)));
+        table += row;
+    }
+    return table;
+}
+
+void add_family_matrix() {
+    smithlab::NdfRegistry registry = smithlab::builtin_registry();
+    for (double alpha : {0.1, 0.5, 1.0}) {
+        const std::string a = alpha == 1.0 ? "1" : alpha == 0.5 ? "0.5" : "0.1";
+        registry.add({"ggx_table_" + a, {}, "GGX's D as a table of 100 rows", {}},
+                     [table = ggx_table(alpha)](const smithlab::NdfParams&) {
+                         return smithlab::tabulated_ndf_from_csv(table, "ggx.csv");
+                     });
+    }
+    const std::vector<std::pair<std::string, std::vector<std::pair<std::string, double>>>> families = {
+        {"ggx", {}},
+        {"beckmann", {}},
+        {"blinn", {}},
+        {"gtr", {{"gamma", 1.0}}},
+        {"gtr", {{"gamma", 1.5}}},
+        {"gtr", {{"gamma", 3.0}}},
+        {"student", {{"gamma", 4.0}}},
+        {"abc", {{"c", 2.0}}}};
+    for (double alpha : {0.1, 0.5, 1.0}) {
+        std::vector<smithlab::AnyNdf> ndfs;
+        for (const auto& [family, others] : families) ndfs.push_back(registry.make_at_alpha(family, alpha, others));
+        const std::string a = alpha == 1.0 ? "1" : alpha == 0.5 ? "0.5" : "0.1";
+        ndfs.push_back(registry.make("ggx_table_" + a));
+        for (const smithlab::AnyNdf& ndf : ndfs)
+            for (const walk::Material& m : {walk::Material{walk::Mirror{}}, walk::Material{walk::Lambert{1.0}}}) {
+                const std::shared_ptr<const smithlab::AnySurface> surface = smithlab::make_surface(ndf);
+                const std::string material = std::holds_alternative<walk::Mirror>(m) ? "mirror" : "lambert";
+                benchmark::RegisterBenchmark(("ndf/alpha=" + a + "/" + ndf.spec() + "/" + material).c_str(),
+                                             [surface, m](benchmark::State& s) {
+                                                 const walk::CellRequest r = block_request();
+                                                 std::uint64_t b = 0;
+                                                 for (auto _ : s)
+                                                     benchmark::DoNotOptimize(surface->trace_block(m, r, b++));
+                                                 s.SetItemsProcessed(s.iterations() * r.block);
+                                             })
+                    ->Unit(benchmark::kMicrosecond);
+            }
+    }
+}
+
 const bool registered = [] {
     add("ggx(alpha=0.5)/mirror", smithlab::ggx(0.5), walk::Mirror{});
     add("ggx(alpha=0.5)/lambert(albedo=1)", smithlab::ggx(0.5), walk::Lambert{1.0});
@@ -131,18 +190,12 @@ const bool registered = [] {
     add_block_of("D-only ggx(alpha=0.5)/mirror", smithlab::DOnly<smithlab::Ggx>{smithlab::ggx(0.5)});
     add_block_of("plug-in ggx(alpha=0.5), registered/mirror", plugin);
     add_block_of("plug-in ggx(alpha=0.5), through AnyNdf/mirror", smithlab::as_any(PlugInGgx{smithlab::ggx(0.5)}));
-    std::string table = "theta_deg,D\n";
-    for (int i = 0; i < 100; ++i) {
-        const double deg = 89.0 * i / 99.0;
-        char row[64];
-        std::snprintf(row, sizeof row, "%.17g,%.17g\n", deg,
-                      smithlab::ggx(0.5).D(std::cos(deg * std::numbers::pi / 180.0)));
-        table += row;
-    }
     smithlab::NdfRegistry tabulated;
-    tabulated.add({"ggx_table", {}, "GGX's D as a table of 100 rows", {}},
-                  [table](const smithlab::NdfParams&) { return smithlab::tabulated_ndf_from_csv(table, "ggx.csv"); });
+    tabulated.add({"ggx_table", {}, "GGX's D as a table of 100 rows", {}}, [](const smithlab::NdfParams&) {
+        return smithlab::tabulated_ndf_from_csv(ggx_table(0.5), "ggx.csv");
+    });
     add_block_of("tabulated ggx(alpha=0.5), 100 rows, registered/mirror", tabulated.make("ggx_table"));
+    add_family_matrix();
     return true;
 }();
 

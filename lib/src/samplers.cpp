@@ -15,6 +15,8 @@ bool any_ndf(const AnyNdf&) { return true; }
 // The capabilities (ndf.hpp): the NDF is exactly GGX / Beckmann of some alpha.
 bool is_ggx(const AnyNdf& n) { return !std::isnan(ggx_alpha(n)); }
 bool is_beckmann(const AnyNdf& n) { return !std::isnan(beckmann_alpha(n)); }
+// A mixture of GGX lobes bounds its slope density (visible_normals_mixture.hpp).
+bool has_mixture(const AnyNdf& n) { return VisibleNormals<AnyNdf>(n, VisibleRoute::mixture).mixture().has_value(); }
 
 BoundSampler dcos(const AnyNdf& ndf, bool tabulate) {
     auto s = std::make_shared<const DcosSampler>(ndf, tabulate);
@@ -47,13 +49,17 @@ std::vector<SamplerInfo> builtin_samplers() {
         {"vndf-table", "visible normals as vndf, with the D cos part tabulated too (what a D-only NDF gets)",
          Incidence::any, any_ndf,
          [](const AnyNdf& n, const Vec3& wi) { return visible(n, wi, VisibleRoute::tabulated); }},
+        {"vndf-mixture",
+         "visible normals of any NDF with tails up to GGX's: GGX lobes' visible normals accepted with P22 / (K Q), "
+         "exact, wi anywhere (what the walk uses)",
+         Incidence::any, has_mixture,
+         [](const AnyNdf& n, const Vec3& wi) { return visible(n, wi, VisibleRoute::mixture); }},
         {"vndf-ggx", "GGX visible normals in closed form, spherical caps (Dupuy & Benyoub 2023), wi anywhere",
-         Incidence::any, is_ggx,
-         [](const AnyNdf& n, const Vec3& wi) { return visible(n, wi, VisibleRoute::automatic); }},
+         Incidence::any, is_ggx, [](const AnyNdf& n, const Vec3& wi) { return visible(n, wi, VisibleRoute::closed); }},
         {"vndf-beckmann",
          "Beckmann visible normals in closed form (Heitz & d'Eon 2014 slopes, Newton on ierfc), wi anywhere",
          Incidence::any, is_beckmann,
-         [](const AnyNdf& n, const Vec3& wi) { return visible(n, wi, VisibleRoute::automatic); }},
+         [](const AnyNdf& n, const Vec3& wi) { return visible(n, wi, VisibleRoute::closed); }},
         {"hammon",
          "D(m) cos(theta_m) over the normals facing wi, Hammon 2017's shrunk range (ray T = -wi; wi may be below)",
          Incidence::any, any_ndf,

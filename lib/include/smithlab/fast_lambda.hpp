@@ -6,19 +6,24 @@
 // The walk asks for Lambda of a direction, which it has as tan^2(theta) = (x^2 + y^2) / z^2 without a root:
 // at_tan2(t). For GGX (the capability ggx_alpha(), ndf.hpp) that is Heitz 2014 eq. 72 in t itself,
 //     Lambda = (sqrt(1 + alpha^2 t) - 1) / 2 = alpha^2 t / (2 (1 + sqrt(1 + alpha^2 t)))   (no cancellation),
-// one root and one division; every other NDF takes mu = 1 / sqrt(t). Its step needs 1 / Lambda (upward) and
-// 1 / (1 + Lambda) (downward, Smith's convention): for GGX, with d2 = x^2 + y^2, |z| and R = sqrt(z^2 + alpha^2 d2),
+// one root and one division; every other NDF a Tan2Spline of its Lambda (tan2_spline.hpp: a cubic picked by the bits
+// of t, within 1e-7 of the table or closed form it is built from, 1e-12 absolute where Lambda < 1e-5), and
+// mu = 1 / sqrt(t) where that does not answer (tan(theta) outside [2^-20, 2^20]). Its step needs 1 / Lambda (upward)
+// and 1 / (1 + Lambda) (downward, Smith's convention): for GGX, with d2 = x^2 + y^2, |z| and R = sqrt(z^2 + alpha^2
+// d2),
 //     1 / Lambda = 2 (z^2 + |z| R) / (alpha^2 d2),   1 / (1 + Lambda) = 2 |z| / (|z| + R),
 // since sqrt(1 + alpha^2 t) = R / |z| and 1 + Lambda = (1 + R / |z|) / 2: one root and one division each.
 #pragma once
 
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <optional>
 
 #include "smithlab/lambda_table.hpp"
 #include "smithlab/ndf.hpp"
 #include "smithlab/smith.hpp"
+#include "smithlab/tan2_spline.hpp"
 
 namespace smithlab {
 
@@ -35,6 +40,9 @@ public:
         if (!has_closed_Lambda(ndf_)) table_.emplace(tabulate_Lambda(ndf_, table));
         const double a = ggx_alpha(ndf_);
         if (a > 0.0 && a < INFINITY) ggx_alpha2_ = a * a;
+        else
+            spline_ = std::make_shared<const Tan2Spline>([this](double t) { return (*this)(1.0 / std::sqrt(t)); },
+                                                         spline_tolerance, spline_floor);
     }
 
     // Lambda(mu) for mu >= 0 (mu = 0: inf; mu = inf: 0). Downward directions are the caller's convention
@@ -52,6 +60,8 @@ public:
         if (ggx_alpha2_ > 0.0) {
             const double q = ggx_alpha2_ * t;
             if (q < 1e300) return q / (2.0 * (1.0 + std::sqrt(1.0 + q)));  // else (t = inf, alpha^2 t overflows) by mu
+        } else if (const double L = (*spline_)(t); L == L) {
+            return L;
         }
         return (*this)(1.0 / std::sqrt(t));
     }
@@ -70,14 +80,22 @@ public:
         if (ggx_alpha2_ > 0.0) return {2.0 * az, az + std::sqrt(az * az + ggx_alpha2_ * d2)};
         return {1.0, 1.0 + at_tan2(d2 / (az * az))};
     }
+    // The walk's Lambda against the route it is built from: within 1e-7 relative where Lambda >= 1e-5, 1e-12 absolute
+    // below (an escape probability C1^Lambda moves by |ln C1| 1e-12 there).
+    static constexpr double spline_tolerance = 1e-7, spline_floor = 1e-5;
+
     bool tabulated() const { return table_.has_value(); }
-    double error_estimate() const { return table_ ? table_->error_estimate() : 0.0; }  // relative
+    // Relative, of the walk's Lambda: the table's estimate (or 0 for a closed form) plus the spline's tolerance.
+    double error_estimate() const {
+        return (table_ ? table_->error_estimate() : 0.0) + (spline_ ? spline_tolerance : 0.0);
+    }
     const N& ndf() const { return ndf_; }
 
 private:
     N ndf_;
     std::optional<LambdaTable> table_;
-    double ggx_alpha2_ = 0.0;  // > 0: GGX of this alpha^2, Lambda in closed form in tan^2
+    double ggx_alpha2_ = 0.0;                   // > 0: GGX of this alpha^2, Lambda in closed form in tan^2
+    std::shared_ptr<const Tan2Spline> spline_;  // every other NDF
 };
 
 }  // namespace smithlab

@@ -14,6 +14,10 @@
 // Routes (VisibleRoute):
 //   closed form   when the NDF is GGX or Beckmann by its capability (ndf.hpp: ggx_alpha(), beckmann_alpha()):
 //                 visible_normals_closed.hpp.
+//   mixture       any NDF a mixture of GGX lobes bounds (tails no heavier than r^-4): GGX visible normals of the
+//                 mixture, accepted with P22 / (K Q), exact (visible_normals_mixture.hpp). What the walk uses for
+//                 every NDF but GGX; below the horizon, where the NDF's Lambda falls under 1/8 of the mixture's
+//                 (a lighter tail than GGX's, Beckmann's, seen from steeply below), the rejection route's mu < 0.
 //   rejection     any NDF, exact up to the tables it reads:
 //     mu >= 0: in polar slopes (r, phi) the target is P22 r (mu - r cos phi)^+, drawn from P22 r (mu + r) x uniform
 //              phi -- a mixture of the D cos law of r (weight mu) and the law P22 r^2 dr (weight 2 pi M, M its
@@ -38,6 +42,7 @@
 #include <limits>
 #include <memory>
 #include <numbers>
+#include <optional>
 
 #include "smithlab/dcos_law.hpp"
 #include "smithlab/fast_lambda.hpp"
@@ -48,27 +53,32 @@
 #include "smithlab/rng.hpp"
 #include "smithlab/turn.hpp"
 #include "smithlab/visible_normals_closed.hpp"
+#include "smithlab/visible_normals_mixture.hpp"
 
 namespace smithlab {
 
-// automatic: the closed form when the NDF offers one, else rejection (with the NDF's analytic D cos law if any).
-enum class VisibleRoute { automatic, rejection, tabulated };
+// automatic: GGX's closed form, else the mixture where it bounds the NDF, else Beckmann's closed form, else rejection
+// (with the NDF's analytic D cos law if any). closed: the closed form where the NDF offers one, else rejection.
+// mixture: the mixture where it bounds the NDF, else rejection.
+enum class VisibleRoute { automatic, closed, mixture, rejection, tabulated };
 
 template <Ndf N>
 class VisibleNormals {
 public:
     explicit VisibleNormals(const N& ndf, VisibleRoute route = VisibleRoute::automatic)
         : dcos_(ndf, route == VisibleRoute::tabulated), Lambda_(ndf) {
-        if (route == VisibleRoute::automatic) {
-            ggx_ = ggx_alpha(ndf);
-            if (std::isnan(ggx_)) beckmann_ = beckmann_alpha(ndf);
-        }
+        if (route == VisibleRoute::automatic || route == VisibleRoute::closed) ggx_ = ggx_alpha(ndf);
+        if (std::isnan(ggx_) && (route == VisibleRoute::automatic || route == VisibleRoute::mixture))
+            mixture_ = GgxMixture::fit([ndf](double s) { return slope_density(ndf, s); }, std::sqrt(dcos_.isf(0.5)));
+        if (std::isnan(ggx_) && !mixture_ && (route == VisibleRoute::automatic || route == VisibleRoute::closed))
+            beckmann_ = beckmann_alpha(ndf);
         auto r2_law = [ndf](double s) { return 0.5 * slope_density(ndf, s) * std::sqrt(s); };  // P22 r^2 dr in s
-        if (!closed_form()) r_law_ = std::make_shared<const RadialTable>(r2_law);
+        if (!closed_form() && !mixture_) r_law_ = std::make_shared<const RadialTable>(r2_law);
         // W(0) = E[x^+] = 2 M, the projected area of a horizontal direction.
         if (r_law_) W0_ = 2.0 * r_law_->total();
         else if (!Lambda_.tabulated()) W0_ = 1e-100 * Lambda_(1e-100);  // W(0) - 1e-100 / 2
         if (!(W0_ > 0.0 && W0_ < INFINITY)) W0_ = 2.0 * integrate_log_axis(r2_law);
+        if (mixture_) mixture_below2_ = mixture_reach_below();
     }
 
     // A normal m (m.z > 0, v.m > 0) from D_v, for a unit v with A(v) > 0; no_normal() when it cannot draw. The
@@ -76,6 +86,12 @@ public:
     template <class G>
     Vec3 sample(const Vec3& v, G& g) const {
         if (ggx_ > 0.0) return sample_ggx_visible_normal(ggx_, v, g);
+        if (mixture_) {
+            if (v.z() < 0.0 && v.z() * v.z() > mixture_below2_ * (v.x() * v.x() + v.y() * v.y())) [[unlikely]]
+                return sample_by_rejection(v, g);
+            return mixture_->sample(
+                v, [this](double s) { return dcos_.P22(s); }, g);
+        }
         if (beckmann_ > 0.0) return sample_beckmann_visible_normal(beckmann_, v, g);
         return sample_by_rejection(v, g);
     }
@@ -122,6 +138,7 @@ public:
     const FastLambda<N>& Lambda() const { return Lambda_; }
     const DcosLaw<N>& dcos() const { return dcos_; }
     bool closed_form() const { return ggx_ > 0.0 || beckmann_ > 0.0; }
+    const std::optional<GgxMixture>& mixture() const { return mixture_; }
     // The worst of its tables' estimates: the CDF tables' in probability, the Lambda table's relative.
     double table_error() const {
         return std::max({dcos_.table_error(), r_law_ ? r_law_->error_estimate() : 0.0, Lambda_.error_estimate()});
@@ -143,6 +160,17 @@ private:
         if (!(a < INFINITY)) return 0.0;
         if (Lambda_.tabulated() && a > far) return far * Lambda_(far) * (far / a);
         return a * Lambda_(a);
+    }
+
+    // The square of the greatest a = |cot theta_v| below the horizon up to which the mixture's acceptance there,
+    // Lambda(a) / (K Lambda_Q(a)), stays above 1 / (8 K) (from a = 1e-4 r0 up in steps of 2^(1/4), r0 the NDF's
+    // core slope scale); inf when it does so to 1e4 r0, where every ratio has reached its limit (tails as GGX's:
+    // Lambda ~ C / a^2 for both).
+    double mixture_reach_below() const {
+        const double r0 = core_slope_scale(dcos_.ndf());
+        for (double a = 1e-4 * r0; a <= 1e4 * r0; a *= 1.189207115002721)
+            if (!(Lambda_(a) >= 0.125 * mixture_->Lambda_Q(a))) return a * a / 1.4142135623730951;  // the step before
+        return INFINITY;
     }
 
     // mu >= 0: the mixture proposal, accepted with (mu - x)^+ / (mu + r).
@@ -219,6 +247,8 @@ private:
 
     DcosLaw<N> dcos_;
     FastLambda<N> Lambda_;
+    std::optional<GgxMixture> mixture_;
+    double mixture_below2_ = INFINITY;          // below the horizon, cot^2 theta_v beyond this: the rejection route
     std::shared_ptr<const RadialTable> r_law_;  // the law P22 r^2 dr in s = r^2; rejection routes only
     double ggx_ = std::numeric_limits<double>::quiet_NaN(), beckmann_ = std::numeric_limits<double>::quiet_NaN();
     double W0_ = std::numeric_limits<double>::quiet_NaN();
