@@ -14,6 +14,10 @@ std::array<double, 4> cubic_through(double f0, double f1, double f2, double f3) 
 
 double horner(const std::array<double, 4>& c, double u) { return ((c[3] * u + c[2]) * u + c[1]) * u + c[0]; }
 
+// Where the cubic's error is checked: the extremes of the node polynomial u (u - 1/3) (u - 2/3) (u - 1), at
+// u = 1/2 and 1/2 +- sqrt(5) / 6, where an error led by the fourth derivative peaks.
+constexpr std::array<double, 3> checks = {0.5 - 0.37267799624996495, 0.5, 0.5 + 0.37267799624996495};
+
 }  // namespace
 
 Tan2Spline::Tan2Spline(const std::function<double(double)>& f, double tolerance, double floor)
@@ -31,11 +35,11 @@ Tan2Spline::Tan2Spline(const std::function<double(double)>& f, double tolerance,
         const double t1 = std::bit_cast<double>((first_ + i + 1) << shift);
         auto at = [&](double u) { return f(t0 + (t1 - t0) * u); };
         const double f0 = at(0.0), f1 = at(1.0 / 3.0), f2 = at(2.0 / 3.0), f3 = at(1.0);
-        const std::array<double, 3> mid = {at(1.0 / 6.0), at(0.5), at(5.0 / 6.0)};
+        const std::array<double, 3> mid = {at(checks[0]), at(checks[1]), at(checks[2])};
         auto meets = [&](const std::array<double, 4>& c, bool in_log) {
             for (int j = 0; j < 3; ++j) {
-                const double p = horner(c, (2.0 * j + 1.0) / 6.0), v = in_log ? std::exp(p) : p;
-                if (!(std::abs(v - mid[j]) <= tolerance * std::max(mid[j], floor))) return false;
+                const double p = horner(c, checks[j]), v = in_log ? std::exp(p) : p;
+                if (!(std::abs(v - mid[j]) <= 0.5 * tolerance * std::max(mid[j], floor))) return false;
             }
             return true;
         };

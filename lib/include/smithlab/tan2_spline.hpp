@@ -8,7 +8,8 @@
 // piece holds the cubic in u through the function's values at u = 0, 1/3, 2/3, 1 (Lagrange) or, where that misses, the
 // cubic through the logs of those values, exponentiated (a function falling off exponentially, Beckmann's Lambda
 // ~ e^(-1 / (alpha^2 t)) at small t, is smooth in log). A piece answers where its cubic meets the function within
-// tolerance max(|f|, floor) at u = 1/6, 1/2 and 5/6 (relative above the floor, absolute below it); any other piece
+// tolerance/2 max(|f|, floor) (relative above the floor, absolute below it) at u = 1/2 and 1/2 +- sqrt(5)/6, where the
+// node polynomial peaks (its error, led by the fourth derivative, peaks there too); any other piece
 // answers NaN, as does any t outside [2^lowest_binade, 2^highest_binade): the caller evaluates the function itself
 // there. For f ~ C t^p the relative error
 // of a piece is about |p (p - 1) (p - 2) (p - 3)| 2^-16 / 2000 (the node polynomial's 0.0123 over 4!): 7e-9 for

@@ -50,9 +50,9 @@ public:
     static std::optional<GgxMixture> fit(const std::function<double(double)>& P22, double r0);
 
     // A normal m (m.z > 0, v.m > 0) from D_v for a unit v; no_normal() when none is visible (v straight down) or
-    // max_tries draws are rejected. P22 is the NDF's slope density, the one the mixture was fitted to.
+    // `tries` draws are rejected. P22 is the NDF's slope density, the one the mixture was fitted to.
     template <class P22Fn, class G>
-    Vec3 sample(const Vec3& v, const P22Fn& P22, G& g) const {
+    Vec3 sample(const Vec3& v, const P22Fn& P22, G& g, long tries = max_tries) const {
         const double d2 = v.x() * v.x() + v.y() * v.y(), z = v.z();
         std::array<double, max_lobes> cum{};
         double total = 0.0;
@@ -62,7 +62,7 @@ public:
             cum[k] = total;
         }
         if (!(total > 0.0)) return no_normal();
-        for (long tries = 0; tries < max_tries; ++tries) {
+        for (long n = 0; n < tries; ++n) {
             int k = 0;
             if (lobes_ > 1)
                 for (const double u = uniform01(g) * total; k < lobes_ - 1 && u >= cum[k];) ++k;
