@@ -14,9 +14,13 @@
 //      once, each lane's s0^i s1^j s2^k0 from three permutes of the powers; the leaves are prefetched first);
 //   3. eight at once again: the exp and G1 = 1 / (1 - P/2 + (e^f + P alpha mu_lo / 2) / mu), P = 1 below xi_lo
 //      (family.hpp's lower asymptote), else 0.
+// On AVX2 and FMA without AVX-512 (GtrFamilyRoute::avx2): the same three stages four lanes at a time (libmvec's
+// 4-lane logs and exps), the same grids, and in stage 2 family.hpp's own polynomial (GtrFamily::polynomial) on the
+// leaf the grid names, its lines prefetched for the whole block first.
 // Built at first use from the compiled-in data (a few ms; 3.4 MB of leaves in this layout, 47 kB of index), shared by
-// every thread. Where the CPU lacks AVX-512 (F and VL), or the build has no libmvec (glibc's, x86-64), the stream is
-// GtrFamily::G1_up point by point, and none of this is built: the same values, at the one-call speed.
+// every thread. The route is chosen at run time by CPU detection, AVX-512 (F and VL) first, then AVX2 and FMA; where
+// the CPU has neither, or the build has no libmvec (glibc's, x86-64), the stream is GtrFamily::G1_up point by point,
+// and none of this is built: the same values, at the one-call speed.
 #pragma once
 
 #include <cstddef>
@@ -25,6 +29,11 @@
 #include <vector>
 
 namespace smithlab {
+
+// The routes of GtrFamilyStream::G1_up: point by point (GtrFamily::G1_up), four lanes (AVX2 and FMA), eight lanes
+// (AVX-512 F and VL).
+enum class GtrFamilyRoute { one_point, avx2, avx512 };
+const char* name(GtrFamilyRoute route);  // "one point", "AVX2", "AVX-512"
 
 // G1(alpha[i], gamma[i], |mu[i]|) into out[i] for every i: the checked stream call. Everything is checked before
 // anything is written: input_error for spans of different lengths, and naming the first offending item otherwise
@@ -40,11 +49,21 @@ public:
     // G1 at n points (alpha[i], gamma[i], |mu[i]|), alpha in [1e-4, 1], gamma in [0, 20]: nothing is checked (a NaN
     // gives some value, never a read out of bounds). out may be any of the inputs (in place). No allocation,
     // exception or virtual call.
-    void G1_up(const double* alpha, const double* gamma, const double* mu, double* out, std::size_t n) const;
-    // Whether G1_up runs eight points at a time here (else it is GtrFamily::G1_up point by point).
-    bool vectorized() const { return vectorized_; }
+    void G1_up(const double* alpha, const double* gamma, const double* mu, double* out, std::size_t n) const {
+        G1_up(route_, alpha, gamma, mu, out, n);
+    }
+    // The same on a given route: one this CPU and build run (runs(route)), else point by point. The routes agree to
+    // rounding (as the stream and the one call do, above).
+    void G1_up(GtrFamilyRoute route, const double* alpha, const double* gamma, const double* mu, double* out,
+               std::size_t n) const;
+    // The route G1_up takes here: the fastest this CPU and build run.
+    GtrFamilyRoute route() const { return route_; }
+    bool runs(GtrFamilyRoute route) const;
+    // Whether G1_up runs several points at a time here (else it is GtrFamily::G1_up point by point).
+    bool vectorized() const { return route_ != GtrFamilyRoute::one_point; }
 
-    // The layout G1_up's vector route reads (family_stream.cpp builds it; family_stream_avx512.cpp reads it).
+    // The layout G1_up's vector routes read (family_stream.cpp builds it; family_stream_avx512.cpp reads it all,
+    // family_stream_avx2.cpp the grids).
     // One leaf: its 80 terms of degree >= 2 on eight lanes, lane l of group g holding row (i, j) = lanes[g][l]:
     // group 0 five Horner steps in s2, group 1 four, group 2 two, group 3 one (96 floats, zero where a row is
     // shorter), then the box and the constant and linear terms (as GtrFamilyLeaf).
@@ -75,7 +94,8 @@ private:
     std::vector<Cell> cells_;
     std::vector<std::uint16_t> ids_;
     Lanes lanes_{};
-    bool vectorized_ = false;
+    GtrFamilyRoute route_ = GtrFamilyRoute::one_point;
+    bool avx2_ = false, avx512_ = false;  // what this CPU and build run
 };
 
 }  // namespace smithlab
