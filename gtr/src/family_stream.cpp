@@ -186,6 +186,22 @@ GtrFamilyStream::GtrFamilyStream() : lanes_(make_lanes()), avx2_(cpu_has_avx2())
                         i + j + k <= gtr_family_degree ? from.higher[where[i][j][k]] : 0.0f;
                 }
     }
+    // the leaves by rows over k, for the AVX2 route (the last, empty, stays zero)
+    static_assert(gtr_family_degree == 6, "RowLeaf is laid out for total degree 6");
+    if (avx2_) {
+        row_leaves_.resize(d.n_leaves + 1);
+        for (std::size_t n = 0; n < d.n_leaves; ++n) {
+            const GtrFamilyLeaf& from = d.leaves[n];
+            RowLeaf& to = row_leaves_[n];
+            for (int a = 0; a < 3; ++a)
+                to.centre[a] = from.centre[a], to.scale[a] = from.scale[a], to.linear[a] = from.linear[a];
+            to.c0 = from.c0;
+            for (int q = 0; q < GtrFamilyLeaf::n_higher; ++q) {
+                const auto& t = gtr_family_plan.term[q];
+                to.c[row_at(t[0], t[1]) + t[2]] = from.higher[q];
+            }
+        }
+    }
     // each top box's grid of leaf numbers
     ids_.reserve(cells + 1);
     for (std::size_t top = 0; top < most.size(); ++top) {

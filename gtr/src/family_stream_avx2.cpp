@@ -1,6 +1,6 @@
 // The stream route of family_stream.hpp on AVX2 and FMA (GtrFamilyRoute::avx2), chosen at run time where the CPU has
-// no AVX-512: sixteen points a block, four lanes at a time for the logs, the chart and the exps, and family.hpp's own
-// polynomial (GtrFamily::polynomial) point by point on the leaf the stream's grid names. Built only where libmvec is
+// no AVX-512: sixteen points a block, four lanes at a time for the logs, the chart and the exps, and point by point
+// each leaf's polynomial on four lanes over the power of s2 (GtrFamilyStream::RowLeaf). Built only where libmvec is
 // (glibc on x86-64); every function here carries its target, so the rest of smithlab stays baseline x86-64.
 #include <immintrin.h>
 
@@ -76,12 +76,65 @@ struct Located4 {
     return ids[box.offset + fine];
 }
 
+using RowLeaf = GtrFamilyStream::RowLeaf;
+constexpr int degree = gtr_family_degree;
+
+// Row (i, j)'s terms as doubles: k = 0..3 (lo), k = 4..7 (hi, where i + j <= 2)
+template <int i, int j>
+[[gnu::target("avx2,fma"), gnu::always_inline]] inline __m256d row_lo(const float* c) {
+    return _mm256_cvtps_pd(_mm_load_ps(c + GtrFamilyStream::row_at(i, j)));
+}
+template <int i, int j>
+[[gnu::target("avx2,fma"), gnu::always_inline]] inline __m256d row_hi(const float* c) {
+    return _mm256_cvtps_pd(_mm_load_ps(c + GtrFamilyStream::row_at(i, j) + 4));
+}
+// Q_i = sum over j of s1^j row (i, j), as vectors over k (Horner in s1, from j = degree - i down to j)
+template <int i, int j>
+[[gnu::target("avx2,fma"), gnu::always_inline]] inline void in_s1(const float* c, __m256d s1, __m256d& lo,
+                                                                  __m256d& hi) {
+    if constexpr (j == degree - i) {
+        lo = row_lo<i, j>(c);
+    } else {
+        in_s1<i, j + 1>(c, s1, lo, hi);
+        lo = _mm256_fmadd_pd(lo, s1, row_lo<i, j>(c));
+        if constexpr (i + j == 2) hi = row_hi<i, j>(c);
+        if constexpr (i + j < 2) hi = _mm256_fmadd_pd(hi, s1, row_hi<i, j>(c));
+    }
+}
+// R = sum over i of s0^i Q_i (Horner in s0, from i = degree down to i); the upper lanes from i = 2 down
+template <int i>
+[[gnu::target("avx2,fma"), gnu::always_inline]] inline void in_s0(const float* c, __m256d s0, __m256d s1, __m256d& lo,
+                                                                  __m256d& hi) {
+    __m256d q_lo, q_hi = _mm256_setzero_pd();
+    in_s1<i, 0>(c, s1, q_lo, q_hi);
+    if constexpr (i == degree) {
+        lo = q_lo;
+    } else {
+        in_s0<i + 1>(c, s0, s1, lo, hi);
+        lo = _mm256_fmadd_pd(lo, s0, q_lo);
+        if constexpr (i == 2) hi = q_hi;
+        if constexpr (i < 2) hi = _mm256_fmadd_pd(hi, s0, q_hi);
+    }
+}
+
+// ln(mu Lambda) of one point: the leaf's constant and linear terms, and its others as R(k) summed against s2^k
+[[gnu::target("avx2,fma"), gnu::always_inline]] inline double polynomial(const RowLeaf& leaf, const double s[3]) {
+    __m256d lo, hi;
+    in_s0<0>(leaf.c, _mm256_set1_pd(s[0]), _mm256_set1_pd(s[1]), lo, hi);
+    const double z2 = s[2] * s[2];
+    const __m256d powers = _mm256_set_pd(z2 * s[2], z2, s[2], 1.0);  // (1, s2, s2^2, s2^3)
+    const __m256d r = _mm256_mul_pd(_mm256_fmadd_pd(hi, _mm256_set1_pd(z2 * z2), lo), powers);
+    const __m128d h = _mm_add_pd(_mm256_castpd256_pd128(r), _mm256_extractf128_pd(r, 1));
+    return (leaf.c0 + leaf.linear[0] * s[0]) + (leaf.linear[1] * s[1] + leaf.linear[2] * s[2]) +
+        _mm_cvtsd_f64(_mm_add_sd(h, _mm_unpackhi_pd(h, h)));
+}
+
 }  // namespace
 
 // n: a multiple of 16. G1 as family.hpp's GtrFamily::G1_up, the same leaves, by the route of family_stream.hpp.
 [[gnu::target("avx2,fma")]] void family_stream_avx2(const GtrFamilyStream& stream, const double* alpha,
                                                     const double* gamma, const double* mu, double* out, std::size_t n) {
-    const GtrFamilyLeaf* leaves = gtr_family_data.leaves;
+    const RowLeaf* leaves = stream.row_leaves().data();
     const GtrFamilyStream::Cell* cells = stream.cells().data();
     const std::uint16_t* ids = stream.ids().data();
     const double mu_lo_rel = GtrFamily::get().mu_lo_rel();
@@ -95,15 +148,14 @@ struct Located4 {
         for (int i = 0; i < block; ++i) {
             id[i] = leaf_of(o, i, cells, ids);
             const char* p = reinterpret_cast<const char*>(leaves + id[i]);
-            for (std::size_t q = 0; q < sizeof(GtrFamilyLeaf) + 63; q += 64) _mm_prefetch(p + q, _MM_HINT_T0);
+            for (std::size_t q = 0; q < sizeof(RowLeaf); q += 64) _mm_prefetch(p + q, _MM_HINT_T0);
         }
-        // 2. point by point: the leaf's coordinates and its polynomial (family.hpp's)
+        // 2. point by point: the leaf's coordinates and its polynomial
         for (int i = 0; i < block; ++i) {
-            const GtrFamilyLeaf& l = leaves[id[i]];
-            const std::array<double, 3> s = {(o.x[0][i] - l.centre[0]) * l.scale[0],
-                                             (o.x[1][i] - l.centre[1]) * l.scale[1],
-                                             (o.x[2][i] - l.centre[2]) * l.scale[2]};
-            f[i] = GtrFamily::polynomial(l, s) + o.shift[i];
+            const RowLeaf& l = leaves[id[i]];
+            const double s[3] = {(o.x[0][i] - l.centre[0]) * l.scale[0], (o.x[1][i] - l.centre[1]) * l.scale[1],
+                                 (o.x[2][i] - l.centre[2]) * l.scale[2]};
+            f[i] = polynomial(l, s) + o.shift[i];
         }
         // 3. four at once: G1 = 1 / (1 - P/2 + (e^f + P alpha mu_lo / 2) / mu); mu = 0 gives 0, mu = inf 1
         for (int h = 0; h < block; h += 4) {
