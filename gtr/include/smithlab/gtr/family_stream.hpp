@@ -1,5 +1,5 @@
 // smithlab/gtr/family_stream.hpp -- G1 of GTR for a stream of (alpha, gamma, mu) points: the family evaluator of
-// family.hpp, eight points at a time (<= 30 ns a G1 on random streams; one call of
+// family.hpp, eight or four points at a time (<= 30 ns a G1 on random streams; one call of
 // GtrFamily::G1_up is ~62 ns, a chain of dependent steps that a core cannot overlap with the next call's).
 //
 // Same leaves and the same stated bounds as GtrFamily (error_bound(), G1_error_bound()); what differs is the route
@@ -17,12 +17,13 @@
 // On AVX2 and FMA without AVX-512 (GtrFamilyRoute::avx2): stages 1 and 3 four lanes at a time (libmvec's 4-lane logs
 // and exps), the same grids; in stage 2 each leaf's polynomial with the four lanes over the power k of s2: its terms
 // as a vector over k for each row (i, j) (RowLeaf), Horner in s1 within each i, then in s0, all FMA on four-lane
-// vectors (12 ns a polynomial alone against 23 for family.hpp's two-lane one, same machine), then the dot product
-// with (1, s2, s2^2, s2^3) and s2^4 times the upper lanes; the leaves are prefetched first.
-// Built at first use from the compiled-in data (a few ms; 3.4 MB of leaves in this layout, 47 kB of index), shared by
-// every thread. The route is chosen at run time by CPU detection, AVX-512 (F and VL) first, then AVX2 and FMA; where
-// the CPU has neither, or the build has no libmvec (glibc's, x86-64), the stream is GtrFamily::G1_up point by point,
-// and none of this is built: the same values, at the one-call speed.
+// vectors, then the dot product with (1, s2, s2^2, s2^3) plus s2^4 times the upper lanes; the leaves are prefetched
+// first. The same G1 as the one call to rounding (tests/test_family_avx2.cpp runs this route by name).
+// Built at first use from the compiled-in data (a few ms; 3.4 MB of leaves in the eight-lane layout, 4.3 MB more in
+// RowLeaf's where the AVX2 route runs, 47 kB of index), shared by every thread. The route is chosen at run time by
+// CPU detection, AVX-512 (F and VL) first, then AVX2 and FMA; where the CPU has neither, or the build has no libmvec
+// (glibc's, x86-64), the stream is GtrFamily::G1_up point by point, and none of this is built: the same values, at
+// the one-call speed.
 #pragma once
 
 #include <cstddef>
