@@ -19,7 +19,7 @@
 // as a vector over k for each row (i, j) (RowLeaf), Horner in s1 within each i, then in s0, all FMA on four-lane
 // vectors, then the dot product with (1, s2, s2^2, s2^3) plus s2^4 times the upper lanes; the leaves are prefetched
 // first. The same G1 as the one call to rounding (tests/test_family_avx2.cpp runs this route by name).
-// Built at first use from the compiled-in data (a few ms; 3.4 MB of leaves in the eight-lane layout, 4.3 MB more in
+// Built at first use from the compiled-in data (tens of ms; 3.4 MB of leaves in the eight-lane layout, 4.3 MB more in
 // RowLeaf's where the AVX2 route runs, 47 kB of index), shared by every thread. The route is chosen at run time by
 // CPU detection, AVX-512 (F and VL) first, then AVX2 and FMA; where the CPU has neither, or the build has no libmvec
 // (glibc's, x86-64), the stream is GtrFamily::G1_up point by point, and none of this is built: the same values, at
