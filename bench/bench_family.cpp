@@ -64,10 +64,13 @@ const Stream& scattered_stream() {
 // n_points is a power of two: the next point is i & (n_points - 1), not i % n (a 64-bit division in every iteration,
 // which cost each row here 2-5 ns)
 static_assert((n_points & (n_points - 1)) == 0);
+// The one-call rows are compiled for baseline x86-64 (glibc's libm picks its own FMA variants of log and exp at run
+// time); their label says so, as the stream rows' name their route.
 template <class F>
 void run(benchmark::State& state, const Stream& s, const F& G1) {
     if (s.mu.size() != static_cast<std::size_t>(n_points))
         state.SkipWithError("a stream of other than n_points points");
+    state.SetLabel("x86-64 baseline");
     std::size_t i = 0;
     for (auto _ : state) {
         benchmark::DoNotOptimize(G1(i & (n_points - 1)));
