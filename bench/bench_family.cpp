@@ -14,6 +14,7 @@
 #include <smithlab/gtr/family.hpp>
 #include <smithlab/gtr/family_stream.hpp>
 #include <smithlab/smithlab.hpp>
+#include <string>
 #include <vector>
 
 namespace {
@@ -63,10 +64,13 @@ const Stream& scattered_stream() {
 // n_points is a power of two: the next point is i & (n_points - 1), not i % n (a 64-bit division in every iteration,
 // which cost each row here 2-5 ns)
 static_assert((n_points & (n_points - 1)) == 0);
+// The one-call rows are compiled for baseline x86-64 (glibc's libm picks its own FMA variants of log and exp at run
+// time); their label says so, as the stream rows' name their route.
 template <class F>
 void run(benchmark::State& state, const Stream& s, const F& G1) {
     if (s.mu.size() != static_cast<std::size_t>(n_points))
         state.SkipWithError("a stream of other than n_points points");
+    state.SetLabel("x86-64 baseline");
     std::size_t i = 0;
     for (auto _ : state) {
         benchmark::DoNotOptimize(G1(i & (n_points - 1)));
@@ -88,12 +92,20 @@ void BM_family_scattered(benchmark::State& state) {
 // The stream route (family_stream.hpp): each iteration is the whole stream of n_points G1s; the counter s_per_G1
 // (seconds, "25n" = 25 ns) is the figure to set beside the rows above (the time column is per stream). Unchecked,
 // as the one-call rows (GtrFamily::G1_up); the checked call (G1_gtr_family on spans) adds one pass over the inputs.
+// The label names the instruction set the row ran: family-stream/* take the route chosen for this CPU,
+// family-stream-avx2 and -avx512 the named route (skipped where this CPU does not run it).
+using smithlab::GtrFamilyRoute;
+using smithlab::GtrFamilyStream;
 template <class F>
-void run_stream(benchmark::State& state, const Stream& s, const F& G1_stream) {
-    if (!smithlab::GtrFamilyStream::get().vectorized()) state.SetLabel("no AVX-512: one point at a time");
+void run_stream(benchmark::State& state, GtrFamilyRoute route, const Stream& s, const F& G1_stream) {
+    if (!GtrFamilyStream::get().runs(route)) {
+        state.SkipWithError((std::string("this CPU or build has no ") + smithlab::name(route) + " route").c_str());
+        return;
+    }
+    state.SetLabel(smithlab::name(route));
     std::vector<double> out(s.mu.size());
     for (auto _ : state) {
-        G1_stream(s, out);
+        G1_stream(route, s, out);
         benchmark::DoNotOptimize(out.data());
         benchmark::ClobberMemory();
     }
@@ -101,13 +113,23 @@ void run_stream(benchmark::State& state, const Stream& s, const F& G1_stream) {
     state.counters["s_per_G1"] = benchmark::Counter(
         static_cast<double>(out.size()), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
-void unchecked(const Stream& s, std::vector<double>& out) {
-    smithlab::GtrFamilyStream::get().G1_up(s.alpha.data(), s.gamma.data(), s.mu.data(), out.data(), out.size());
+void unchecked(GtrFamilyRoute route, const Stream& s, std::vector<double>& out) {
+    GtrFamilyStream::get().G1_up(route, s.alpha.data(), s.gamma.data(), s.mu.data(), out.data(), out.size());
 }
-void checked(const Stream& s, std::vector<double>& out) { smithlab::G1_gtr_family(s.alpha, s.gamma, s.mu, out); }
-void BM_family_stream(benchmark::State& state) { run_stream(state, stream(), unchecked); }
-void BM_family_stream_scattered(benchmark::State& state) { run_stream(state, scattered_stream(), unchecked); }
-void BM_family_stream_checked(benchmark::State& state) { run_stream(state, stream(), checked); }
+void checked(GtrFamilyRoute, const Stream& s, std::vector<double>& out) {
+    smithlab::G1_gtr_family(s.alpha, s.gamma, s.mu, out);
+}
+GtrFamilyRoute chosen() { return GtrFamilyStream::get().route(); }
+void BM_family_stream(benchmark::State& state) { run_stream(state, chosen(), stream(), unchecked); }
+void BM_family_stream_scattered(benchmark::State& state) { run_stream(state, chosen(), scattered_stream(), unchecked); }
+void BM_family_stream_checked(benchmark::State& state) { run_stream(state, chosen(), stream(), checked); }
+void BM_family_stream_avx2(benchmark::State& state) { run_stream(state, GtrFamilyRoute::avx2, stream(), unchecked); }
+void BM_family_stream_avx2_scattered(benchmark::State& state) {
+    run_stream(state, GtrFamilyRoute::avx2, scattered_stream(), unchecked);
+}
+void BM_family_stream_avx512(benchmark::State& state) {
+    run_stream(state, GtrFamilyRoute::avx512, stream(), unchecked);
+}
 void BM_table(benchmark::State& state) {
     const Stream& s = stream();
     static const std::vector<smithlab::LambdaTable> tables = [&] {
@@ -155,6 +177,9 @@ BENCHMARK(BM_family_scattered)->Name("family/scattered");
 BENCHMARK(BM_family_stream)->Name("family-stream/random");
 BENCHMARK(BM_family_stream_scattered)->Name("family-stream/scattered");
 BENCHMARK(BM_family_stream_checked)->Name("family-stream-checked/random");
+BENCHMARK(BM_family_stream_avx2)->Name("family-stream-avx2/random");
+BENCHMARK(BM_family_stream_avx2_scattered)->Name("family-stream-avx2/scattered");
+BENCHMARK(BM_family_stream_avx512)->Name("family-stream-avx512/random");
 BENCHMARK(BM_table)->Name("table/per-material");
 BENCHMARK(BM_dimov_spline)->Name("dimov-spline/random");
 BENCHMARK(BM_exact_fixed)->Name("exact-fixed-1e-12/random");

@@ -16,7 +16,20 @@ namespace smithlab {
 #if SMITHLAB_FAMILY_AVX512
 void family_stream_avx512(const GtrFamilyStream& s, const double* alpha, const double* gamma, const double* mu,
                           double* out, std::size_t n);  // family_stream_avx512.cpp: n a multiple of 16
+void family_stream_avx2(const GtrFamilyStream& s, const double* alpha, const double* gamma, const double* mu,
+                        double* out, std::size_t n);  // family_stream_avx2.cpp: n a multiple of 16
 #endif
+
+const char* name(GtrFamilyRoute route) {
+    switch (route) {
+        case GtrFamilyRoute::avx2:
+            return "AVX2";
+        case GtrFamilyRoute::avx512:
+            return "AVX-512";
+        default:
+            return "one point";
+    }
+}
 
 namespace {
 
@@ -88,6 +101,38 @@ bool cpu_has_avx512() {
     return false;
 #endif
 }
+bool cpu_has_avx2() {
+#if SMITHLAB_FAMILY_AVX512
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+#else
+    return false;
+#endif
+}
+
+#if SMITHLAB_FAMILY_AVX512
+// The stream's kernels take blocks of 16 points.
+using Kernel = void (*)(const GtrFamilyStream&, const double*, const double*, const double*, double*, std::size_t);
+constexpr std::size_t block = 16;
+
+// out[i] for the whole blocks by the kernel, then the last few, padded with a point inside the domain; returns how
+// many it wrote (all n)
+std::size_t by_blocks(Kernel kernel, const GtrFamilyStream& s, const double* alpha, const double* gamma,
+                      const double* mu, double* out, std::size_t n) {
+    const std::size_t done = n - n % block;
+    kernel(s, alpha, gamma, mu, out, done);
+    if (done < n) {
+        double a[block], g[block], m[block], o[block];
+        for (std::size_t i = 0; i < block; ++i) {
+            const bool in = done + i < n;
+            a[i] = in ? alpha[done + i] : 1.0, g[i] = in ? gamma[done + i] : 2.0, m[i] = in ? mu[done + i] : 1.0;
+        }
+        kernel(s, a, g, m, o, block);
+        std::copy(o, o + (n - done), out + done);
+    }
+    return n;
+}
+#endif
 
 }  // namespace
 
@@ -96,8 +141,14 @@ const GtrFamilyStream& GtrFamilyStream::get() {
     return stream;
 }
 
-GtrFamilyStream::GtrFamilyStream() : lanes_(make_lanes()), vectorized_(cpu_has_avx512()) {
-    if (!vectorized_) return;  // the stream is GtrFamily::G1_up point by point: nothing here is read
+bool GtrFamilyStream::runs(GtrFamilyRoute route) const {
+    return route == GtrFamilyRoute::one_point || (route == GtrFamilyRoute::avx2 && avx2_) ||
+        (route == GtrFamilyRoute::avx512 && avx512_);
+}
+
+GtrFamilyStream::GtrFamilyStream() : lanes_(make_lanes()), avx2_(cpu_has_avx2()), avx512_(cpu_has_avx512()) {
+    route_ = avx512_ ? GtrFamilyRoute::avx512 : avx2_ ? GtrFamilyRoute::avx2 : GtrFamilyRoute::one_point;
+    if (!vectorized()) return;  // the stream is GtrFamily::G1_up point by point: nothing here is read
     const GtrFamilyData& d = gtr_family_data;
     // each top box's finest split per axis; the grid's leaf numbers are 16-bit, its cells counted in 32 bits
     std::vector<std::array<int, 3>> most(2 * GtrFamily::top_cells);
@@ -109,7 +160,8 @@ GtrFamilyStream::GtrFamilyStream() : lanes_(make_lanes()), vectorized_(cpu_has_a
         else cells += std::size_t{1} << splits;
     }
     if (d.n_leaves > 65535 || cells > (std::size_t{1} << 30)) {  // data this index cannot hold: one point at a time
-        vectorized_ = false;
+        route_ = GtrFamilyRoute::one_point;
+        avx2_ = avx512_ = false;
         return;
     }
     // the leaves in lanes (the last, empty, stays zero)
@@ -134,6 +186,22 @@ GtrFamilyStream::GtrFamilyStream() : lanes_(make_lanes()), vectorized_(cpu_has_a
                         i + j + k <= gtr_family_degree ? from.higher[where[i][j][k]] : 0.0f;
                 }
     }
+    // the leaves by rows over k, for the AVX2 route (the last, empty, stays zero)
+    static_assert(gtr_family_degree == 6, "RowLeaf is laid out for total degree 6");
+    if (avx2_) {
+        row_leaves_.resize(d.n_leaves + 1);
+        for (std::size_t n = 0; n < d.n_leaves; ++n) {
+            const GtrFamilyLeaf& from = d.leaves[n];
+            RowLeaf& to = row_leaves_[n];
+            for (int a = 0; a < 3; ++a)
+                to.centre[a] = from.centre[a], to.scale[a] = from.scale[a], to.linear[a] = from.linear[a];
+            to.c0 = from.c0;
+            for (int q = 0; q < GtrFamilyLeaf::n_higher; ++q) {
+                const auto& t = gtr_family_plan.term[q];
+                to.c[row_at(t[0], t[1]) + t[2]] = from.higher[q];
+            }
+        }
+    }
     // each top box's grid of leaf numbers
     ids_.reserve(cells + 1);
     for (std::size_t top = 0; top < most.size(); ++top) {
@@ -147,25 +215,15 @@ GtrFamilyStream::GtrFamilyStream() : lanes_(make_lanes()), vectorized_(cpu_has_a
     ids_.push_back(0);
 }
 
-void GtrFamilyStream::G1_up(const double* alpha, const double* gamma, const double* mu, double* out,
-                            std::size_t n) const {
+void GtrFamilyStream::G1_up(GtrFamilyRoute route, const double* alpha, const double* gamma, const double* mu,
+                            double* out, std::size_t n) const {
     std::size_t done = 0;
 #if SMITHLAB_FAMILY_AVX512
-    if (vectorized_) {
-        constexpr std::size_t block = 16;
-        done = n - n % block;
-        family_stream_avx512(*this, alpha, gamma, mu, out, done);
-        if (done < n) {  // the last few, padded with a point inside the domain
-            double a[block], g[block], m[block], o[block];
-            for (std::size_t i = 0; i < block; ++i) {
-                const bool in = done + i < n;
-                a[i] = in ? alpha[done + i] : 1.0, g[i] = in ? gamma[done + i] : 2.0, m[i] = in ? mu[done + i] : 1.0;
-            }
-            family_stream_avx512(*this, a, g, m, o, block);
-            std::copy(o, o + (n - done), out + done);
-            done = n;
-        }
-    }
+    if (route == GtrFamilyRoute::avx512 && avx512_)
+        done = by_blocks(family_stream_avx512, *this, alpha, gamma, mu, out, n);
+    if (route == GtrFamilyRoute::avx2 && avx2_) done = by_blocks(family_stream_avx2, *this, alpha, gamma, mu, out, n);
+#else
+    (void)route;
 #endif
     const GtrFamily& f = GtrFamily::get();
     for (std::size_t i = done; i < n; ++i) out[i] = f.G1_up(alpha[i], gamma[i], std::abs(mu[i]));
