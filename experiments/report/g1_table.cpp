@@ -154,7 +154,7 @@ void write_markdown(const G1Table& table, const std::vector<double>& alphas, con
 std::string G1Row::description() const {
     if (!stream) return variant->description;
     return "the family evaluator as a stream (family_stream.hpp): G1 at many points a call, eight at a time where the "
-           "CPU has AVX-512; measured in G1 only";
+           "CPU has AVX-512, four where it has AVX2; measured in G1 only";
 }
 
 G1Table g1_table(const std::vector<NdfEntry>& entries, const std::vector<double>& alphas, const NdfRegistry& ndfs,

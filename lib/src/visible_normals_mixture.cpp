@@ -12,6 +12,9 @@ constexpr int grid = 512;        // points in x for the fit
 constexpr int per_bin = 64;      // points in x per bin for the squeeze
 constexpr double far_s = 1e15;   // the tail is checked out to far_s r0^2
 constexpr double margin = 0.25;  // of a bin's range, on each side
+// A lobe costs a root and a few products per draw, a try a GGX visible normal and the squeeze (~15x more): a lobe is
+// kept when dropping it would raise K, the tries per normal, by more than this.
+constexpr double lobe_cost = 0.05;
 
 double ggx_P22(double a2, double s) {
     const double d = a2 + s;
@@ -67,35 +70,34 @@ double grid_bound(const FitGrid& f, const std::vector<double>& tail_s, const std
 }
 
 // Moves the weights and the lobes' alpha^2 (multiplicative steps, coordinate by coordinate) while the bound
-// decreases; then drops the lightest lobes while that costs the bound less than 2 %. Returns the bound.
+// decreases; then drops the lightest lobes while that raises the bound by less than lobe_cost. Returns the bound.
 double lower_bound(const FitGrid& f, const std::vector<double>& tail_s, const std::vector<double>& tail_P22,
                    std::vector<double>& a2, std::vector<double>& w) {
-    auto bound = [&] { return grid_bound(f, tail_s, tail_P22, a2, w); };
-    auto descend = [&] {
-        double K = bound();
+    auto descend = [&](std::vector<double>& a2_, std::vector<double>& w_) {
+        double K = grid_bound(f, tail_s, tail_P22, a2_, w_);
         for (double step : {2.0, 1.25, 1.05, 1.01})
             for (bool moved = true; moved;) {
                 moved = false;
-                for (std::vector<double>* p : {&w, &a2})
-                    for (std::size_t k = 0; k < w.size(); ++k)
+                for (std::vector<double>* p : {&w_, &a2_})
+                    for (std::size_t k = 0; k < w_.size(); ++k)
                         for (double factor : {step, 1.0 / step}) {
                             const double keep = (*p)[k];
                             (*p)[k] = keep * factor;
-                            const double Kt = bound();
+                            const double Kt = grid_bound(f, tail_s, tail_P22, a2_, w_);
                             if (Kt < K * (1.0 - 1e-9)) K = Kt, moved = true;
                             else (*p)[k] = keep;
                         }
             }
         return K;
     };
-    double K = descend();
+    double K = descend(a2, w);
     while (w.size() > 1) {
         const std::size_t k = std::min_element(w.begin(), w.end()) - w.begin();
         std::vector<double> a2_less = a2, w_less = w;
         a2_less.erase(a2_less.begin() + k), w_less.erase(w_less.begin() + k);
-        if (!(grid_bound(f, tail_s, tail_P22, a2_less, w_less) < 1.02 * K)) break;
-        a2 = a2_less, w = w_less;
-        K = descend();
+        const double K_less = descend(a2_less, w_less);
+        if (!(K_less < K + lobe_cost)) break;
+        a2 = a2_less, w = w_less, K = K_less;
     }
     const double sum = std::accumulate(w.begin(), w.end(), 0.0);
     for (double& x : w) x /= sum;
