@@ -107,6 +107,23 @@ void register_table() {
         const smithlab::LambdaTable t = smithlab::tabulate_Lambda(smithlab::student(0.3, 4.0));
         g1(s, [&](double mu) { return t.Lambda(mu); });
     });
+    // The walk's Lambda (FastLambda::at_tan2, tan^2 = 1 / mu^2 given): GGX's closed form, and the spline over the bits
+    // of tan^2 that every other NDF gets (tan2_spline.hpp).
+    auto g1_tan2 = [](benchmark::State& state, const auto& L) {
+        std::size_t i = 0;
+        constexpr std::array<double, 5> t2 = {1e4, 1e2, 1.0, 1e-2, 1e-4};  // tan^2 at mu = 0.01 .. 100
+        for (auto _ : state) benchmark::DoNotOptimize(1.0 / (1.0 + L.at_tan2(t2[i++ % t2.size()])));
+        state.SetItemsProcessed(state.iterations());
+    };
+    benchmark::RegisterBenchmark("G1/walk-tan2/ggx(0.3)", [g1_tan2](benchmark::State& s) {
+        g1_tan2(s, smithlab::FastLambda<smithlab::Ggx>(smithlab::ggx(0.3)));
+    });
+    benchmark::RegisterBenchmark("G1/walk-tan2/beckmann(0.3)", [g1_tan2](benchmark::State& s) {
+        g1_tan2(s, smithlab::FastLambda<smithlab::Beckmann>(smithlab::beckmann(0.3)));
+    });
+    benchmark::RegisterBenchmark("G1/walk-tan2/gtr(0.3,1.5)", [g1_tan2](benchmark::State& s) {
+        g1_tan2(s, smithlab::FastLambda<smithlab::Gtr>(smithlab::gtr(0.3, 1.5)));
+    });
     for (double gamma : {0.5, 1.5, 2.0, 7.3, 15.0}) {
         const std::string name = "gtr(0.3," + std::to_string(gamma).substr(0, gamma < 10 ? 3 : 4) + ")";
         benchmark::RegisterBenchmark(("G1/table/" + name).c_str(), [g1, gamma](benchmark::State& s) {

@@ -1,7 +1,7 @@
 // Samples per second for each sampler (the concrete classes, as a renderer would call them), on GGX(0.3),
 // Beckmann(0.3), GTR(0.3, 1.5) and a D-only NDF at theta_i = 45 degrees; and what preparing a sampler costs.
-// Visible normals by the template on the concrete NDF (VisibleNormals<N>, as the walk calls it), closed form and
-// rejection, at 45, 135 and 170 degrees (wi below the horizon: a ray going up).
+// Visible normals by the template on the concrete NDF (VisibleNormals<N>, as the walk calls it), closed form, GGX
+// mixture and rejection, at 45, 135 and 170 degrees (wi below the horizon: a ray going up).
 // Run: build/bench/bench_sampling --benchmark_min_time=0.2   (one core; docs/performance.md has the current numbers)
 #include <benchmark/benchmark.h>
 
@@ -46,10 +46,14 @@ void register_for(const std::string& name, const N& ndf) {
     for (double theta : {45.0, 135.0, 170.0}) {
         const Vec3 v = smithlab::direction_from_theta_deg(theta);
         const std::string at = theta == 45.0 ? "/45" : theta == 135.0 ? "/135" : "/170";
-        for (auto route : {smithlab::VisibleRoute::automatic, smithlab::VisibleRoute::rejection}) {
+        for (auto route :
+             {smithlab::VisibleRoute::closed, smithlab::VisibleRoute::mixture, smithlab::VisibleRoute::rejection}) {
             const smithlab::VisibleNormals<N> vn(ndf, route);
-            if (route == smithlab::VisibleRoute::automatic && !vn.closed_form()) continue;
-            std::string label = vn.closed_form() ? "visible-closed/" : "visible-rejection/";
+            if (route == smithlab::VisibleRoute::closed && !vn.closed_form()) continue;
+            if (route == smithlab::VisibleRoute::mixture && !vn.mixture()) continue;
+            std::string label = vn.closed_form() ? "visible-closed/"
+                : vn.mixture()                   ? "visible-mixture/"
+                                                 : "visible-rejection/";
             label.append(name).append(at);
             benchmark::RegisterBenchmark(label.c_str(), [vn, v](benchmark::State& s) {
                 run(s, [&](smithlab::Rng& g) { return vn.sample(v, g).z(); });
@@ -58,6 +62,10 @@ void register_for(const std::string& name, const N& ndf) {
     }
     benchmark::RegisterBenchmark(("prepare-vndf/" + name).c_str(), [ndf](benchmark::State& s) {
         for (auto _ : s) benchmark::DoNotOptimize(smithlab::VisibleNormalSampler(ndf).table_error());
+    })->Unit(benchmark::kMillisecond);
+    // What a walk's microsurface builds once per cell: the automatic route (the mixture's fit, the Lambda spline).
+    benchmark::RegisterBenchmark(("prepare-walk-normals/" + name).c_str(), [ndf](benchmark::State& s) {
+        for (auto _ : s) benchmark::DoNotOptimize(smithlab::VisibleNormals<N>(ndf).table_error());
     })->Unit(benchmark::kMillisecond);
 }
 

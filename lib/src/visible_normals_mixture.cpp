@@ -8,7 +8,7 @@ namespace smithlab {
 namespace {
 
 constexpr int dictionary = 49;   // alpha = r0 2^(j/2), j = -24..24
-constexpr int grid = 512;        // points in x for the fit
+constexpr int grid = 256;        // points in x for the fit
 constexpr int per_bin = 64;      // points in x per bin for the squeeze
 constexpr double far_s = 1e15;   // the tail is checked out to far_s r0^2
 constexpr double margin = 0.25;  // of a bin's range, on each side
@@ -75,7 +75,7 @@ double lower_bound(const FitGrid& f, const std::vector<double>& tail_s, const st
                    std::vector<double>& a2, std::vector<double>& w) {
     auto descend = [&](std::vector<double>& a2_, std::vector<double>& w_) {
         double K = grid_bound(f, tail_s, tail_P22, a2_, w_);
-        for (double step : {2.0, 1.25, 1.05, 1.01})
+        for (double step : {1.5, 1.1, 1.02})
             for (bool moved = true; moved;) {
                 moved = false;
                 for (std::vector<double>* p : {&w_, &a2_})
@@ -117,13 +117,13 @@ std::optional<GgxMixture> GgxMixture::fit(const std::function<double(double)>& P
 
     std::vector<double> a2(dictionary), w(dictionary, 1.0 / dictionary);
     for (int j = 0; j < dictionary; ++j) a2[j] = r02 * std::exp2(j - (dictionary - 1) / 2);  // alpha^2 = r0^2 2^j'
-    em(f, a2, w, 100);
+    em(f, a2, w, 60);
     std::vector<int> order(dictionary);
     std::iota(order.begin(), order.end(), 0);
     std::sort(order.begin(), order.end(), [&](int i, int j) { return w[i] > w[j]; });
     std::vector<double> ka2, kw;
     for (int i = 0; i < max_lobes; ++i) ka2.push_back(a2[order[i]]), kw.push_back(w[order[i]]);
-    em(f, ka2, kw, 50);
+    em(f, ka2, kw, 30);
     if (!(lower_bound(f, tail_s, tail_P22, ka2, kw) <= max_bound)) return std::nullopt;
 
     GgxMixture m;

@@ -37,22 +37,46 @@ namespace smithlab {
 // no trigonometry, drawn by rejection from the square (acceptance pi / 4; one 64-bit draw per try, its halves on a
 // grid of 2^-31: rng.hpp, uniform_square). m is the unstretched h, normalized: one root and a division for the
 // stretch, a root for the cap, a root and a division for m.
-template <class G>
-Vec3 sample_ggx_visible_normal(double alpha, const Vec3& v, G& g) {
+// v stretched to the alpha = 1 configuration, s = (alpha v.x, alpha v.y, v.z), with P = |s| + s.z and Q = |s| - s.z
+// (P Q = |s_xy|^2; the one that would cancel is formed as the quotient). P / 2 is GGX's projected area A(v) over the
+// whole sphere in Smith's convention (Heitz 2014 eq. 72: (1 + Lambda) cos theta above the horizon, Lambda |cos| below).
+struct GgxCap {
+    double alpha, sx, sy, P, Q;
+};
+
+inline GgxCap ggx_cap(double alpha, const Vec3& v) {
     const double sx = alpha * v.x(), sy = alpha * v.y(), sz = v.z();
     const double d2 = sx * sx + sy * sy, l = std::sqrt(d2 + sz * sz);
     const double P = sz >= 0.0 ? l + sz : d2 / (l - sz), Q = sz >= 0.0 ? d2 / P : l - sz;
-    if (!(P > 0.0)) return no_normal();  // straight down: no normal is visible
-    for (int tries = 0; tries < 100; ++tries) {
-        const auto [a, b] = uniform_square(g);
-        const double u = a * a + b * b;
-        if (!(u < 1.0)) continue;
-        const double hz = (1.0 - u) * P, r = std::sqrt(P * (Q + hz));
-        const double mx = alpha * (r * a + sx), my = alpha * (r * b + sy);
-        const double n = 1.0 / std::sqrt(mx * mx + my * my + hz * hz);
-        const Vec3 m(mx * n, my * n, hz * n);
-        if (m.z() > 0.0 && v.dot(m) > 0.0) return m;  // not, only by rounding at grazing normals
-    }
+    return {alpha, sx, sy, P, Q};
+}
+
+// One try of the cap (P > 0): false when the point falls outside the unit disk, else the normal h, unnormalized
+// (h.z > 0): its slope is what a caller accepting by the slope needs before it normalizes.
+template <class G>
+bool ggx_cap_try(const GgxCap& c, G& g, Vec3& h) {
+    const auto [a, b] = uniform_square(g);
+    const double u = a * a + b * b;
+    if (!(u < 1.0)) return false;
+    const double hz = (1.0 - u) * c.P, r = std::sqrt(c.P * (c.Q + hz));
+    h = Vec3(c.alpha * (r * a + c.sx), c.alpha * (r * b + c.sy), hz);
+    return true;
+}
+
+// h normalized, when it faces v and lies above the surface (not, only by rounding at grazing normals).
+inline bool ggx_cap_normal(const Vec3& h, const Vec3& v, Vec3& m) {
+    const double n = 1.0 / std::sqrt(h.x() * h.x() + h.y() * h.y() + h.z() * h.z());
+    m = Vec3(h.x() * n, h.y() * n, h.z() * n);
+    return m.z() > 0.0 && v.dot(m) > 0.0;
+}
+
+template <class G>
+Vec3 sample_ggx_visible_normal(double alpha, const Vec3& v, G& g) {
+    const GgxCap c = ggx_cap(alpha, v);
+    if (!(c.P > 0.0)) return no_normal();  // straight down: no normal is visible
+    Vec3 h, m;
+    for (int tries = 0; tries < 100; ++tries)
+        if (ggx_cap_try(c, g, h) && ggx_cap_normal(h, v, m)) return m;
     return no_normal();
 }
 

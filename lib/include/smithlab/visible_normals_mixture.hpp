@@ -53,26 +53,26 @@ public:
     // `tries` draws are rejected. P22 is the NDF's slope density, the one the mixture was fitted to.
     template <class P22Fn, class G>
     Vec3 sample(const Vec3& v, const P22Fn& P22, G& g, long tries = max_tries) const {
-        const double d2 = v.x() * v.x() + v.y() * v.y(), z = v.z();
+        std::array<GgxCap, max_lobes> cap;
         std::array<double, max_lobes> cum{};
         double total = 0.0;
         for (int k = 0; k < lobes_; ++k) {
-            const double a2d2 = alpha2_[k] * d2, R = std::sqrt(z * z + a2d2);
-            total += weight_[k] * (z >= 0.0 ? 0.5 * (R + z) : 0.5 * a2d2 / (R - z));
+            cap[k] = ggx_cap(alpha_[k], v);
+            total += weight_[k] * cap[k].P;  // w_k 2 A_k(v)
             cum[k] = total;
         }
         if (!(total > 0.0)) return no_normal();
+        Vec3 h, m;
         for (long n = 0; n < tries; ++n) {
             int k = 0;
             if (lobes_ > 1)
                 for (const double u = uniform01(g) * total; k < lobes_ - 1 && u >= cum[k];) ++k;
-            const Vec3 m = sample_ggx_visible_normal(alpha_[k], v, g);
-            if (std::isnan(m.x())) return m;
-            const double s = tan2_theta(m), x = s / (s + r02_), UK = uniform01(g) * K_;
+            while (!ggx_cap_try(cap[k], g, h)) {}
+            const double s = (h.x() * h.x() + h.y() * h.y()) / (h.z() * h.z()), x = s / (s + r02_);
+            const double UK = uniform01(g) * K_;
             const int b = std::min(static_cast<int>(x * bins), bins - 1);
-            if (UK < lo_[b]) return m;
-            if (UK >= hi_[b]) continue;
-            if (UK * Q(s) < P22(s)) return m;
+            if (UK >= hi_[b] || (UK >= lo_[b] && !(UK * Q(s) < P22(s)))) continue;
+            if (ggx_cap_normal(h, v, m)) return m;
         }
         return no_normal();
     }
