@@ -68,7 +68,8 @@ void add_equal_error(const std::string& name, const N& ndf, const M& material) {
     // Fit points of the default training set's kind, grazing ones included: (theta_i, theta_o, phi), degrees.
     for (const fit::Directions d : {fit::Directions{45, 60, 135}, {0, 40, 0}, {60, 60, 180}, {80, 85, 0}, {15, 85, 90}})
         for (const auto& [label, e] : {std::pair{"next_event", walk::EvalEstimator::next_event},
-                                       {"expected_first", walk::EvalEstimator::expected_first}}) {
+                                       {"expected_first", walk::EvalEstimator::expected_first},
+                                       {"reciprocal", walk::EvalEstimator::reciprocal}}) {
             char where[64];
             std::snprintf(where, sizeof where, "(%g,%g,%g)/", d.theta_i, d.theta_o, d.phi);
             benchmark::RegisterBenchmark(("equal_error/" + name + where + label).c_str(), equal_error<N, M>, ndf,

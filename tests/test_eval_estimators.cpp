@@ -1,10 +1,11 @@
-// The eval estimators (walk.hpp, EvalEstimator) against each other and against closed forms: expected_first agrees
-// with next_event within a few standard errors (independent walks) at points, NDFs and facets of every kind; its first
-// hit on mirror facets is the closed-form single scattering of GGX exactly (no variance left); its cells are the
-// same bits at 1 and 2 threads.
+// The eval estimators (walk.hpp, EvalEstimator) against each other and against closed forms: expected_first and
+// reciprocal agree with next_event within a few standard errors (independent walks) at points, NDFs and facets of
+// every kind, order by order; expected_first's first hit on mirror facets is the closed-form single scattering of GGX
+// exactly (no variance left); their cells are the same bits at 1 and 2 threads.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <numbers>
+#include <smithlab/fit/dataset.hpp>
 #include <smithlab/smithlab.hpp>
 #include <smithlab/walk/trace.hpp>
 #include <string>
@@ -34,26 +35,30 @@ void check_agreement(const std::string& name, const N& ndf, const M& material, s
                             .walks = walks};
         r.seed = 11;
         const walk::EvalTally old = walk::eval_cell(ms, material, r);
-        r.seed = 12;  // independent walks
-        r.estimator = EvalEstimator::expected_first;
-        const walk::EvalTally now = walk::eval_cell(ms, material, r);
-        INFO(name << " at (" << p.ti << ", " << p.to << ", " << p.phi << "): next_event " << old.value().value << " +- "
-                  << old.value().stderr_ << ", expected_first " << now.value().value << " +- " << now.value().stderr_);
-        REQUIRE(old.value().value > 0.0);
-        CHECK(sigmas(old.value(), now.value()) < 4.5);
-        // Order by order too: the first hit's closed form must not move energy between orders.
-        for (int b = 0; b < walk::order_bins; ++b) {
-            const walk::Estimate o = estimate(old.orders[b], old.walks), n = estimate(now.orders[b], now.walks);
-            INFO("order bin " << b + 1 << ": " << o.value << " +- " << o.stderr_ << " against " << n.value << " +- "
-                              << n.stderr_);
-            if (o.stderr_ + n.stderr_ > 0.0) CHECK(sigmas(o, n) < 4.5);
+        for (const EvalEstimator e : {EvalEstimator::expected_first, EvalEstimator::reciprocal}) {
+            r.seed = 12;  // independent walks
+            r.estimator = e;
+            const walk::EvalTally now = walk::eval_cell(ms, material, r);
+            INFO(name << " at (" << p.ti << ", " << p.to << ", " << p.phi << "): next_event " << old.value().value
+                      << " +- " << old.value().stderr_ << ", "
+                      << (e == EvalEstimator::reciprocal ? "reciprocal " : "expected_first ") << now.value().value
+                      << " +- " << now.value().stderr_);
+            REQUIRE(old.value().value > 0.0);
+            CHECK(sigmas(old.value(), now.value()) < 4.5);
+            // Order by order too: neither the first hit's closed form nor the reversal may move energy between orders.
+            for (int b = 0; b < walk::order_bins; ++b) {
+                const walk::Estimate o = estimate(old.orders[b], old.walks), n = estimate(now.orders[b], now.walks);
+                INFO("order bin " << b + 1 << ": " << o.value << " +- " << o.stderr_ << " against " << n.value << " +- "
+                                  << n.stderr_);
+                if (o.stderr_ + n.stderr_ > 0.0) CHECK(sigmas(o, n) < 4.5);
+            }
         }
     }
 }
 
 }  // namespace
 
-TEST_CASE("eval estimators: expected_first agrees with next_event", "[walk][eval]") {
+TEST_CASE("eval estimators: expected_first and reciprocal agree with next_event", "[walk][eval]") {
     check_agreement("ggx(0.5) fresnel-diffuse", smithlab::ggx(0.5), walk::FresnelDiffuse{0.04, 1.0}, 60'000);
     check_agreement("ggx(0.5) lambert", smithlab::ggx(0.5), walk::Lambert{0.8}, 60'000);
     check_agreement("ggx(0.3) mirror", smithlab::ggx(0.3), walk::Mirror{}, 60'000);
@@ -92,21 +97,41 @@ TEST_CASE("eval estimators: expected_first's first hit on mirrors is GGX's singl
     }
 }
 
-TEST_CASE("eval estimators: an expected_first cell is the same bits at 1 and 2 threads", "[walk][eval]") {
+TEST_CASE("eval estimators: expected_first and reciprocal cells are the same bits at 1 and 2 threads", "[walk][eval]") {
     const walk::Microsurface ms(smithlab::gtr(0.5, 3.0));
-    walk::EvalRequest r{.wi = smithlab::direction_from_deg(60.0, 0.0),
-                        .wo = smithlab::direction_from_deg(45.0, 135.0),
-                        .walks = 9000,
-                        .block = 1000};
-    r.estimator = EvalEstimator::expected_first;
-    r.threads = 1;
-    const walk::EvalTally one = walk::eval_cell(ms, walk::FresnelDiffuse{0.04, 1.0}, r);
-    r.threads = 2;
-    const walk::EvalTally two = walk::eval_cell(ms, walk::FresnelDiffuse{0.04, 1.0}, r);
-    CHECK(one.value().value == two.value().value);
-    CHECK(one.value().stderr_ == two.value().stderr_);
-    CHECK(one.events == two.events);
-    // And it is another estimator than next_event: the same walks' random numbers give other values.
-    r.estimator = EvalEstimator::next_event;
-    CHECK(walk::eval_cell(ms, walk::FresnelDiffuse{0.04, 1.0}, r).value().value != one.value().value);
+    for (const EvalEstimator e : {EvalEstimator::expected_first, EvalEstimator::reciprocal}) {
+        walk::EvalRequest r{.wi = smithlab::direction_from_deg(30.0, 0.0),
+                            .wo = smithlab::direction_from_deg(75.0, 135.0),
+                            .walks = 9000,
+                            .block = 1000};
+        r.estimator = e;
+        r.threads = 1;
+        const walk::EvalTally one = walk::eval_cell(ms, walk::FresnelDiffuse{0.04, 1.0}, r);
+        r.threads = 2;
+        const walk::EvalTally two = walk::eval_cell(ms, walk::FresnelDiffuse{0.04, 1.0}, r);
+        CHECK(one.value().value == two.value().value);
+        CHECK(one.value().stderr_ == two.value().stderr_);
+        CHECK(one.events == two.events);
+        // And it is another estimator than next_event: the same walks' random numbers give other values.
+        r.estimator = EvalEstimator::next_event;
+        CHECK(walk::eval_cell(ms, walk::FresnelDiffuse{0.04, 1.0}, r).value().value != one.value().value);
+    }
+}
+
+TEST_CASE("eval estimators: the fitter's point traces by reciprocal", "[walk][eval][fit]") {
+    // trace_eval_point's default is the estimator with the lowest equal-error time (bench_fit): the same sums as the
+    // walks of eval_walk by reciprocal, and other sums than next_event's.
+    const walk::Microsurface ms(smithlab::ggx(0.5));
+    const walk::FresnelDiffuse material{0.04, 1.0};
+    const Vec3 wi = smithlab::direction_from_deg(20.0, 0.0), wo = smithlab::direction_from_deg(80.0, 90.0);
+    const smithlab::fit::SplitMoments m = smithlab::fit::trace_eval_point(ms, material, wi, wo, 5, 2, 500);
+    double by_hand = 0.0;
+    for (std::uint64_t k = 0; k < 500; ++k) {
+        smithlab::WalkRng g(5, 2, k);
+        by_hand += walk::eval_walk(ms, material, wi, wo, g, {}, EvalEstimator::reciprocal).by_diffuse[1];
+    }
+    CHECK(m.sum[1] == by_hand);
+    const smithlab::fit::SplitMoments old =
+        smithlab::fit::trace_eval_point(ms, material, wi, wo, 5, 2, 500, EvalEstimator::next_event);
+    CHECK(old.sum[1] != m.sum[1]);
 }

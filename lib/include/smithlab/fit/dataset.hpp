@@ -77,7 +77,7 @@ struct DataPoint {
 template <class Microsurface, class M>
 SplitMoments trace_eval_point(const Microsurface& ms, const M& material, const Vec3& wi, const Vec3& wo,
                               std::uint64_t seed, std::uint64_t cell, std::int64_t walks,
-                              walk::EvalEstimator estimator = walk::EvalEstimator::expected_first) {
+                              walk::EvalEstimator estimator = walk::EvalEstimator::reciprocal) {
     SplitMoments m;
     for (std::int64_t k = 0; k < walks; ++k) {
         WalkRng g(seed, cell, static_cast<std::uint64_t>(k));

@@ -137,9 +137,16 @@ WalkSample sample_walk(const Microsurface& ms, const M& material, const Vec3& wi
 //                   (the height's average is a conditional expectation; the shared normal has the law the phase
 //                   integrates over), so the sum stays unbiased; only the terms' correlation changes. Toward wo on the
 //                   other side of a two-sided material the first hit's escape chance stays sampled.
-// expected_first is the fitter's: its equal-error time (ns a walk x variance) is lower at every point bench_fit
+//   reciprocal      expected_first, traced from the more grazing of wi and wo toward the other: for a reciprocal
+//                   material (facets.hpp, Reciprocal) under Smith's downward convention f(wi, wo) = f(wo, wi), so
+//                   f(wi, wo) |cos theta_o| = f(wo, wi) |cos theta_i| x cos theta_o / cos theta_i, order by order
+//                   and diffuse event by diffuse event (a path reversed keeps both). The escape chance and the
+//                   diffuse phase toward a direction near the horizon are what vary most from walk to walk; toward
+//                   the one nearer the normal they vary least. Elsewhere (wo below, wo no more grazing than wi, another
+//                   material or convention) it is expected_first.
+// reciprocal is the fitter's: its equal-error time (ns a walk x variance) is the lowest at every point bench_fit
 // measures.
-enum class EvalEstimator { next_event, expected_first };
+enum class EvalEstimator { next_event, expected_first, reciprocal };
 
 struct EvalSample {
     std::array<double, order_bins> specular{}, diffuse{};  // f |cos theta_o| by order bin and component
@@ -151,6 +158,11 @@ struct EvalSample {
 namespace detail {
 // A next event's term, w (the path's weight times the escape chance) times the phase, tallied at its order after
 // `diffuse` diffuse events: the phase's specular part adds no diffuse event to the path, its diffuse part one.
+inline void scale(EvalSample& s, double c) {
+    for (double& x : s.specular) x *= c;
+    for (double& x : s.diffuse) x *= c;
+    for (double& x : s.by_diffuse) x *= c;
+}
 inline void add_next_event(EvalSample& out, std::int64_t order, int diffuse, double w, const Phase& p) {
     const int b = order_bin(order);
     (diffuse > 0 ? out.diffuse : out.specular)[b] += w * p.specular;
@@ -163,6 +175,16 @@ inline void add_next_event(EvalSample& out, std::int64_t order, int diffuse, dou
 template <class Microsurface, class M, class G>
 EvalSample eval_walk(const Microsurface& ms, const M& material, const Vec3& wi, const Vec3& wo, G& g,
                      const WalkLimits& limits = {}, EvalEstimator estimator = EvalEstimator::next_event) {
+    if (estimator == EvalEstimator::reciprocal) {
+        if constexpr (Reciprocal<M>) {
+            if (wo.z() > 0.0 && wo.z() < wi.z() && ms.options().downward == Downward::smith) {
+                EvalSample s = eval_walk(ms, material, wo, wi, g, limits, EvalEstimator::expected_first);
+                detail::scale(s, wo.z() / wi.z());
+                return s;
+            }
+        }
+        estimator = EvalEstimator::expected_first;
+    }
     EvalSample out;
     // The phase functions are densities over visible normals: a microsurface whose hits draw another law
     // (require_eval_normals, which the caller runs before any walk) gives no estimate, every walk capped.
