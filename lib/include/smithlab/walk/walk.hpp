@@ -82,15 +82,18 @@ struct DrawnNormal {
 
 // E[C1(h1)^Lambda(wo)] over the height h1 where a ray travelling along w (down) from above the surface first hits
 // it: a / (a + Lambda(wo)), a = -Lambda(w) (EvalEstimator::expected_first); 1 where wo is straight up (Lambda = 0),
-// 0 where it is horizontal.
+// 0 where it is horizontal. A stand-in microsurface without Lambda (a test's) gets the sampled chance at h1.
 template <class Microsurface>
-double expected_first_escape(const Microsurface& ms, const Vec3& w, const Vec3& wo) {
+double expected_first_escape(const Microsurface& ms, const Vec3& w, const Vec3& wo, double h1) {
     if (!(wo.z() > 0.0)) return 0.0;
-    const double a = -ms.Lambda(w), L = ms.Lambda(wo);
-    if (L == 0.0) return 1.0;
-    if (a == INFINITY) return 1.0;
-    if (!(L < INFINITY)) return 0.0;
-    return a / (a + L);
+    if constexpr (!requires { ms.Lambda(w); }) return ms.escape(wo, h1);
+    else {
+        const double a = -ms.Lambda(w), L = ms.Lambda(wo);
+        if (L == 0.0) return 1.0;
+        if (a == INFINITY) return 1.0;
+        if (!(L < INFINITY)) return 0.0;
+        return a / (a + L);
+    }
 }
 }  // namespace detail
 
@@ -220,7 +223,7 @@ EvalSample eval_walk(const Microsurface& ms, const M& material, const Vec3& wi, 
         // this side, wo up (local) is reached by reflection and escapes this side; wo down only through the surface,
         // escaping on the other side (where it and the height are negated); one-sided phases are 0 there.
         const Vec3 wo_local = above ? wo : -wo;
-        const double e = shared && order == 1 && wo_local.z() > 0.0 ? detail::expected_first_escape(ms, w, wo_local)
+        const double e = shared && order == 1 && wo_local.z() > 0.0 ? detail::expected_first_escape(ms, w, wo_local, h)
             : wo_local.z() > 0.0                                    ? ms.escape(wo_local, h)
             : TwoSided<M>                                           ? ms.escape(-wo_local, ms.other_side(h))
                                                                     : 0.0;
