@@ -1,14 +1,17 @@
-// The diffuse fitter's costs: a training point's eval walk (split by diffuse events) and its tally, one evaluation of
-// each diffuse model, a whole fit, and one alpha of an energy-compensation table.
+// The diffuse fitter's costs: a training point's eval walk (split by diffuse events) and its tally, the equal-error
+// time of a point by each eval estimator, one evaluation of each diffuse model, a whole fit, and one alpha of an
+// energy-compensation table.
 // Run: build/bench/bench_fit --benchmark_repetitions=5 --benchmark_report_aggregates_only
 #include <benchmark/benchmark.h>
 
+#include <cstdio>
 #include <smithlab/fit/compensation.hpp>
 #include <smithlab/fit/dataset.hpp>
 #include <smithlab/fit/fit_model.hpp>
 #include <smithlab/smithlab.hpp>
 #include <smithlab/walk/trace.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -32,6 +35,47 @@ void eval_point(benchmark::State& state) {
     state.SetItemsProcessed(state.iterations());
 }
 BENCHMARK(eval_point);
+
+// The equal-error time of a fit point: what the fitter fits, the diffuse part at albedo 1 (sum of f_k, k >= 1, of
+// f(wi, wo) |cos theta_o|), walk after walk by one estimator (walk.hpp, EvalEstimator). Counters: rel_var, the
+// variance of one walk's value over its mean squared; s_to_1e-3, seconds (CPU) to a relative standard error of 1e-3,
+// = time a walk x rel_var / 1e-6 (the work-normalized variance); items_per_second, walks.
+template <class N, class M>
+void equal_error(benchmark::State& state, const N& ndf, const M& material, fit::Directions d,
+                 walk::EvalEstimator estimator) {
+    const walk::Microsurface ms(ndf);
+    const Vec3 wi = d.wi(), wo = d.wo();
+    double sum = 0.0, sum2 = 0.0;
+    std::uint64_t k = 0;
+    for (auto _ : state) {
+        smithlab::WalkRng g(1, 0, k++);
+        const walk::EvalSample e = walk::eval_walk(ms, material, wi, wo, g, {}, estimator);
+        double y = 0.0;
+        for (int j = 1; j < walk::diffuse_bins; ++j) y += e.by_diffuse[j];
+        sum += y;
+        sum2 += y * y;
+    }
+    const double n = static_cast<double>(k), mean = sum / n, rel_var = (sum2 / n - mean * mean) / (mean * mean);
+    state.counters["rel_var"] = rel_var;
+    // (1e-6 / rel_var) x iterations / time, inverted: time / iterations x rel_var / 1e-6.
+    state.counters["s_to_1e-3"] =
+        benchmark::Counter(1e-6 / rel_var, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+    state.SetItemsProcessed(state.iterations());
+}
+
+template <class N, class M>
+void add_equal_error(const std::string& name, const N& ndf, const M& material) {
+    // Fit points of the default training set's kind, grazing ones included: (theta_i, theta_o, phi), degrees.
+    for (const fit::Directions d : {fit::Directions{45, 60, 135}, {0, 40, 0}, {60, 60, 180}, {80, 85, 0}, {15, 85, 90}})
+        for (const auto& [label, e] : {std::pair{"next_event", walk::EvalEstimator::next_event},
+                                       {"expected_first", walk::EvalEstimator::expected_first},
+                                       {"reciprocal", walk::EvalEstimator::reciprocal}}) {
+            char where[64];
+            std::snprintf(where, sizeof where, "(%g,%g,%g)/", d.theta_i, d.theta_o, d.phi);
+            benchmark::RegisterBenchmark(("equal_error/" + name + where + label).c_str(), equal_error<N, M>, ndf,
+                                         material, d, e);
+        }
+}
 
 // items_per_second: model evaluations per second over 64 direction pairs at alpha 0.5, published constants.
 void model(benchmark::State& state, const fit::DiffuseModel* m) {
@@ -82,6 +126,11 @@ void compensation(benchmark::State& state, double alpha) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    const walk::FresnelDiffuse hammon{0.04, 1.0};
+    add_equal_error("ggx(alpha=0.5)/fresnel-diffuse", smithlab::ggx(0.5), hammon);
+    add_equal_error("ggx(alpha=0.5)/lambert", smithlab::ggx(0.5), walk::Lambert{1.0});
+    add_equal_error("gtr(alpha=0.5, gamma=1)/fresnel-diffuse", smithlab::gtr(0.5, 1.0), hammon);
+    add_equal_error("gtr(alpha=0.5, gamma=3)/fresnel-diffuse", smithlab::gtr(0.5, 3.0), hammon);
     for (const fit::DiffuseModel& m : fit::diffuse_models())
         benchmark::RegisterBenchmark(("model/" + std::string(m.name)).c_str(), model, &m);
     for (double a : {0.1, 0.5, 1.0})

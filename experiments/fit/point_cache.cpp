@@ -18,7 +18,8 @@ std::string cache_key(const AnyNdf& ndf, const std::string& material, const std:
                       std::uint64_t seed, std::uint64_t stream, std::size_t points) {
     std::ostringstream k;
     k << "smithlab " << SMITHLAB_VERSION << "|ndf=" << ndf.key() << "|material=" << material << "|set=" << set
-      << "|walks=" << walks << "|seed=" << seed << "|stream=" << stream << "|points=" << points;
+      << "|walks=" << walks << "|seed=" << seed << "|stream=" << stream << "|points=" << points
+      << "|eval=reciprocal";  // the eval points' estimator (fit::trace_eval_point's default, walk.hpp)
     return k.str();
 }
 

@@ -3,9 +3,9 @@
 // fields (its directions, 17 digits) and its moments (read back bit for bit), and last `checksum,HEX`, the CRC-64 of
 // every byte above it, the key line included (smithlab/util/checksum.hpp). A file is reused only when its checksum
 // holds, its key is the one asked for (all that defines the trace: version, NDF, material, set, walks, seed, stream,
-// points), every point's fields are the ones asked for and its moments are finite numbers: a changed scene or NDF
-// never reuses stale data (and says nothing), and a file cut short, with a value edited, bits flipped or rows
-// swapped is traced again with a line on stderr ("fit: cache PATH: checksum mismatch, traced again").
+// points, the eval estimator), every point's fields are the ones asked for and its moments are finite numbers: a
+// changed scene or NDF never reuses stale data (and says nothing), and a file cut short, with a value edited, bits
+// flipped or rows swapped is traced again with a line on stderr ("fit: cache PATH: checksum mismatch, traced again").
 #pragma once
 
 #include <cstdint>
@@ -27,7 +27,8 @@ struct CacheFile {
     std::int64_t walks = 0;                        // per point
 };
 
-// "smithlab VERSION|ndf=NDF KEY|material=...|set=SET|walks=N|seed=S|stream=FIRST STREAM|points=N".
+// "smithlab VERSION|ndf=NDF KEY|material=...|set=SET|walks=N|seed=S|stream=FIRST STREAM|points=N|eval=ESTIMATOR"
+// (the eval points' estimator: a cache traced by another is traced again).
 std::string cache_key(const AnyNdf& ndf, const std::string& material, const std::string& set, std::int64_t walks,
                       std::uint64_t seed, std::uint64_t stream, std::size_t points);
 

@@ -72,14 +72,16 @@ struct DataPoint {
 };
 
 // The eval-estimator point: f(wi, wo) |cos theta_o| split by diffuse events over `walks` walks drawn from
-// WalkRng(seed, cell, k), one thread (the caller runs points in parallel).
+// WalkRng(seed, cell, k), one thread (the caller runs points in parallel), by the estimator with the lowest
+// equal-error time unless told another (walk.hpp, EvalEstimator; bench_fit measures them side by side).
 template <class Microsurface, class M>
 SplitMoments trace_eval_point(const Microsurface& ms, const M& material, const Vec3& wi, const Vec3& wo,
-                              std::uint64_t seed, std::uint64_t cell, std::int64_t walks) {
+                              std::uint64_t seed, std::uint64_t cell, std::int64_t walks,
+                              walk::EvalEstimator estimator = walk::EvalEstimator::reciprocal) {
     SplitMoments m;
     for (std::int64_t k = 0; k < walks; ++k) {
         WalkRng g(seed, cell, static_cast<std::uint64_t>(k));
-        const walk::EvalSample e = walk::eval_walk(ms, material, wi, wo, g);
+        const walk::EvalSample e = walk::eval_walk(ms, material, wi, wo, g, {}, estimator);
         m.add(e.by_diffuse);
         m.capped += e.capped;
     }

@@ -69,6 +69,7 @@ double hammon_lobe_cos(double u);
 
 // F = 1: every facet a perfect mirror.
 struct Mirror {
+    static constexpr bool reciprocal = true;  // f(wi, wo) = f(wo, wi) facet by facet
     template <class G>
     Scatter sample(const Vec3& wi, const Vec3& m, G&) const {
         return {reflect(wi, m), 1.0, false};
@@ -82,6 +83,7 @@ struct Mirror {
 // Mirror facets of a conductor, complex index eta + i k, with the exact Fresnel reflectance (fresnel.hpp).
 struct Conductor {
     double eta, k;
+    static constexpr bool reciprocal = true;  // f(wi, wo) = f(wo, wi) facet by facet
     template <class G>
     Scatter sample(const Vec3& wi, const Vec3& m, G&) const {
         return {reflect(wi, m), fresnel_conductor(wi.dot(m), eta, k), false};
@@ -95,6 +97,7 @@ struct Conductor {
 // Lambertian facets (Heitz et al. 2016, sec. 5.3, the diffuse microsurface): each reflects albedo / pi about m.
 struct Lambert {
     double albedo;
+    static constexpr bool reciprocal = true;  // f(wi, wo) = f(wo, wi) facet by facet
     template <class G>
     Scatter sample(const Vec3&, const Vec3& m, G& g) const {
         if (albedo == 0.0) return {m, 0.0, true};
@@ -114,6 +117,7 @@ struct Lambert {
 // The branch is chosen with probability F (Russian roulette between the two, unbiased), so weights stay in [0, 1].
 struct FresnelDiffuse {
     double f0, albedo;
+    static constexpr bool reciprocal = true;  // f(wi, wo) = f(wo, wi) facet by facet
     static constexpr double k = 21.0 / (20.0 * std::numbers::pi);
 
     template <class G>
@@ -173,6 +177,15 @@ struct Dielectric {
 template <class M>
 concept TwoSided = requires {
     requires M::two_sided;
+};
+
+// A one-sided material whose facet BRDF is symmetric in wi and wo: its microsurface's BSDF is then reciprocal under
+// Smith's downward convention, f(wi, wo) = f(wo, wi) (Heitz et al. 2016, sec. 5, the walk's BSDF; test_walk checks
+// it for every material here), and it says so (`static constexpr bool reciprocal = true`);
+// EvalEstimator::reciprocal relies on it (walk.hpp).
+template <class M>
+concept Reciprocal = !TwoSided<M> && requires {
+    requires M::reciprocal;
 };
 
 using Material = std::variant<Mirror, Conductor, Lambert, FresnelDiffuse, Dielectric>;

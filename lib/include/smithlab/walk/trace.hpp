@@ -88,6 +88,7 @@ struct EvalRequest {
     WalkLimits limits{};
     unsigned threads = 0;
     std::int64_t block = 4096;
+    EvalEstimator estimator = EvalEstimator::next_event;  // walk.hpp; the brdf command's is next_event
 };
 
 template <class Microsurface, class M>
@@ -100,7 +101,7 @@ EvalTally eval_cell(const Microsurface& ms, const M& material, const EvalRequest
                                last = std::min(r.walks, first + r.block);
             for (std::int64_t k = first; k < last; ++k) {
                 WalkRng g(r.seed, r.cell, static_cast<std::uint64_t>(k));
-                p.add(eval_walk(ms, material, r.wi, r.wo, g, r.limits));
+                p.add(eval_walk(ms, material, r.wi, r.wo, g, r.limits, r.estimator));
             }
             return p;
         },
