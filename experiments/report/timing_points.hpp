@@ -50,7 +50,8 @@ inline std::vector<LambdaPoint> lambda_timing_points(std::span<const LambdaOfMu>
 struct GtrStreamPoints {
     std::vector<double> alpha, gamma, mu;
     std::size_t size() const { return mu.size(); }
-    // G1 at every point into out (GtrFamilyStream::G1_up: eight points at a time where the CPU has AVX-512, four with AVX2).
+    // G1 at every point into out (GtrFamilyStream::G1_up: eight points at a time where the CPU has AVX-512, four with
+    // AVX2).
     void G1(double* out) const { GtrFamilyStream::get().G1_up(alpha.data(), gamma.data(), mu.data(), out, mu.size()); }
 };
 inline GtrStreamPoints gtr_stream_timing_points(std::span<const AnyNdf> ndfs, std::span<const double> mus) {

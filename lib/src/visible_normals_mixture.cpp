@@ -107,8 +107,8 @@ double lower_bound(const FitGrid& f, const std::vector<double>& tail_s, const st
 }  // namespace
 
 std::optional<GgxMixture> GgxMixture::fit(const std::function<double(double)>& P22, double r0) {
-    if (!(r0 > 0.0 && r0 < 1e100)) return std::nullopt;
     const double r02 = r0 * r0;
+    if (!(r02 > 1e-250 && r02 < 1e250)) return std::nullopt;  // the grid's s, s^2 and the tail's 1e15 r0^2 in range
     const FitGrid f = fit_grid(P22, r02);
     std::vector<double> tail_s, tail_P22;
     for (double t = 1e4; t <= far_s; t *= 10.0) tail_s.push_back(t * r02), tail_P22.push_back(P22(t * r02));

@@ -57,6 +57,13 @@
 
 namespace smithlab {
 
+// The mixture of GGX lobes that bounds the NDF's slope density (visible_normals_mixture.hpp), at the slope scale of the
+// median of its D cos law; none where no mixture does.
+template <Ndf N>
+std::optional<GgxMixture> fit_ggx_mixture(const N& ndf, const DcosLaw<N>& dcos) {
+    return GgxMixture::fit([ndf](double s) { return slope_density(ndf, s); }, std::sqrt(dcos.isf(0.5)));
+}
+
 // automatic: GGX's closed form, else the mixture where it bounds the NDF, else Beckmann's closed form, else rejection
 // (with the NDF's analytic D cos law if any). closed: the closed form where the NDF offers one, else rejection.
 // mixture: the mixture where it bounds the NDF, else rejection.
@@ -69,7 +76,7 @@ public:
         : dcos_(ndf, route == VisibleRoute::tabulated), Lambda_(ndf) {
         if (route == VisibleRoute::automatic || route == VisibleRoute::closed) ggx_ = ggx_alpha(ndf);
         if (std::isnan(ggx_) && (route == VisibleRoute::automatic || route == VisibleRoute::mixture))
-            mixture_ = GgxMixture::fit([ndf](double s) { return slope_density(ndf, s); }, std::sqrt(dcos_.isf(0.5)));
+            mixture_ = fit_ggx_mixture(ndf, dcos_);
         if (std::isnan(ggx_) && !mixture_ && (route == VisibleRoute::automatic || route == VisibleRoute::closed))
             beckmann_ = beckmann_alpha(ndf);
         auto r2_law = [ndf](double s) { return 0.5 * slope_density(ndf, s) * std::sqrt(s); };  // P22 r^2 dr in s
