@@ -70,7 +70,7 @@ public:
             while (!ggx_cap_try(cap[k], g, h)) {}
             const double s = (h.x() * h.x() + h.y() * h.y()) / (h.z() * h.z()), x = s / (s + r02_);
             const double UK = uniform01(g) * K_;
-            const int b = std::min(static_cast<int>(x * bins), bins - 1);
+            const int b = x < 1.0 ? static_cast<int>(x * bins) : bins - 1;  // s = inf or NaN (h.z underflowing): last
             if (UK >= hi_[b] || (UK >= lo_[b] && !(UK * Q(s) < P22(s)))) continue;
             if (ggx_cap_normal(h, v, m)) return m;
         }
