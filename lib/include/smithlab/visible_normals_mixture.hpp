@@ -15,14 +15,16 @@
 // lobes' (Beckmann: e^(-a^2 / alpha^2)): the caller draws those directions by another route (visible_normals.hpp).
 //
 // The ratio rho is bounded by a table over x = s / (s + r0^2) in [0, 1) (r0: the NDF's slope scale), 256 bins with
-// the least and the greatest rho of each bin from 64 points in it, widened by a quarter of the bin's range: a draw
-// whose U K falls below the bin's least is accepted and one at or above its greatest rejected without evaluating the
-// NDF; only the draws between call P22 (a squeeze, Marsaglia 1977). K is the greatest bound of all bins. The tail s >
-// 16383 r0^2 is checked out to 1e15 r0^2 (rho must not grow there: a tail heavier than GGX's r^-4 has no bound).
+// the least and the greatest rho of each bin from 65 points (its ends included), widened by a quarter of the bin's
+// range. It is also a squeeze (Marsaglia 1977): a draw whose U K falls below the bin's least is accepted and one at or
+// above its greatest rejected without evaluating the NDF; only the draws between call P22. K is the greatest bound of
+// all bins. The tail s > 16383 r0^2 is checked out to 1e15 r0^2 (rho must not grow there: a tail heavier than GGX's
+// r^-4 has no bound).
 //
-// Fitting (once per NDF, a few milliseconds): lobes alpha = r0 2^(j/2), j = -24..24, weighted by
-// expectation-maximization on the D cos law of s; the eight heaviest kept, their weights and widths moved to lower K,
-// and the lightest dropped while that raises K by less than 2 %. A mixture is not used when K > max_bound.
+// Fitting (once per NDF, 3-15 ms): lobes alpha = r0 2^(j/2), j = -24..24, weighted by expectation-maximization on
+// the D cos law of s; the eight heaviest kept, their weights and widths moved to lower K, and the lightest dropped
+// while that (refitted) raises K by less than 0.05: a lobe costs a root a draw, a try a GGX visible normal and the
+// squeeze, about fifteen times more. A mixture is not used when K > max_bound.
 #pragma once
 
 #include <array>
