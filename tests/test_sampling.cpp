@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "chi2.hpp"
+#include "donly_registry.hpp"
 
 using namespace smithlab;
 
@@ -41,14 +42,6 @@ std::vector<std::string> ndf_specs() {
             "student(alpha=0.001, gamma=4)",
             "student(alpha=1, gamma=30)",
             "donly_ggx(alpha=0.3)"};
-}
-
-NdfRegistry registry_with_donly() {
-    NdfRegistry r = builtin_registry();
-    // GGX as D alone: no slope form, no sampler, no Lambda; everything is derived (tabulated) for it.
-    r.add({"donly_ggx", {"alpha"}, "GGX as D alone", {"donly_ggx(alpha=0.3)"}},
-          [](const NdfParams& p) { return DOnly<Ggx>{ggx(p.at("alpha"))}; });
-    return r;
 }
 
 bool is_visible(const std::string& sampler) { return sampler.rfind("vndf", 0) == 0; }

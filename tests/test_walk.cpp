@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "donly_registry.hpp"
+
 namespace {
 
 using smithlab::Vec3;
@@ -460,9 +462,7 @@ TEST_CASE("single scattering, exactly, for every NDF: the order-1 albedo of mirr
     // The walk's visible normals of every NDF but GGX come from a mixture of GGX lobes accepted with P22 / (K Q)
     // (Beckmann's too), and its Lambda from a spline in the bits of tan^2: both enter the order-1 albedo, which the
     // reference integrates from the NDF's P22 and Lambda by quadrature (LambdaOptions' route, not the walk's).
-    smithlab::NdfRegistry ndfs = smithlab::builtin_registry();
-    ndfs.add({"donly_ggx", {"alpha"}, "GGX as D alone", {"donly_ggx(alpha=0.3)"}},
-             [](const smithlab::NdfParams& p) { return smithlab::DOnly<smithlab::Ggx>{smithlab::ggx(p.at("alpha"))}; });
+    const smithlab::NdfRegistry ndfs = registry_with_donly();
     for (const char* spec :
          {"beckmann(alpha=0.5)", "gtr(alpha=0.5, gamma=1.5)", "gtr(alpha=0.1, gamma=1)", "gtr(alpha=0.3, gamma=3.3)",
           "blinn(n=20)", "student(alpha=0.3, gamma=4)", "abc(b=30, c=2)", "donly_ggx(alpha=0.3)"}) {

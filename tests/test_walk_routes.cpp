@@ -12,16 +12,11 @@
 #include <string>
 #include <vector>
 
+#include "donly_registry.hpp"
+
 using namespace smithlab;
 
 namespace {
-
-NdfRegistry registry_with_donly() {
-    NdfRegistry r = builtin_registry();
-    r.add({"donly_ggx", {"alpha"}, "GGX as D alone", {"donly_ggx(alpha=0.3)"}},
-          [](const NdfParams& p) { return DOnly<Ggx>{ggx(p.at("alpha"))}; });
-    return r;
-}
 
 // Every family with a tail no heavier than GGX's, at stiff and ordinary parameters.
 std::vector<std::string> bounded_specs() {
