@@ -131,14 +131,6 @@ std::string ggx_table(double alpha) {
 
 void add_family_matrix() {
     smithlab::NdfRegistry registry = smithlab::builtin_registry();
-    for (double alpha : {0.1, 0.5, 1.0}) {
-        const std::string a = alpha == 1.0 ? "1" : alpha == 0.5 ? "0.5" : "0.1";
-        registry.add(
-            {"ggx_table_" + std::to_string(static_cast<int>(alpha * 100)), {}, "GGX's D as a table of 100 rows", {}},
-            [table = ggx_table(alpha)](const smithlab::NdfParams&) {
-                return smithlab::tabulated_ndf_from_csv(table, "ggx.csv");
-            });
-    }
     const std::vector<std::pair<std::string, std::vector<std::pair<std::string, double>>>> families = {
         {"ggx", {}},
         {"beckmann", {}},
@@ -152,7 +144,12 @@ void add_family_matrix() {
         std::vector<smithlab::AnyNdf> ndfs;
         for (const auto& [family, others] : families) ndfs.push_back(registry.make_at_alpha(family, alpha, others));
         const std::string a = alpha == 1.0 ? "1" : alpha == 0.5 ? "0.5" : "0.1";
-        ndfs.push_back(registry.make("ggx_table_" + std::to_string(static_cast<int>(alpha * 100))));
+        const std::string table = "ggx_table_" + std::to_string(static_cast<int>(alpha * 100));
+        registry.add({table, {}, "GGX's D as a table of 100 rows", {}},
+                     [rows = ggx_table(alpha)](const smithlab::NdfParams&) {
+                         return smithlab::tabulated_ndf_from_csv(rows, "ggx.csv");
+                     });
+        ndfs.push_back(registry.make(table));
         for (const smithlab::AnyNdf& ndf : ndfs)
             for (const walk::Material& m : {walk::Material{walk::Mirror{}}, walk::Material{walk::Lambert{1.0}}}) {
                 const std::shared_ptr<const smithlab::AnySurface> surface = smithlab::make_surface(ndf);

@@ -19,7 +19,7 @@ std::string cache_key(const AnyNdf& ndf, const std::string& material, const std:
     std::ostringstream k;
     k << "smithlab " << SMITHLAB_VERSION << "|ndf=" << ndf.key() << "|material=" << material << "|set=" << set
       << "|walks=" << walks << "|seed=" << seed << "|stream=" << stream << "|points=" << points
-      << "|eval=reciprocal";  // the eval points' estimator (fit::trace_eval_point's default, walk.hpp)
+      << "|eval=" << walk::name(fit::fit_estimator);  // the eval points' estimator
     return k.str();
 }
 

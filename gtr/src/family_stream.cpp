@@ -93,6 +93,14 @@ void depths(const GtrFamilyData& d, int node, std::array<int, 3> here, std::arra
     depths(d, n.next + 1, here, most);
 }
 
+// A leaf's box and its constant and linear terms, the same in both layouts (Leaf, RowLeaf).
+template <class L>
+void copy_frame(const GtrFamilyLeaf& from, L& to) {
+    for (int a = 0; a < 3; ++a)
+        to.centre[a] = from.centre[a], to.scale[a] = from.scale[a], to.linear[a] = from.linear[a];
+    to.c0 = from.c0;
+}
+
 bool cpu_has_avx512() {
 #if SMITHLAB_FAMILY_AVX512
     __builtin_cpu_init();
@@ -174,9 +182,7 @@ GtrFamilyStream::GtrFamilyStream() : lanes_(make_lanes()), avx2_(cpu_has_avx2())
     for (std::size_t n = 0; n < d.n_leaves; ++n) {
         const GtrFamilyLeaf& from = d.leaves[n];
         Leaf& to = leaves_[n];
-        for (int a = 0; a < 3; ++a)
-            to.centre[a] = from.centre[a], to.scale[a] = from.scale[a], to.linear[a] = from.linear[a];
-        to.c0 = from.c0;
+        copy_frame(from, to);
         for (int g = 0; g < 4; ++g)
             for (int t = 0; t < Lanes::steps[g]; ++t)
                 for (int l = 0; l < 8; ++l) {
@@ -193,9 +199,7 @@ GtrFamilyStream::GtrFamilyStream() : lanes_(make_lanes()), avx2_(cpu_has_avx2())
         for (std::size_t n = 0; n < d.n_leaves; ++n) {
             const GtrFamilyLeaf& from = d.leaves[n];
             RowLeaf& to = row_leaves_[n];
-            for (int a = 0; a < 3; ++a)
-                to.centre[a] = from.centre[a], to.scale[a] = from.scale[a], to.linear[a] = from.linear[a];
-            to.c0 = from.c0;
+            copy_frame(from, to);
             for (int q = 0; q < GtrFamilyLeaf::n_higher; ++q) {
                 const auto& t = gtr_family_plan.term[q];
                 to.c[row_at(t[0], t[1]) + t[2]] = from.higher[q];

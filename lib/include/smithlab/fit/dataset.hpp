@@ -71,13 +71,16 @@ struct DataPoint {
     SplitMoments moments;
 };
 
+// The estimator of the fitter's eval points: the lowest equal-error time at every point bench_fit measures (walk.hpp).
+inline constexpr walk::EvalEstimator fit_estimator = walk::EvalEstimator::reciprocal;
+
 // The eval-estimator point: f(wi, wo) |cos theta_o| split by diffuse events over `walks` walks drawn from
 // WalkRng(seed, cell, k), one thread (the caller runs points in parallel), by the estimator with the lowest
-// equal-error time unless told another (walk.hpp, EvalEstimator; bench_fit measures them side by side).
+// equal-error time (fit_estimator) unless told another.
 template <class Microsurface, class M>
 SplitMoments trace_eval_point(const Microsurface& ms, const M& material, const Vec3& wi, const Vec3& wo,
                               std::uint64_t seed, std::uint64_t cell, std::int64_t walks,
-                              walk::EvalEstimator estimator = walk::EvalEstimator::reciprocal) {
+                              walk::EvalEstimator estimator = fit_estimator) {
     SplitMoments m;
     for (std::int64_t k = 0; k < walks; ++k) {
         WalkRng g(seed, cell, static_cast<std::uint64_t>(k));

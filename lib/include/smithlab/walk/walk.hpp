@@ -152,6 +152,11 @@ WalkSample sample_walk(const Microsurface& ms, const M& material, const Vec3& wi
 // reciprocal is the fitter's: its equal-error time (ns a walk x variance) is the lowest at every point bench_fit
 // measures.
 enum class EvalEstimator { next_event, expected_first, reciprocal };
+inline const char* name(EvalEstimator e) {
+    return e == EvalEstimator::next_event    ? "next_event"
+        : e == EvalEstimator::expected_first ? "expected_first"
+                                             : "reciprocal";
+}
 inline constexpr double reciprocal_cos = 0.64278760968653933;  // cos 50 degrees
 
 struct EvalSample {
