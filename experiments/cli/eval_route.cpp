@@ -49,6 +49,10 @@ std::string describe(const Route& r, const EvalArgs& a, const AnyNdf& ndf, doubl
 Prepared prepare(const std::string& spec, const NdfRegistry& registry, const Route& r) {
     AnyNdf ndf = registry.make(spec);
     if (!ndf.note().empty()) std::fprintf(stderr, "smithlab: note: %s\n", ndf.note().c_str());
+    return prepare(std::move(ndf), r);
+}
+
+Prepared prepare(AnyNdf ndf, const Route& r) {
     try {
         auto law = std::make_shared<GrazingLawOnce>();
         LambdaOfMu up = r.prepare(ndf, law);

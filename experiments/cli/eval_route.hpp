@@ -35,6 +35,8 @@ struct Prepared {
     QuadratureOptions quadrature;
 };
 Prepared prepare(const std::string& spec, const NdfRegistry& registry, const Route& route);
+// The same for an NDF already made (the Python module's NDF objects).
+Prepared prepare(AnyNdf ndf, const Route& route);
 
 struct LambdaG1 {
     double lambda, g1;

@@ -1,0 +1,279 @@
+// The NDF side of `import smithlab` (extension smithlab._ndf): NDFs by spec or by parameters, their D, P22, P2,
+// Lambda, G1 and G2 over NumPy arrays by every method `smithlab eval` has (the same code: cli/eval_route.hpp, so the
+// same bits), the GTR family's stream, a measured D as an NDF, and the samplers.
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <pybind11/stl.h>
+
+#include "bindings.hpp"
+#include "cli/commands.hpp"
+#include "cli/eval_route.hpp"
+#include "smithlab/csv.hpp"
+#include "smithlab/gtr/family_stream.hpp"
+#include "smithlab/gtr/registry.hpp"
+#include "smithlab/samplers.hpp"
+#include "smithlab/smith.hpp"
+#include "smithlab/tabulated.hpp"
+
+namespace smithlab::python {
+namespace {
+
+// The module's NDFs: the built-in ones, and those a session makes from a measured D (tabulated()).
+struct Catalogue {
+    NdfRegistry registry = builtin_registry();
+    VariantRegistry variants = builtin_variants();
+};
+Catalogue& catalogue() {
+    static Catalogue c;
+    return c;
+}
+
+// A method's route, as `smithlab eval --method M --backend B --tolerance T --downward D` takes it.
+cli::Prepared prepared(const AnyNdf& ndf, const std::string& method, const std::string& backend, double tolerance,
+                       const std::string& downward) {
+    require(tolerance >= 1e-15 && tolerance <= 0.1, "tolerance", "in [1e-15, 0.1]", tolerance);
+    cli::EvalArgs args;
+    args.method = method, args.backend = backend, args.tolerance = tolerance, args.downward = downward;
+    return cli::prepare(ndf, cli::route(args, catalogue().variants));
+}
+
+AnyNdf make_ndf(const std::string& spec, const py::kwargs& params) {
+    if (params.empty()) return catalogue().registry.make(spec);
+    std::vector<std::pair<std::string, double>> values;
+    std::vector<std::pair<std::string, std::string>> texts;
+    for (const auto& [key, value] : params) {
+        const auto name = key.cast<std::string>();
+        if (py::isinstance<py::str>(value)) texts.emplace_back(name, value.cast<std::string>());
+        else values.emplace_back(name, value.cast<double>());
+    }
+    return catalogue().registry.make(spec, values, texts);
+}
+
+double require_number(double x, const char* what) {
+    require(!std::isnan(x), what, "a number", x);
+    return x;
+}
+
+// A measured D (one of cos_theta, theta_deg, with D) as the NDF family `name` (parameter scale, as the registry's
+// tabulated: a roughness alpha sets it), registered in the module's catalogue; the table is read as tabulated.hpp
+// reads a CSV file, with every refusal of that reading.
+AnyNdf tabulated(const std::string& name, const py::object& cos_theta, const py::object& theta_deg, const py::object& D,
+                 bool normalize) {
+    if (cos_theta.is_none() == theta_deg.is_none())
+        throw input_error("tabulated '" + name + "': give exactly one of cos_theta and theta_deg");
+    const bool by_cos = !cos_theta.is_none();
+    const Array x = Array::ensure(by_cos ? cos_theta : theta_deg), d = Array::ensure(D);
+    if (!x || !d) throw py::error_already_set();
+    if (x.ndim() != 1 || d.ndim() != 1 || x.size() != d.size())
+        throw input_error("tabulated '" + name + "': " + (by_cos ? "cos_theta" : "theta_deg") +
+                          " and D must be 1-D arrays of one length, got " + std::to_string(x.size()) + " and " +
+                          std::to_string(d.size()) + " values");
+    if (catalogue().registry.find(name))
+        throw input_error("tabulated: the name '" + name + "' is taken (smithlab.list() names every NDF)");
+    std::string text = by_cos ? "cos_theta,D\n" : "theta_deg,D\n";
+    char row[64];
+    for (py::ssize_t i = 0; i < x.size(); ++i) {
+        std::snprintf(row, sizeof row, "%.17g,%.17g\n", x.data()[i], d.data()[i]);
+        text += row;
+    }
+    // The table is read once here: its refusals (rows out of order, a negative D, an area far from 1) come now,
+    // naming the row ("NAME:LINE: ..."; line 2 is the first value).
+    const TabulatedNdf table = tabulated_ndf_from_csv(text, name, {.normalize = normalize});
+    catalogue().registry.add(
+        {.name = name,
+         .parameters = {"scale"},
+         .description = "a measured D(theta_m) given from Python (" + std::to_string(table.points()) +
+             " rows), interpolated (tabulated.hpp); scale stretches its slopes (default 1)",
+         .examples = {},
+         .roughness =
+             NdfInfo::Roughness{"scale",
+                                [table](double alpha, const NdfParams&) { return alpha / core_slope_scale(table); }},
+         .defaults = {{"scale", 1.0}}},
+        [table](const NdfParams& p) { return table.scaled(p.at("scale")); });
+    return catalogue().registry.make(name, {});
+}
+
+const char* const lambda_doc = R"(Smith's Lambda at mu = cot(theta_v) (NumPy array or scalar, broadcast).
+
+mu = 0 is grazing (Lambda = inf), mu = inf the normal (0), mu < 0 a direction below the surface (downward:
+'smith', Lambda(-mu) = -1 - Lambda(mu), or 'hammon', -Lambda(mu)). method: 'auto' (the closed form where the NDF
+has one, else the fixed rule), 'closed', 'spline', 'quadrature', 'quadrature2d', 'fixed', or any name of
+smithlab.methods(); backend ('boost' or 'gsl') and tolerance (relative, in [1e-15, 0.1]) set the quadratures.
+The same code and bits as `smithlab eval`. NaN in mu raises ValueError.)";
+
+}  // namespace
+
+void bind_ndfs(py::module_& m) {
+    py::class_<AnyNdf>(m, "Ndf", "An isotropic NDF: smithlab.ndf('gtr(alpha=0.3, gamma=1.5)').")
+        .def_property_readonly("spec", &AnyNdf::spec, "the canonical spec, e.g. 'gtr(alpha=0.3, gamma=1.5)'")
+        .def_property_readonly("family", &AnyNdf::family, "the family's name, e.g. 'gtr'")
+        .def_property_readonly("note", &AnyNdf::note, "how the NDF was built, where a user should know ('' mostly)")
+        .def_property_readonly(
+            "params",
+            [](const AnyNdf& n) {
+                std::map<std::string, double> p;
+                for (const auto& [k, v] : n.parts().params) p[k] = v;
+                return p;
+            },
+            "the numeric parameters by name")
+        .def_property_readonly("has_closed_Lambda", &AnyNdf::has_closed_Lambda)
+        .def("__repr__", [](const AnyNdf& n) { return "smithlab.ndf('" + n.spec() + "')"; })
+        .def(
+            "D",
+            [](const AnyNdf& n, const py::object& c) {
+                return elementwise<1>([&](double x) { return n.D(require_number(x, "cos_theta_m")); }, {c});
+            },
+            py::arg("cos_theta_m"),
+            "D(theta_m) per steradian of m, normalized: the integral of D cos theta_m over the hemisphere is 1 "
+            "(Walter et al. 2007 eq. 4); 0 for cos_theta_m <= 0.")
+        .def(
+            "P22",
+            [](const AnyNdf& n, const py::object& x, const py::object& y) {
+                return elementwise<2>(
+                    [&](double p, double q) {
+                        return n.slope_density(require_number(p, "slope_x") * p + require_number(q, "slope_y") * q);
+                    },
+                    {x, y});
+            },
+            py::arg("slope_x"), py::arg("slope_y"),
+            "The slope density P22(x, y) = D cos^4 theta_m at tan^2 theta_m = x^2 + y^2 (Walter 2007 eq. 42).")
+        .def(
+            "P2",
+            [](const AnyNdf& n, const py::object& q, const std::string& backend, double tolerance) {
+                require(tolerance >= 1e-15 && tolerance <= 0.1, "tolerance", "in [1e-15, 0.1]", tolerance);
+                const QuadratureOptions o{parse_backend(backend), tolerance};
+                return elementwise<1>([&](double x) { return smithlab::P2(n, require_number(x, "q"), o); }, {q});
+            },
+            py::arg("q"), py::arg("backend") = "boost", py::arg("tolerance") = 1e-12,
+            "The marginal slope density P2(q), the integral of P22(p, q) over p (Walter 2007 eq. 43), by quadrature.")
+        .def(
+            "Lambda",
+            [](const AnyNdf& n, const py::object& mu, const std::string& method, const std::string& backend,
+               double tolerance, const std::string& downward) {
+                const cli::Prepared p = prepared(n, method, backend, tolerance, downward);
+                const Downward d = parse_downward(downward);
+                return elementwise<1>([&](double x) { return cli::lambda_g1(p, x, d).lambda; }, {mu});
+            },
+            py::arg("mu"), py::arg("method") = "auto", py::arg("backend") = "boost", py::arg("tolerance") = 1e-12,
+            py::arg("downward") = "smith", lambda_doc)
+        .def(
+            "G1",
+            [](const AnyNdf& n, const py::object& mu, const std::string& method, const std::string& backend,
+               double tolerance) {
+                const cli::Prepared p = prepared(n, method, backend, tolerance, "smith");
+                return elementwise<1>([&](double x) { return cli::lambda_g1(p, x, Downward::smith).g1; }, {mu});
+            },
+            py::arg("mu"), py::arg("method") = "auto", py::arg("backend") = "boost", py::arg("tolerance") = 1e-12,
+            "Smith's G1 = 1 / (1 + Lambda(|mu|)) (Walter 2007 eq. 44), mu = cot(theta_v); the methods as Lambda's. "
+            "Where Lambda overflows (mu > 0 tiny) G1 comes from the grazing law, never 0/0.")
+        .def(
+            "G2",
+            [](const AnyNdf& n, const py::object& mu_i, const py::object& mu_o, const std::string& form,
+               const std::string& method, const std::string& backend, double tolerance) {
+                G2Form f;
+                if (form == "height-correlated") f = G2Form::height_correlated;
+                else if (form == "uncorrelated") f = G2Form::uncorrelated;
+                else throw input_error("G2: form must be 'height-correlated' or 'uncorrelated', got '" + form + "'");
+                const cli::Prepared p = prepared(n, method, backend, tolerance, "smith");
+                return elementwise<2>(
+                    [&](double a, double b) {
+                        require_mu_number(a);
+                        require_mu_number(b);
+                        return G2_from_Lambdas(Lambda_of_abs(a, p.Lambda_up), Lambda_of_abs(b, p.Lambda_up),
+                                               (a >= 0.0) == (b >= 0.0), f);
+                    },
+                    {mu_i, mu_o});
+            },
+            py::arg("mu_i"), py::arg("mu_o"), py::arg("form") = "height-correlated", py::arg("method") = "auto",
+            py::arg("backend") = "boost", py::arg("tolerance") = 1e-12,
+            "Smith's G2 of two directions mu_i, mu_o = cot(theta) (negative: below): 'height-correlated' "
+            "1 / (1 + Lambda_i + Lambda_o) on one side, Beta(1 + Lambda_i, 1 + Lambda_o) across it (Heitz 2014), or "
+            "'uncorrelated' G1 G1 (Walter 2007 eq. 23).");
+
+    m.def("ndf", &make_ndf, py::arg("spec"),
+          "An NDF by spec, ndf('gtr(alpha=0.3, gamma=1.5)'), or by family and parameters, ndf('gtr', alpha=0.3, "
+          "gamma=1.5). ValueError names an unknown NDF or parameter and a value out of its domain.");
+    m.def(
+        "list",
+        [] {
+            py::list out;
+            for (const NdfInfo* i : catalogue().registry.list()) {
+                py::dict d;
+                d["name"] = i->name, d["parameters"] = i->parameters, d["description"] = i->description,
+                d["examples"] = i->examples;
+                out.append(d);
+            }
+            return out;
+        },
+        "The registered NDFs (as `smithlab list`): dicts of name, parameters, description, examples.");
+    m.def(
+        "methods",
+        [] {
+            std::vector<std::pair<std::string, std::string>> out;
+            for (const auto& n : method_names) out.emplace_back(n.name, n.description);
+            for (const LambdaVariant& v : catalogue().variants.list()) out.emplace_back(v.name, v.description);
+            return out;
+        },
+        "Every method Lambda, G1 and G2 take (as `smithlab eval --list-methods`): (name, description) pairs.");
+    m.def("tabulated", &tabulated, py::arg("name"), py::kw_only(), py::arg("cos_theta") = py::none(),
+          py::arg("theta_deg") = py::none(), py::arg("D"), py::arg("normalize") = false,
+          "A measured D as a registered NDF (its family `name`, parameter scale): rows by cos_theta (decreasing) or "
+          "theta_deg (increasing, [0, 90)), D per steradian normalized to projected area 1 (normalize=True divides "
+          "by the area instead of refusing one off by more than 1e-2). Interpolated as tabulated.hpp says; every "
+          "derived quantity then runs in C++.");
+    m.def(
+        "family_G1",
+        [](const py::object& alpha, const py::object& gamma, const py::object& mu) {
+            Broadcast<3> b(std::array<py::object, 3>{alpha, gamma, mu});
+            {
+                py::gil_scoped_release free;
+                G1_gtr_family(b.input(0), b.input(1), b.input(2), b.output());
+            }
+            return b.result();
+        },
+        py::arg("alpha"), py::arg("gamma"), py::arg("mu"),
+        "G1 of GTR(alpha, gamma) at mu = cot(theta), over arrays (broadcast): the family evaluator's stream "
+        "(alpha in [1e-4, 1], gamma in [0, 20]; |dG1| within its stated bound, 9.5e-7), AVX2 or AVX-512 where the CPU "
+        "has them. ValueError names the first offending item.");
+
+    m.def(
+        "samplers",
+        [] {
+            std::vector<std::pair<std::string, std::string>> out;
+            for (const SamplerInfo& s : builtin_samplers()) out.emplace_back(s.name, s.description);
+            return out;
+        },
+        "The samplers of microfacet normals (as `smithlab sample --list-samplers`): (name, description) pairs.");
+    m.def(
+        "sample",
+        [](const AnyNdf& n, const std::string& sampler, long long count, double theta_i, const py::object& seed) {
+            require(count >= 0, "n", ">= 0", static_cast<double>(count));
+            require(theta_i >= 0.0 && theta_i < 180.0, "theta_i", "in [0, 180) degrees", theta_i);
+            const unsigned long long s = cli::parse_seed(py::str(seed).cast<std::string>(), "seed");
+            const std::vector<SamplerInfo> all = builtin_samplers();
+            const BoundSampler b = prepare(find_sampler(all, sampler), n, direction_from_theta_deg(theta_i));
+            py::array_t<double> normals({static_cast<py::ssize_t>(count), py::ssize_t{3}});
+            py::array_t<double> pdf(static_cast<py::ssize_t>(count));
+            double* x = normals.mutable_data();
+            double* p = pdf.mutable_data();
+            {
+                py::gil_scoped_release free;
+                Rng rng = make_rng(s);
+                for (long long i = 0; i < count; ++i) {
+                    const NormalSample d = b.sample(rng);
+                    x[3 * i] = d.m.x(), x[3 * i + 1] = d.m.y(), x[3 * i + 2] = d.m.z(), p[i] = d.pdf;
+                }
+            }
+            return py::make_tuple(normals, pdf);
+        },
+        py::arg("ndf"), py::arg("sampler"), py::arg("n") = 1000, py::arg("theta_i") = 0.0, py::arg("seed") = 1,
+        "n microfacet normals by a named sampler for the incident direction at theta_i degrees (phi 0): (normals "
+        "(n, 3), pdf (n,)), the pdf per steradian of m. The numbers of `smithlab sample` for the same seed.");
+}
+
+}  // namespace smithlab::python
