@@ -6,6 +6,8 @@ named theta_* and phi_* are in degrees. Every function of points takes NumPy arr
 against each other and computes in float64 (a scalar in every argument gives a Python float). Bad input raises
 ValueError naming the item; no accepted input gives a NaN.
 """
+from typing import Any, Callable
+
 import numpy as _np
 
 from ._ndf import Ndf, family_G1, list, methods, ndf, sample, samplers, tabulated
@@ -16,7 +18,8 @@ __all__ = ["Ndf", "family_G1", "from_function", "list", "methods", "ndf", "sampl
 __all__ += sorted(k for k in dir(_walk_module) if not k.startswith("_"))
 
 
-def from_function(D, name, *, rows=4096, theta_min_deg=1e-3, theta_max_deg=89.99, normalize=False):
+def from_function(D: "Callable[[Any], Any]", name: str, *, rows: int = 4096, theta_min_deg: float = 1e-3,
+                  theta_max_deg: float = 89.99, normalize: bool = False) -> Ndf:
     """An NDF from a Python function D(cos_theta_m), registered as the family `name` (parameter scale).
 
     D is called once, with a float64 array of cos theta_m, and must return D per steradian of m, normalized so
