@@ -1,5 +1,333 @@
+// The walk side of `import smithlab` (extension smithlab._walk): the facet materials, one trace cell (albedo by
+// hemisphere, order and component) and the eval estimator's f(wi, wo) |cos theta_o| over NumPy arrays. The code of
+// `smithlab trace` (one cell: index 0 of the random stream) and `smithlab brdf`, so the same bits for the same seed.
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include <pybind11/stl.h>
+
 #include "bindings.hpp"
+#include "cli/commands.hpp"
+#include "scene/walk_options.hpp"
+#include "smithlab/csv.hpp"
+#include "smithlab/fresnel.hpp"
+#include "smithlab/single_scattering.hpp"
+#include "smithlab/surface.hpp"
+#include "smithlab/util/parallel.hpp"
+#include "smithlab/walk/trace.hpp"
+#include "trace/capped_walks.hpp"
 
 namespace smithlab::python {
-void bind_walk(py::module_&) {}
+namespace {
+
+// The facet materials walk::parse_material reads (facets.hpp), with their specs' parameters and defaults.
+constexpr std::array<std::pair<std::string_view, std::string_view>, 5> material_list = {{
+    {"mirror", "mirror: every facet a perfect mirror (F = 1)"},
+    {"conductor",
+     "conductor(eta=, k=): mirror facets of a conductor of complex index eta + i k (both required; eta in [1e-6, "
+     "1e6], k in [0, 1e6]), the exact Fresnel reflectance"},
+    {"lambert",
+     "lambert(albedo=1): Lambertian facets, each reflecting albedo / pi about its normal (albedo in [0, 1]; Heitz et "
+     "al. 2016, sec. 5.3)"},
+    {"fresnel-diffuse",
+     "fresnel-diffuse(f0=0.02, albedo=1): Hammon 2017's facets: Schlick's F (f0 at normal incidence) reflects "
+     "specularly, the rest leaves diffusely, tinted by albedo (both in [0, 1])"},
+    {"dielectric",
+     "dielectric(eta=1.5): a smooth dielectric interface on every facet, eta the index below over that above (in "
+     "[1e-3, 1e3]): reflection and transmission, light from above or below (Heitz et al. 2016, sec. 6.2)"},
+}};
+
+const char* const hemisphere_names[] = {"reflection", "transmission", "all"};
+const char* const order_names[] = {"1", "2", "3", "4+", "all"};
+const char* const component_names[] = {"specular", "diffuse", "all"};
+constexpr int order_columns = walk::order_bins + 1;  // 1, 2, 3, 4+, all
+
+// The light's direction in degrees, as `smithlab trace --theta-i --phi-i` and `brdf --wi` take it: from above
+// (theta in [0, 90)), or from below (theta in (90, 180]) for a material that transmits; never grazing.
+Vec3 incident(double theta, double phi, const walk::Material& m) {
+    if (walk::transmits(m))
+        require(theta >= 0.0 && theta <= 180.0 && theta != 90.0, "theta_i", "in [0, 180] degrees, not 90 (grazing)",
+                theta);
+    else
+        require(theta >= 0.0 && theta < 90.0, "theta_i",
+                "in [0, 90) degrees (light from above the surface; only a dielectric takes light from below)", theta);
+    require(std::isfinite(phi), "phi_i", "finite", phi);
+    return direction_from_deg(theta, phi);
+}
+
+// The viewer's direction in degrees, anywhere (theta > 90: below the surface).
+Vec3 outgoing(double theta, double phi) {
+    require(theta >= 0.0 && theta <= 180.0, "theta_o", "in [0, 180] degrees", theta);
+    require(std::isfinite(phi), "phi_o", "finite", phi);
+    return direction_from_deg(theta, phi);
+}
+
+// The walk's options by their names (scene/walk_options.hpp), a bad one named as the keyword argument.
+walk::MicrosurfaceOptions walk_options(const std::string& downward, const std::string& hit_normal) {
+    if (!find_named(downward_names, downward))
+        throw input_error("downward must be " + trace::quoted_names(downward_names) + ", got '" + downward + "'");
+    if (!find_named(trace::hit_normal_names, hit_normal))
+        throw input_error("hit_normal must be " + trace::quoted_names(trace::hit_normal_names) + ", got '" +
+                          hit_normal + "'");
+    return trace::parse_walk_options(downward, hit_normal, "");
+}
+
+// The seed as the command line reads it (an integer in [0, 2^64)), from a Python int or its text.
+std::uint64_t seed_of(const py::object& seed) { return cli::parse_seed(py::str(seed).cast<std::string>(), "seed"); }
+
+void require_walks_threads(long long walks, int threads) {
+    require(walks > 0, "walks", "> 0", static_cast<double>(walks));
+    require(threads >= 0, "threads", ">= 0 (0: all cores)", threads);
+}
+
+// The broadcast shape of a Broadcast's result: () for a Python float.
+std::vector<py::ssize_t> shape_of(const py::object& result) {
+    if (!py::isinstance<py::array>(result)) return {};
+    const auto a = py::reinterpret_borrow<py::array>(result);
+    return {a.shape(), a.shape() + a.ndim()};
+}
+
+// ---- trace ------------------------------------------------------------------------------------------------------
+
+struct TraceRequest {
+    walk::Material material;
+    walk::CellRequest cell;
+    walk::MicrosurfaceOptions options;
+};
+
+// The cell `smithlab trace --ndf ... --material M --theta-i T --phi-i P --walks N --seed S` traces: the only cell of
+// its scene, index 0 (its random stream), walks in blocks of 4096 merged in block order.
+walk::AlbedoTally trace_cell(const AnyNdf& ndf, const TraceRequest& t) {
+    const std::shared_ptr<const AnySurface> surface = make_surface(ndf, t.options);
+    walk::CellPartial total = util::reduce_blocks(
+        walk::block_count(t.cell.walks, t.cell.block), t.cell.threads, walk::empty_partial(t.cell),
+        [&](std::uint64_t b) { return surface->trace_block(t.material, t.cell, b); }, walk::merge_partial,
+        [](std::uint64_t) {});
+    return std::move(total.albedo);
+}
+
+// Walks cut short (trace/capped_walks.hpp): refused where they could carry more than the albedo's standard error, as
+// `smithlab trace` refuses them, else a RuntimeWarning.
+void answer_capped(const walk::AlbedoTally& a) {
+    if (a.capped == 0) return;
+    const walk::Estimate total = a.albedo(walk::Hemisphere::all, walk::all_orders, walk::Component::all);
+    if (trace::capped_beyond_error(a.capped, a.walks, total.stderr_))
+        throw input_error("trace: " + trace::capped_text(a.capped, a.walks) +
+                          "; the energy they would have carried out (up to " +
+                          format_shortest(static_cast<double>(a.capped) / static_cast<double>(a.walks)) +
+                          " of the albedo) could exceed the albedo's standard error (" +
+                          format_shortest(total.stderr_) + "), so it is no estimate");
+    const std::string note = "trace: " + trace::capped_text(a.capped, a.walks) + ", within the albedo's standard error";
+    if (PyErr_WarnEx(PyExc_RuntimeWarning, note.c_str(), 1) != 0) throw py::error_already_set();
+}
+
+// albedo.csv's numbers of the cell as arrays [hemisphere][order][component] (trace/trace_rows.hpp's order).
+py::dict albedo_arrays(const walk::AlbedoTally& a) {
+    const std::vector<py::ssize_t> shape{3, order_columns, 3};
+    py::array_t<double> albedo(shape), stderr_(shape);
+    double* v = albedo.mutable_data();
+    double* s = stderr_.mutable_data();
+    for (int h = 0; h < 3; ++h)
+        for (int o = 0; o < order_columns; ++o)
+            for (int c = 0; c < 3; ++c, ++v, ++s) {
+                const int order = o == walk::order_bins ? walk::all_orders : o;
+                const walk::Estimate e =
+                    a.albedo(static_cast<walk::Hemisphere>(h), order, static_cast<walk::Component>(c));
+                *v = e.value, *s = e.stderr_;
+            }
+    py::dict out;
+    out["albedo"] = albedo, out["stderr"] = stderr_;
+    out["hemispheres"] = std::vector<std::string>(std::begin(hemisphere_names), std::end(hemisphere_names));
+    out["orders"] = std::vector<std::string>(std::begin(order_names), std::end(order_names));
+    out["components"] = std::vector<std::string>(std::begin(component_names), std::end(component_names));
+    return out;
+}
+
+py::dict trace_one_cell(const AnyNdf& ndf, const std::string& material, double theta_i, double phi_i, long long walks,
+                        const py::object& seed, int threads, int max_order, const std::string& downward,
+                        const std::string& hit_normal) {
+    TraceRequest t{walk::parse_material(material), {}, walk_options(downward, hit_normal)};
+    require_walks_threads(walks, threads);
+    require(max_order >= 0, "max_order", ">= 0 (0: no limit)", max_order);
+    t.cell.wi = incident(theta_i, phi_i, t.material);
+    t.cell.seed = seed_of(seed);
+    t.cell.cell = 0;
+    t.cell.walks = walks;
+    t.cell.limits.max_order = max_order;
+    t.cell.threads = static_cast<unsigned>(threads);
+    walk::AlbedoTally a;
+    {
+        py::gil_scoped_release free;
+        a = trace_cell(ndf, t);
+    }
+    answer_capped(a);
+    py::dict out = albedo_arrays(a);
+    out["walks"] = a.walks, out["capped"] = a.capped, out["bounces"] = a.events;
+    return out;
+}
+
+const char* const trace_doc =
+    R"(Traces one cell of the Smith microsurface (Heitz et al. 2016's random walk): `walks` walks
+from the incident direction (theta_i, phi_i) in degrees (theta_i in [0, 90); a dielectric also takes (90, 180],
+light from below) on facets of `material` (smithlab.materials(); a spec, e.g. 'conductor(eta=0.2, k=3)').
+
+Returns a dict: 'albedo' and 'stderr', float64 arrays of shape (3, 5, 3) indexed by 'hemispheres' (reflection,
+transmission, all), 'orders' (1, 2, 3, 4+: the walk left after exactly that many facet hits or more; all) and
+'components' (specular: every event a facet reflection; diffuse: any diffuse event; all): the energy leaving into
+each selection per unit incident energy (dimensionless) and its standard error; 'walks', 'capped' (walks cut short
+at the cap of facet events: refused with ValueError where they could exceed the albedo's standard error, else a
+RuntimeWarning) and 'bounces' (facet events in all).
+The same bits as `smithlab trace --ndf SPEC --material M --theta-i T --phi-i P --walks N --seed S` (its albedo.csv):
+walk k draws from a counter-based generator keyed by (seed, cell 0, k), so any `threads` (0: all cores) gives the
+same numbers. max_order = N ends every walk after N hits; downward ('smith' or 'hammon') and hit_normal ('visible'
+or 'hammon') as trace's --downward and --hit-normal. Runs without the GIL.)";
+
+// ---- brdf -------------------------------------------------------------------------------------------------------
+
+// What a brdf call holds for every pair.
+struct EvalSetup {
+    const AnyNdf& ndf;
+    walk::Material material;
+    std::shared_ptr<const AnySurface> surface;
+    walk::EvalRequest request;  // seed, walks, threads; wi and wo set per pair
+};
+
+// The numbers `smithlab brdf` prints for one pair, in its order: value, stderr, order_1 .. order_4+ (value and
+// stderr each), single_analytic where the facets have one.
+struct BrdfNumbers {
+    walk::Estimate total;
+    std::array<walk::Estimate, walk::order_bins> orders;
+    double single = 0.0;
+};
+
+// The single-scattering BSDF times |cos theta_o| (Walter 2007 eq. 20, 21, the height-correlated G2), where `smithlab
+// brdf` prints it: mirror and conductor facets, dielectric facets with the light from above.
+bool has_single(const walk::Material& m, bool light_below) {
+    return std::holds_alternative<walk::Mirror>(m) || std::holds_alternative<walk::Conductor>(m) ||
+        (std::holds_alternative<walk::Dielectric>(m) && !light_below);
+}
+
+double single_analytic(const AnyNdf& ndf, const walk::Material& material, const Vec3& wi, const Vec3& wo) {
+    auto single = [&](auto F) { return single_scattering_reflection(ndf, wi, wo, F); };
+    if (const auto* c = std::get_if<walk::Conductor>(&material))
+        return single([c](double x) { return fresnel_conductor(x, c->eta, c->k); });
+    if (const auto* d = std::get_if<walk::Dielectric>(&material)) {
+        auto F = [d](double x) { return fresnel_dielectric(x, d->eta); };
+        return wo.z() > 0.0 ? single(F) : single_scattering_transmission(ndf, wi, wo, 1.0, d->eta, F);
+    }
+    return single([](double) { return 1.0; });
+}
+
+// One pair, as run_brdf: refused where the BSDF is a Dirac delta or a walk was cut short; a number that is not
+// finite on accepted input is an internal error (RuntimeError), never returned.
+BrdfNumbers eval_pair(EvalSetup& s, const Vec3& wi, const Vec3& wo, bool single) {
+    s.request.wi = wi, s.request.wo = wo;
+    if (walk::dirac_at(s.material, wi, wo))
+        throw input_error("brdf: '" + walk::format_material(s.material) +
+                          "' facets are index-matched (eta = 1): the BSDF is a Dirac delta at wo = -wi, which has no "
+                          "finite density to estimate (every other wo gives 0)");
+    const walk::EvalTally t = s.surface->eval_cell(s.material, s.request);
+    if (t.capped > 0)
+        throw input_error("brdf: " + trace::capped_text(t.capped, t.walks) +
+                          "; the eval estimator cannot bound what they would still have added, so there is no "
+                          "estimate");
+    BrdfNumbers n{t.value(), {}, single ? single_analytic(s.ndf, s.material, wi, wo) : 0.0};
+    for (int o = 0; o < walk::order_bins; ++o) n.orders[o] = t.value(o, walk::Component::all);
+    bool finite = std::isfinite(n.total.value) && std::isfinite(n.total.stderr_) && std::isfinite(n.single);
+    for (const walk::Estimate& e : n.orders) finite = finite && std::isfinite(e.value) && std::isfinite(e.stderr_);
+    if (!finite) throw std::runtime_error("brdf: a value that is not a finite number on accepted input");
+    return n;
+}
+
+// The outputs over the broadcast shape: value and stderr in the Broadcast's own output and one more array, the
+// orders' values and errors with a last axis of 4.
+struct BrdfArrays {
+    py::array_t<double> stderr_, order, order_stderr, single;
+    BrdfArrays(const std::vector<py::ssize_t>& shape, bool with_single) : stderr_(shape) {
+        std::vector<py::ssize_t> by_order = shape;
+        by_order.push_back(walk::order_bins);
+        order = py::array_t<double>(by_order), order_stderr = py::array_t<double>(by_order);
+        if (with_single) single = py::array_t<double>(shape);
+    }
+};
+
+py::dict brdf_pairs(const AnyNdf& ndf, const std::string& material, const py::object& theta_i, const py::object& phi_i,
+                    const py::object& theta_o, const py::object& phi_o, long long walks, const py::object& seed,
+                    int threads, const std::string& downward) {
+    EvalSetup s{ndf, walk::parse_material(material), nullptr, {}};
+    const walk::MicrosurfaceOptions options = walk_options(downward, "visible");
+    require_walks_threads(walks, threads);
+    s.request.seed = seed_of(seed), s.request.walks = walks, s.request.threads = static_cast<unsigned>(threads);
+    Broadcast<4> b({theta_i, phi_i, theta_o, phi_o});
+    bool light_below = false;
+    for (double t : b.input(0)) light_below = light_below || t > 90.0;
+    const bool with_single = has_single(s.material, light_below);
+    BrdfArrays out(shape_of(b.result()), with_single);
+    const std::span<double> value = b.output();
+    double* err = out.stderr_.mutable_data();
+    double* order = out.order.mutable_data();
+    double* order_err = out.order_stderr.mutable_data();
+    double* single = with_single ? out.single.mutable_data() : nullptr;
+    {
+        py::gil_scoped_release free;
+        s.surface = make_surface(ndf, options);
+        for (std::size_t i = 0; i < value.size(); ++i) {
+            const Vec3 wi = incident(b.input(0)[i], b.input(1)[i], s.material);
+            const BrdfNumbers n = eval_pair(s, wi, outgoing(b.input(2)[i], b.input(3)[i]), with_single);
+            value[i] = n.total.value, err[i] = n.total.stderr_;
+            for (int o = 0; o < walk::order_bins; ++o)
+                order[i * walk::order_bins + o] = n.orders[o].value,
+                                             order_err[i * walk::order_bins + o] = n.orders[o].stderr_;
+            if (single) single[i] = n.single;
+        }
+    }
+    const bool scalar = !py::isinstance<py::array>(b.result());
+    auto result = [scalar](const py::array_t<double>& a) -> py::object {
+        return scalar ? py::object(py::float_(a.data()[0])) : py::object(a);
+    };
+    py::dict d;
+    d["value"] = b.result(), d["stderr"] = result(out.stderr_), d["order"] = out.order,
+    d["order_stderr"] = out.order_stderr;
+    if (with_single) d["single_analytic"] = result(out.single);
+    return d;
+}
+
+const char* const brdf_doc = R"(f(wi, wo) |cos theta_o| of the Smith microsurface (1/sr) by the eval estimator
+(next-event estimation toward wo at every hit), over the four angle arguments in degrees broadcast against each other
+(NumPy's rules): the light at (theta_i, phi_i), theta_i in [0, 90) (a dielectric also takes (90, 180], light from
+below), the viewer at (theta_o, phi_o), theta_o in [0, 180] (above 90: transmission, for a dielectric).
+
+Returns a dict: 'value' and 'stderr' (the broadcast shape; Python floats when every angle is a scalar), 'order' and
+'order_stderr' (that shape plus a last axis of 4: the walks' light after 1, 2, 3 and 4 or more facet hits), and, for
+mirror and conductor facets (and dielectric facets when every theta_i < 90), 'single_analytic': the
+single-scattering BSDF times |cos theta_o| (Walter 2007 eq. 20 and 21 with the height-correlated G2).
+Each pair is the same bits as `smithlab brdf --ndf SPEC --material M --wi T,P --wo T,P --walks N --seed S`; its
+walks run on `threads` threads (0: all cores), the pairs one after another. Runs without the GIL.)";
+
+}  // namespace
+
+void bind_walk(py::module_& m) {
+    m.def(
+        "materials",
+        [] {
+            std::vector<std::pair<std::string, std::string>> out;
+            for (const auto& [name, description] : material_list) out.emplace_back(name, description);
+            return out;
+        },
+        "The facet materials of the walk (as `smithlab trace --help` lists them): (name, description) pairs; the "
+        "description opens with the spec and its defaults, e.g. 'lambert(albedo=1)'.");
+    m.def("trace", &trace_one_cell, py::arg("ndf"), py::arg("material") = "mirror", py::arg("theta_i") = 45.0,
+          py::arg("phi_i") = 0.0, py::arg("walks") = 1'000'000, py::arg("seed") = 1, py::arg("threads") = 0,
+          py::arg("max_order") = 0, py::arg("downward") = "smith", py::arg("hit_normal") = "visible", trace_doc);
+    m.def("brdf", &brdf_pairs, py::arg("ndf"), py::arg("material"), py::arg("theta_i"), py::arg("phi_i"),
+          py::arg("theta_o"), py::arg("phi_o"), py::arg("walks") = 1'000'000, py::arg("seed") = 1,
+          py::arg("threads") = 0, py::arg("downward") = "smith", brdf_doc);
+}
+
 }  // namespace smithlab::python
