@@ -2,6 +2,7 @@
 // NumPy arrays runs (broadcast, float64, the GIL released while C++ loops).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <exception>
@@ -33,26 +34,44 @@ inline void translate_errors() {
 
 using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
-// N inputs broadcast against each other (NumPy's rules: np.broadcast_arrays), each as contiguous float64 (anything
-// NumPy reads as numbers), and an output of their shape: result() is that array, or a Python float where every input
-// is a scalar.
+// N inputs broadcast against each other (NumPy's rules: shapes aligned on the right, each dimension equal or 1), each
+// read as float64 (anything NumPy reads as numbers), and an output of the broadcast shape: result() is that array, or
+// a Python float where every input is a scalar. An input of the output's shape is read in place; another is spread
+// to it once, in C++.
 template <std::size_t N>
 class Broadcast {
 public:
     explicit Broadcast(const std::array<py::object, N>& inputs) {
-        py::tuple arrays(N);
+        std::array<Array, N> a;
+        std::vector<py::ssize_t> shape;
         for (std::size_t k = 0; k < N; ++k) {
-            Array a = Array::ensure(inputs[k]);
-            if (!a) throw py::error_already_set();
-            scalar_ = scalar_ && a.ndim() == 0;
-            arrays[k] = a;
+            a[k] = Array::ensure(inputs[k]);
+            if (!a[k]) throw py::error_already_set();
+            scalar_ = scalar_ && a[k].ndim() == 0;
+            shape.resize(std::max<std::size_t>(shape.size(), static_cast<std::size_t>(a[k].ndim())), 1);
         }
-        const py::list views = py::module_::import("numpy").attr("broadcast_arrays")(*arrays);
-        for (std::size_t k = 0; k < N; ++k) in_[k] = Array::ensure(views[k]);
-        out_ = Array(std::vector<py::ssize_t>(in_[0].shape(), in_[0].shape() + in_[0].ndim()));
+        for (std::size_t k = 0; k < N; ++k) {  // the broadcast shape, or NumPy's message
+            const std::size_t skip = shape.size() - static_cast<std::size_t>(a[k].ndim());
+            for (py::ssize_t d = 0; d < a[k].ndim(); ++d) {
+                py::ssize_t& s = shape[skip + static_cast<std::size_t>(d)];
+                if (s == 1) s = a[k].shape(d);
+                else if (a[k].shape(d) != 1 && a[k].shape(d) != s) throw input_error(mismatch(a));
+            }
+        }
+        out_ = Array(shape);
+        for (std::size_t k = 0; k < N; ++k) {
+            if (static_cast<std::size_t>(a[k].ndim()) == shape.size() &&
+                std::equal(shape.begin(), shape.end(), a[k].shape())) {
+                in_[k] = a[k].data();
+                continue;
+            }
+            spread_[k] = spread(a[k], shape);
+            in_[k] = spread_[k].data();
+        }
+        keep_ = std::move(a);
     }
     std::size_t size() const { return static_cast<std::size_t>(out_.size()); }
-    std::span<const double> input(std::size_t k) const { return {in_[k].data(), size()}; }
+    std::span<const double> input(std::size_t k) const { return {in_[k], size()}; }
     std::span<double> output() { return {out_.mutable_data(), size()}; }
     py::object result() const {
         if (scalar_) return py::float_(out_.data()[0]);
@@ -60,7 +79,46 @@ public:
     }
 
 private:
-    std::array<Array, N> in_;
+    // a's values at every index of `shape` (a's dimensions aligned on the right; those of size 1 repeated).
+    static std::vector<double> spread(const Array& a, const std::vector<py::ssize_t>& shape) {
+        std::size_t n = 1;
+        for (const py::ssize_t s : shape) n *= static_cast<std::size_t>(s);
+        std::vector<double> out(n);
+        if (n == 0 || shape.empty()) {
+            if (n == 1) out[0] = a.data()[0];
+            return out;
+        }
+        const std::size_t dims = shape.size(), skip = dims - static_cast<std::size_t>(a.ndim());
+        std::vector<py::ssize_t> stride(dims, 0);  // a's stride in values along each output axis (0: repeated)
+        for (py::ssize_t d = a.ndim() - 1, step = 1; d >= 0; step *= a.shape(d), --d)
+            if (a.shape(d) != 1) stride[skip + static_cast<std::size_t>(d)] = step;
+        double* y = out.data();
+        fill(a.data(), stride.data(), shape.data(), dims, y);
+        return out;
+    }
+    // Writes x over `shape` (row-major) at y, advancing y: the last axis as a plain loop.
+    static void fill(const double* x, const py::ssize_t* stride, const py::ssize_t* shape, std::size_t dims,
+                     double*& y) {
+        if (dims == 1) {
+            for (py::ssize_t i = 0; i < shape[0]; ++i) *y++ = x[i * stride[0]];
+            return;
+        }
+        for (py::ssize_t i = 0; i < shape[0]; ++i) fill(x + i * stride[0], stride + 1, shape + 1, dims - 1, y);
+    }
+    // NumPy's words: "operands could not be broadcast together with shapes (2,) (3,4)"
+    static std::string mismatch(const std::array<Array, N>& a) {
+        std::string m = "operands could not be broadcast together with shapes";
+        for (const Array& x : a) {
+            m += " (";
+            for (py::ssize_t d = 0; d < x.ndim(); ++d) m += (d > 0 ? "," : "") + std::to_string(x.shape(d));
+            m += x.ndim() == 1 ? ",)" : ")";
+        }
+        return m;
+    }
+
+    std::array<Array, N> keep_;
+    std::array<std::vector<double>, N> spread_;
+    std::array<const double*, N> in_{};
     Array out_;
     bool scalar_ = true;
 };

@@ -95,6 +95,11 @@ def test_g2_forms_and_broadcasting():
     for i in range(3):
         for j in range(4):
             assert g2[i, j] == n.G2(float(mi[i, 0]), float(mo[j]))
+    # three dimensions against two, one of them a strided view
+    x, y = np.random.default_rng(3).random((2, 1, 6))[:, :, ::2], np.random.default_rng(4).random((4, 1))
+    g = n.G2(x, y)
+    assert g.shape == (2, 4, 3)
+    assert all(g[i, j, k] == n.G2(x[i, 0, k], y[j, 0]) for i in range(2) for j in range(4) for k in range(3))
 
 
 def test_scalars_lists_dtypes_and_shapes():
@@ -115,7 +120,7 @@ def test_scalars_lists_dtypes_and_shapes():
     assert n.G1([0.0, np.inf, -0.5]).tolist() == [0.0, 1.0, n.G1(0.5)]
     assert n.Lambda(-0.5) == -1.0 - n.Lambda(0.5)
     assert n.Lambda(-0.5, downward="hammon") == -n.Lambda(0.5)
-    with pytest.raises(ValueError, match="cannot be broadcast"):
+    with pytest.raises(ValueError, match="could not be broadcast together with shapes \\(2,\\) \\(3,\\)"):
         n.G2([1.0, 2.0], [1.0, 2.0, 3.0])
 
 
