@@ -1,6 +1,6 @@
 # Install smithlab into a fresh prefix, build experiments/plugin_example (a full command line with one NDF of its own,
 # written as D alone) against it, run check, trace and fit on that NDF, and, where MPI is built (MPIEXEC given), its
-# trace on two ranks, byte for byte the one-process run; and run the installed CLI.
+# trace on two ranks, byte for byte the one-process run; and run the installed CLI and Python module.
 file(REMOVE_RECURSE ${WORK_DIR})
 set(prefix ${WORK_DIR}/prefix)
 function(run)
@@ -11,6 +11,14 @@ function(run)
   set(last_output "${out}" PARENT_SCOPE)
 endfunction()
 run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
+# The Python module, where built (PYTHON and PYTHON_SITE given): imported from the prefix's site-packages.
+if(PYTHON)
+  run(${CMAKE_COMMAND} -E env PYTHONPATH=${prefix}/${PYTHON_SITE} ${PYTHON} -c
+      "import smithlab; assert smithlab.__file__.startswith('${prefix}/'), smithlab.__file__; print(smithlab.ndf('gtr(alpha=0.3, gamma=1.5)').G1(0.5))")
+  if(NOT last_output MATCHES "^0\\.86261582743341")
+    message(FATAL_ERROR "the installed Python module gives G1 = ${last_output}")
+  endif()
+endif()
 # The compiler and flags of the build under test (tests/CMakeLists.txt): the sanitized build's static libraries
 # link only into a sanitized program.
 if(NOT BUILD_TYPE)
