@@ -6,7 +6,6 @@
 #include <array>
 #include <cstddef>
 #include <exception>
-#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -36,8 +35,9 @@ using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
 // N inputs broadcast against each other (NumPy's rules: shapes aligned on the right, each dimension equal or 1), each
 // read as float64 (anything NumPy reads as numbers), and an output of the broadcast shape: result() is that array, or
-// a Python float where every input is a scalar. An input of the output's shape is read in place; another is spread
-// to it once, in C++.
+// a Python float where every input is a scalar. An input of the output's shape is read in place, one of a single
+// value as that value; another is spread to the output's shape once, in C++ (no large temporary for the common case:
+// arrays against scalars).
 template <std::size_t N>
 class Broadcast {
 public:
@@ -60,19 +60,25 @@ public:
         }
         out_ = Array(shape);
         for (std::size_t k = 0; k < N; ++k) {
-            if (static_cast<std::size_t>(a[k].ndim()) == shape.size() &&
-                std::equal(shape.begin(), shape.end(), a[k].shape())) {
+            step_[k] = 1;
+            if (a[k].size() == 1) step_[k] = 0, in_[k] = a[k].data();
+            else if (static_cast<std::size_t>(a[k].ndim()) == shape.size() &&
+                     std::equal(shape.begin(), shape.end(), a[k].shape()))
                 in_[k] = a[k].data();
-                continue;
-            }
-            spread_[k] = spread(a[k], shape);
-            in_[k] = spread_[k].data();
+            else spread_[k] = spread(a[k], shape), in_[k] = spread_[k].data();
         }
         keep_ = std::move(a);
     }
     std::size_t size() const { return static_cast<std::size_t>(out_.size()); }
-    std::span<const double> input(std::size_t k) const { return {in_[k], size()}; }
-    std::span<double> output() { return {out_.mutable_data(), size()}; }
+    // input k's value at output index i
+    double at(std::size_t k, std::size_t i) const { return in_[k][i * step_[k]]; }
+    // input k's values at output indices [first, first + count): in place, or written into `buffer` (count values)
+    const double* part(std::size_t k, std::size_t first, std::size_t count, double* buffer) const {
+        if (step_[k] == 1) return in_[k] + first;
+        std::fill(buffer, buffer + count, in_[k][0]);
+        return buffer;
+    }
+    double* output() { return out_.mutable_data(); }
     py::object result() const {
         if (scalar_) return py::float_(out_.data()[0]);
         return out_;
@@ -119,6 +125,7 @@ private:
     std::array<Array, N> keep_;
     std::array<std::vector<double>, N> spread_;
     std::array<const double*, N> in_{};
+    std::array<std::size_t, N> step_{};  // 1: one value per output index; 0: one value for all
     Array out_;
     bool scalar_ = true;
 };
@@ -128,13 +135,11 @@ private:
 template <std::size_t N, class F>
 py::object elementwise(const F& f, const std::array<py::object, N>& inputs) {
     Broadcast<N> b(inputs);
-    std::array<std::span<const double>, N> x;
-    for (std::size_t k = 0; k < N; ++k) x[k] = b.input(k);
-    const std::span<double> y = b.output();
+    double* y = b.output();
     {
         py::gil_scoped_release free;
-        for (std::size_t i = 0; i < y.size(); ++i) y[i] = [&]<std::size_t... K>(std::index_sequence<K...>) {
-                return f(x[K][i]...);
+        for (std::size_t i = 0; i < b.size(); ++i) y[i] = [&]<std::size_t... K>(std::index_sequence<K...>) {
+                return f(b.at(K, i)...);
             }
         (std::make_index_sequence<N>{});
     }

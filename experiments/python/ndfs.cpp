@@ -1,10 +1,13 @@
 // The NDF side of `import smithlab` (extension smithlab._ndf): NDFs by spec or by parameters, their D, P22, P2,
 // Lambda, G1 and G2 over NumPy arrays by every method `smithlab eval` has (the same code: cli/eval_route.hpp, so the
 // same bits), the GTR family's stream, a measured D as an NDF, and the samplers.
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <map>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -13,7 +16,6 @@
 #include "bindings.hpp"
 #include "cli/commands.hpp"
 #include "cli/eval_route.hpp"
-#include "smithlab/csv.hpp"
 #include "smithlab/gtr/family_stream.hpp"
 #include "smithlab/gtr/registry.hpp"
 #include "smithlab/samplers.hpp"
@@ -232,7 +234,13 @@ void bind_ndfs(py::module_& m) {
             Broadcast<3> b(std::array<py::object, 3>{alpha, gamma, mu});
             {
                 py::gil_scoped_release free;
-                G1_gtr_family(b.input(0), b.input(1), b.input(2), b.output());
+                constexpr std::size_t part = 4096;  // the stream's inputs a part at a time: a scalar is never spread
+                std::array<std::array<double, part>, 3> buffer;
+                for (std::size_t first = 0; first < b.size(); first += part) {
+                    const std::size_t n = std::min(part, b.size() - first);
+                    auto in = [&](std::size_t k) { return std::span(b.part(k, first, n, buffer[k].data()), n); };
+                    G1_gtr_family(in(0), in(1), in(2), std::span(b.output() + first, n), first);
+                }
             }
             return b.result();
         },

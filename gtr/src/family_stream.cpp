@@ -234,7 +234,7 @@ void GtrFamilyStream::G1_up(GtrFamilyRoute route, const double* alpha, const dou
 }
 
 void G1_gtr_family(std::span<const double> alpha, std::span<const double> gamma, std::span<const double> mu,
-                   std::span<double> out) {
+                   std::span<double> out, std::size_t first) {
     const std::size_t n = out.size();
     if (alpha.size() != n || gamma.size() != n || mu.size() != n)
         throw input_error("family: alpha, gamma, mu and out must be of one length, got " +
@@ -246,7 +246,7 @@ void G1_gtr_family(std::span<const double> alpha, std::span<const double> gamma,
         good &= GtrFamily::alpha_in_domain(alpha[i]) & GtrFamily::gamma_in_domain(gamma[i]) & !std::isnan(mu[i]);
     for (std::size_t i = 0; !good && i < n; ++i) {
         if (!GtrFamily::alpha_in_domain(alpha[i]) || !GtrFamily::gamma_in_domain(gamma[i]) || std::isnan(mu[i])) {
-            auto item = [i](const char* name) { return std::string(name) + '[' + std::to_string(i) + ']'; };
+            auto item = [&](const char* name) { return std::string(name) + '[' + std::to_string(first + i) + ']'; };
             require(GtrFamily::alpha_in_domain(alpha[i]), item("family: alpha"), "in [1e-4, 1]", alpha[i]);
             require(GtrFamily::gamma_in_domain(gamma[i]), item("family: gamma"), "in [0, 20]", gamma[i]);
             throw input_error(item("family: mu") + " is NaN");

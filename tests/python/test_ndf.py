@@ -151,6 +151,8 @@ def test_ndf_objects():
     (lambda: smithlab.ndf("ggx(alpha=0.3)").G2(1, 1, form="separable"), "form must be"),
     (lambda: smithlab.family_G1([0.3, 2.0], 1.5, 1.0), "family: alpha[1] must be in [1e-4, 1], got 2"),
     (lambda: smithlab.family_G1(0.3, 1.5, [1.0, np.nan]), "mu[1]"),
+    (lambda: smithlab.family_G1(np.where(np.arange(10000) == 9000, 2.0, 0.3), 1.5, 1.0),
+     "family: alpha[9000] must be in [1e-4, 1], got 2"),  # named by its place in the whole array
     (lambda: smithlab.sample(smithlab.ndf("ggx(alpha=0.3)"), "nosuch", 3), "nosuch"),
     (lambda: smithlab.sample(smithlab.ndf("ggx(alpha=0.3)"), "vndf", 3, seed=-1), "seed"),
     (lambda: smithlab.sample(smithlab.ndf("ggx(alpha=0.3)"), "vndf", 3, theta_i=200), "theta_i"),

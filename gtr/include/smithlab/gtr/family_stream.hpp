@@ -40,10 +40,11 @@ const char* name(GtrFamilyRoute route);  // "one point", "AVX2", "AVX-512"
 
 // G1(alpha[i], gamma[i], |mu[i]|) into out[i] for every i: the checked stream call. Everything is checked before
 // anything is written: input_error for spans of different lengths, and naming the first offending item otherwise
-// ("family: alpha[3] must be in [1e-4, 1], got 0"; gamma as for alpha, in [0, 20]; "mu[7] is NaN"). mu = 0 gives 0,
+// ("family: alpha[3] must be in [1e-4, 1], got 0"; gamma as for alpha, in [0, 20]; "mu[7] is NaN"), counted from
+// `first` (a caller streaming a long array in parts names the item by its place in the whole). mu = 0 gives 0,
 // |mu| = inf gives 1, as everywhere (smith.hpp).
 void G1_gtr_family(std::span<const double> alpha, std::span<const double> gamma, std::span<const double> mu,
-                   std::span<double> out);
+                   std::span<double> out, std::size_t first = 0);
 
 class GtrFamilyStream {
 public:
