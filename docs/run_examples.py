@@ -10,8 +10,10 @@ A block is checked when the line before its opening ```sh fence is
 Each such block runs as one bash script (bash -e: the first failing line fails the block) in WORK_DIR, made afresh,
 where `build` links to BUILD_DIR and `experiments` and `tests` to the repository's, so that the commands run as
 written from a checkout's root and what they write stays in WORK_DIR. A line whose comment starts with `exit N`
-(`$S eval --ndf 'ggx(alpha=-1)' --mu 1   # exit 2: ...`) must end with exit code N.
+(`$S eval --ndf 'ggx(alpha=-1)' --mu 1   # exit 2: ...`) must end with exit code N. `python3` in a block is the
+interpreter running this script (the one the build found, with NumPy and the module's ABI).
 """
+import os
 import pathlib
 import re
 import shutil
@@ -53,13 +55,15 @@ def main(argv):
     (work / "build").symlink_to(build_dir)
     for name in ("experiments", "tests"):
         (work / name).symlink_to(ROOT / name)
+    env = dict(os.environ, PATH=str(pathlib.Path(sys.executable).parent) + os.pathsep + os.environ.get("PATH", ""))
     count, failed = 0, []
     for path in [ROOT / "README.md"] + sorted((ROOT / "docs").glob("*.md")):
         for line, script in blocks(path):
             count += 1
             where = f"{path.relative_to(ROOT)}:{line}"
             print(f"== {where}", flush=True)
-            run = subprocess.run(["bash", "-e", "-x", "-c", with_exit_checks(script)], cwd=work, capture_output=True, text=True)
+            run = subprocess.run(["bash", "-e", "-x", "-c", with_exit_checks(script)], cwd=work, env=env,
+                                 capture_output=True, text=True)
             if run.returncode != 0:
                 failed.append(where)
                 print(run.stdout[-4000:] + run.stderr[-4000:])
