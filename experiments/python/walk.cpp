@@ -86,13 +86,6 @@ void require_walks_threads(long long walks, int threads) {
     require(threads >= 0, "threads", ">= 0 (0: all cores)", threads);
 }
 
-// The broadcast shape of a Broadcast's result: () for a Python float.
-std::vector<py::ssize_t> shape_of(const py::object& result) {
-    if (!py::isinstance<py::array>(result)) return {};
-    const auto a = py::reinterpret_borrow<py::array>(result);
-    return {a.shape(), a.shape() + a.ndim()};
-}
-
 // ---- trace ------------------------------------------------------------------------------------------------------
 
 struct TraceRequest {
@@ -245,17 +238,78 @@ BrdfNumbers eval_pair(EvalSetup& s, const Vec3& wi, const Vec3& wo, bool single)
     return n;
 }
 
-// The outputs over the broadcast shape: value and stderr in the Broadcast's own output and one more array, the
-// orders' values and errors with a last axis of 4.
+// The four angles broadcast against each other (elementwise's rules: NumPy's), each as a float64 array of the
+// broadcast shape (0-d where every angle is a scalar).
+struct Angles {
+    std::array<Array, 4> at;  // theta_i, phi_i, theta_o, phi_o
+    bool scalar;
+    std::size_t size() const { return static_cast<std::size_t>(at[0].size()); }
+    std::vector<py::ssize_t> shape() const { return {at[0].shape(), at[0].shape() + at[0].ndim()}; }
+};
+
+Angles broadcast_angles(const std::array<py::object, 4>& given) {
+    Angles a;
+    for (std::size_t k = 0; k < 4; ++k) {
+        const py::object x = elementwise<4>(
+            [k](double theta_i, double phi_i, double theta_o, double phi_o) {
+                return std::array<double, 4>{theta_i, phi_i, theta_o, phi_o}[k];
+            },
+            given);
+        a.scalar = !py::isinstance<py::array>(x);
+        a.at[k] = Array::ensure(x);
+    }
+    return a;
+}
+
+// The outputs over the broadcast shape: value and stderr, the orders' values and errors (a last axis of 4) and
+// single_analytic (filled only where with_single).
 struct BrdfArrays {
-    py::array_t<double> stderr_, order, order_stderr, single;
-    BrdfArrays(const std::vector<py::ssize_t>& shape, bool with_single) : stderr_(shape) {
+    py::array_t<double> value, stderr_, order, order_stderr, single;
+    bool with_single;
+    BrdfArrays(const std::vector<py::ssize_t>& shape, bool with) : value(shape), stderr_(shape), with_single(with) {
         std::vector<py::ssize_t> by_order = shape;
         by_order.push_back(walk::order_bins);
         order = py::array_t<double>(by_order), order_stderr = py::array_t<double>(by_order);
         if (with_single) single = py::array_t<double>(shape);
     }
 };
+
+// Every pair of the broadcast angles, one after another, on the GIL-free side: nothing here touches Python.
+void eval_pairs(EvalSetup& s, const Angles& a, BrdfArrays& out, const walk::MicrosurfaceOptions& options) {
+    const double *theta_i = a.at[0].data(), *phi_i = a.at[1].data(), *theta_o = a.at[2].data(), *phi_o = a.at[3].data();
+    double* value = out.value.mutable_data();
+    double* err = out.stderr_.mutable_data();
+    double* order = out.order.mutable_data();
+    double* order_err = out.order_stderr.mutable_data();
+    double* single = out.with_single ? out.single.mutable_data() : nullptr;
+    py::gil_scoped_release free;
+    s.surface = make_surface(s.ndf, options);
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        const Vec3 wi = incident(theta_i[i], phi_i[i], s.material);
+        const BrdfNumbers n = eval_pair(s, wi, outgoing(theta_o[i], phi_o[i]), single != nullptr);
+        value[i] = n.total.value;
+        err[i] = n.total.stderr_;
+        for (int o = 0; o < walk::order_bins; ++o) {
+            order[i * walk::order_bins + o] = n.orders[o].value;
+            order_err[i * walk::order_bins + o] = n.orders[o].stderr_;
+        }
+        if (single) single[i] = n.single;
+    }
+}
+
+// The dict brdf returns: Python floats for value, stderr and single_analytic where every angle was a scalar.
+py::dict brdf_result(const Angles& a, const BrdfArrays& out) {
+    auto result = [&a](const py::array_t<double>& x) -> py::object {
+        return a.scalar ? py::object(py::float_(x.data()[0])) : py::object(x);
+    };
+    py::dict d;
+    d["value"] = result(out.value);
+    d["stderr"] = result(out.stderr_);
+    d["order"] = out.order;
+    d["order_stderr"] = out.order_stderr;
+    if (out.with_single) d["single_analytic"] = result(out.single);
+    return d;
+}
 
 py::dict brdf_pairs(const AnyNdf& ndf, const std::string& material, const py::object& theta_i, const py::object& phi_i,
                     const py::object& theta_o, const py::object& phi_o, long long walks, const py::object& seed,
@@ -264,38 +318,12 @@ py::dict brdf_pairs(const AnyNdf& ndf, const std::string& material, const py::ob
     const walk::MicrosurfaceOptions options = walk_options(downward, "visible");
     require_walks_threads(walks, threads);
     s.request.seed = seed_of(seed), s.request.walks = walks, s.request.threads = static_cast<unsigned>(threads);
-    Broadcast<4> b({theta_i, phi_i, theta_o, phi_o});
+    const Angles a = broadcast_angles({theta_i, phi_i, theta_o, phi_o});
     bool light_below = false;
-    for (double t : b.input(0)) light_below = light_below || t > 90.0;
-    const bool with_single = has_single(s.material, light_below);
-    BrdfArrays out(shape_of(b.result()), with_single);
-    const std::span<double> value = b.output();
-    double* err = out.stderr_.mutable_data();
-    double* order = out.order.mutable_data();
-    double* order_err = out.order_stderr.mutable_data();
-    double* single = with_single ? out.single.mutable_data() : nullptr;
-    {
-        py::gil_scoped_release free;
-        s.surface = make_surface(ndf, options);
-        for (std::size_t i = 0; i < value.size(); ++i) {
-            const Vec3 wi = incident(b.input(0)[i], b.input(1)[i], s.material);
-            const BrdfNumbers n = eval_pair(s, wi, outgoing(b.input(2)[i], b.input(3)[i]), with_single);
-            value[i] = n.total.value, err[i] = n.total.stderr_;
-            for (int o = 0; o < walk::order_bins; ++o)
-                order[i * walk::order_bins + o] = n.orders[o].value,
-                                             order_err[i * walk::order_bins + o] = n.orders[o].stderr_;
-            if (single) single[i] = n.single;
-        }
-    }
-    const bool scalar = !py::isinstance<py::array>(b.result());
-    auto result = [scalar](const py::array_t<double>& a) -> py::object {
-        return scalar ? py::object(py::float_(a.data()[0])) : py::object(a);
-    };
-    py::dict d;
-    d["value"] = b.result(), d["stderr"] = result(out.stderr_), d["order"] = out.order,
-    d["order_stderr"] = out.order_stderr;
-    if (with_single) d["single_analytic"] = result(out.single);
-    return d;
+    for (std::size_t i = 0; i < a.size(); ++i) light_below = light_below || a.at[0].data()[i] > 90.0;
+    BrdfArrays out(a.shape(), has_single(s.material, light_below));
+    eval_pairs(s, a, out, options);
+    return brdf_result(a, out);
 }
 
 const char* const brdf_doc = R"(f(wi, wo) |cos theta_o| of the Smith microsurface (1/sr) by the eval estimator
