@@ -14,9 +14,9 @@
 #include "scene/walk_options.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
-#include "smithlab/single_scattering.hpp"
 #include "smithlab/walk/trace.hpp"
 #include "trace/capped_walks.hpp"
+#include "trace/single_analytic.hpp"
 #include "trace/trace_run.hpp"
 #include "trace/trace_scene.hpp"
 
@@ -110,17 +110,8 @@ std::vector<BrdfLine> brdf_lines(const walk::EvalTally& t, const AnyNdf& ndf, co
         const walk::Estimate e = t.value(o, walk::Component::all);
         lines.push_back({std::string("order_") + order_name[o], {e.value, e.stderr_}});
     }
-    auto single = [&](auto F) { return single_scattering_reflection(ndf, r.wi, r.wo, F); };
-    if (std::holds_alternative<walk::Mirror>(material))
-        lines.push_back({"single_analytic", {single([](double) { return 1.0; })}});
-    if (const auto* c = std::get_if<walk::Conductor>(&material))
-        lines.push_back({"single_analytic", {single([c](double x) { return fresnel_conductor(x, c->eta, c->k); })}});
-    if (const auto* d = std::get_if<walk::Dielectric>(&material); d && r.wi.z() > 0.0) {
-        auto F = [d](double x) { return fresnel_dielectric(x, d->eta); };
-        lines.push_back(
-            {"single_analytic",
-             {r.wo.z() > 0.0 ? single(F) : single_scattering_transmission(ndf, r.wi, r.wo, 1.0, d->eta, F)}});
-    }
+    if (trace::has_single_analytic(material, r.wi.z() < 0.0))
+        lines.push_back({"single_analytic", {trace::single_analytic(ndf, material, r.wi, r.wo)}});
     return lines;
 }
 

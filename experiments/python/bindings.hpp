@@ -116,7 +116,10 @@ private:
         std::string m = "operands could not be broadcast together with shapes";
         for (const Array& x : a) {
             m += " (";
-            for (py::ssize_t d = 0; d < x.ndim(); ++d) m += (d > 0 ? "," : "") + std::to_string(x.shape(d));
+            for (py::ssize_t d = 0; d < x.ndim(); ++d) {
+                if (d > 0) m += ',';
+                m += std::to_string(x.shape(d));
+            }
             m += x.ndim() == 1 ? ",)" : ")";
         }
         return m;

@@ -16,12 +16,11 @@
 #include "cli/commands.hpp"
 #include "scene/walk_options.hpp"
 #include "smithlab/csv.hpp"
-#include "smithlab/fresnel.hpp"
-#include "smithlab/single_scattering.hpp"
 #include "smithlab/surface.hpp"
 #include "smithlab/util/parallel.hpp"
 #include "smithlab/walk/trace.hpp"
 #include "trace/capped_walks.hpp"
+#include "trace/single_analytic.hpp"
 
 namespace smithlab::python {
 namespace {
@@ -199,24 +198,6 @@ struct BrdfNumbers {
     double single = 0.0;
 };
 
-// The single-scattering BSDF times |cos theta_o| (Walter 2007 eq. 20, 21, the height-correlated G2), where `smithlab
-// brdf` prints it: mirror and conductor facets, dielectric facets with the light from above.
-bool has_single(const walk::Material& m, bool light_below) {
-    return std::holds_alternative<walk::Mirror>(m) || std::holds_alternative<walk::Conductor>(m) ||
-        (std::holds_alternative<walk::Dielectric>(m) && !light_below);
-}
-
-double single_analytic(const AnyNdf& ndf, const walk::Material& material, const Vec3& wi, const Vec3& wo) {
-    auto single = [&](auto F) { return single_scattering_reflection(ndf, wi, wo, F); };
-    if (const auto* c = std::get_if<walk::Conductor>(&material))
-        return single([c](double x) { return fresnel_conductor(x, c->eta, c->k); });
-    if (const auto* d = std::get_if<walk::Dielectric>(&material)) {
-        auto F = [d](double x) { return fresnel_dielectric(x, d->eta); };
-        return wo.z() > 0.0 ? single(F) : single_scattering_transmission(ndf, wi, wo, 1.0, d->eta, F);
-    }
-    return single([](double) { return 1.0; });
-}
-
 // One pair, as run_brdf: refused where the BSDF is a Dirac delta or a walk was cut short; a number that is not
 // finite on accepted input is an internal error (RuntimeError), never returned.
 BrdfNumbers eval_pair(EvalSetup& s, const Vec3& wi, const Vec3& wo, bool single) {
@@ -230,7 +211,7 @@ BrdfNumbers eval_pair(EvalSetup& s, const Vec3& wi, const Vec3& wo, bool single)
         throw input_error("brdf: " + trace::capped_text(t.capped, t.walks) +
                           "; the eval estimator cannot bound what they would still have added, so there is no "
                           "estimate");
-    BrdfNumbers n{t.value(), {}, single ? single_analytic(s.ndf, s.material, wi, wo) : 0.0};
+    BrdfNumbers n{t.value(), {}, single ? trace::single_analytic(s.ndf, s.material, wi, wo) : 0.0};
     for (int o = 0; o < walk::order_bins; ++o) n.orders[o] = t.value(o, walk::Component::all);
     bool finite = std::isfinite(n.total.value) && std::isfinite(n.total.stderr_) && std::isfinite(n.single);
     for (const walk::Estimate& e : n.orders) finite = finite && std::isfinite(e.value) && std::isfinite(e.stderr_);
@@ -321,7 +302,7 @@ py::dict brdf_pairs(const AnyNdf& ndf, const std::string& material, const py::ob
     const Angles a = broadcast_angles({theta_i, phi_i, theta_o, phi_o});
     bool light_below = false;
     for (std::size_t i = 0; i < a.size(); ++i) light_below = light_below || a.at[0].data()[i] > 90.0;
-    BrdfArrays out(a.shape(), has_single(s.material, light_below));
+    BrdfArrays out(a.shape(), trace::has_single_analytic(s.material, light_below));
     eval_pairs(s, a, out, options);
     return brdf_result(a, out);
 }
