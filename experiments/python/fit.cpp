@@ -210,7 +210,8 @@ directional albedo of single scattering off mirror facets (height-correlated G2;
 cos_theta = j / (n - 1) of the incident direction (0 grazing, 1 normal; E(0) = 1, the limit), and E_avg = 2 integral
 of E(mu) mu dmu by its own quadrature. A dict: 'cos_theta' and 'E' (float64 arrays of n), 'E_avg' (a float). The
 same bits as the fit's compensation.csv and compensation_avg.csv for the same NDF and n (its [compensation] mu).
-Quadrature to a relative 1e-10; about 1 s for a 32-point GGX table. Runs without the GIL.)";
+By quadrature (fit/compensation.hpp); tens of milliseconds for 32 cosines (bench_fit's compensation rows). Runs
+without the GIL.)";
 
 }  // namespace
 
