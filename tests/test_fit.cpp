@@ -468,6 +468,9 @@ TEST_CASE("fit: a bad scene is refused naming FILE:LINE and the item, with nothi
     bad("theta = [0.0, 40.0, 70.0]", "theta = [0.0, 40.0, 90.0]", "training.theta");
     bad("walks = 400\n[validation]", "walkz = 400\n[validation]", "walkz");
     bad("[validation]", "[validation", "malformed scene");
+    bad("[validation]", "[compensation]\nalpha = [0.5]\nmu = 4\n[validation]", "compensation.alpha needs 2 values");
+    bad("[validation]", "[compensation]\nalpha = [0.5, 0.3]\nmu = 4\n[validation]",
+        "compensation.alpha values must ascend");
     bad("points = 6", "points = 0", "validation.points");
     bad("phi = [0.0, 180.0]", "phi = {lin = [0.0, 180.0], n = 30000}", "90003 direction pairs per alpha");
     fs::remove_all(d);

@@ -166,6 +166,10 @@ FitScene::Validation read_validation(StrictTable& doc, FitScene::Validation v) {
 FitScene::Compensation read_compensation(StrictTable& doc, FitScene::Compensation c) {
     if (auto t = doc.optional_table("compensation", {"alpha", "mu"})) {
         c.alpha = read_bounded(*t, "alpha", 0.0, 1.0, true, false, "(0, 1]");
+        // the C header interpolates between the alphas: two at least, ascending (fit/compensation.hpp)
+        if (c.alpha.size() < 2) t->fail("alpha", "needs 2 values or more (the header interpolates between them)");
+        for (std::size_t i = 1; i < c.alpha.size(); ++i)
+            if (!(c.alpha[i] > c.alpha[i - 1])) t->fail("alpha", "values must ascend");
         c.mu = t->integer("mu", 2, 4096, c.mu);
         t->done();
     }
