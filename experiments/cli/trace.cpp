@@ -16,6 +16,7 @@
 #include "smithlab/errors.hpp"
 #include "smithlab/walk/trace.hpp"
 #include "trace/capped_walks.hpp"
+#include "trace/incidence.hpp"
 #include "trace/single_analytic.hpp"
 #include "trace/trace_run.hpp"
 #include "trace/trace_scene.hpp"
@@ -24,20 +25,6 @@ namespace smithlab::cli {
 
 namespace {
 
-// The light's direction: from above (theta in [0, 90)), or from below (theta in (90, 180]) for a material that
-// transmits (the dielectric); never grazing.
-Vec3 incident(double theta, double phi, const char* what, const walk::Material& m) {
-    if (walk::transmits(m))
-        require(theta >= 0.0 && theta <= 180.0 && theta != 90.0, what, "in [0, 180] degrees, not 90 (grazing)", theta);
-    else
-        require(theta >= 0.0 && theta < 90.0, what,
-                "in [0, 90) degrees (light from above the surface; only a dielectric "
-                "takes light from below)",
-                theta);
-    require(std::isfinite(phi), what, "finite", phi);
-    return direction_from_deg(theta, phi);
-}
-
 // "THETA,PHI" in degrees: the light's direction (incident), or the viewer's anywhere.
 Vec3 parse_direction(const std::string& text, const char* what, const walk::Material* light_on) {
     const auto comma = text.find(',');
@@ -45,7 +32,7 @@ Vec3 parse_direction(const std::string& text, const char* what, const walk::Mate
         throw input_error(std::string(what) + ": expected THETA,PHI in degrees, got '" + text + "'");
     const double theta = parse_number(text.substr(0, comma), std::string(what) + " theta");
     const double phi = parse_number(text.substr(comma + 1), std::string(what) + " phi");
-    if (light_on) return incident(theta, phi, what, *light_on);
+    if (light_on) return trace::incident_direction(theta, phi, what, what, *light_on);
     require(theta >= 0.0 && theta <= 180.0, what, "theta in [0, 180] degrees", theta);
     require(std::isfinite(phi), what, "phi finite", phi);
     return direction_from_deg(theta, phi);
@@ -60,7 +47,7 @@ trace::TraceScene cell_scene(const TraceArgs& a) {
             "<= --max-walks (raise it with --max-walks N)", static_cast<double>(a.walks));
     require(std::isfinite(a.phi_i), "--phi-i", "finite", a.phi_i);
     require(a.max_order >= 0, "--max-order", ">= 0", a.max_order);
-    incident(a.theta_i, a.phi_i, "--theta-i", walk::parse_material(a.material));
+    trace::incident_direction(a.theta_i, a.phi_i, "--theta-i", "--phi-i", walk::parse_material(a.material));
     trace::parse_walk_options(a.downward, a.hit_normal, "--");
     trace::TraceScene s;
     s.title = "one cell";

@@ -45,8 +45,7 @@ public:
         std::array<Array, N> a;
         std::vector<py::ssize_t> shape;
         for (std::size_t k = 0; k < N; ++k) {
-            a[k] = Array::ensure(inputs[k]);
-            if (!a[k]) throw py::error_already_set();
+            a[k] = Array(inputs[k]);  // NumPy's own error where it reads no numbers ("could not convert ...")
             scalar_ = scalar_ && a[k].ndim() == 0;
             shape.resize(std::max<std::size_t>(shape.size(), static_cast<std::size_t>(a[k].ndim())), 1);
         }
@@ -70,6 +69,8 @@ public:
         keep_ = std::move(a);
     }
     std::size_t size() const { return static_cast<std::size_t>(out_.size()); }
+    std::vector<py::ssize_t> shape() const { return {out_.shape(), out_.shape() + out_.ndim()}; }
+    bool scalar() const { return scalar_; }
     // input k's value at output index i
     double at(std::size_t k, std::size_t i) const { return in_[k][i * step_[k]]; }
     // input k's values at output indices [first, first + count): in place, or written into `buffer` (count values)

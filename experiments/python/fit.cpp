@@ -136,7 +136,8 @@ double number_of(const std::string& text, const std::string& what) {
     return v;
 }
 
-using FitConstants = std::map<std::string, std::map<std::string, std::vector<std::pair<std::string, double>>>>;
+// model -> ndf label -> constant -> value (or its standard error)
+using FitConstants = std::map<std::string, std::map<std::string, std::map<std::string, double>>>;
 
 FitConstants read_constants(const fs::path& directory, bool standard_errors) {
     const fs::path file = directory / "constants.csv";
@@ -159,13 +160,16 @@ FitConstants read_constants(const fs::path& directory, bool standard_errors) {
         const std::string model = model_of(rec.fields[c.model], constant, where);
         const double value = number_of(rec.fields[c.value], where + "value");
         const double error = number_of(rec.fields[c.stderr_], where + "stderr");
-        auto& row = out[model][rec.fields[c.ndf]];
-        for (const auto& [name, v] : row)
-            if (name == constant)
-                throw input_error(where + "a second row of " + rec.fields[c.model] + " on " + rec.fields[c.ndf] + ", " +
-                                  constant);
-        row.emplace_back(constant, standard_errors ? error : value);
+        if (!out[model][rec.fields[c.ndf]].emplace(constant, standard_errors ? error : value).second)
+            throw input_error(where + "a second row of " + rec.fields[c.model] + " on " + rec.fields[c.ndf] + ", " +
+                              constant);
     }
+    for (const auto& [model, by_ndf] : out)  // every constant of the model, for every NDF it was fitted on
+        for (const auto& [ndf, constants] : by_ndf)
+            for (std::string_view p : fit::find_diffuse_model(model).parameters)
+                if (!constants.count(std::string(p)))
+                    throw input_error("read_fit: " + file.string() + ": " + model + "-fitted on " + ndf +
+                                      " has no row for its constant " + std::string(p));
     return out;
 }
 
@@ -174,8 +178,9 @@ py::dict read_fit(const fs::path& directory, bool standard_errors) {
     for (const auto& [model, by_ndf] : read_constants(directory, standard_errors)) {
         py::dict ndfs;
         for (const auto& [ndf, constants] : by_ndf) {
-            py::dict values;  // in the file's order: the model's own order of its constants
-            for (const auto& [name, v] : constants) values[py::str(name)] = v;
+            py::dict values;  // in the model's order of its constants (diffuse_f's), whatever the file's
+            for (std::string_view p : fit::find_diffuse_model(model).parameters)
+                values[py::str(std::string(p))] = constants.at(std::string(p));
             ndfs[py::str(ndf)] = values;
         }
         out[py::str(model)] = ndfs;
@@ -192,7 +197,7 @@ in the same shape. A missing file, or a malformed row, raises ValueError naming 
 // ---- compensation -----------------------------------------------------------------------------------------------
 
 py::dict compensation(const AnyNdf& ndf, int n) {
-    require(n >= 2, "n", ">= 2", n);
+    require(n >= 2 && n <= 4096, "n", "in [2, 4096] (as the fit's [compensation] mu)", n);
     fit::CompensationTable t;
     {
         py::gil_scoped_release free;

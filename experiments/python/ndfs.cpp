@@ -25,20 +25,26 @@
 namespace smithlab::python {
 namespace {
 
-// The module's NDFs: the built-in ones, and those a session makes from a measured D (tabulated()).
+// The module's NDFs: the built-in ones, and the measured tables made in this process (tabulated()), by name: a name
+// made again (a notebook cell run twice) takes the new table, which later ndf(name) calls build from.
 struct Catalogue {
     NdfRegistry registry = builtin_registry();
     VariantRegistry variants = builtin_variants();
+    std::map<std::string, TabulatedNdf> tables;
 };
 Catalogue& catalogue() {
     static Catalogue c;
     return c;
 }
 
+void require_tolerance(double tolerance) {
+    require(tolerance >= 1e-15 && tolerance <= 0.1, "tolerance", "in [1e-15, 0.1]", tolerance);
+}
+
 // A method's route, as `smithlab eval --method M --backend B --tolerance T --downward D` takes it.
 cli::Prepared prepared(const AnyNdf& ndf, const std::string& method, const std::string& backend, double tolerance,
                        const std::string& downward) {
-    require(tolerance >= 1e-15 && tolerance <= 0.1, "tolerance", "in [1e-15, 0.1]", tolerance);
+    require_tolerance(tolerance);
     cli::EvalArgs args;
     args.method = method, args.backend = backend, args.tolerance = tolerance, args.downward = downward;
     return cli::prepare(ndf, cli::route(args, catalogue().variants));
@@ -46,12 +52,27 @@ cli::Prepared prepared(const AnyNdf& ndf, const std::string& method, const std::
 
 AnyNdf make_ndf(const std::string& spec, const py::kwargs& params) {
     if (params.empty()) return catalogue().registry.make(spec);
+    const NdfInfo* info = catalogue().registry.find(spec);
     std::vector<std::pair<std::string, double>> values;
     std::vector<std::pair<std::string, std::string>> texts;
     for (const auto& [key, value] : params) {
         const auto name = key.cast<std::string>();
-        if (py::isinstance<py::str>(value)) texts.emplace_back(name, value.cast<std::string>());
-        else values.emplace_back(name, value.cast<double>());
+        const bool text = info &&
+            std::find(info->text_parameters.begin(), info->text_parameters.end(), name) != info->text_parameters.end();
+        const auto refuse = [&] {
+            return input_error(spec + ": " + name + " takes " + (text ? "text" : "a number") + ", got " +
+                               py::repr(value).cast<std::string>());
+        };
+        if (text != py::isinstance<py::str>(value)) throw refuse();
+        if (text) {
+            texts.emplace_back(name, value.cast<std::string>());
+            continue;
+        }
+        try {
+            values.emplace_back(name, value.cast<double>());
+        } catch (const py::cast_error&) {
+            throw refuse();
+        }
     }
     return catalogue().registry.make(spec, values, texts);
 }
@@ -59,6 +80,11 @@ AnyNdf make_ndf(const std::string& spec, const py::kwargs& params) {
 double require_number(double x, const char* what) {
     require(!std::isnan(x), what, "a number", x);
     return x;
+}
+
+// P2(q) by quadrature; 0 at q = +-inf (its limit: P22 falls at least like r^-3 in every accepted NDF).
+double P2_at(const AnyNdf& n, double q, const QuadratureOptions& o) {
+    return std::isinf(require_number(q, "q")) ? 0.0 : smithlab::P2(n, q, o);
 }
 
 // A measured D (one of cos_theta, theta_deg, with D) as the NDF family `name` (parameter scale, as the registry's
@@ -69,13 +95,13 @@ AnyNdf tabulated(const std::string& name, const py::object& cos_theta, const py:
     if (cos_theta.is_none() == theta_deg.is_none())
         throw input_error("tabulated '" + name + "': give exactly one of cos_theta and theta_deg");
     const bool by_cos = !cos_theta.is_none();
-    const Array x = Array::ensure(by_cos ? cos_theta : theta_deg), d = Array::ensure(D);
-    if (!x || !d) throw py::error_already_set();
+    const Array x(by_cos ? cos_theta : theta_deg), d(D);
     if (x.ndim() != 1 || d.ndim() != 1 || x.size() != d.size())
         throw input_error("tabulated '" + name + "': " + (by_cos ? "cos_theta" : "theta_deg") +
                           " and D must be 1-D arrays of one length, got " + std::to_string(x.size()) + " and " +
                           std::to_string(d.size()) + " values");
-    if (catalogue().registry.find(name))
+    const bool made_here = catalogue().tables.count(name) > 0;
+    if (catalogue().registry.find(name) && !made_here)
         throw input_error("tabulated: the name '" + name + "' is taken (smithlab.list() names every NDF)");
     std::string text = by_cos ? "cos_theta,D\n" : "theta_deg,D\n";
     char row[64];
@@ -85,18 +111,22 @@ AnyNdf tabulated(const std::string& name, const py::object& cos_theta, const py:
     }
     // The table is read once here: its refusals (rows out of order, a negative D, an area far from 1) come now,
     // naming the row ("NAME:LINE: ..."; line 2 is the first value).
-    const TabulatedNdf table = tabulated_ndf_from_csv(text, name, {.normalize = normalize});
-    catalogue().registry.add(
-        {.name = name,
-         .parameters = {"scale"},
-         .description = "a measured D(theta_m) given from Python (" + std::to_string(table.points()) +
-             " rows), interpolated (tabulated.hpp); scale stretches its slopes (default 1)",
-         .examples = {},
-         .roughness =
-             NdfInfo::Roughness{"scale",
-                                [table](double alpha, const NdfParams&) { return alpha / core_slope_scale(table); }},
-         .defaults = {{"scale", 1.0}}},
-        [table](const NdfParams& p) { return table.scaled(p.at("scale")); });
+    catalogue().tables.insert_or_assign(name, tabulated_ndf_from_csv(text, name, {.normalize = normalize}));
+    if (!made_here) {
+        // the family builds from the name's current table
+        auto table = [name] { return catalogue().tables.at(name); };
+        catalogue().registry.add(
+            {.name = name,
+             .parameters = {"scale"},
+             .description = "a measured D(theta_m) given from Python, interpolated (tabulated.hpp); scale stretches "
+                            "its slopes (default 1)",
+             .examples = {},
+             .roughness =
+                 NdfInfo::Roughness{
+                     "scale", [table](double alpha, const NdfParams&) { return alpha / core_slope_scale(table()); }},
+             .defaults = {{"scale", 1.0}}},
+            [table](const NdfParams& p) { return table().scaled(p.at("scale")); });
+    }
     return catalogue().registry.make(name, {});
 }
 
@@ -128,7 +158,12 @@ void bind_ndfs(py::module_& m) {
         .def(
             "D",
             [](const AnyNdf& n, const py::object& c) {
-                return elementwise<1>([&](double x) { return n.D(require_number(x, "cos_theta_m")); }, {c});
+                return elementwise<1>(
+                    [&](double x) {
+                        require(x >= -1.0 && x <= 1.0, "cos_theta_m", "in [-1, 1]", x);  // NaN too
+                        return n.D(x);
+                    },
+                    {c});
             },
             py::arg("cos_theta_m"),
             "D(theta_m) per steradian of m, normalized: the integral of D cos theta_m over the hemisphere is 1 "
@@ -147,9 +182,9 @@ void bind_ndfs(py::module_& m) {
         .def(
             "P2",
             [](const AnyNdf& n, const py::object& q, const std::string& backend, double tolerance) {
-                require(tolerance >= 1e-15 && tolerance <= 0.1, "tolerance", "in [1e-15, 0.1]", tolerance);
+                require_tolerance(tolerance);
                 const QuadratureOptions o{parse_backend(backend), tolerance};
-                return elementwise<1>([&](double x) { return smithlab::P2(n, require_number(x, "q"), o); }, {q});
+                return elementwise<1>([&](double x) { return P2_at(n, x, o); }, {q});
             },
             py::arg("q"), py::arg("backend") = "boost", py::arg("tolerance") = 1e-12,
             "The marginal slope density P2(q), the integral of P22(p, q) over p (Walter 2007 eq. 43), by quadrature.")

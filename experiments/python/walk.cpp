@@ -20,6 +20,7 @@
 #include "smithlab/util/parallel.hpp"
 #include "smithlab/walk/trace.hpp"
 #include "trace/capped_walks.hpp"
+#include "trace/incidence.hpp"
 #include "trace/single_analytic.hpp"
 
 namespace smithlab::python {
@@ -46,19 +47,6 @@ const char* const hemisphere_names[] = {"reflection", "transmission", "all"};
 const char* const order_names[] = {"1", "2", "3", "4+", "all"};
 const char* const component_names[] = {"specular", "diffuse", "all"};
 constexpr int order_columns = walk::order_bins + 1;  // 1, 2, 3, 4+, all
-
-// The light's direction in degrees, as `smithlab trace --theta-i --phi-i` and `brdf --wi` take it: from above
-// (theta in [0, 90)), or from below (theta in (90, 180]) for a material that transmits; never grazing.
-Vec3 incident(double theta, double phi, const walk::Material& m) {
-    if (walk::transmits(m))
-        require(theta >= 0.0 && theta <= 180.0 && theta != 90.0, "theta_i", "in [0, 180] degrees, not 90 (grazing)",
-                theta);
-    else
-        require(theta >= 0.0 && theta < 90.0, "theta_i",
-                "in [0, 90) degrees (light from above the surface; only a dielectric takes light from below)", theta);
-    require(std::isfinite(phi), "phi_i", "finite", phi);
-    return direction_from_deg(theta, phi);
-}
 
 // The viewer's direction in degrees, anywhere (theta > 90: below the surface).
 Vec3 outgoing(double theta, double phi) {
@@ -147,7 +135,7 @@ py::dict trace_one_cell(const AnyNdf& ndf, const std::string& material, double t
     TraceRequest t{walk::parse_material(material), {}, walk_options(downward, hit_normal)};
     require_walks_threads(walks, threads);
     require(max_order >= 0, "max_order", ">= 0 (0: no limit)", max_order);
-    t.cell.wi = incident(theta_i, phi_i, t.material);
+    t.cell.wi = trace::incident_direction(theta_i, phi_i, "theta_i", "phi_i", t.material);
     t.cell.seed = seed_of(seed);
     t.cell.cell = 0;
     t.cell.walks = walks;
@@ -219,29 +207,6 @@ BrdfNumbers eval_pair(EvalSetup& s, const Vec3& wi, const Vec3& wo, bool single)
     return n;
 }
 
-// The four angles broadcast against each other (elementwise's rules: NumPy's), each as a float64 array of the
-// broadcast shape (0-d where every angle is a scalar).
-struct Angles {
-    std::array<Array, 4> at;  // theta_i, phi_i, theta_o, phi_o
-    bool scalar;
-    std::size_t size() const { return static_cast<std::size_t>(at[0].size()); }
-    std::vector<py::ssize_t> shape() const { return {at[0].shape(), at[0].shape() + at[0].ndim()}; }
-};
-
-Angles broadcast_angles(const std::array<py::object, 4>& given) {
-    Angles a;
-    for (std::size_t k = 0; k < 4; ++k) {
-        const py::object x = elementwise<4>(
-            [k](double theta_i, double phi_i, double theta_o, double phi_o) {
-                return std::array<double, 4>{theta_i, phi_i, theta_o, phi_o}[k];
-            },
-            given);
-        a.scalar = !py::isinstance<py::array>(x);
-        a.at[k] = Array::ensure(x);
-    }
-    return a;
-}
-
 // The outputs over the broadcast shape: value and stderr, the orders' values and errors (a last axis of 4) and
 // single_analytic (filled only where with_single).
 struct BrdfArrays {
@@ -256,8 +221,7 @@ struct BrdfArrays {
 };
 
 // Every pair of the broadcast angles, one after another, on the GIL-free side: nothing here touches Python.
-void eval_pairs(EvalSetup& s, const Angles& a, BrdfArrays& out, const walk::MicrosurfaceOptions& options) {
-    const double *theta_i = a.at[0].data(), *phi_i = a.at[1].data(), *theta_o = a.at[2].data(), *phi_o = a.at[3].data();
+void eval_pairs(EvalSetup& s, const Broadcast<4>& a, BrdfArrays& out, const walk::MicrosurfaceOptions& options) {
     double* value = out.value.mutable_data();
     double* err = out.stderr_.mutable_data();
     double* order = out.order.mutable_data();
@@ -266,8 +230,8 @@ void eval_pairs(EvalSetup& s, const Angles& a, BrdfArrays& out, const walk::Micr
     py::gil_scoped_release free;
     s.surface = make_surface(s.ndf, options);
     for (std::size_t i = 0; i < a.size(); ++i) {
-        const Vec3 wi = incident(theta_i[i], phi_i[i], s.material);
-        const BrdfNumbers n = eval_pair(s, wi, outgoing(theta_o[i], phi_o[i]), single != nullptr);
+        const Vec3 wi = trace::incident_direction(a.at(0, i), a.at(1, i), "theta_i", "phi_i", s.material);
+        const BrdfNumbers n = eval_pair(s, wi, outgoing(a.at(2, i), a.at(3, i)), single != nullptr);
         value[i] = n.total.value;
         err[i] = n.total.stderr_;
         for (int o = 0; o < walk::order_bins; ++o) {
@@ -279,9 +243,9 @@ void eval_pairs(EvalSetup& s, const Angles& a, BrdfArrays& out, const walk::Micr
 }
 
 // The dict brdf returns: Python floats for value, stderr and single_analytic where every angle was a scalar.
-py::dict brdf_result(const Angles& a, const BrdfArrays& out) {
+py::dict brdf_result(const Broadcast<4>& a, const BrdfArrays& out) {
     auto result = [&a](const py::array_t<double>& x) -> py::object {
-        return a.scalar ? py::object(py::float_(x.data()[0])) : py::object(x);
+        return a.scalar() ? py::object(py::float_(x.data()[0])) : py::object(x);
     };
     py::dict d;
     d["value"] = result(out.value);
@@ -299,9 +263,9 @@ py::dict brdf_pairs(const AnyNdf& ndf, const std::string& material, const py::ob
     const walk::MicrosurfaceOptions options = walk_options(downward, "visible");
     require_walks_threads(walks, threads);
     s.request.seed = seed_of(seed), s.request.walks = walks, s.request.threads = static_cast<unsigned>(threads);
-    const Angles a = broadcast_angles({theta_i, phi_i, theta_o, phi_o});
+    const Broadcast<4> a({theta_i, phi_i, theta_o, phi_o});
     bool light_below = false;
-    for (std::size_t i = 0; i < a.size(); ++i) light_below = light_below || a.at[0].data()[i] > 90.0;
+    for (std::size_t i = 0; i < a.size(); ++i) light_below = light_below || a.at(0, i) > 90.0;
     BrdfArrays out(a.shape(), trace::has_single_analytic(s.material, light_below));
     eval_pairs(s, a, out, options);
     return brdf_result(a, out);

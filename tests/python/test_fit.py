@@ -133,7 +133,7 @@ def test_compensation_is_the_fits_tables(fit_dir):
     (lambda: smithlab.diffuse_f("fujii", 0, 0, math.inf, 0.5, 1), "phi must be finite, got inf"),
     (lambda: smithlab.diffuse_f("fujii", 0, 0, 0, 0.0, 1), "alpha must be in (0, 1], got 0"),
     (lambda: smithlab.diffuse_f("fujii", 0, 0, 0, 0.5, 1.5), "albedo must be in [0, 1], got 1.5"),
-    (lambda: smithlab.compensation(smithlab.ndf("ggx(alpha=0.5)"), n=1), "n must be >= 2, got 1"),
+    (lambda: smithlab.compensation(smithlab.ndf("ggx(alpha=0.5)"), n=1), "n must be in [2, 4096] (as the fit's [compensation] mu), got 1"),
     (lambda: smithlab.read_fit("/nonexistent/fit"), "/nonexistent/fit/constants.csv: no such file"),
 ])
 def test_bad_input_raises_value_error_naming_the_item(call, message):
@@ -162,3 +162,20 @@ def test_a_damaged_constants_file_is_named_with_its_line(fit_dir, tmp_path, dama
     with pytest.raises(ValueError) as e:
         smithlab.read_fit(tmp_path)
     assert str(tmp_path / "constants.csv") + message in str(e.value)
+
+
+def test_read_fit_gives_the_models_order_whatever_the_files(tmp_path):
+    # hammon-2017's five constants written in reverse: read back in the model's order, so that diffuse_f takes them.
+    names = [m for m in smithlab.diffuse_models() if m["name"] == "hammon-2017"][0]["constants"]
+    values = [0.85, 0.45, 0.55, 1.0, 0.15]
+    lines = ["model,ndf,parameter,value,stderr"] + [f"hammon-2017-fitted,ggx,{n},{v},0.01"
+                                                    for n, v in reversed(list(zip(names, values)))]
+    (tmp_path / "constants.csv").write_text("\n".join(lines) + "\n")
+    got = smithlab.read_fit(tmp_path)["hammon-2017"]["ggx"]
+    assert list(got) == names and list(got.values()) == values
+    f = smithlab.diffuse_f("hammon-2017", 30.0, 45.0, 90.0, 0.5, 0.8, constants=list(got.values()))
+    assert f == smithlab.diffuse_f("hammon-2017", 30.0, 45.0, 90.0, 0.5, 0.8, constants=values)
+    # one constant missing: refused, naming it
+    (tmp_path / "constants.csv").write_text("\n".join(lines[:-1]) + "\n")
+    with pytest.raises(ValueError, match="hammon-2017-fitted on ggx has no row for its constant rough_a"):
+        smithlab.read_fit(tmp_path)

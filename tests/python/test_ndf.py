@@ -142,7 +142,12 @@ def test_ndf_objects():
     (lambda: smithlab.ndf("nosuch(alpha=1)"), "nosuch"),
     (lambda: smithlab.ndf("ggx", beta=1), "beta"),
     (lambda: smithlab.ndf("ggx(alpha=0.3)").G1([0.5, np.nan]), "mu is NaN"),
-    (lambda: smithlab.ndf("ggx(alpha=0.3)").D(np.nan), "cos_theta_m must be a number, got nan"),
+    (lambda: smithlab.ndf("ggx(alpha=0.3)").D(np.nan), "cos_theta_m must be in [-1, 1], got nan"),
+    (lambda: smithlab.ndf("ggx(alpha=0.3)").D([0.5, 1.5]), "cos_theta_m must be in [-1, 1], got 1.5"),
+    (lambda: smithlab.ndf("ggx(alpha=0.3)").G1("abc"), "could not convert string to float: 'abc'"),
+    (lambda: smithlab.ndf("gtr", alpha="0.3", gamma=1), "gtr: alpha takes a number, got '0.3'"),
+    (lambda: smithlab.ndf("gtr", alpha=None, gamma=1), "gtr: alpha takes a number, got None"),
+    (lambda: smithlab.ndf("tabulated", file=3), "tabulated: file takes text, got 3"),
     (lambda: smithlab.ndf("ggx(alpha=0.3)").Lambda(1, method="nosuch"), "nosuch"),
     (lambda: smithlab.ndf("ggx(alpha=0.3)").Lambda(1, backend="scipy"), "scipy"),
     (lambda: smithlab.ndf("ggx(alpha=0.3)").Lambda(1, tolerance=0.5), "tolerance must be in [1e-15, 0.1], got 0.5"),
@@ -182,19 +187,44 @@ def test_family_stream_against_closed_forms():
     assert worst <= 9.5e-7  # the family evaluator's stated bound on |dG1|
 
 
-def test_a_d_written_in_python_reproduces_ggx():
-    # GGX's D as a Python function; its Lambda against the closed form of the registered GGX.
-    for alpha in [0.01, 0.2, 0.7]:
-        def D(c, a=alpha):
-            return a * a / (np.pi * ((a * a - 1) * c * c + 1) ** 2)
-        n = smithlab.from_function(D, f"py_ggx_{str(alpha).replace('.', '_')}")
-        mu = np.geomspace(0.01 * alpha, 1000 * alpha, 61)
-        ref = smithlab.ndf("ggx", alpha=alpha).Lambda(mu)
-        assert np.abs(n.Lambda(mu) / ref - 1).max() < 5e-10
-        # the family takes a roughness: scale 2 stretches the slopes, GGX of alpha 2 alpha
-        if alpha < 0.5:
+@pytest.mark.parametrize("family, bound", [("ggx", 2e-9), ("beckmann", 1e-6)])
+def test_a_d_written_in_python_reproduces_the_closed_form(family, bound):
+    # D as a Python function; its Lambda against the registered NDF's closed form over mu in [0.01 alpha, 1000
+    # alpha], where Lambda > 1e-8 (Beckmann's falls off like exp(-mu^2 / alpha^2)): the figures from_function states.
+    for alpha in [1e-3, 3e-3, 0.01, 0.03, 0.1, 0.3, 0.5, 1.0]:
+        if family == "ggx":
+            def D(c, a=alpha):
+                return a * a / (np.pi * ((a * a - 1) * c * c + 1) ** 2)
+        else:
+            def D(c, a=alpha):
+                return np.exp(-(1 - c * c) / (c * c * a * a)) / (np.pi * a * a * c**4)
+        with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
+            n = smithlab.from_function(D, f"py_{family}_{str(alpha).replace('.', '_').replace('-', '_')}")
+        mu = np.geomspace(0.01 * alpha, 1000 * alpha, 201)
+        ref = smithlab.ndf(family, alpha=alpha).Lambda(mu)
+        seen = ref > 1e-8
+        assert np.abs(n.Lambda(mu[seen]) / ref[seen] - 1).max() < bound, alpha
+        # the family takes a roughness: scale 2 stretches the slopes, the closed form's NDF of alpha 2 alpha
+        if family == "ggx" and alpha <= 0.5:
             wide = smithlab.ndf(f"{n.family}(scale=2)")
-            assert np.abs(wide.Lambda(mu) / smithlab.ndf("ggx", alpha=2 * alpha).Lambda(mu) - 1).max() < 1e-9
+            assert np.abs(wide.Lambda(mu) / smithlab.ndf(family, alpha=2 * alpha).Lambda(mu) - 1).max() < bound
+
+
+def test_a_name_made_again_takes_the_new_table():
+    first = smithlab.from_function(lambda c: 0.25 / (np.pi * ((0.25 - 1) * c * c + 1) ** 2), "py_remade")
+    second = smithlab.from_function(lambda c: 1 / (np.pi * c**0), "py_remade")  # GGX of alpha 1
+    assert first.Lambda(0.5) == pytest.approx(smithlab.ndf("ggx(alpha=0.5)").Lambda(0.5), rel=1e-9)
+    assert second.Lambda(0.5) == pytest.approx(smithlab.ndf("ggx(alpha=1)").Lambda(0.5), rel=1e-9)
+    assert smithlab.ndf("py_remade").Lambda(0.5) == second.Lambda(0.5)
+    assert first.Lambda(0.5) != second.Lambda(0.5)  # an NDF made before keeps its own table
+
+
+def test_a_function_with_a_branch_is_called_row_by_row():
+    def D(c):  # "the truth value of an array is ambiguous" on an array
+        return 0.25 / (math.pi * ((0.25 - 1) * c * c + 1) ** 2) if c > 0 else 0.0
+
+    n = smithlab.from_function(D, "py_branchy")
+    assert n.Lambda(0.7) == pytest.approx(smithlab.ndf("ggx(alpha=0.5)").Lambda(0.7), rel=1e-9)
 
 
 def test_a_scalar_python_function_is_called_row_by_row():
