@@ -18,6 +18,7 @@
 #include "smithlab/csv.hpp"
 #include "smithlab/surface.hpp"
 #include "smithlab/util/parallel.hpp"
+#include "smithlab/walk/material_catalogue.hpp"
 #include "smithlab/walk/trace.hpp"
 #include "trace/capped_walks.hpp"
 #include "trace/incidence.hpp"
@@ -25,23 +26,6 @@
 
 namespace smithlab::python {
 namespace {
-
-// The facet materials walk::parse_material reads (facets.hpp), with their specs' parameters and defaults.
-constexpr std::array<std::pair<std::string_view, std::string_view>, 5> material_list = {{
-    {"mirror", "mirror: every facet a perfect mirror (F = 1)"},
-    {"conductor",
-     "conductor(eta=, k=): mirror facets of a conductor of complex index eta + i k (both required; eta in [1e-6, "
-     "1e6], k in [0, 1e6]), the exact Fresnel reflectance"},
-    {"lambert",
-     "lambert(albedo=1): Lambertian facets, each reflecting albedo / pi about its normal (albedo in [0, 1]; Heitz et "
-     "al. 2016, sec. 5.3)"},
-    {"fresnel-diffuse",
-     "fresnel-diffuse(f0=0.02, albedo=1): Hammon 2017's facets: Schlick's F (f0 at normal incidence) reflects "
-     "specularly, the rest leaves diffusely, tinted by albedo (both in [0, 1])"},
-    {"dielectric",
-     "dielectric(eta=1.5): a smooth dielectric interface on every facet, eta the index below over that above (in "
-     "[1e-3, 1e3]): reflection and transmission, light from above or below (Heitz et al. 2016, sec. 6.2)"},
-}};
 
 const char* const hemisphere_names[] = {"reflection", "transmission", "all"};
 const char* const order_names[] = {"1", "2", "3", "4+", "all"};
@@ -290,7 +274,8 @@ void bind_walk(py::module_& m) {
         "materials",
         [] {
             std::vector<std::pair<std::string, std::string>> out;
-            for (const auto& [name, description] : material_list) out.emplace_back(name, description);
+            for (const walk::MaterialInfo& m : walk::material_catalogue)
+                out.emplace_back(m.name, std::string(m.spec) + ": " + std::string(m.description));
             return out;
         },
         "The facet materials of the walk (as `smithlab trace --help` lists them): (name, description) pairs; the "

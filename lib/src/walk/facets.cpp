@@ -7,6 +7,7 @@
 
 #include "smithlab/errors.hpp"
 #include "smithlab/spec.hpp"
+#include "smithlab/walk/material_catalogue.hpp"
 
 namespace smithlab::walk {
 
@@ -111,9 +112,9 @@ Material parse_material(std::string_view text) {
         MaterialParams p(spec, {"eta"});
         return Dielectric{p.get("eta", 1.5, 1e-3, 1e3)};
     }
-    throw input_error("unknown material '" + n +
-                      "' (known: mirror, conductor(eta=, k=), lambert(albedo=1), "
-                      "fresnel-diffuse(f0=0.02, albedo=1), dielectric(eta=1.5))");
+    std::string known;
+    for (const MaterialInfo& m : material_catalogue) known += (known.empty() ? "" : ", ") + std::string(m.spec);
+    throw input_error("unknown material '" + n + "' (known: " + known + ")");
 }
 
 std::string format_material(const Material& material) {
