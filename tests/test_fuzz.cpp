@@ -2,9 +2,10 @@
 //
 // The contract: every input ends as exit 0 with a finite answer (no NaN in stdout or in any file
 // written), or as exit 2 with a message on stderr and nothing written. Never a crash (a signal, a sanitizer
-// report), a hang (each run is wrapped in `timeout 30`; 124 fails), exit 1 (reserved for a failed check) or an
-// "internal error". Where the input is known to lie outside the accepted domain (a NaN, an option value out of its
-// range, an unknown scene key, a wrong TOML type, a duplicate CSV column) it must be refused: exit 2.
+// report), a hang (each run is wrapped in `timeout 30`, 120 in the sanitized build; 124 fails), exit 1 (reserved
+// for a failed check) or an "internal error". Where the input is known to lie outside the accepted domain (a NaN, an
+// option value out of its range, an unknown scene key, a wrong TOML type, a duplicate CSV column) it must be
+// refused: exit 2.
 //
 // Why a seeded generator in Catch2 and not clang's libFuzzer (Debian's clang + libFuzzer would do both parts):
 // - it runs in the ordinary suite, on every CI run, under both builds (Release and ASan+UBSan) with the one
@@ -55,7 +56,7 @@
 // ignores SIGTERM is killed 5 s later (exit 137).
 static const std::string smithlab_fuzz_exe = SMITHLAB_EXE;
 #undef SMITHLAB_EXE
-#define SMITHLAB_EXE (std::string("timeout' -k 5 30 '") + smithlab_fuzz_exe)
+#define SMITHLAB_EXE (std::string("timeout' -k 5 " SMITHLAB_FUZZ_HANG_SECONDS " '") + smithlab_fuzz_exe)
 #include "cli_run.hpp"
 
 using namespace smithlab_test;
@@ -369,7 +370,8 @@ std::string first_lines(const std::string& s, std::size_t n = 6) {
 // The contract every run keeps; `must_refuse` names why the input has to end in exit 2 (empty: either is fine).
 // Returns what went wrong, or "".
 std::string judge(const Run& r, const std::string& must_refuse) {
-    if (r.rc == 124 || r.rc == 137) return "hang: killed by `timeout 30` (exit " + std::to_string(r.rc) + ")";
+    if (r.rc == 124 || r.rc == 137)
+        return "hang: killed by `timeout " SMITHLAB_FUZZ_HANG_SECONDS "` (exit " + std::to_string(r.rc) + ")";
     if (r.err.find("Sanitizer") != std::string::npos || r.err.find("runtime error:") != std::string::npos)
         return "sanitizer report (exit " + std::to_string(r.rc) + "):\n" + first_lines(r.err, 12);
     if (r.rc < 0 || r.rc > 128)
