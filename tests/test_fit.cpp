@@ -224,23 +224,8 @@ TEST_CASE("fit: too few points for a model's constants is an error naming the mo
 
 namespace {
 
-const std::string tiny_scene = R"TOML(title = "tiny"
-material = "lambert(albedo=1)"
-albedos = [0.5, 1.0]
-models = ["lambert", "fujii"]
-[[ndf]]
-family = "ggx"
-[training]
-alpha = [0.2, 0.8]
-theta = [0.0, 40.0, 70.0]
-phi = [0.0, 180.0]
-walks = 400
-[validation]
-points = 6
-walks = 400
-albedo_theta = [0.0, 60.0]
-albedo_walks = 400
-)TOML";
+// The fit tests' tiny scene (two models, GGX, a few hundred walks a point), shared with tests/python/test_fit.py.
+const std::string tiny_scene = smithlab_test::slurp(SMITHLAB_TESTS_DIR "/fit_tiny_scene.toml");
 
 // An empty scratch directory of the CLI tests.
 fs::path fresh_directory(const std::string& name) {

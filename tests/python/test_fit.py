@@ -3,6 +3,7 @@ its output directory, and the compensation tables, against a tiny `smithlab fit`
 naming the item."""
 import csv
 import math
+import pathlib
 import shutil
 
 import numpy as np
@@ -10,27 +11,12 @@ import pytest
 
 import smithlab
 
-# Two NDF families (one with a parameter column of its own), two models, a few hundred walks a point: well under a
-# second. One compensation table per family and alpha, 4 cosines.
-TINY_SCENE = """title = "tiny"
-material = "lambert(albedo=1)"
-albedos = [0.5, 1.0]
-models = ["lambert", "fujii"]
-[[ndf]]
-family = "ggx"
-[[ndf]]
+# The fit tests' tiny scene (tests/fit_tiny_scene.toml: two models, GGX, a few hundred walks a point), with a second
+# NDF family that has a parameter column of its own and one compensation table per family and alpha, 4 cosines: well
+# under a second.
+TINY_SCENE = (pathlib.Path(__file__).resolve().parents[1] / "fit_tiny_scene.toml").read_text() + """[[ndf]]
 family = "gtr"
 gamma = [1.5]
-[training]
-alpha = [0.2, 0.8]
-theta = [0.0, 40.0, 70.0]
-phi = [0.0, 180.0]
-walks = 400
-[validation]
-points = 6
-walks = 400
-albedo_theta = [0.0, 60.0]
-albedo_walks = 400
 [compensation]
 alpha = [0.5, 1.0]
 mu = 4
