@@ -1,0 +1,398 @@
+#include "smithlab/fit/compensation_formats.hpp"
+
+#include <png.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <system_error>
+#include <vector>
+
+#include "smithlab/csv.hpp"
+#include "smithlab/errors.hpp"
+#include "smithlab/fit/compensation.hpp"
+
+namespace smithlab::fit {
+
+namespace {
+
+constexpr std::string_view height_correlated = "height-correlated", separable = "separable";
+
+// The rules every lookup follows (albedo_grid.hpp, AlbedoTable::lookup), as each file's comment and the axes state
+// them.
+constexpr std::string_view rule_x = "x = (1 + alpha) mu / (mu + alpha), nodes x_j = j / (n_x - 1)";
+constexpr std::string_view rule_lookup =
+    "bilinear in (sqrt(alpha), x): j = min(int(x (n_x - 1)), n_x - 2), linear in x between x_j and x_(j+1); the alpha "
+    "cell found in sqrt(alpha) among the nodes' sqrt(alpha), linear in sqrt(alpha)";
+constexpr std::string_view rule_below = "the first row, in the x of the asked alpha";
+constexpr std::string_view rule_above = "the last row, in the x of the asked alpha (no error is measured there)";
+constexpr std::string_view rule_mu = "clamped to [0, 1] (a renderer's cosines overshoot by a rounding); NaN reads as 0";
+constexpr std::string_view rule_alpha = "finite and > 0, not checked (at alpha = 0 the warp is 0/0 at mu = 0)";
+constexpr std::string_view rule_E_avg = "linear in sqrt(alpha) between the nodes, the end values outside";
+
+// compensation_header_name's rule without its "smithlab_" prefix ("" when the text has no letter or digit).
+std::string identifier_part(std::string_view text) {
+    const std::string name = compensation_header_name(text);
+    constexpr std::size_t prefix = std::string_view("smithlab_").size();
+    return name.size() > prefix ? name.substr(prefix) : std::string();
+}
+
+bool fits_float(double v) { return std::isfinite(v) && std::abs(v) <= std::numeric_limits<float>::max(); }
+
+// The float nearest v as a literal of 9 significant digits (every float reads back exactly), with a '.' or an
+// exponent so that it is a floating literal, then `suffix` ("f" in C and HLSL).
+std::string float_literal(double v, std::string_view suffix) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.9g", static_cast<double>(static_cast<float>(v)));
+    std::string s = buf;
+    if (s.find_first_of(".e") == std::string::npos) s += ".0";
+    return s + std::string(suffix);
+}
+
+std::string short_g(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.3g", v);
+    return buf;
+}
+
+// Where value k of the table is, for the messages.
+std::string table_item(const AlbedoTable& t, std::size_t k) {
+    const std::size_t nx = static_cast<std::size_t>(t.grid.n_x);
+    return "E at alpha " + format_shortest(t.grid.alphas[k / nx]) + ", x_" + std::to_string(k % nx) + " = " +
+        format_shortest(t.grid.x(static_cast<int>(k % nx)));
+}
+
+// compensation_formats.hpp's checks, input_error naming the item.
+void check(const CompensationExport& e) {
+    (void)compensation_identifier(e);
+    if (!e.E) throw input_error("compensation export: no table (E is null)");
+    const AlbedoTable& t = *e.E;
+    t.grid.check();
+    const std::vector<double>& a = t.grid.alphas;
+    const std::size_t na = a.size(), nx = static_cast<std::size_t>(t.grid.n_x);
+    if (t.values.size() != na * nx)
+        throw input_error("compensation export: the table has " + std::to_string(t.values.size()) + " values for " +
+                          std::to_string(na) + " alphas x " + std::to_string(nx) + " cosines");
+    for (std::size_t k = 0; k < t.values.size(); ++k)
+        if (!fits_float(t.values[k]))
+            throw input_error("compensation export: " + table_item(t, k) +
+                              " is not a finite float: " + format_g17(t.values[k]));
+    for (std::size_t i = 1; i < na; ++i)
+        if (!(static_cast<float>(std::sqrt(a[i])) > static_cast<float>(std::sqrt(a[i - 1]))))
+            throw input_error("compensation export: alphas " + format_shortest(a[i - 1]) + " and " +
+                              format_shortest(a[i]) + " have the same sqrt(alpha) as floats");
+    if (!e.E_avg.empty() && e.E_avg.size() != na)
+        throw input_error("compensation export: " + std::to_string(e.E_avg.size()) + " E_avg values for " +
+                          std::to_string(na) + " alphas");
+    for (std::size_t i = 0; i < e.E_avg.size(); ++i)
+        if (!fits_float(e.E_avg[i]))
+            throw input_error("compensation export: E_avg at alpha " + format_shortest(a[i]) +
+                              " is not a finite float: " + format_g17(e.E_avg[i]));
+    require(std::isfinite(e.max_interp_error) && e.max_interp_error >= 0.0,
+            "compensation export: the measured max interpolation error", "finite and >= 0", e.max_interp_error);
+    require(std::isfinite(e.below_grid_error) && e.below_grid_error >= 0.0,
+            "compensation export: the measured below-grid error", "finite and >= 0", e.below_grid_error);
+}
+
+// Text for a block comment in C, GLSL or HLSL: printable ASCII (GLSL's character set), anything else '?', and a space
+// in each "*" "/" and "/" "*" (the end of the comment, and a nested start, which C compilers warn of).
+std::string comment_text(std::string_view text) {
+    std::string s;
+    for (const char c : text) {
+        if (!s.empty() && ((s.back() == '*' && c == '/') || (s.back() == '/' && c == '*'))) s += ' ';
+        s += c >= ' ' && c <= '~' ? c : '?';
+    }
+    return s;
+}
+
+// A /* */ comment of paragraphs, each broken at spaces into lines of at most 116 characters, continued lines indented
+// two more than the paragraph's first.
+std::string comment_block(const std::vector<std::string>& paragraphs) {
+    constexpr std::size_t width = 116;
+    std::string s;
+    for (const std::string& p : paragraphs) {
+        const std::size_t indent = std::min(p.find_first_not_of(' '), p.size());
+        std::string line = " * ";
+        line.append(indent, ' ');
+        std::size_t words = 0;
+        for (std::size_t b = indent; b < p.size();) {
+            const std::size_t e = std::min(p.find(' ', b), p.size());
+            const std::string_view word = std::string_view(p).substr(b, e - b);
+            if (words > 0 && line.size() + 1 + word.size() > width) {
+                s += line + "\n";
+                line.assign(" * ").append(indent + 2, ' ');
+                words = 0;
+            }
+            line.append(words++ ? " " : "").append(word);
+            b = e + 1;
+        }
+        s += line + "\n";
+    }
+    s.replace(0, 3, "/* ");
+    s.insert(s.size() - 1, " */");
+    return s;
+}
+
+// The top comment of the three text formats.
+std::string top_comment(const CompensationExport& e, const std::string& id, std::string_view language) {
+    const AlbedoGrid& g = e.E->grid;
+    const std::vector<double>& a = g.alphas;
+    std::string alphas;
+    for (std::size_t i = 0; i < a.size(); ++i) alphas += (i ? ", " : "") + format_shortest(a[i]);
+    const std::vector<std::string> p = {
+        id + ": energy compensation of specular multiple scattering, " + std::string(language) +
+            ". Generated by smithlab (fit/compensation_formats.hpp).",
+        "NDF family: " + comment_text(e.family) + ". G2: " +
+            (e.g2 == height_correlated ? "height-correlated Smith G2 (Walter et al. 2007, eq. 20; Heitz 2014, eq. 99)"
+                                       : "separable Smith G2 = G1(wi) G1(wo) (Heitz 2014, eq. 98)") +
+            ". Quantity: " + comment_text(e.quantity) +
+            (e.quantity == "E" ? " (the directional albedo of single scattering off mirror facets, F = 1)" : "") +
+            ", tabulated as E(alpha, mu), mu = cos(theta); E_avg(alpha) = 2 int_0^1 E(alpha, mu) mu dmu.",
+        "Kulla and Conty 2017 (\"Revisiting Physically Based Shading at Imageworks\"): f_ms(wi, wo) = (1 - E(mu_i)) "
+        "(1 - E(mu_o)) / (pi (1 - E_avg)), times F_avg^2 E_avg / (1 - F_avg (1 - E_avg)) for coloured facets; Turquin "
+        "2019 (\"Practical multiple scattering compensation for microfacet models\"): f = f_ss (1 + F0 (1 - E(mu_v)) / "
+        "E(mu_v)), mu_v the view's cosine.",
+        "Grid: n_alpha x n_x = " + std::to_string(a.size()) + " x " + std::to_string(g.n_x) + ", alpha in [" +
+            format_shortest(a.front()) + ", " + format_shortest(a.back()) + "]: alphas " + alphas + "; " +
+            std::string(rule_x) + "; " + id + "_E_table[i * n_x + j] = E(alphas[i], x_j).",
+        id + "_E(alpha, mu): " + std::string(rule_lookup) + ".",
+        "Outside the grid, nothing is clamped silently:",
+        "  below the first alpha: " + std::string(rule_below) + ";",
+        "  above the last alpha: " + std::string(rule_above) + ";",
+        "  mu " + std::string(rule_mu) + ";",
+        "  alpha must be " + std::string(rule_alpha) + ".",
+        e.E_avg.empty() ? "No E_avg is given with this table." : id + "_E_avg(alpha): " + std::string(rule_E_avg) + ".",
+        "Measured: the lookup is within " + short_g(e.max_interp_error) +
+            " of the exact values inside the grid, within " + short_g(e.below_grid_error) + " below the first alpha.",
+        "The values are the floats nearest the computed doubles (9 significant digits)."};
+    return comment_block(p);
+}
+
+// What differs between C, GLSL and HLSL in the arrays and lookups; the code is the same.
+struct Dialect {
+    std::string_view array;     // before a constant array's name
+    bool constructor;           // GLSL's initializer float[N](...), else {...}
+    std::string_view function;  // before a function
+    std::string_view suffix;    // of float literals
+    std::string_view sqrt;
+    bool c_cast;  // (int)(x), else int(x)
+    std::string cast(std::string_view type, std::string_view x) const {
+        std::string s(c_cast ? "(" : "");
+        s.append(type).append(c_cast ? ")(" : "(").append(x);
+        return s + ")";
+    }
+};
+constexpr Dialect c_dialect{"static const float ", false, "static inline ", "f", "sqrtf", true};
+constexpr Dialect glsl_dialect{"const float ", true, "", "", "sqrt", false};
+constexpr Dialect hlsl_dialect{"static const float ", false, "", "f", "sqrt", true};
+
+// A constant array, `row` values a row, each row after its label when labels are given.
+std::string array(const Dialect& d, const std::string& name, const std::vector<double>& v, std::size_t row,
+                  const std::vector<std::string>& labels = {}) {
+    const std::string n = std::to_string(v.size());
+    std::string s = std::string(d.array) + name + "[" + n + "] = " + (d.constructor ? "float[" + n + "](" : "{");
+    for (std::size_t k = 0; k < v.size(); ++k) {
+        if (k % row == 0 && !labels.empty()) s += "\n    /* " + labels[k / row] + " */";
+        s += k % row % 8 == 0 ? "\n    " : " ";
+        s += float_literal(v[k], d.suffix) + (k + 1 < v.size() ? "," : "");
+    }
+    return s + (d.constructor ? "\n);\n" : "\n};\n");
+}
+
+// The arrays and lookups, after the top comment.
+std::string arrays_and_lookups(const CompensationExport& e, const std::string& id, const Dialect& d) {
+    const AlbedoTable& t = *e.E;
+    const std::vector<double>& a = t.grid.alphas;
+    const std::string na = std::to_string(a.size()), nx = std::to_string(t.grid.n_x);
+    const std::string f = std::string(d.function), one = float_literal(1.0, d.suffix),
+                      zero = float_literal(0.0, d.suffix);
+    std::vector<double> sqrt_alpha;
+    std::vector<std::string> labels;
+    for (const double v : a) {
+        sqrt_alpha.push_back(std::sqrt(v));
+        labels.push_back("alpha = " + format_shortest(v));
+    }
+    std::string s = "\n" + array(d, id + "_sqrt_alpha", sqrt_alpha, 8) +
+        array(d, id + "_E_table", t.values, static_cast<std::size_t>(t.grid.n_x), labels);
+    if (!e.E_avg.empty()) s += array(d, id + "_E_avg_table", e.E_avg, 8);
+    s += "\n/* The lower node i of sqrt(alpha)'s cell: 0 below the first node, n_alpha - 2 above the last. */\n" + f +
+        "int " + id + "_alpha_cell(float s) {\n    int i = 0;\n    for (int k = 1; k < " +
+        std::to_string(a.size() - 1) + "; ++k) {\n        if (" + id +
+        "_sqrt_alpha[k] <= s) i = k;\n    }\n    return i;\n}\n\n"
+        "/* The weight of node i + 1 in cell i: 0 below the first node, 1 above the last. */\n" +
+        f + "float " + id + "_alpha_weight(float s, int i) {\n    if (!(s > " + id + "_sqrt_alpha[0])) return " + zero +
+        ";\n    if (!(s < " + id + "_sqrt_alpha[" + std::to_string(a.size() - 1) + "])) return " + one +
+        ";\n    return (s - " + id + "_sqrt_alpha[i]) / (" + id + "_sqrt_alpha[i + 1] - " + id +
+        "_sqrt_alpha[i]);\n}\n\n";
+    const std::string T = id + "_E_table";
+    s += "/* E(alpha, mu), alpha > 0: bilinear in (sqrt(alpha), x = (1 + alpha) mu / (mu + alpha)), mu clamped to "
+         "[0, 1]. */\n" +
+        f + "float " + id + "_E(float alpha, float mu) {\n    float m = mu > " + zero + " ? (mu < " + one +
+        " ? mu : " + one + ") : " + zero + ";\n    float x = (" + one + " + alpha) * m / (m + alpha) * " +
+        float_literal(t.grid.n_x - 1, d.suffix) + ";\n    int j = " + d.cast("int", "x") + ";\n    if (j > " +
+        std::to_string(t.grid.n_x - 2) + ") j = " + std::to_string(t.grid.n_x - 2) + ";\n    float tx = x - " +
+        d.cast("float", "j") + ";\n    float s = " + std::string(d.sqrt) + "(alpha);\n    int i = " + id +
+        "_alpha_cell(s);\n    float ta = " + id + "_alpha_weight(s, i);\n    int a = i * " + nx +
+        " + j;\n    int b = a + " + nx + ";\n    float lo = " + T + "[a] + tx * (" + T + "[a + 1] - " + T +
+        "[a]);\n    float hi = " + T + "[b] + tx * (" + T + "[b + 1] - " + T +
+        "[b]);\n    return lo + ta * (hi - lo);\n}\n";
+    if (!e.E_avg.empty()) {
+        const std::string A = id + "_E_avg_table";
+        s += "\n/* E_avg(alpha), alpha > 0: linear in sqrt(alpha), the end values outside. */\n" + f + "float " + id +
+            "_E_avg(float alpha) {\n    float s = " + std::string(d.sqrt) + "(alpha);\n    int i = " + id +
+            "_alpha_cell(s);\n    float ta = " + id + "_alpha_weight(s, i);\n    return " + A + "[i] + ta * (" + A +
+            "[i + 1] - " + A + "[i]);\n}\n";
+    }
+    return s;
+}
+
+// A JSON string: quotes, backslashes and control characters escaped (RFC 8259, section 7).
+std::string json_string(std::string_view text) {
+    std::string s = "\"";
+    for (const char c : text) {
+        const auto u = static_cast<unsigned char>(c);
+        if (c == '"' || c == '\\') {
+            s += '\\';
+            s += c;
+        } else if (u < 0x20) {
+            char buf[8];
+            std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(u));
+            s += buf;
+        } else {
+            s += c;
+        }
+    }
+    return s + '"';
+}
+
+// Numbers as the shortest text that reads back as each double.
+std::string json_numbers(const std::vector<double>& v) {
+    std::string s = "[";
+    for (std::size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + format_shortest(v[i]);
+    return s + "]";
+}
+
+// bytes to path through path.tmp, renamed: a reader never sees a half-written file, and a failure leaves none.
+void write_replacing(const std::filesystem::path& path, const std::vector<unsigned char>& bytes) {
+    std::filesystem::path tmp = path;
+    tmp += ".tmp";
+    std::error_code ignored;
+    {
+        std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+        if (!f) throw std::runtime_error("16-bit PNG: cannot open " + tmp.string() + " to write " + path.string());
+        f.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+        f.close();
+        if (!f) {
+            std::filesystem::remove(tmp, ignored);
+            throw std::runtime_error("16-bit PNG: writing " + tmp.string() + " failed (for " + path.string() + ")");
+        }
+    }
+    std::error_code ec;
+    std::filesystem::rename(tmp, path, ec);
+    if (ec) {
+        std::filesystem::remove(tmp, ignored);
+        throw std::runtime_error("16-bit PNG: cannot rename " + tmp.string() + " to " + path.string() + ": " +
+                                 ec.message());
+    }
+}
+
+}  // namespace
+
+std::string compensation_identifier(const CompensationExport& e) {
+    const std::string family = identifier_part(e.family);
+    if (family.empty())
+        throw input_error("compensation export: the NDF family '" + e.family + "' has no letter or digit to name it");
+    if (e.g2 != height_correlated && e.g2 != separable)
+        throw input_error("compensation export: G2 '" + e.g2 + "', known: height-correlated, separable");
+    std::string id = "smithlab_" + family + (e.g2 == height_correlated ? "_hc" : "_sep");
+    if (e.quantity == "E") return id;
+    const std::string quantity = identifier_part(e.quantity);
+    if (quantity.empty())
+        throw input_error("compensation export: the quantity '" + e.quantity + "' has no letter or digit to name it");
+    return id + "_" + quantity;
+}
+
+void write_c_header(std::ostream& out, const CompensationExport& e) {
+    check(e);
+    const std::string id = compensation_identifier(e);
+    std::string guard = id;
+    for (char& c : guard) c = static_cast<char>(c >= 'a' && c <= 'z' ? c - 'a' + 'A' : c);
+    guard += "_COMPENSATION_H";
+    out << top_comment(e, id, "self-contained C99 (or C++)") << "#ifndef " << guard << "\n#define " << guard
+        << "\n\n#include <math.h>\n"
+        << arrays_and_lookups(e, id, c_dialect) << "\n#endif /* " << guard << " */\n";
+}
+
+void write_glsl(std::ostream& out, const CompensationExport& e) {
+    check(e);
+    const std::string id = compensation_identifier(e);
+    out << top_comment(e, id, "GLSL 3.30 (no #version line: it goes after the includer's)")
+        << arrays_and_lookups(e, id, glsl_dialect);
+}
+
+void write_hlsl(std::ostream& out, const CompensationExport& e) {
+    check(e);
+    const std::string id = compensation_identifier(e);
+    out << top_comment(e, id, "HLSL") << arrays_and_lookups(e, id, hlsl_dialect);
+}
+
+void write_png16(const std::filesystem::path& path, const CompensationExport& e) {
+    check(e);
+    const AlbedoTable& t = *e.E;
+    std::vector<png_uint_16> pixels(t.values.size());
+    for (std::size_t k = 0; k < t.values.size(); ++k) {
+        const double v = t.values[k];
+        if (!(v >= 0.0 && v <= 1.0))
+            throw input_error("16-bit PNG " + path.string() + ": " + table_item(t, k) + " is " + format_g17(v) +
+                              ", outside [0, 1] (a pixel is round(E * 65535))");
+        pixels[k] = static_cast<png_uint_16>(std::lround(v * 65535.0));
+    }
+    // libpng's simplified API (png.h, "SIMPLIFIED API"): a linear 16-bit grey image is written as it is (gAMA 1.0);
+    // COLORSPACE_NOT_sRGB leaves out the sRGB primaries (cHRM): the pixels are data, not colour.
+    png_image image{};
+    image.version = PNG_IMAGE_VERSION;
+    image.width = static_cast<png_uint_32>(t.grid.n_x);
+    image.height = static_cast<png_uint_32>(t.grid.alphas.size());
+    image.format = PNG_FORMAT_LINEAR_Y;
+    image.flags = PNG_IMAGE_FLAG_COLORSPACE_NOT_sRGB;
+    png_alloc_size_t size = 0;
+    std::vector<unsigned char> bytes;
+    if (png_image_write_to_memory(&image, nullptr, &size, 0, pixels.data(), 0, nullptr)) {
+        bytes.resize(size);
+        if (!png_image_write_to_memory(&image, bytes.data(), &size, 0, pixels.data(), 0, nullptr)) bytes.clear();
+    }
+    if (bytes.empty())
+        throw std::runtime_error("16-bit PNG " + path.string() + ": libpng: " + std::string(image.message));
+    bytes.resize(size);
+    write_replacing(path, bytes);
+}
+
+void write_axes_json(std::ostream& out, const CompensationExport& e) {
+    check(e);
+    const AlbedoGrid& g = e.E->grid;
+    const std::string na = std::to_string(g.alphas.size()), nx = std::to_string(g.n_x);
+    out << "{\n  \"identifier\": " << json_string(compensation_identifier(e))
+        << ",\n  \"family\": " << json_string(e.family) << ",\n  \"g2\": " << json_string(e.g2)
+        << ",\n  \"quantity\": " << json_string(e.quantity) << ",\n  \"image\": {\"width\": " << nx
+        << ", \"height\": " << na
+        << ", \"bit_depth\": 16, \"color\": \"grey\", \"rows\": \"row i (from the top) is alphas[i]\", "
+           "\"columns\": \"column j is x_j = j / (n_x - 1)\"},\n  \"scale\": 65535,\n  \"value\": "
+        << json_string("E = pixel / 65535, pixel = round(E * 65535): within 0.5 / 65535 of E")
+        << ",\n  \"alphas\": " << json_numbers(g.alphas) << ",\n  \"n_x\": " << nx
+        << ",\n  \"x\": " << json_string(rule_x) << ",\n  \"mu_of_x\": " << json_string("alpha x / (1 + alpha - x)")
+        << ",\n  \"lookup\": " << json_string(rule_lookup) << ",\n  \"below_first_alpha\": " << json_string(rule_below)
+        << ",\n  \"above_last_alpha\": " << json_string(rule_above) << ",\n  \"mu\": " << json_string(rule_mu)
+        << ",\n  \"alpha\": " << json_string(rule_alpha) << ",\n";
+    if (!e.E_avg.empty())
+        out << "  \"E_avg\": " << json_numbers(e.E_avg) << ",\n  \"E_avg_lookup\": " << json_string(rule_E_avg)
+            << ",\n";
+    out << "  \"max_interpolation_error\": " << format_shortest(e.max_interp_error)
+        << ",\n  \"below_grid_error\": " << format_shortest(e.below_grid_error) << "\n}\n";
+}
+
+}  // namespace smithlab::fit

@@ -1,0 +1,401 @@
+// The renderer formats of a compensation table (fit/compensation_formats.hpp): the C header compiled as C and run, the
+// GLSL and HLSL through glslangValidator and, rewritten into C where they differ from it, run; every lookup against
+// AlbedoTable::lookup and lookup_alpha. The 16-bit PNG read back with libpng, its axes parsed with nlohmann-json; bad
+// input refused, naming the item, nothing left behind.
+#include <png.h>
+
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "smithlab/errors.hpp"
+#include "smithlab/fit/albedo_grid.hpp"
+#include "smithlab/fit/compensation_formats.hpp"
+
+using namespace smithlab;
+using namespace smithlab::fit;
+
+namespace {
+
+// A small table by hand, smooth in both axes, E = 1 at x = 0 (a white pixel), and E_avg(alpha) = 1 - 0.3 alpha.
+AlbedoTable small_table() {
+    AlbedoTable t;
+    t.grid = {{0.05, 0.12, 0.3, 0.6, 1.0}, 9};
+    for (const double a : t.grid.alphas)
+        for (int j = 0; j < t.grid.n_x; ++j) {
+            const double x = t.grid.x(j);
+            t.values.push_back(1.0 - 0.6 * std::sqrt(a) * x * (1.0 - 0.7 * x));
+        }
+    return t;
+}
+
+std::vector<double> small_E_avg(const AlbedoTable& t) {
+    std::vector<double> v;
+    for (const double a : t.grid.alphas) v.push_back(1.0 - 0.3 * a);
+    return v;
+}
+
+CompensationExport export_of(const AlbedoTable& t) {
+    return {"ggx", "height-correlated", "E", &t, small_E_avg(t), 2.5e-4, 1.25e-3};
+}
+
+std::filesystem::path scratch_dir(const std::string& name) {
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() /
+        ("smithlab_formats_" + name + "_" +
+         std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()));
+    std::filesystem::create_directories(dir);
+    return dir;
+}
+
+std::string text_of(void (*write)(std::ostream&, const CompensationExport&), const CompensationExport& e) {
+    std::ostringstream s;
+    write(s, e);
+    return s.str();
+}
+
+int run(const std::string& command, const std::filesystem::path& log) {
+    return std::system((command + " > " + log.string() + " 2>&1").c_str());
+}
+
+// The float nearest v, written so that C reads it back (into a float array).
+std::string c_float(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.9g", static_cast<double>(static_cast<float>(v)));
+    return buf;
+}
+
+// The points looked up: at the nodes (alpha and the cosines of x_j), between them, below the first alpha, above the
+// last, mu at 0 and 1 and beyond them (the lookups clamp it). Each is a float, as a renderer passes it.
+struct Point {
+    float alpha, mu;
+};
+
+std::vector<Point> points(const AlbedoTable& t) {
+    std::vector<double> alphas = t.grid.alphas;
+    for (const double a : {0.08, 0.2, 0.45, 0.8, 0.01, 1e-4, 1.3, 4.0}) alphas.push_back(a);
+    std::vector<Point> p;
+    for (const double a : alphas) {
+        std::vector<double> mus = {0.0, 0.004, 0.1, 0.37, 0.9, 1.0, -0.2, 1.25};
+        for (const int j : {1, 3, 7}) mus.push_back(unwarp_cosine(a, t.grid.x(j)));
+        for (const double m : mus) p.push_back({static_cast<float>(a), static_cast<float>(m)});
+    }
+    return p;
+}
+
+// A C program that includes `file` and prints NAME_E at every point (and NAME_E_avg when with_avg), one line each.
+std::string lookup_program(const std::string& file, const std::string& id, const std::vector<Point>& p, bool with_avg) {
+    std::string s = "#include <math.h>\n#include <stdio.h>\n#include \"" + file + "\"\n";
+    if (file.ends_with(".h")) s += "#include \"" + file + "\"\n";  // twice: the guard
+    s += "static const float pts[" + std::to_string(p.size()) + "][2] = {\n";
+    for (const Point& q : p) s += "    {" + c_float(q.alpha) + ", " + c_float(q.mu) + "},\n";
+    s += "};\nint main(void) {\n    unsigned k;\n    for (k = 0; k < sizeof pts / sizeof pts[0]; ++k)\n"
+         "        printf(\"%.9g %.9g\\n\", " +
+        id + "_E(pts[k][0], pts[k][1]), " + (with_avg ? id + "_E_avg(pts[k][0])" : std::string("0.0")) +
+        ");\n    return 0;\n}\n";
+    return s;
+}
+
+// Compiles `source` (in dir, which holds the included file) as C99 with warnings as errors, runs it, and checks each
+// lookup against the table's in double, at the same float inputs, mu clamped: within float rounding (1e-6).
+void check_lookups(const std::filesystem::path& dir, const std::string& source, const AlbedoTable& t,
+                   const std::vector<double>& E_avg, const std::vector<Point>& p) {
+    std::ofstream(dir / "main.c") << source;
+    const std::string exe = (dir / "lookup").string();
+    REQUIRE(run("cc -std=c99 -Wall -Wextra -Wpedantic -Werror -o " + exe + " " + (dir / "main.c").string() + " -lm",
+                dir / "cc.log") == 0);
+    REQUIRE(run(exe, dir / "out.txt") == 0);
+    std::ifstream in(dir / "out.txt");
+    for (const Point& q : p) {
+        double e = 0.0, avg = 0.0;
+        REQUIRE(in >> e >> avg);
+        const double mu = std::clamp(static_cast<double>(q.mu), 0.0, 1.0);
+        INFO("alpha " << q.alpha << " mu " << q.mu);
+        CHECK(std::abs(e - t.lookup(q.alpha, mu)) < 1e-6);
+        if (!E_avg.empty()) CHECK(std::abs(avg - lookup_alpha(t.grid.alphas, E_avg, q.alpha)) < 1e-6);
+    }
+}
+
+// GLSL where it differs from C: an array's initializer float[N](...) is {...}; constructors int(x) and float(x) are
+// casts. The rest, the arithmetic, is the GLSL's own (its literals unsuffixed: C computes them in double).
+std::string glsl_as_c(const std::string& glsl) {
+    std::string c = std::regex_replace(glsl, std::regex(R"(= float\[\d+\]\()"), "= {");
+    c = std::regex_replace(c, std::regex("\n\\);"), "\n};");
+    c = std::regex_replace(c, std::regex(R"(\bint\()"), "(int)(");
+    return std::regex_replace(c, std::regex(R"(\bfloat\()"), "(float)(");
+}
+
+bool has_glslang() { return std::system("command -v glslangValidator > /dev/null 2>&1") == 0; }
+
+// The GLSL in a fragment shader (#version 330 core) that calls the lookups, through the reference compiler.
+void check_glsl_compiles(const std::filesystem::path& dir, const std::string& glsl, const std::string& id,
+                         bool with_avg) {
+    std::ofstream(dir / "table.frag") << "#version 330 core\n"
+                                      << glsl << "\nuniform float alpha;\nuniform float mu;\nout vec4 color;\n"
+                                      << "void main() {\n    color = vec4(" << id << "_E(alpha, mu), "
+                                      << (with_avg ? id + "_E_avg(alpha)" : std::string("0.0")) << ", 0.0, 1.0);\n}\n";
+    CHECK(run("glslangValidator " + (dir / "table.frag").string(), dir / "glsl.log") == 0);
+}
+
+// The HLSL with a pixel shader's entry point, through glslangValidator's HLSL front end (-D; it compiles to SPIR-V).
+void check_hlsl_compiles(const std::filesystem::path& dir, const std::string& hlsl, const std::string& id,
+                         bool with_avg) {
+    std::ofstream(dir / "table.hlsl") << hlsl << "\nfloat4 main(float4 pos : SV_Position) : SV_Target {\n"
+                                      << "    return float4(" << id << "_E(pos.x, pos.y), "
+                                      << (with_avg ? id + "_E_avg(pos.x)" : std::string("0.0f"))
+                                      << ", 0.0f, 1.0f);\n}\n";
+    CHECK(run("glslangValidator -D -V -e main -S frag -o " + (dir / "table.spv").string() + " " +
+                  (dir / "table.hlsl").string(),
+              dir / "hlsl.log") == 0);
+}
+
+// A PNG as libpng reads it: its header and its samples (16-bit big-endian, or 8-bit).
+struct PngRead {
+    png_uint_32 width = 0, height = 0;
+    int bit_depth = 0, color_type = 0;
+    std::vector<unsigned> samples;
+};
+
+// libpng's errors return through setjmp to this frame, where every object with a destructor already exists.
+bool read_png(const std::filesystem::path& path, PngRead& out) {
+    std::FILE* f = std::fopen(path.c_str(), "rb");
+    if (!f) return false;
+    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+    png_infop info = png ? png_create_info_struct(png) : nullptr;
+    std::vector<unsigned char> data;
+    std::vector<png_bytep> rows;
+    if (!info || setjmp(png_jmpbuf(png))) {
+        png_destroy_read_struct(&png, &info, nullptr);
+        std::fclose(f);
+        return false;
+    }
+    png_init_io(png, f);
+    png_read_info(png, info);
+    out.width = png_get_image_width(png, info);
+    out.height = png_get_image_height(png, info);
+    out.bit_depth = png_get_bit_depth(png, info);
+    out.color_type = png_get_color_type(png, info);
+    const std::size_t row_bytes = png_get_rowbytes(png, info);
+    data.resize(row_bytes * out.height);
+    rows.resize(out.height);
+    for (png_uint_32 r = 0; r < out.height; ++r) rows[r] = data.data() + r * row_bytes;
+    png_read_image(png, rows.data());
+    png_read_end(png, nullptr);
+    png_destroy_read_struct(&png, &info, nullptr);
+    std::fclose(f);
+    if (out.bit_depth == 16)
+        for (std::size_t k = 0; k + 1 < data.size(); k += 2) out.samples.push_back(data[k] * 256u + data[k + 1]);
+    else out.samples.assign(data.begin(), data.end());
+    return true;
+}
+
+}  // namespace
+
+TEST_CASE("compensation formats: identifiers", "[compensation][formats]") {
+    const AlbedoTable t = small_table();
+    CompensationExport e = export_of(t);
+    CHECK(compensation_identifier(e) == "smithlab_ggx_hc");
+    e = {"gtr(gamma=1.5)", "separable", "E_R+E_T outside eta=1.5", &t, {}, 0.0, 0.0};
+    CHECK(compensation_identifier(e) == "smithlab_gtr_gamma_1_5_sep_E_R_E_T_outside_eta_1_5");
+    e.g2 = "uncorrelated";
+    CHECK_THROWS_AS(compensation_identifier(e), input_error);
+    e = export_of(t);
+    e.family = "()";
+    CHECK_THROWS_AS(compensation_identifier(e), input_error);
+    e = export_of(t);
+    e.quantity = "+";
+    CHECK_THROWS_AS(compensation_identifier(e), input_error);
+}
+
+TEST_CASE("compensation formats: the C header compiles as C and looks up as AlbedoTable::lookup",
+          "[compensation][formats]") {
+    const AlbedoTable t = small_table();
+    const CompensationExport e = export_of(t);
+    const std::string h = text_of(write_c_header, e);
+    CHECK(h.find("#ifndef SMITHLAB_GGX_HC_COMPENSATION_H") != std::string::npos);
+    CHECK(h.find("height-correlated Smith G2") != std::string::npos);
+    CHECK(h.find("below the first alpha: the first row") != std::string::npos);
+    CHECK(h.find("above the last alpha: the last row") != std::string::npos);
+    CHECK(h.find("mu clamped to [0, 1]") != std::string::npos);
+    CHECK(h.find("within 0.00025 of the exact values") != std::string::npos);
+    CHECK(h.find("within 0.00125 below the first alpha") != std::string::npos);
+    CHECK(h.find("Kulla and Conty 2017") != std::string::npos);
+    CHECK(h.find("Turquin 2019") != std::string::npos);
+    const std::filesystem::path dir = scratch_dir("c");
+    std::ofstream(dir / "table.h") << h;
+    CHECK(run("cc -std=c99 -Wall -Wextra -Wpedantic -Werror -fsyntax-only -x c " + (dir / "table.h").string(),
+              dir / "syntax.log") == 0);
+    CHECK(run("c++ -std=c++17 -Wall -Wextra -Werror -fsyntax-only -x c++ " + (dir / "table.h").string(),
+              dir / "syntax_cxx.log") == 0);
+    const std::vector<Point> p = points(t);
+    check_lookups(dir, lookup_program("table.h", "smithlab_ggx_hc", p, true), t, e.E_avg, p);
+    std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("compensation formats: GLSL and HLSL compile with glslangValidator and look up as AlbedoTable::lookup",
+          "[compensation][formats]") {
+    REQUIRE(has_glslang());  // glslang-tools, a CI dependency (.ci/deps)
+    const AlbedoTable t = small_table();
+    const CompensationExport e = export_of(t);
+    const std::string glsl = text_of(write_glsl, e), hlsl = text_of(write_hlsl, e);
+    CHECK(glsl.find("\n#version") == std::string::npos);  // the includer's
+    const std::filesystem::path dir = scratch_dir("shaders");
+    check_glsl_compiles(dir, glsl, "smithlab_ggx_hc", true);
+    check_hlsl_compiles(dir, hlsl, "smithlab_ggx_hc", true);
+    const std::vector<Point> p = points(t);
+    SECTION("GLSL, its constructors as C casts") {
+        std::ofstream(dir / "table_glsl.c") << glsl_as_c(glsl);
+        check_lookups(dir, lookup_program("table_glsl.c", "smithlab_ggx_hc", p, true), t, e.E_avg, p);
+    }
+    SECTION("HLSL, which is C here") {
+        std::ofstream(dir / "table_hlsl.c") << hlsl;
+        check_lookups(dir, lookup_program("table_hlsl.c", "smithlab_ggx_hc", p, true), t, e.E_avg, p);
+    }
+    std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("compensation formats: without E_avg, and with labels that are not identifiers", "[compensation][formats]") {
+    REQUIRE(has_glslang());
+    const AlbedoTable t = small_table();
+    const CompensationExport e{"gtr(gamma=1.5) /*/ \"x\"", "separable", "E_R+E_T outside eta=1.5", &t, {}, 0.0, 0.0};
+    const std::string id = "smithlab_gtr_gamma_1_5_x_sep_E_R_E_T_outside_eta_1_5";
+    REQUIRE(compensation_identifier(e) == id);
+    const std::string h = text_of(write_c_header, e), glsl = text_of(write_glsl, e), hlsl = text_of(write_hlsl, e);
+    for (const std::string* s : {&h, &glsl, &hlsl}) {
+        CHECK(s->find("_E_avg") == std::string::npos);
+        CHECK(s->find("No E_avg is given") != std::string::npos);
+        CHECK(s->find("separable Smith G2") != std::string::npos);
+    }
+    const std::filesystem::path dir = scratch_dir("no_avg");
+    std::ofstream(dir / "table.h") << h;
+    CHECK(run("cc -std=c99 -Wall -Wextra -Wpedantic -Werror -fsyntax-only -x c " + (dir / "table.h").string(),
+              dir / "syntax.log") == 0);
+    check_glsl_compiles(dir, glsl, id, false);
+    check_hlsl_compiles(dir, hlsl, id, false);
+    const std::vector<Point> p = points(t);
+    check_lookups(dir, lookup_program("table.h", id, p, false), t, {}, p);
+    std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("compensation formats: the 16-bit PNG and its axes", "[compensation][formats]") {
+    const AlbedoTable t = small_table();
+    CompensationExport e = export_of(t);
+    e.family = "my \"ndf\" \\ 1";
+    const std::filesystem::path dir = scratch_dir("png");
+    const std::filesystem::path png = dir / "E.png";
+    write_png16(png, e);
+    CHECK_FALSE(std::filesystem::exists(dir / "E.png.tmp"));
+    PngRead r;
+    REQUIRE(read_png(png, r));
+    CHECK(r.width == 9);
+    CHECK(r.height == 5);
+    CHECK(r.bit_depth == 16);
+    CHECK(r.color_type == PNG_COLOR_TYPE_GRAY);
+    REQUIRE(r.samples.size() == t.values.size());
+    for (std::size_t k = 0; k < t.values.size(); ++k) {
+        INFO("row " << k / 9 << " column " << k % 9);
+        CHECK(r.samples[k] == std::lround(t.values[k] * 65535.0));
+    }
+    CHECK(r.samples[0] == 65535);  // E = 1 at x = 0
+    // Written again over the first: replaced.
+    write_png16(png, e);
+    CHECK(std::filesystem::exists(png));
+
+    std::ostringstream s;
+    write_axes_json(s, e);
+    const nlohmann::json j = nlohmann::json::parse(s.str());
+    CHECK(j.at("alphas").get<std::vector<double>>() == t.grid.alphas);
+    CHECK(j.at("n_x").get<int>() == t.grid.n_x);
+    CHECK(j.at("image").at("width").get<int>() == 9);
+    CHECK(j.at("image").at("height").get<int>() == 5);
+    CHECK(j.at("image").at("bit_depth").get<int>() == 16);
+    CHECK(j.at("scale").get<int>() == 65535);
+    CHECK(j.at("family").get<std::string>() == e.family);
+    CHECK(j.at("g2").get<std::string>() == "height-correlated");
+    CHECK(j.at("quantity").get<std::string>() == "E");
+    CHECK(j.at("identifier").get<std::string>() == "smithlab_my_ndf_1_hc");
+    CHECK(j.at("E_avg").get<std::vector<double>>() == e.E_avg);
+    CHECK(j.at("max_interpolation_error").get<double>() == e.max_interp_error);
+    CHECK(j.at("below_grid_error").get<double>() == e.below_grid_error);
+    CHECK(j.at("x").get<std::string>().find("(1 + alpha) mu / (mu + alpha)") != std::string::npos);
+    CHECK(j.at("lookup").get<std::string>().find("bilinear in (sqrt(alpha), x)") != std::string::npos);
+    CHECK(j.at("below_first_alpha").get<std::string>().find("first row") != std::string::npos);
+    CHECK(j.at("above_last_alpha").get<std::string>().find("last row") != std::string::npos);
+    e.E_avg.clear();
+    std::ostringstream s2;
+    write_axes_json(s2, e);
+    CHECK_FALSE(nlohmann::json::parse(s2.str()).contains("E_avg"));
+    std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("compensation formats: bad input is refused, naming the item, and leaves no file",
+          "[compensation][formats]") {
+    const std::filesystem::path dir = scratch_dir("bad");
+    const std::filesystem::path png = dir / "E.png";
+    auto nothing_written = [&] {
+        CHECK_FALSE(std::filesystem::exists(png));
+        CHECK_FALSE(std::filesystem::exists(dir / "E.png.tmp"));
+    };
+    std::ostringstream sink;
+    AlbedoTable t = small_table();
+    SECTION("a NaN in the table") {
+        t.values[2 * 9 + 4] = std::nan("");
+        const CompensationExport e = export_of(t);
+        for (auto write : {write_c_header, write_glsl, write_hlsl, write_axes_json}) {
+            CHECK_THROWS_AS(write(sink, e), input_error);
+            CHECK_THROWS_WITH(write(sink, e), Catch::Contains("E at alpha 0.3, x_4 = 0.5"));
+        }
+        CHECK_THROWS_AS(write_png16(png, e), input_error);
+        nothing_written();
+    }
+    SECTION("E_avg of another size") {
+        CompensationExport e = export_of(t);
+        e.E_avg.pop_back();
+        CHECK_THROWS_WITH(write_c_header(sink, e), Catch::Contains("4 E_avg values for 5 alphas"));
+        CHECK_THROWS_AS(write_png16(png, e), input_error);
+        nothing_written();
+    }
+    SECTION("a value outside [0, 1] in the PNG") {
+        t.values[7] = 1.5;
+        const CompensationExport e = export_of(t);
+        CHECK_NOTHROW(write_c_header(sink, e));
+        CHECK_THROWS_WITH(write_png16(png, e), Catch::Contains("x_7") && Catch::Contains("outside [0, 1]"));
+        nothing_written();
+    }
+    SECTION("no table, a table of the wrong size, alphas out of order") {
+        CompensationExport e = export_of(t);
+        e.E = nullptr;
+        CHECK_THROWS_WITH(write_glsl(sink, e), Catch::Contains("no table"));
+        e.E = &t;
+        t.values.pop_back();
+        CHECK_THROWS_WITH(write_hlsl(sink, e), Catch::Contains("44 values for 5 alphas x 9 cosines"));
+        t = small_table();
+        std::swap(t.grid.alphas[1], t.grid.alphas[2]);
+        CHECK_THROWS_WITH(write_axes_json(sink, e), Catch::Contains("alphas must ascend"));
+        t = small_table();
+        e.max_interp_error = std::nan("");
+        CHECK_THROWS_WITH(write_c_header(sink, e), Catch::Contains("max interpolation error"));
+    }
+    SECTION("a path that cannot be written") {
+        const CompensationExport e = export_of(t);
+        const std::filesystem::path missing = dir / "missing" / "E.png";
+        CHECK_THROWS_AS(write_png16(missing, e), std::runtime_error);
+        CHECK_THROWS_WITH(write_png16(missing, e), Catch::Contains(missing.string()));
+        CHECK_FALSE(std::filesystem::exists(dir / "missing"));
+        // A directory where the file would go: the rename fails, and the temporary file is removed.
+        std::filesystem::create_directory(png);
+        CHECK_THROWS_WITH(write_png16(png, e), Catch::Contains(png.string()));
+        CHECK_FALSE(std::filesystem::exists(dir / "E.png.tmp"));
+        CHECK(std::filesystem::is_empty(png));
+    }
+    std::filesystem::remove_all(dir);
+}
