@@ -9,6 +9,7 @@
 
 #include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
+#include "smithlab/fresnel.hpp"
 #include "smithlab/quadrature.hpp"
 #include "smithlab/smith.hpp"
 
@@ -25,32 +26,59 @@ double gk(const F& f, double a, double b, double tolerance) {
     return integrate(f, a, b, {Backend::gsl, tolerance});
 }
 
-// The grazing limit of E_F (mu -> 0): G2 / cos_i -> 1 / E[q+], wi = x, wi.m = r cos phi / sqrt(1 + r^2), every
-// normal with cos phi > 0 reflects upward:
-//     E_F(0) = integral_{p > 0} P22 p F(wi.m) dp dq / integral_{p > 0} P22 p dp dq,
-// in r = tan t (t in [0, pi/2]) and phi in [0, pi/2] (even in phi). 1 for mirrors.
-double grazing_albedo(FunctionRef P22, const FunctionRef& F, double tolerance) {
-    auto radial = [&](double t, bool fresnel) {
+using detail::Event;
+
+// The z of the direction refracted through a facet of normal m (m.z = mz), wi.m = c, wi.z = ci, eta the index below
+// over the index above (Walter et al. 2007, eq. 40: wt = (c / eta - cos_t) m - wi / eta, cos_t = sqrt(1 - (1 - c^2) /
+// eta^2)); 1 (not downward) under total internal reflection.
+double refracted_z(double c, double mz, double ci, double eta) {
+    const double k = 1.0 - (1.0 - c) * (1.0 + c) / (eta * eta);
+    if (!(k > 0.0)) return 1.0;
+    return (c / eta - std::sqrt(k)) * mz - ci / eta;
+}
+
+// Lambda of an outgoing direction of height z (either side of the surface), through |cot theta|.
+double Lambda_of_z(FunctionRef Lambda, double z) {
+    const double s = std::sqrt((1.0 - z) * (1.0 + z));
+    return s > 0.0 ? Lambda(std::abs(z) / s) : 0.0;
+}
+
+// The grazing limit (mu -> 0) of the albedo of one event, wi = x: G2 / cos_i -> g(wo) / E[q+] with g = 1 for the
+// height-correlated G2 of a reflection (1 / (1 + Lambda_i + Lambda_o) ~ 1 / Lambda_i, Lambda_i cos_i -> E[q+]), g =
+// G1(wo) for the separable one, and, in transmission, g = G1(wo) separable and 0 height-correlated (B(1 + Lambda_i,
+// 1 + Lambda_o) ~ Gamma(1 + Lambda_o) Lambda_i^-(1 + Lambda_o): light grazing the top of the surface does not reach
+// below it). wi.m = r cos phi / sqrt(1 + r^2); every normal with cos phi > 0 reflects upward and refracts downward:
+//     E(0) = integral_{p > 0} P22 p w(m) g(wo(m)) dp dq / integral_{p > 0} P22 p dp dq,
+// w = F(wi.m) in reflection, 1 - F in transmission; in r = tan t (t in [0, pi/2]) and phi in [0, pi/2] (even in phi).
+double grazing_albedo(FunctionRef P22, FunctionRef Lambda, const FunctionRef* F, const Event& event, double tolerance) {
+    if (event.transmission && event.form == G2Form::height_correlated) return 0.0;
+    auto radial = [&](double t, bool weighted) {
         if (t >= pi / 2) return 0.0;
         const double r = std::tan(t), c = std::cos(t), w = r * r * P22(r * r) / (c * c);  // r^2 P22 dr/dt
-        if (!fresnel || w == 0.0) return w;
+        if (!weighted || w == 0.0) return w;
         const double sin_m = std::sin(t);
         return w *
-            gk([&](double phi) { return std::cos(phi) * F(sin_m * std::cos(phi)); }, 0.0, pi / 2, 0.1 * tolerance);
+            gk(
+                   [&](double phi) {
+                       const double cm = sin_m * std::cos(phi);  // wi.m
+                       const double f = event.transmission ? fresnel_dielectric(cm, event.eta) : F ? (*F)(cm) : 1.0;
+                       const double wo_z = event.transmission ? refracted_z(cm, c, 0.0, event.eta) : 2.0 * cm * c;
+                       if (event.transmission ? !(wo_z < 0.0) : !(wo_z > 0.0)) return 0.0;
+                       const double g =
+                           event.form == G2Form::uncorrelated ? 1.0 / (1.0 + Lambda_of_z(Lambda, wo_z)) : 1.0;
+                       return std::cos(phi) * (event.transmission ? 1.0 - f : f) * g;
+                   },
+                   0.0, pi / 2, 0.1 * tolerance);
     };
     const double num = gk([&](double t) { return radial(t, true); }, 0.0, pi / 2, tolerance);
     const double den = gk([&](double t) { return radial(t, false); }, 0.0, pi / 2, tolerance);  // times integral of cos
     return num / den;
 }
 
-}  // namespace
-
-namespace detail {
-
-double single_scattering_albedo(FunctionRef P22, FunctionRef Lambda, const FunctionRef* F, double mu,
-                                double tolerance) {
-    require(mu >= 0.0 && mu <= 1.0, "mu = cos(theta_i)", "in [0, 1]", mu);
-    if (mu == 0.0) return F ? grazing_albedo(P22, *F, tolerance) : 1.0;
+// E of one reflection at mu in (0, 1]: the quadrature of the header over [0, r1] x [0, pi] and {r1 < r < r_max,
+// |phi| < phi_max(r)}.
+double reflection_albedo(FunctionRef P22, FunctionRef Lambda, const FunctionRef* F, double mu, double tolerance,
+                         G2Form form) {
     const double ci = mu, si = std::sqrt((1.0 - mu) * (1.0 + mu));
     const double Li = si > 0.0 ? Lambda(ci / si) : 0.0;
     // The integrand at (r, phi), without the measure r P22(r^2): (cos_i + sin_i r cos phi) G2 F, 0 below the horizon.
@@ -58,9 +86,7 @@ double single_scattering_albedo(FunctionRef P22, FunctionRef Lambda, const Funct
         const double a = ci + si * r * cos_phi, n2 = 1.0 + r * r;               // a = (wi . m) sqrt(n2)
         const double woz = (ci * (1.0 - r * r) + 2.0 * si * r * cos_phi) / n2;  // wo = 2 (wi.m) m - wi
         if (!(woz > 0.0 && a > 0.0)) return 0.0;
-        const double sin_o = std::sqrt((1.0 - woz) * (1.0 + woz));
-        const double Lo = sin_o > 0.0 ? Lambda(woz / sin_o) : 0.0;
-        const double g = a / (1.0 + Li + Lo);  // G2 height-correlated (Walter 2007 eq. 20's G2 as in smith.hpp)
+        const double g = a * G2_from_Lambdas(Li, Lambda_of_z(Lambda, woz), true, form);
         return F ? g * (*F)(a / std::sqrt(n2)) : g;
     };
     const double inner_tol = 0.1 * tolerance;
@@ -91,6 +117,70 @@ double single_scattering_albedo(FunctionRef P22, FunctionRef Lambda, const Funct
             0.0, 1.0, tolerance);
     }
     return 2.0 * (full + part) / ci;
+}
+
+// E_T of one refraction at mu in (0, 1] (Walter et al. 2007, eq. 21 integrated over wo: its Jacobian, eq. 17,
+// cancels against dwo, leaving (1 / cos_i) integral D(m) (wi.m) (1 - F) G2(wi, wt(m)) dm), over every normal that
+// sees wi (a > 0), in t = theta_m: t < pi/2 - theta_i at every azimuth, beyond it |phi| < phi_a(t),
+// cos phi_a = -cot(theta_i) / tan t. The horizon of wt (wt.z = 0, where G2 -> 0) and the critical angle (where
+// 1 - F -> 0 as a square root) are kinks inside the domain, left to the adaptive rule. G2 across the surface: B(1 +
+// Lambda_i, 1 + Lambda_o) height-correlated (Heitz 2014, "Understanding the masking-shadowing function", eq. 101),
+// G1 G1 separable.
+double transmission_albedo(FunctionRef P22, FunctionRef Lambda, double mu, double tolerance, const Event& event) {
+    const double ci = mu, si = std::sqrt((1.0 - mu) * (1.0 + mu));
+    const double Li = si > 0.0 ? Lambda(ci / si) : 0.0;
+    auto facet = [&](double t, double cos_phi) {  // the integrand without P22 r dr/dt
+        const double r = std::tan(t), mz = std::cos(t);
+        const double a = ci + si * r * cos_phi, c = a * mz;  // c = wi.m
+        if (!(c > 0.0)) return 0.0;
+        const double wz = refracted_z(c, mz, ci, event.eta);
+        if (!(wz < 0.0)) return 0.0;
+        const double f = fresnel_dielectric(c, event.eta);
+        return a * (1.0 - f) * G2_from_Lambdas(Li, Lambda_of_z(Lambda, wz), false, event.form);
+    };
+    auto measure = [&](double t) {
+        const double r = std::tan(t), c = std::cos(t);
+        return r * P22(r * r) / (c * c);
+    };
+    const double inner_tol = 0.1 * tolerance;
+    const double ta = si > 0.0 ? std::atan2(ci, si) : pi / 2;
+    const double full = gk(
+        [&](double t) {
+            if (t >= pi / 2) return 0.0;
+            const double w = measure(t);
+            if (!(w > 0.0)) return 0.0;
+            return w * gk([&](double phi) { return facet(t, std::cos(phi)); }, 0.0, pi, inner_tol);
+        },
+        0.0, ta, tolerance);
+    double part = 0.0;
+    if (ta < pi / 2) {
+        part = gk(
+            [&](double t) {
+                if (t >= pi / 2) return 0.0;
+                const double w = measure(t);
+                if (!(w > 0.0)) return 0.0;
+                const double phi_a = std::acos(std::clamp(-ci / (si * std::tan(t)), -1.0, 1.0));
+                return w * phi_a * gk([&](double u) { return facet(t, std::cos(phi_a * u)); }, 0.0, 1.0, inner_tol);
+            },
+            ta, pi / 2, tolerance);
+    }
+    return 2.0 * (full + part) / ci;
+}
+
+}  // namespace
+
+namespace detail {
+
+double single_scattering_albedo(FunctionRef P22, FunctionRef Lambda, const FunctionRef* F, double mu, double tolerance,
+                                const Event& event) {
+    require(mu >= 0.0 && mu <= 1.0, "mu = cos(theta_i)", "in [0, 1]", mu);
+    if (event.transmission) require(event.eta > 0.0 && std::isfinite(event.eta), "eta", "finite and > 0", event.eta);
+    if (mu == 0.0) {
+        if (!F && !event.transmission && event.form == G2Form::height_correlated) return 1.0;
+        return grazing_albedo(P22, Lambda, F, event, tolerance);
+    }
+    return event.transmission ? transmission_albedo(P22, Lambda, mu, tolerance, event)
+                              : reflection_albedo(P22, Lambda, F, mu, tolerance, event.form);
 }
 
 double cosine_average(FunctionRef e, double tolerance) {
@@ -126,6 +216,28 @@ double compensation_lobe(const CompensationTable& table, double mu_i, double mu_
 }
 
 double fresnel_ms(double F_avg, double E_avg) { return F_avg * F_avg * E_avg / (1.0 - F_avg * (1.0 - E_avg)); }
+
+double kulla_conty_albedo(const AlbedoTable& E, const std::vector<double>& E_avg, double alpha, double mu_i,
+                          double F_avg) {
+    require(F_avg >= 0.0 && F_avg <= 1.0, "F_avg", "in [0, 1]", F_avg);
+    const double avg = lookup_alpha(E.grid.alphas, E_avg, alpha);
+    const double missing = 1.0 - avg;
+    if (!(missing > 0.0)) return 0.0;
+    // 8-point Gauss-Legendre nodes and weights on [-1, 1] (Abramowitz and Stegun, table 25.4).
+    static constexpr double x8[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267, 0.9602898564975363};
+    static constexpr double w8[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
+    double integral = 0.0;
+    for (int j = 0; j + 1 < E.grid.n_x; ++j) {
+        const double a = unwarp_cosine(alpha, E.grid.x(j)), b = unwarp_cosine(alpha, E.grid.x(j + 1));
+        const double mid = 0.5 * (a + b), half = 0.5 * (b - a);
+        for (int k = 0; k < 4; ++k)
+            for (double sgn : {-1.0, 1.0}) {
+                const double mu = mid + sgn * half * x8[k];
+                integral += w8[k] * half * (1.0 - E.lookup(alpha, mu)) * mu;
+            }
+    }
+    return fresnel_ms(F_avg, avg) * (1.0 - E.lookup(alpha, mu_i)) * 2.0 * integral / missing;
+}
 
 double turquin_scale(double E_view, double F0) {
     require(E_view > 0.0, "E(mu_view)", "> 0", E_view);

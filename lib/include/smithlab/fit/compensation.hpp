@@ -39,22 +39,38 @@
 #include <utility>
 #include <vector>
 
+#include "smithlab/errors.hpp"
 #include "smithlab/fast_lambda.hpp"
+#include "smithlab/fit/albedo_grid.hpp"
+#include "smithlab/fresnel.hpp"
 #include "smithlab/lambda_table.hpp"
 #include "smithlab/ndf.hpp"
 #include "smithlab/quadrature.hpp"
+#include "smithlab/smith.hpp"
 
 namespace smithlab::fit {
 
 struct AlbedoOptions {
     double tolerance = 1e-10;  // relative, of each Gauss-Kronrod integral (inner ones at a tenth of it)
+    // The G2 the single scattering uses: height-correlated (Walter 2007 eq. 20's Smith G2 as Heitz 2014 eq. 99 and
+    // 101 write it) or separable, G1(wi) G1(wo) (G2Form::uncorrelated; Heitz 2014 eq. 98), as renderers differ.
+    G2Form g2 = G2Form::height_correlated;
     // For an NDF without a closed-form Lambda: the LambdaTable's (its estimate is ~5x pessimistic, README).
     LambdaTableOptions lambda_table = {.tolerance = 1e-8};
 };
 
 namespace detail {
-// The quadrature above for one mu in [0, 1]; P22(r^2), Lambda(mu >= 0) and F(cos wi.m); F null: mirror facets (F = 1).
-double single_scattering_albedo(FunctionRef P22, FunctionRef Lambda, const FunctionRef* F, double mu, double tolerance);
+// One scattering event of the single-scattering albedo: a reflection (F(cos wi.m), null: 1), or a refraction through a
+// dielectric facet of relative index eta (the index below over the index above: light comes from above; light from
+// inside a medium of index n is eta = 1 / n), weighted by 1 - F, F the exact dielectric Fresnel (fresnel.hpp).
+struct Event {
+    bool transmission = false;
+    double eta = 1.0;
+    G2Form form = G2Form::height_correlated;
+};
+// The quadrature above for one mu in [0, 1]; P22(r^2), Lambda(cot theta >= 0).
+double single_scattering_albedo(FunctionRef P22, FunctionRef Lambda, const FunctionRef* F, double mu, double tolerance,
+                                const Event& event = {});
 // 2 integral_0^1 e(mu) mu dmu, tanh-sinh (smooth or log-like behaviour at mu = 0 costs no extra panels).
 double cosine_average(FunctionRef e, double tolerance);
 }  // namespace detail
@@ -75,6 +91,21 @@ public:
         const FunctionRef f(F);
         return albedo(mu, &f);
     }
+    // A dielectric interface of relative index eta (below over above; 1 / n from inside a medium of index n): the
+    // directional albedos of single reflection, E_R (facets of reflectance F(wi.m), Walter 2007 eq. 20 and 22), and
+    // of single transmission, E_T (eq. 21). Their sum is the albedo Turquin 2019 divides the dielectric BSDF by.
+    struct Dielectric {
+        double R = 0.0, T = 0.0;
+    };
+    Dielectric dielectric(double mu, double eta) const {
+        require(eta > 0.0 && std::isfinite(eta), "eta", "finite and > 0", eta);
+        auto F = [eta](double c) { return fresnel_dielectric(c, eta); };
+        const FunctionRef f(F);
+        auto P22 = [&](double r2) { return slope_density(ndf_, r2); };
+        auto L = [&](double m) { return Lambda_(m); };
+        return {albedo(mu, &f),
+                detail::single_scattering_albedo(P22, L, nullptr, mu, opts_.tolerance, {true, eta, opts_.g2})};
+    }
     // E_avg = 2 integral_0^1 E(mu) mu dmu (Kulla and Conty 2017).
     // The average's own tolerance is 100x E's, its values of E at 10x (a relative error of 1e-9 in E moves E_avg by
     // less than that).
@@ -88,7 +119,7 @@ private:
     double albedo(double mu, const FunctionRef* F, double tolerance) const {
         auto P22 = [&](double r2) { return slope_density(ndf_, r2); };
         auto L = [&](double m) { return Lambda_(m); };
-        return detail::single_scattering_albedo(P22, L, F, mu, tolerance);
+        return detail::single_scattering_albedo(P22, L, F, mu, tolerance, {false, 1.0, opts_.g2});
     }
     N ndf_;
     FastLambda<N> Lambda_;
@@ -147,6 +178,15 @@ double turquin_scale(double E_view, double F0);
 inline double turquin_scale(const CompensationTable& table, double mu_view, double F0) {
     return turquin_scale(interpolate_E(table, mu_view), F0);
 }
+
+// The albedo of Kulla and Conty 2017's lobe as a renderer evaluates it from the tables: f_ms F_ms with
+// f_ms(wi, wo) = (1 - E(alpha, mu_i)) (1 - E(alpha, mu_o)) / (pi (1 - E_avg(alpha))), E and E_avg looked up (E_avg
+// at E's alphas), integrated over wo:
+//     F_ms (1 - E(alpha, mu_i)) 2 integral_0^1 (1 - E(alpha, mu)) mu dmu / (1 - E_avg(alpha)),
+// F_ms = fresnel_ms(F_avg, E_avg(alpha)) (1 for mirror facets, F_avg = 1). The integral over the table's cells in mu
+// (8-point Gauss-Legendre a cell: the lookup is linear in x, smooth in mu within a cell). 0 where E_avg >= 1.
+double kulla_conty_albedo(const AlbedoTable& E, const std::vector<double>& E_avg, double alpha, double mu_i,
+                          double F_avg = 1.0);
 
 // Columns beside a CSV's ndf column (one per NDF parameter, say): their names, and each table's cells in the tables'
 // order (empty: no such columns).

@@ -1,0 +1,81 @@
+// smithlab/fit/albedo_grid.hpp -- a table of a directional albedo over (alpha, mu) that linear interpolation can
+// follow, and the measure of how well it does.
+//
+// E(mu) of a rough surface falls from its grazing limit to a dip at mu ~ alpha and rises to E(1): a feature alpha wide
+// in the cosine, which a uniform cosine axis misses entirely at small alpha (32 cosines: 0.09 off at alpha 0.01). For
+// alpha -> 0 the curve is a function of mu / alpha alone (the Smith microsurface scaled in slope: Lambda depends on
+// cot theta / alpha, and so does every direction that matters at the dip), so the table's cosine axis is warped by
+// roughness,
+//     x = (1 + alpha) mu / (mu + alpha)   in [0, 1],   mu = alpha x / (1 + alpha - x),
+// half of its nodes below mu = alpha at small alpha, nearly uniform in mu at alpha = 1, and its rows tend to one row as
+// alpha -> 0; the roughness axis is sqrt(alpha) (the artists' roughness, as OpenPBR's tables). Lookups are bilinear in
+// (sqrt(alpha), x), x_j = j / (n_x - 1) uniform: a renderer finds the cell without a search in x.
+//
+// Outside the alphas: below the first one, that row in the x of the asked alpha (the row the rows tend to; its error
+// there is measured, below_grid_error); above the last one, the last row in the x of the asked alpha. Nothing is
+// clamped silently: both rules are written beside every table (compensation_error.csv, the headers).
+//
+// The error is measured, never assumed: the exact values on the grid refined `refine` times in both sqrt(alpha) and x
+// (the table's nodes are every refine-th point of it), against the lookup.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <vector>
+
+namespace smithlab::fit {
+
+// x = (1 + alpha) mu / (mu + alpha) and its inverse; alpha > 0, mu and x in [0, 1].
+double warp_cosine(double alpha, double mu);
+double unwarp_cosine(double alpha, double x);
+
+struct AlbedoGrid {
+    std::vector<double> alphas;  // ascending, > 0
+    int n_x = 32;                // cosines a row, x_j = j / (n_x - 1)
+    double x(int j) const { return static_cast<double>(j) / (n_x - 1); }
+    double mu(std::size_t i, int j) const { return unwarp_cosine(alphas[i], x(j)); }
+    // input_error unless >= 2 alphas, ascending, in (0, inf), and n_x >= 2.
+    void check() const;
+};
+
+// values[i * n_x + j] at (alphas[i], x_j).
+struct AlbedoTable {
+    AlbedoGrid grid;
+    std::vector<double> values;
+    double at(std::size_t i, int j) const { return values[i * static_cast<std::size_t>(grid.n_x) + j]; }
+    // Bilinear in (sqrt(alpha), x), with the rules above outside the alphas; input_error for alpha <= 0 or NaN, or mu
+    // outside [0, 1].
+    double lookup(double alpha, double mu) const;
+};
+
+// The worst |lookup - exact| and where it is.
+struct InterpolationError {
+    double max = 0.0, alpha = 0.0, mu = 0.0;
+};
+
+// A table with its measured error: `fine` holds the exact values on the refined grid (alphas at refine steps of
+// sqrt(alpha) between nodes, x at steps of 1 / (refine (n_x - 1))), `table` every refine-th of them.
+struct CheckedTable {
+    AlbedoTable table, fine;
+    InterpolationError error;
+};
+
+// A row maker: for one alpha, the exact albedo as a function of mu (built once per alpha: an NDF's Lambda table,
+// say). Called from several threads at once, one alpha each.
+using AlbedoRow = std::function<std::function<double(double)>(double alpha)>;
+
+// Tabulates row(alpha)(mu) on the refined grid with `threads` threads (0: the hardware's), and measures the table.
+CheckedTable tabulate(const AlbedoGrid& grid, int refine, const AlbedoRow& row, unsigned threads = 0);
+
+// The same measure for a 1-D table over alpha (linear in sqrt(alpha), the end value outside): `fine` the exact
+// values at the refined alphas, nodes every refine-th. Returns the worst error and its alpha (mu = 0).
+InterpolationError alpha_interpolation_error(const std::vector<double>& fine_alphas, const std::vector<double>& fine,
+                                             int refine);
+double lookup_alpha(const std::vector<double>& alphas, const std::vector<double>& values, double alpha);
+
+// Below the grid: the worst |lookup - exact| at alpha = alphas.front() times each of `factors` (< 1), over the
+// table's refined cosines.
+InterpolationError below_grid_error(const CheckedTable& t, const AlbedoRow& row, const std::vector<double>& factors,
+                                    unsigned threads = 0);
+
+}  // namespace smithlab::fit
