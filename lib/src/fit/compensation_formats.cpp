@@ -25,7 +25,7 @@ constexpr std::string_view height_correlated = "height-correlated", separable = 
 
 // The rules every lookup follows (albedo_grid.hpp, AlbedoTable::lookup), as each file's comment and the axes state
 // them.
-constexpr std::string_view rule_x = "x = (1 + alpha) mu / (mu + alpha), nodes x_j = j / (n_x - 1)";
+constexpr std::string_view rule_x = "x = sqrt((1 + alpha) mu / (mu + alpha)), nodes x_j = j / (n_x - 1)";
 constexpr std::string_view rule_lookup =
     "bilinear in (sqrt(alpha), x): j = min(int(x (n_x - 1)), n_x - 2), linear in x between x_j and x_(j+1); the alpha "
     "cell found in sqrt(alpha) among the nodes' sqrt(alpha), linear in sqrt(alpha)";
@@ -230,13 +230,15 @@ std::string arrays_and_lookups(const CompensationExport& e, const std::string& i
         ";\n    return (s - " + id + "_sqrt_alpha[i]) / (" + id + "_sqrt_alpha[i + 1] - " + id +
         "_sqrt_alpha[i]);\n}\n\n";
     const std::string T = id + "_E_table";
-    s += "/* E(alpha, mu), alpha > 0: bilinear in (sqrt(alpha), x = (1 + alpha) mu / (mu + alpha)), mu clamped to "
-         "[0, 1]. */\n" +
+    s +=
+        "/* E(alpha, mu), alpha > 0: bilinear in (sqrt(alpha), x = sqrt((1 + alpha) mu / (mu + alpha))), mu clamped to "
+        "[0, 1]. */\n" +
         f + "float " + id + "_E(float alpha, float mu) {\n    float m = mu > " + zero + " ? (mu < " + one +
-        " ? mu : " + one + ") : " + zero + ";\n    float x = (" + one + " + alpha) * m / (m + alpha) * " +
-        float_literal(t.grid.n_x - 1, d.suffix) + ";\n    int j = " + d.cast("int", "x") + ";\n    if (j > " +
-        std::to_string(t.grid.n_x - 2) + ") j = " + std::to_string(t.grid.n_x - 2) + ";\n    float tx = x - " +
-        d.cast("float", "j") + ";\n    float s = " + std::string(d.sqrt) + "(alpha);\n    int i = " + id +
+        " ? mu : " + one + ") : " + zero + ";\n    float x = " + std::string(d.sqrt) + "((" + one +
+        " + alpha) * m / (m + alpha)) * " + float_literal(t.grid.n_x - 1, d.suffix) +
+        ";\n    int j = " + d.cast("int", "x") + ";\n    if (j > " + std::to_string(t.grid.n_x - 2) +
+        ") j = " + std::to_string(t.grid.n_x - 2) + ";\n    float tx = x - " + d.cast("float", "j") +
+        ";\n    float s = " + std::string(d.sqrt) + "(alpha);\n    int i = " + id +
         "_alpha_cell(s);\n    float ta = " + id + "_alpha_weight(s, i);\n    int a = i * " + nx +
         " + j;\n    int b = a + " + nx + ";\n    float lo = " + T + "[a] + tx * (" + T + "[a + 1] - " + T +
         "[a]);\n    float hi = " + T + "[b] + tx * (" + T + "[b + 1] - " + T +

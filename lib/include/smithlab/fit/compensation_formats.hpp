@@ -2,7 +2,7 @@
 // (alpha, warped cosine x), with E_avg over alpha) written out for renderers: a C header, GLSL, HLSL, and a 16-bit
 // grey PNG with its axes in JSON.
 //
-// Every lookup written computes AlbedoTable::lookup's rule in float: x = (1 + alpha) mu / (mu + alpha), cell j =
+// Every lookup written computes AlbedoTable::lookup's rule in float: x = sqrt((1 + alpha) mu / (mu + alpha)), cell j =
 // min(int(x (n_x - 1)), n_x - 2) and linear in x; the alpha cell found in sqrt(alpha) over the nodes' sqrt(alpha),
 // linear in sqrt(alpha); below the first alpha the first row, above the last the last row, both in the x of the asked
 // alpha; mu clamped to [0, 1] (a renderer's dot products overshoot by a rounding); E_avg(alpha) linear in sqrt(alpha),
