@@ -1,15 +1,12 @@
 #include "smithlab/fit/albedo_grid.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <exception>
-#include <mutex>
 #include <stdexcept>
-#include <thread>
 
 #include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
+#include "smithlab/util/parallel.hpp"
 
 namespace smithlab::fit {
 
@@ -68,30 +65,17 @@ std::vector<double> refined_alphas(const std::vector<double>& alphas, int refine
     return out;
 }
 
-// Runs job(k) for k in [0, n) on `threads` threads; the first exception is rethrown after all have stopped.
+// Runs job(k) for k in [0, n) on `threads` threads (0: all cores), each k writing its own slots; the first exception
+// is rethrown (util::reduce_blocks, with nothing to merge).
 template <class Job>
 void parallel_for(std::size_t n, unsigned threads, const Job& job) {
-    if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
-    threads = static_cast<unsigned>(std::min<std::size_t>(threads, std::max<std::size_t>(n, 1)));
-    std::atomic<std::size_t> next{0};
-    std::exception_ptr error;
-    std::mutex m;
-    auto work = [&] {
-        for (std::size_t k; (k = next++) < n;) {
-            try {
-                job(k);
-            } catch (...) {
-                const std::lock_guard lock(m);
-                if (!error) error = std::current_exception();
-                next = n;
-            }
-        }
-    };
-    std::vector<std::thread> pool;
-    for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
-    work();
-    for (std::thread& t : pool) t.join();
-    if (error) std::rethrow_exception(error);
+    util::reduce_blocks(
+        n, threads, 0,
+        [&](std::uint64_t k) {
+            job(static_cast<std::size_t>(k));
+            return 0;
+        },
+        [](int&, int) {}, [](std::uint64_t) {});
 }
 
 }  // namespace
