@@ -1,6 +1,6 @@
 // The renderer formats of a compensation table (fit/compensation_formats.hpp): the C header compiled as C and run, the
 // GLSL and HLSL through glslangValidator and, rewritten into C where they differ from it, run; every lookup against
-// AlbedoTable::lookup and lookup_alpha. The 16-bit PNG read back with libpng, its axes parsed with nlohmann-json; bad
+// AlbedoTable::lookup and lookup_missing. The 16-bit PNG read back with libpng, its axes parsed with nlohmann-json; bad
 // input refused, naming the item, nothing left behind.
 #include <png.h>
 
@@ -27,7 +27,7 @@ using namespace smithlab::fit;
 
 namespace {
 
-// A small table by hand, smooth in both axes, E = 1 at x = 0 (a white pixel), and E_avg(alpha) = 1 - 0.3 alpha.
+// A small table by hand, smooth in both axes, E = 1 at x = 0 (a white pixel), and 1 - E_avg(alpha) = 0.3 alpha^1.5.
 AlbedoTable small_table() {
     AlbedoTable t;
     t.grid = {{0.05, 0.12, 0.3, 0.6, 1.0}, 9};
@@ -39,14 +39,14 @@ AlbedoTable small_table() {
     return t;
 }
 
-std::vector<double> small_E_avg(const AlbedoTable& t) {
+std::vector<double> small_missing(const AlbedoTable& t) {
     std::vector<double> v;
-    for (const double a : t.grid.alphas) v.push_back(1.0 - 0.3 * a);
+    for (const double a : t.grid.alphas) v.push_back(0.3 * std::pow(a, 1.5));
     return v;
 }
 
 CompensationExport export_of(const AlbedoTable& t) {
-    return {"ggx", "height-correlated", "E", &t, small_E_avg(t), 2.5e-4, 1.25e-3};
+    return {"ggx", "height-correlated", "E", &t, small_missing(t), 2.5e-4, 1.25e-3};
 }
 
 std::filesystem::path scratch_dir(const std::string& name) {
@@ -92,23 +92,26 @@ std::vector<Point> points(const AlbedoTable& t) {
     return p;
 }
 
-// A C program that includes `file` and prints NAME_E at every point (and NAME_E_avg when with_avg), one line each.
+// A C program that includes `file` and prints NAME_E at every point (and NAME_E_avg and NAME_missing when with_avg),
+// one line each.
 std::string lookup_program(const std::string& file, const std::string& id, const std::vector<Point>& p, bool with_avg) {
     std::string s = "#include <math.h>\n#include <stdio.h>\n#include \"" + file + "\"\n";
     if (file.ends_with(".h")) s += "#include \"" + file + "\"\n";  // twice: the guard
     s += "static const float pts[" + std::to_string(p.size()) + "][2] = {\n";
     for (const Point& q : p) s += "    {" + c_float(q.alpha) + ", " + c_float(q.mu) + "},\n";
     s += "};\nint main(void) {\n    unsigned k;\n    for (k = 0; k < sizeof pts / sizeof pts[0]; ++k)\n"
-         "        printf(\"%.9g %.9g\\n\", " +
-        id + "_E(pts[k][0], pts[k][1]), " + (with_avg ? id + "_E_avg(pts[k][0])" : std::string("0.0")) +
+         "        printf(\"%.9g %.9g %.9g\\n\", " +
+        id + "_E(pts[k][0], pts[k][1]), " +
+        (with_avg ? id + "_E_avg(pts[k][0]), " + id + "_missing(pts[k][0])" : std::string("0.0, 0.0")) +
         ");\n    return 0;\n}\n";
     return s;
 }
 
 // Compiles `source` (in dir, which holds the included file) as C99 with warnings as errors, runs it, and checks each
-// lookup against the table's in double, at the same float inputs, mu clamped: within float rounding (1e-6).
+// lookup against the table's in double, at the same float inputs, mu clamped: E within float rounding (1e-6), 1 - E_avg
+// within 1e-5 of lookup_missing relative to it, E_avg within 1e-6 of 1 - lookup_missing.
 void check_lookups(const std::filesystem::path& dir, const std::string& source, const AlbedoTable& t,
-                   const std::vector<double>& E_avg, const std::vector<Point>& p) {
+                   const std::vector<double>& missing, const std::vector<Point>& p) {
     std::ofstream(dir / "main.c") << source;
     const std::string exe = (dir / "lookup").string();
     REQUIRE(run("cc -std=c99 -Wall -Wextra -Wpedantic -Werror -o " + exe + " " + (dir / "main.c").string() + " -lm",
@@ -116,12 +119,16 @@ void check_lookups(const std::filesystem::path& dir, const std::string& source, 
     REQUIRE(run(exe, dir / "out.txt") == 0);
     std::ifstream in(dir / "out.txt");
     for (const Point& q : p) {
-        double e = 0.0, avg = 0.0;
-        REQUIRE(in >> e >> avg);
+        double e = 0.0, avg = 0.0, m = 0.0;
+        REQUIRE(in >> e >> avg >> m);
         const double mu = std::clamp(static_cast<double>(q.mu), 0.0, 1.0);
         INFO("alpha " << q.alpha << " mu " << q.mu);
         CHECK(std::abs(e - t.lookup(q.alpha, mu)) < 1e-6);
-        if (!E_avg.empty()) CHECK(std::abs(avg - lookup_alpha(t.grid.alphas, E_avg, q.alpha)) < 1e-6);
+        if (missing.empty()) continue;
+        const double want = lookup_missing(t.grid.alphas, missing, q.alpha);
+        INFO("1 - E_avg " << m << ", lookup_missing " << want);
+        CHECK(std::abs(m - want) < 1e-5 * want);
+        CHECK(std::abs(avg - (1.0 - want)) < 1e-6);
     }
 }
 
@@ -142,7 +149,9 @@ void check_glsl_compiles(const std::filesystem::path& dir, const std::string& gl
     std::ofstream(dir / "table.frag") << "#version 330 core\n"
                                       << glsl << "\nuniform float alpha;\nuniform float mu;\nout vec4 color;\n"
                                       << "void main() {\n    color = vec4(" << id << "_E(alpha, mu), "
-                                      << (with_avg ? id + "_E_avg(alpha)" : std::string("0.0")) << ", 0.0, 1.0);\n}\n";
+                                      << (with_avg ? id + "_E_avg(alpha), " + id + "_missing(alpha)"
+                                                   : std::string("0.0, 0.0"))
+                                      << ", 1.0);\n}\n";
     CHECK(run("glslangValidator " + (dir / "table.frag").string(), dir / "glsl.log") == 0);
 }
 
@@ -151,8 +160,9 @@ void check_hlsl_compiles(const std::filesystem::path& dir, const std::string& hl
                          bool with_avg) {
     std::ofstream(dir / "table.hlsl") << hlsl << "\nfloat4 main(float4 pos : SV_Position) : SV_Target {\n"
                                       << "    return float4(" << id << "_E(pos.x, pos.y), "
-                                      << (with_avg ? id + "_E_avg(pos.x)" : std::string("0.0f"))
-                                      << ", 0.0f, 1.0f);\n}\n";
+                                      << (with_avg ? id + "_E_avg(pos.x), " + id + "_missing(pos.x)"
+                                                   : std::string("0.0f, 0.0f"))
+                                      << ", 1.0f);\n}\n";
     CHECK(run("glslangValidator -D -V -e main -S frag -o " + (dir / "table.spv").string() + " " +
                   (dir / "table.hlsl").string(),
               dir / "hlsl.log") == 0);
@@ -230,6 +240,11 @@ TEST_CASE("compensation formats: the C header compiles as C and looks up as Albe
     CHECK(h.find("within 0.00125 below the first alpha") != std::string::npos);
     CHECK(h.find("Kulla and Conty 2017") != std::string::npos);
     CHECK(h.find("Turquin 2019") != std::string::npos);
+    CHECK(h.find("(1 - E_avg) = smithlab_ggx_hc_missing(alpha)") != std::string::npos);
+    CHECK(h.find("should divide by smithlab_ggx_hc_missing(alpha)") != std::string::npos);
+    CHECK(h.find("ln(1 - E_avg) linear in ln(alpha)") != std::string::npos);
+    CHECK(h.find("smithlab_ggx_hc_log_missing_table[5]") != std::string::npos);
+    CHECK(h.find("_E_avg_table") == std::string::npos);
     const std::filesystem::path dir = scratch_dir("c");
     std::ofstream(dir / "table.h") << h;
     CHECK(run("cc -std=c99 -Wall -Wextra -Wpedantic -Werror -fsyntax-only -x c " + (dir / "table.h").string(),
@@ -237,7 +252,7 @@ TEST_CASE("compensation formats: the C header compiles as C and looks up as Albe
     CHECK(run("c++ -std=c++17 -Wall -Wextra -Werror -fsyntax-only -x c++ " + (dir / "table.h").string(),
               dir / "syntax_cxx.log") == 0);
     const std::vector<Point> p = points(t);
-    check_lookups(dir, lookup_program("table.h", "smithlab_ggx_hc", p, true), t, e.E_avg, p);
+    check_lookups(dir, lookup_program("table.h", "smithlab_ggx_hc", p, true), t, e.missing, p);
     std::filesystem::remove_all(dir);
 }
 
@@ -254,11 +269,43 @@ TEST_CASE("compensation formats: GLSL and HLSL compile with glslangValidator and
     const std::vector<Point> p = points(t);
     SECTION("GLSL, its constructors as C casts") {
         std::ofstream(dir / "table_glsl.c") << glsl_as_c(glsl);
-        check_lookups(dir, lookup_program("table_glsl.c", "smithlab_ggx_hc", p, true), t, e.E_avg, p);
+        check_lookups(dir, lookup_program("table_glsl.c", "smithlab_ggx_hc", p, true), t, e.missing, p);
     }
     SECTION("HLSL, which is C here") {
         std::ofstream(dir / "table_hlsl.c") << hlsl;
-        check_lookups(dir, lookup_program("table_hlsl.c", "smithlab_ggx_hc", p, true), t, e.E_avg, p);
+        check_lookups(dir, lookup_program("table_hlsl.c", "smithlab_ggx_hc", p, true), t, e.missing, p);
+    }
+    std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("compensation formats: a tiny 1 - E_avg keeps its relative precision in every format",
+          "[compensation][formats]") {
+    const AlbedoTable t = small_table();
+    CompensationExport e = export_of(t);
+    // 1 - E_avg ~ alpha^2 from 1e-9 at the first alpha: as a float, E_avg = 1 - 1e-9 is 1, and a lobe divided by
+    // 1 - E_avg would divide by 0.
+    e.missing.clear();
+    for (const double a : t.grid.alphas) e.missing.push_back(1e-9 * (a / 0.05) * (a / 0.05));
+    REQUIRE(e.missing.front() == 1e-9);
+    CHECK(1.0f - static_cast<float>(1.0 - e.missing.front()) == 0.0f);
+    // Down to alpha 0.01, a fifth of the first: far below it the float lookup's error grows with the power continued
+    // (at 1e-4, alpha^2 from 1e-9, C's logf and expf come to 9e-6 of it).
+    std::vector<Point> p;
+    for (const Point& q : points(t))
+        if (q.alpha >= 0.01f) p.push_back(q);
+    for (const double a : {0.05, 0.06, 0.1, 0.03, 0.5}) p.push_back({static_cast<float>(a), 0.5f});
+    const std::filesystem::path dir = scratch_dir("tiny");
+    SECTION("C") {
+        std::ofstream(dir / "table.h") << text_of(write_c_header, e);
+        check_lookups(dir, lookup_program("table.h", "smithlab_ggx_hc", p, true), t, e.missing, p);
+    }
+    SECTION("GLSL, its constructors as C casts") {
+        std::ofstream(dir / "table_glsl.c") << glsl_as_c(text_of(write_glsl, e));
+        check_lookups(dir, lookup_program("table_glsl.c", "smithlab_ggx_hc", p, true), t, e.missing, p);
+    }
+    SECTION("HLSL, which is C here") {
+        std::ofstream(dir / "table_hlsl.c") << text_of(write_hlsl, e);
+        check_lookups(dir, lookup_program("table_hlsl.c", "smithlab_ggx_hc", p, true), t, e.missing, p);
     }
     std::filesystem::remove_all(dir);
 }
@@ -272,6 +319,7 @@ TEST_CASE("compensation formats: without E_avg, and with labels that are not ide
     const std::string h = text_of(write_c_header, e), glsl = text_of(write_glsl, e), hlsl = text_of(write_hlsl, e);
     for (const std::string* s : {&h, &glsl, &hlsl}) {
         CHECK(s->find("_E_avg") == std::string::npos);
+        CHECK(s->find("_missing") == std::string::npos);
         CHECK(s->find("No E_avg is given") != std::string::npos);
         CHECK(s->find("separable Smith G2") != std::string::npos);
     }
@@ -323,17 +371,22 @@ TEST_CASE("compensation formats: the 16-bit PNG and its axes", "[compensation][f
     CHECK(j.at("g2").get<std::string>() == "height-correlated");
     CHECK(j.at("quantity").get<std::string>() == "E");
     CHECK(j.at("identifier").get<std::string>() == "smithlab_my_ndf_1_hc");
-    CHECK(j.at("E_avg").get<std::vector<double>>() == e.E_avg);
+    CHECK(j.at("one_minus_E_avg").get<std::vector<double>>() == e.missing);
+    CHECK(j.at("one_minus_E_avg_lookup").get<std::string>().find("ln(1 - E_avg) linear in ln(alpha)") !=
+          std::string::npos);
+    CHECK_FALSE(j.contains("E_avg"));
+    CHECK(j.at("mu_of_x").get<std::string>() == "alpha x^2 / (1 + alpha - x^2)");
     CHECK(j.at("max_interpolation_error").get<double>() == e.max_interp_error);
     CHECK(j.at("below_grid_error").get<double>() == e.below_grid_error);
     CHECK(j.at("x").get<std::string>().find("(1 + alpha) mu / (mu + alpha)") != std::string::npos);
     CHECK(j.at("lookup").get<std::string>().find("bilinear in (sqrt(alpha), x)") != std::string::npos);
     CHECK(j.at("below_first_alpha").get<std::string>().find("first row") != std::string::npos);
     CHECK(j.at("above_last_alpha").get<std::string>().find("last row") != std::string::npos);
-    e.E_avg.clear();
+    e.missing.clear();
     std::ostringstream s2;
     write_axes_json(s2, e);
-    CHECK_FALSE(nlohmann::json::parse(s2.str()).contains("E_avg"));
+    CHECK_FALSE(nlohmann::json::parse(s2.str()).contains("one_minus_E_avg"));
+    CHECK_FALSE(nlohmann::json::parse(s2.str()).contains("one_minus_E_avg_lookup"));
     std::filesystem::remove_all(dir);
 }
 
@@ -357,12 +410,28 @@ TEST_CASE("compensation formats: bad input is refused, naming the item, and leav
         CHECK_THROWS_AS(write_png16(png, e), input_error);
         nothing_written();
     }
-    SECTION("E_avg of another size") {
+    SECTION("1 - E_avg of another size") {
         CompensationExport e = export_of(t);
-        e.E_avg.pop_back();
-        CHECK_THROWS_WITH(write_c_header(sink, e), Catch::Contains("4 E_avg values for 5 alphas"));
+        e.missing.pop_back();
+        CHECK_THROWS_WITH(write_c_header(sink, e), Catch::Contains("4 values of 1 - E_avg for 5 alphas"));
         CHECK_THROWS_AS(write_png16(png, e), input_error);
         nothing_written();
+    }
+    SECTION("1 - E_avg <= 0, > 1, NaN or below the normal floats") {
+        for (const double bad : {0.0, -1e-3, 1.5, std::nan(""), HUGE_VAL, 1e-40}) {
+            CompensationExport e = export_of(t);
+            e.missing[3] = bad;
+            INFO("1 - E_avg " << bad);
+            for (auto write : {write_c_header, write_glsl, write_hlsl, write_axes_json}) {
+                CHECK_THROWS_AS(write(sink, e), input_error);
+                CHECK_THROWS_WITH(write(sink, e), Catch::Contains("1 - E_avg at alpha 0.6"));
+            }
+            CHECK_THROWS_AS(write_png16(png, e), input_error);
+            nothing_written();
+        }
+        CompensationExport e = export_of(t);
+        e.missing[3] = 1.0;  // E_avg = 0: allowed
+        CHECK_NOTHROW(write_c_header(sink, e));
     }
     SECTION("a value outside [0, 1] in the PNG") {
         t.values[7] = 1.5;

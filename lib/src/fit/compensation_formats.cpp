@@ -33,7 +33,10 @@ constexpr std::string_view rule_below = "the first row, in the x of the asked al
 constexpr std::string_view rule_above = "the last row, in the x of the asked alpha (no error is measured there)";
 constexpr std::string_view rule_mu = "clamped to [0, 1] (a renderer's cosines overshoot by a rounding); NaN reads as 0";
 constexpr std::string_view rule_alpha = "finite and > 0, not checked (at alpha = 0 the warp is 0/0 at mu = 0)";
-constexpr std::string_view rule_E_avg = "linear in sqrt(alpha) between the nodes, the end values outside";
+// lookup_missing's rule (albedo_grid.hpp), for m = 1 - E_avg.
+constexpr std::string_view rule_E_avg =
+    "ln(1 - E_avg) linear in ln(alpha) between the nodes; below the first alpha the first interval's power of alpha "
+    "continued, above the last alpha the last value";
 
 // compensation_header_name's rule without its "smithlab_" prefix ("" when the text has no letter or digit).
 std::string identifier_part(std::string_view text) {
@@ -86,13 +89,15 @@ void check(const CompensationExport& e) {
         if (!(static_cast<float>(std::sqrt(a[i])) > static_cast<float>(std::sqrt(a[i - 1]))))
             throw input_error("compensation export: alphas " + format_shortest(a[i - 1]) + " and " +
                               format_shortest(a[i]) + " have the same sqrt(alpha) as floats");
-    if (!e.E_avg.empty() && e.E_avg.size() != na)
-        throw input_error("compensation export: " + std::to_string(e.E_avg.size()) + " E_avg values for " +
+    if (!e.missing.empty() && e.missing.size() != na)
+        throw input_error("compensation export: " + std::to_string(e.missing.size()) + " values of 1 - E_avg for " +
                           std::to_string(na) + " alphas");
-    for (std::size_t i = 0; i < e.E_avg.size(); ++i)
-        if (!fits_float(e.E_avg[i]))
-            throw input_error("compensation export: E_avg at alpha " + format_shortest(a[i]) +
-                              " is not a finite float: " + format_g17(e.E_avg[i]));
+    for (std::size_t i = 0; i < e.missing.size(); ++i) {
+        const double m = e.missing[i];
+        if (!(m >= static_cast<double>(std::numeric_limits<float>::min()) && m <= 1.0))
+            throw input_error("compensation export: 1 - E_avg at alpha " + format_shortest(a[i]) + " is " +
+                              format_g17(m) + ", not finite, > 0 and <= 1 as a normal float");
+    }
     require(std::isfinite(e.max_interp_error) && e.max_interp_error >= 0.0,
             "compensation export: the measured max interpolation error", "finite and >= 0", e.max_interp_error);
     require(std::isfinite(e.below_grid_error) && e.below_grid_error >= 0.0,
@@ -154,9 +159,11 @@ std::string top_comment(const CompensationExport& e, const std::string& id, std:
             (e.quantity == "E" ? " (the directional albedo of single scattering off mirror facets, F = 1)" : "") +
             ", tabulated as E(alpha, mu), mu = cos(theta); E_avg(alpha) = 2 int_0^1 E(alpha, mu) mu dmu.",
         "Kulla and Conty 2017 (\"Revisiting Physically Based Shading at Imageworks\"): f_ms(wi, wo) = (1 - E(mu_i)) "
-        "(1 - E(mu_o)) / (pi (1 - E_avg)), times F_avg^2 E_avg / (1 - F_avg (1 - E_avg)) for coloured facets; Turquin "
-        "2019 (\"Practical multiple scattering compensation for microfacet models\"): f = f_ss (1 + F0 (1 - E(mu_v)) / "
-        "E(mu_v)), mu_v the view's cosine.",
+        "(1 - E(mu_o)) / (pi (1 - E_avg))" +
+            (e.missing.empty() ? std::string() : ", (1 - E_avg) = " + id + "_missing(alpha)") +
+            ", times F_avg^2 E_avg / (1 - F_avg (1 - E_avg)) for coloured facets; Turquin 2019 (\"Practical multiple "
+            "scattering compensation for microfacet models\"): f = f_ss (1 + F0 (1 - E(mu_v)) / E(mu_v)), mu_v the "
+            "view's cosine.",
         "Grid: n_alpha x n_x = " + std::to_string(a.size()) + " x " + std::to_string(g.n_x) + ", alpha in [" +
             format_shortest(a.front()) + ", " + format_shortest(a.back()) + "]: alphas " + alphas + "; " +
             std::string(rule_x) + "; " + id + "_E_table[i * n_x + j] = E(alphas[i], x_j).",
@@ -166,7 +173,12 @@ std::string top_comment(const CompensationExport& e, const std::string& id, std:
         "  above the last alpha: " + std::string(rule_above) + ";",
         "  mu " + std::string(rule_mu) + ";",
         "  alpha must be " + std::string(rule_alpha) + ".",
-        e.E_avg.empty() ? "No E_avg is given with this table." : id + "_E_avg(alpha): " + std::string(rule_E_avg) + ".",
+        e.missing.empty() ? "No E_avg is given with this table."
+                          : id + "_missing(alpha) = 1 - E_avg(alpha): " + std::string(rule_E_avg) + "; " + id +
+                "_log_missing_table[i] = ln(1 - E_avg(alphas[i])). " + id + "_E_avg(alpha) = 1 - " + id +
+                "_missing(alpha). Kulla and Conty's lobe should divide by " + id + "_missing(alpha), not by 1 - " + id +
+                "_E_avg(alpha): 1 - E_avg falls like alpha^2 at small alpha, and 1 - E_avg taken from a float E_avg "
+                "loses its relative precision (a float E_avg = 1 - 1e-8 is 1).",
         "Measured: the lookup is within " + short_g(e.max_interp_error) +
             " of the exact values inside the grid, within " + short_g(e.below_grid_error) + " below the first alpha.",
         "The values are the floats nearest the computed doubles (9 significant digits)."};
@@ -179,7 +191,7 @@ struct Dialect {
     bool constructor;           // GLSL's initializer float[N](...), else {...}
     std::string_view function;  // before a function
     std::string_view suffix;    // of float literals
-    std::string_view sqrt;
+    std::string_view sqrt, log, exp;
     bool c_cast;  // (int)(x), else int(x)
     std::string cast(std::string_view type, std::string_view x) const {
         std::string s(c_cast ? "(" : "");
@@ -187,9 +199,9 @@ struct Dialect {
         return s + ")";
     }
 };
-constexpr Dialect c_dialect{"static const float ", false, "static inline ", "f", "sqrtf", true};
-constexpr Dialect glsl_dialect{"const float ", true, "", "", "sqrt", false};
-constexpr Dialect hlsl_dialect{"static const float ", false, "", "f", "sqrt", true};
+constexpr Dialect c_dialect{"static const float ", false, "static inline ", "f", "sqrtf", "logf", "expf", true};
+constexpr Dialect glsl_dialect{"const float ", true, "", "", "sqrt", "log", "exp", false};
+constexpr Dialect hlsl_dialect{"static const float ", false, "", "f", "sqrt", "log", "exp", true};
 
 // A constant array, `row` values a row, each row after its label when labels are given.
 std::string array(const Dialect& d, const std::string& name, const std::vector<double>& v, std::size_t row,
@@ -219,7 +231,11 @@ std::string arrays_and_lookups(const CompensationExport& e, const std::string& i
     }
     std::string s = "\n" + array(d, id + "_sqrt_alpha", sqrt_alpha, 8) +
         array(d, id + "_E_table", t.values, static_cast<std::size_t>(t.grid.n_x), labels);
-    if (!e.E_avg.empty()) s += array(d, id + "_E_avg_table", e.E_avg, 8);
+    if (!e.missing.empty()) {
+        std::vector<double> log_missing;
+        for (const double m : e.missing) log_missing.push_back(std::log(m));
+        s += array(d, id + "_log_missing_table", log_missing, 8);
+    }
     s += "\n/* The lower node i of sqrt(alpha)'s cell: 0 below the first node, n_alpha - 2 above the last. */\n" + f +
         "int " + id + "_alpha_cell(float s) {\n    int i = 0;\n    for (int k = 1; k < " +
         std::to_string(a.size() - 1) + "; ++k) {\n        if (" + id +
@@ -243,12 +259,21 @@ std::string arrays_and_lookups(const CompensationExport& e, const std::string& i
         " + j;\n    int b = a + " + nx + ";\n    float lo = " + T + "[a] + tx * (" + T + "[a + 1] - " + T +
         "[a]);\n    float hi = " + T + "[b] + tx * (" + T + "[b + 1] - " + T +
         "[b]);\n    return lo + ta * (hi - lo);\n}\n";
-    if (!e.E_avg.empty()) {
-        const std::string A = id + "_E_avg_table";
-        s += "\n/* E_avg(alpha), alpha > 0: linear in sqrt(alpha), the end values outside. */\n" + f + "float " + id +
-            "_E_avg(float alpha) {\n    float s = " + std::string(d.sqrt) + "(alpha);\n    int i = " + id +
-            "_alpha_cell(s);\n    float ta = " + id + "_alpha_weight(s, i);\n    return " + A + "[i] + ta * (" + A +
-            "[i + 1] - " + A + "[i]);\n}\n";
+    if (!e.missing.empty()) {
+        // ln(alpha / alpha_i) / ln(alpha_(i+1) / alpha_i) is the same ratio in sqrt(alpha): ln alpha = 2 ln s.
+        const std::string L = id + "_log_missing_table", S = id + "_sqrt_alpha", ln(d.log);
+        s += "\n/* 1 - E_avg(alpha), alpha > 0: ln(1 - E_avg) linear in ln(alpha) between the nodes; below the first "
+             "node the\n   first interval's power of alpha continued, above the last node the last value. Divide "
+             "Kulla and Conty's\n   lobe by this, not by 1 - " +
+            id + "_E_avg(alpha) (no cancellation). */\n" + f + "float " + id +
+            "_missing(float alpha) {\n    float s = " + std::string(d.sqrt) + "(alpha);\n    int i = " + id +
+            "_alpha_cell(s);\n    float u = s < " + S + "[" + std::to_string(a.size() - 1) + "] ? " + ln + "(s / " + S +
+            "[i]) / " + ln + "(" + S + "[i + 1] / " + S + "[i]) : " + one + ";\n    return " + std::string(d.exp) +
+            "(" + L + "[i] + u * (" + L + "[i + 1] - " + L +
+            "[i]));\n}\n\n"
+            "/* E_avg(alpha) = 1 - " +
+            id + "_missing(alpha), alpha > 0. */\n" + f + "float " + id + "_E_avg(float alpha) { return " + one +
+            " - " + id + "_missing(alpha); }\n";
     }
     return s;
 }
@@ -386,13 +411,13 @@ void write_axes_json(std::ostream& out, const CompensationExport& e) {
            "\"columns\": \"column j is x_j = j / (n_x - 1)\"},\n  \"scale\": 65535,\n  \"value\": "
         << json_string("E = pixel / 65535, pixel = round(E * 65535): within 0.5 / 65535 of E")
         << ",\n  \"alphas\": " << json_numbers(g.alphas) << ",\n  \"n_x\": " << nx
-        << ",\n  \"x\": " << json_string(rule_x) << ",\n  \"mu_of_x\": " << json_string("alpha x / (1 + alpha - x)")
+        << ",\n  \"x\": " << json_string(rule_x) << ",\n  \"mu_of_x\": " << json_string("alpha x^2 / (1 + alpha - x^2)")
         << ",\n  \"lookup\": " << json_string(rule_lookup) << ",\n  \"below_first_alpha\": " << json_string(rule_below)
         << ",\n  \"above_last_alpha\": " << json_string(rule_above) << ",\n  \"mu\": " << json_string(rule_mu)
         << ",\n  \"alpha\": " << json_string(rule_alpha) << ",\n";
-    if (!e.E_avg.empty())
-        out << "  \"E_avg\": " << json_numbers(e.E_avg) << ",\n  \"E_avg_lookup\": " << json_string(rule_E_avg)
-            << ",\n";
+    if (!e.missing.empty())
+        out << "  \"one_minus_E_avg\": " << json_numbers(e.missing)
+            << ",\n  \"one_minus_E_avg_lookup\": " << json_string(rule_E_avg) << ",\n";
     out << "  \"max_interpolation_error\": " << format_shortest(e.max_interp_error)
         << ",\n  \"below_grid_error\": " << format_shortest(e.below_grid_error) << "\n}\n";
 }

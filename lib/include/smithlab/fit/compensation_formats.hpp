@@ -1,13 +1,16 @@
 // smithlab/fit/compensation_formats.hpp -- an energy-compensation table (fit/albedo_grid.hpp's AlbedoTable over
-// (alpha, warped cosine x), with E_avg over alpha) written out for renderers: a C header, GLSL, HLSL, and a 16-bit
-// grey PNG with its axes in JSON.
+// (alpha, warped cosine x), with 1 - E_avg over alpha) written out for renderers: a C header, GLSL, HLSL, and a
+// 16-bit grey PNG with its axes in JSON.
 //
 // Every lookup written computes AlbedoTable::lookup's rule in float: x = sqrt((1 + alpha) mu / (mu + alpha)), cell j =
 // min(int(x (n_x - 1)), n_x - 2) and linear in x; the alpha cell found in sqrt(alpha) over the nodes' sqrt(alpha),
 // linear in sqrt(alpha); below the first alpha the first row, above the last the last row, both in the x of the asked
-// alpha; mu clamped to [0, 1] (a renderer's dot products overshoot by a rounding); E_avg(alpha) linear in sqrt(alpha),
-// the end values outside. Each file's top comment says so, with the grid, the G2, the NDF family, the measured errors,
-// and the formulas of Kulla and Conty 2017 and Turquin 2019 that use the table (fit/compensation.hpp).
+// alpha; mu clamped to [0, 1] (a renderer's dot products overshoot by a rounding). 1 - E_avg(alpha) follows
+// lookup_missing: ln(1 - E_avg) linear in ln(alpha) between the nodes, below the first alpha the first interval's power
+// of alpha continued, above the last alpha the last value; the files carry ln(1 - E_avg), not E_avg, so that Kulla and
+// Conty's lobe, divided by 1 - E_avg, keeps its relative precision where E_avg rounds to 1 as a float. Each file's top
+// comment says so, with the grid, the G2, the NDF family, the measured errors, and the formulas of Kulla and Conty 2017
+// and Turquin 2019 that use the table (fit/compensation.hpp).
 //
 // Numbers are the floats nearest the table's doubles, written with 9 significant digits (a float's round trip).
 #pragma once
@@ -23,13 +26,15 @@ namespace smithlab::fit {
 
 // What is written: a table over (alpha, x), the labels its comment gives, and the errors measured for it.
 struct CompensationExport {
-    std::string family;         // NDF family label, e.g. "ggx" or "gtr(gamma=1.5)"
-    std::string g2;             // "height-correlated" or "separable"
-    std::string quantity;       // e.g. "E" (mirror facets), or "E_R+E_T outside eta=1.5"; free text for the comment
-    const AlbedoTable* E;       // the table over (alpha, x)
-    std::vector<double> E_avg;  // one per E->grid.alphas (may be empty: then no E_avg array/lookup is written)
-    double max_interp_error;    // measured, written in the comment
-    double below_grid_error;    // measured error below the first alpha, written in the comment
+    std::string family;    // NDF family label, e.g. "ggx" or "gtr(gamma=1.5)"
+    std::string g2;        // "height-correlated" or "separable"
+    std::string quantity;  // e.g. "E" (mirror facets), or "E_R+E_T outside eta=1.5"; free text for the comment
+    const AlbedoTable* E;  // the table over (alpha, x)
+    // 1 - E_avg at each alpha of E->grid.alphas (each finite, > 0 and <= 1, a normal float), or empty: no such array
+    // or lookup is written.
+    std::vector<double> missing;
+    double max_interp_error;  // measured, written in the comment
+    double below_grid_error;  // measured error below the first alpha, written in the comment
 };
 
 // The names' prefix: "smithlab_" + the family as an identifier (compensation_header_name's rule: runs of other
@@ -41,13 +46,15 @@ std::string compensation_identifier(const CompensationExport& e);
 
 // Each writer first checks the export (input_error naming the item): a table (E not null) on a valid grid
 // (AlbedoGrid::check), n_alpha x n_x finite values that fit a float, the alphas' square roots distinct as floats,
-// E_avg empty or one finite value per alpha, the measured errors finite and >= 0.
+// missing empty or one value per alpha, each finite, > 0 and <= 1 and a normal float, the measured errors finite and
+// >= 0.
 
 // C99 (or C++), self-contained: static const float arrays NAME_sqrt_alpha, NAME_E_table[n_alpha * n_x] (row i =
-// alphas[i]) and NAME_E_avg_table, and static inline float NAME_E(alpha, mu), NAME_E_avg(alpha).
+// alphas[i]) and NAME_log_missing_table (ln(1 - E_avg) at each alpha), and static inline float NAME_E(alpha, mu),
+// NAME_missing(alpha) = 1 - E_avg(alpha) and NAME_E_avg(alpha) = 1 - NAME_missing(alpha).
 void write_c_header(std::ostream& out, const CompensationExport& e);
 // GLSL 3.30 (no #version line: it goes after the includer's): const float arrays and float NAME_E(float alpha,
-// float mu), float NAME_E_avg(float alpha), the same names as the C header's.
+// float mu), float NAME_missing(float alpha), float NAME_E_avg(float alpha), the same names as the C header's.
 void write_glsl(std::ostream& out, const CompensationExport& e);
 // HLSL: static const float arrays and the same functions.
 void write_hlsl(std::ostream& out, const CompensationExport& e);
@@ -56,7 +63,7 @@ void write_hlsl(std::ostream& out, const CompensationExport& e);
 // runtime_error naming the path when it cannot be, and nothing is left behind.
 void write_png16(const std::filesystem::path& path, const CompensationExport& e);
 // The PNG's axes as JSON: family, g2, quantity, identifier, the alphas, n_x, the warp of x, the lookup and outside
-// rules, the 16-bit scale, E_avg (when given), the measured errors.
+// rules, the 16-bit scale, one_minus_E_avg and its lookup rule (when given), the measured errors.
 void write_axes_json(std::ostream& out, const CompensationExport& e);
 
 }  // namespace smithlab::fit
