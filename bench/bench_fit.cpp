@@ -123,6 +123,16 @@ void compensation(benchmark::State& state, double alpha) {
     for (auto _ : state) benchmark::DoNotOptimize(fit::compensation_table(ndf, 32).E_avg);
 }
 
+// The dielectric albedos {E_R, E_T} at 21 cosines j / 20 (tolerance 1e-8); items_per_second: values.
+void compensation_dielectric(benchmark::State& state, double alpha, double eta) {
+    fit::AlbedoOptions opts;
+    opts.tolerance = 1e-8;
+    const fit::SingleScatteringAlbedo<smithlab::Ggx> E(smithlab::ggx(alpha), opts);
+    for (auto _ : state)
+        for (int j = 0; j <= 20; ++j) benchmark::DoNotOptimize(E.dielectric(j / 20.0, eta).T);
+    state.SetItemsProcessed(state.iterations() * 21);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -137,6 +147,12 @@ int main(int argc, char** argv) {
         benchmark::RegisterBenchmark(("compensation/ggx(" + std::to_string(a).substr(0, 3) + ")").c_str(), compensation,
                                      a)
             ->Unit(benchmark::kMillisecond);
+    for (double a : {0.1, 0.5})
+        for (const auto& [label, eta] : {std::pair{"1.5", 1.5}, {"1/1.5", 1.0 / 1.5}})
+            benchmark::RegisterBenchmark(
+                ("compensation_dielectric/ggx(" + std::to_string(a).substr(0, 3) + ")/eta=" + label).c_str(),
+                compensation_dielectric, a, eta)
+                ->Unit(benchmark::kMillisecond);
     benchmark::Initialize(&argc, argv);
     benchmark::RunSpecifiedBenchmarks();
     benchmark::Shutdown();

@@ -1,8 +1,13 @@
 #include "smithlab/fit/compensation.hpp"
 
 #include <algorithm>
+#include <array>
+#include <boost/math/quadrature/gauss.hpp>
+#include <boost/math/quadrature/gauss_kronrod.hpp>
+#include <boost/math/special_functions/beta.hpp>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -24,6 +29,15 @@ constexpr double pi = std::numbers::pi;
 template <class F>
 double gk(const F& f, double a, double b, double tolerance) {
     return integrate(f, a, b, {Backend::gsl, tolerance});
+}
+
+// The same in x = a + (b - a) S(u), S(u) = u^2 (3 - 2u): flat at both ends, so that a square-root end becomes linear
+// in u.
+template <class F>
+double smooth_gk(const F& f, double a, double b, double tolerance) {
+    const double L = b - a;
+    return gk([&](double u) { return f(a + L * u * u * (3.0 - 2.0 * u)) * L * 6.0 * u * (1.0 - u); }, 0.0, 1.0,
+              tolerance);
 }
 
 using detail::Event;
@@ -52,25 +66,31 @@ double Lambda_of_z(FunctionRef Lambda, double z) {
 // w = F(wi.m) in reflection, 1 - F in transmission; in r = tan t (t in [0, pi/2]) and phi in [0, pi/2] (even in phi).
 double grazing_albedo(FunctionRef P22, FunctionRef Lambda, const FunctionRef* F, const Event& event, double tolerance) {
     if (event.transmission && event.form == G2Form::height_correlated) return 0.0;
+    // A dielectric event from inside (eta < 1; in reflection F is then the dielectric one): its weight has a
+    // square-root kink at the critical angle, wi.m = sin t cos phi = sqrt(1 - eta^2), split there in phi and in t.
+    const double c_crit = event.eta < 1.0 ? std::sqrt((1.0 - event.eta) * (1.0 + event.eta)) : 1.0;
     auto radial = [&](double t, bool weighted) {
         if (t >= pi / 2) return 0.0;
         const double r = std::tan(t), c = std::cos(t), w = r * r * P22(r * r) / (c * c);  // r^2 P22 dr/dt
         if (!weighted || w == 0.0) return w;
         const double sin_m = std::sin(t);
-        return w *
-            gk(
-                   [&](double phi) {
-                       const double cm = sin_m * std::cos(phi);  // wi.m
-                       const double f = event.transmission ? fresnel_dielectric(cm, event.eta) : F ? (*F)(cm) : 1.0;
-                       const double wo_z = event.transmission ? refracted_z(cm, c, 0.0, event.eta) : 2.0 * cm * c;
-                       if (event.transmission ? !(wo_z < 0.0) : !(wo_z > 0.0)) return 0.0;
-                       const double g =
-                           event.form == G2Form::uncorrelated ? 1.0 / (1.0 + Lambda_of_z(Lambda, wo_z)) : 1.0;
-                       return std::cos(phi) * (event.transmission ? 1.0 - f : f) * g;
-                   },
-                   0.0, pi / 2, 0.1 * tolerance);
+        auto weight = [&](double phi) {
+            const double cm = sin_m * std::cos(phi);  // wi.m
+            const double f = event.transmission ? fresnel_dielectric(cm, event.eta) : F ? (*F)(cm) : 1.0;
+            const double wo_z = event.transmission ? refracted_z(cm, c, 0.0, event.eta) : 2.0 * cm * c;
+            if (event.transmission ? !(wo_z < 0.0) : !(wo_z > 0.0)) return 0.0;
+            const double g = event.form == G2Form::uncorrelated ? 1.0 / (1.0 + Lambda_of_z(Lambda, wo_z)) : 1.0;
+            return std::cos(phi) * (event.transmission ? 1.0 - f : f) * g;
+        };
+        if (!(sin_m > c_crit)) return w * gk(weight, 0.0, pi / 2, 0.1 * tolerance);
+        const double phi_c = std::acos(c_crit / sin_m);
+        return w * (smooth_gk(weight, 0.0, phi_c, 0.1 * tolerance) + smooth_gk(weight, phi_c, pi / 2, 0.1 * tolerance));
     };
-    const double num = gk([&](double t) { return radial(t, true); }, 0.0, pi / 2, tolerance);
+    auto numerator = [&](double t) { return radial(t, true); };
+    const double t_c = std::asin(c_crit);
+    const double num = c_crit < 1.0
+        ? smooth_gk(numerator, 0.0, t_c, tolerance) + smooth_gk(numerator, t_c, pi / 2, tolerance)
+        : gk(numerator, 0.0, pi / 2, tolerance);
     const double den = gk([&](double t) { return radial(t, false); }, 0.0, pi / 2, tolerance);  // times integral of cos
     return num / den;
 }
@@ -119,52 +139,315 @@ double reflection_albedo(FunctionRef P22, FunctionRef Lambda, const FunctionRef*
     return 2.0 * (full + part) / ci;
 }
 
-// E_T of one refraction at mu in (0, 1] (Walter et al. 2007, eq. 21 integrated over wo: its Jacobian, eq. 17,
-// cancels against dwo, leaving (1 / cos_i) integral D(m) (wi.m) (1 - F) G2(wi, wt(m)) dm), over every normal that
-// sees wi (a > 0), in t = theta_m: t < pi/2 - theta_i at every azimuth, beyond it |phi| < phi_a(t),
-// cos phi_a = -cot(theta_i) / tan t. The horizon of wt (wt.z = 0, where G2 -> 0) and the critical angle (where
-// 1 - F -> 0 as a square root) are kinks inside the domain, left to the adaptive rule. G2 across the surface: B(1 +
-// Lambda_i, 1 + Lambda_o) height-correlated (Heitz 2014, "Understanding the masking-shadowing function", eq. 101),
-// G1 G1 separable.
-double transmission_albedo(FunctionRef P22, FunctionRef Lambda, double mu, double tolerance, const Event& event) {
-    const double ci = mu, si = std::sqrt((1.0 - mu) * (1.0 + mu));
+// ---- Dielectric facets: reflection and transmission in one pass over the normals that see wi ----
+//
+// E_R and E_T (Walter et al. 2007, eqs. 20 and 21 integrated over wo: the Jacobians, eqs. 14 and 17, cancel against
+// dwo), (1 / cos_i) integral D(m) (wi.m) {F, 1 - F} G2 dm, F the dielectric Fresnel (eq. 22), in t = theta_m and
+// the azimuth phi from wi's, where D(m) dm = P22(tan^2 t) tan t / cos^2 t dt dphi (eq. 42):
+//     {E_R, E_T} = (2 / cos_i) integral_0^{pi/2} P22 tan t / cos^2 t integral_0^pi (c / cos t) {F G2_R, (1 - F) G2_T},
+// c = wi.m = cos_i cos t + sin_i sin t cos phi, each over its side of its horizon. For a fixed t every kink of the
+// inner integrand is a value of c, so a closed-form phi (c is monotone in phi); see dielectric_albedos below.
+
+struct Albedos {
+    double R = 0.0, T = 0.0;
+};
+
+// The 21-point Gauss-Kronrod rule on [-1, 1] and its embedded 10-point Gauss rule (Boost.Math's tables: the
+// non-negative half of the nodes, x = 0 first; the Gauss nodes are those of odd index).
+struct Kronrod21 {
+    std::array<double, 21> x{}, wk{}, wg{};
+};
+const Kronrod21& kronrod21() {
+    static const Kronrod21 rule = [] {
+        using GK = boost::math::quadrature::gauss_kronrod<double, 21>;
+        using G = boost::math::quadrature::gauss<double, 10>;
+        Kronrod21 r;
+        r.wk[10] = GK::weights()[0];
+        for (int i = 1; i <= 10; ++i)
+            for (int side : {-1, 1}) {
+                r.x[10 + side * i] = side * GK::abscissa()[i];
+                r.wk[10 + side * i] = GK::weights()[i];
+                r.wg[10 + side * i] = i % 2 == 1 ? G::weights()[i / 2] : 0.0;
+            }
+        return r;
+    }();
+    return rule;
+}
+
+struct Panel {
+    double a = 0.0, b = 0.0;
+    Albedos value, error;
+};
+
+// One panel of both components, with QUADPACK's error estimate (Piessens et al. 1983, "QUADPACK", qk21, as GSL's
+// QAG uses it): |K - G| scaled by resasc as min(1, (200 |K - G| / resasc)^1.5), no less than 50 eps resabs.
+template <class F>
+Panel kronrod_panel(const F& f, double a, double b) {
+    const Kronrod21& q = kronrod21();
+    const double mid = 0.5 * (a + b), h = 0.5 * (b - a);
+    std::array<Albedos, 21> y;
+    for (int k = 0; k < 21; ++k) y[k] = f(mid + h * q.x[k]);
+    Panel p{a, b, {}, {}};
+    for (double Albedos::*m : {&Albedos::R, &Albedos::T}) {
+        double kronrod = 0.0, gauss = 0.0, resabs = 0.0, resasc = 0.0;
+        for (int k = 0; k < 21; ++k) {
+            kronrod += q.wk[k] * (y[k].*m);
+            gauss += q.wg[k] * (y[k].*m);
+            resabs += q.wk[k] * std::abs(y[k].*m);
+        }
+        for (int k = 0; k < 21; ++k) resasc += q.wk[k] * std::abs((y[k].*m) - 0.5 * kronrod);
+        const double hh = std::abs(h);
+        double err = std::abs((kronrod - gauss) * h);
+        resasc *= hh;
+        resabs *= hh;
+        if (resasc != 0.0 && err != 0.0) err = resasc * std::min(1.0, std::pow(200.0 * err / resasc, 1.5));
+        constexpr double eps = std::numeric_limits<double>::epsilon();
+        if (resabs > std::numeric_limits<double>::min() / (50.0 * eps)) err = std::max(50.0 * eps * resabs, err);
+        p.value.*m = kronrod * h;
+        p.error.*m = err;
+    }
+    return p;
+}
+
+// integral_0^n f over the pieces [i, i + 1], globally adaptive (the panel whose error is the largest part of its
+// component's allowance is halved) until each component's estimated error is within tolerance of its value, or
+// max_panels.
+template <class F>
+Albedos adapt(const F& f, int n, double tolerance, int max_panels) {
+    std::vector<Panel> panels;
+    panels.reserve(static_cast<std::size_t>(n) + 8);
+    for (int i = 0; i < n; ++i) panels.push_back(kronrod_panel(f, i, i + 1.0));
+    Albedos value, error;
+    for (;;) {
+        value = {}, error = {};
+        for (const Panel& p : panels) {
+            value.R += p.value.R, value.T += p.value.T;
+            error.R += p.error.R, error.T += p.error.T;
+        }
+        const double allow_R = tolerance * std::abs(value.R), allow_T = tolerance * std::abs(value.T);
+        if ((error.R <= allow_R && error.T <= allow_T) || static_cast<int>(panels.size()) >= max_panels) break;
+        std::size_t worst = 0;
+        double most = -1.0;
+        for (std::size_t i = 0; i < panels.size(); ++i) {
+            const double e = std::max(error.R > allow_R ? panels[i].error.R / allow_R : 0.0,
+                                      error.T > allow_T ? panels[i].error.T / allow_T : 0.0);
+            if (e > most) most = e, worst = i;
+        }
+        const Panel p = panels[worst];
+        const double mid = 0.5 * (p.a + p.b);
+        if (!(mid > p.a && mid < p.b)) break;
+        panels[worst] = kronrod_panel(f, p.a, mid);
+        panels.push_back(kronrod_panel(f, mid, p.b));
+    }
+    return value;
+}
+
+// G2 of a transmission, wi above and wt below: B(1 + Lambda_i, 1 + Lambda_o) height-correlated (Heitz 2014,
+// "Understanding the masking-shadowing function", eq. 101), G1 G1 separable; G2_from_Lambdas's, with the beta
+// function in double (Boost's default promotes it to long double, 30x the time, for 1e-14).
+double G2_across(double Lambda_i, double Lambda_o, G2Form form) {
+    if (form == G2Form::uncorrelated) return 1.0 / ((1.0 + Lambda_i) * (1.0 + Lambda_o));
+    if (std::isinf(Lambda_i) || std::isinf(Lambda_o)) return 0.0;
+    using namespace boost::math::policies;
+    return boost::math::beta(1.0 + Lambda_i, 1.0 + Lambda_o, policy<promote_double<false>>());
+}
+
+// E_R and E_T at mu in (0, 1], light above an interface of relative index eta (below over above).
+//
+// The inner integral, at t: c runs over [c0 - s, c0 + s], c0 = cos_i cos t, s = sin_i sin t, phi = acos((c - c0) /
+// s). Its break points are the values of c where the integrand has a kink:
+//   - the reflected horizon, wr.z = 2 c cos t - cos_i = 0 (wr = 2 c m - wi, Walter eq. 39): R lives above it;
+//   - eta < 1: the critical angle c_crit = sqrt(1 - eta^2), below which F = 1 (eq. 22's g is imaginary) and T = 0,
+//     above which F and cos theta_t = g / eta are analytic in sqrt(c - c_crit); and the refracted horizon,
+//     wt.z = ((c - g) cos t - cos_i) / eta = 0 (eq. 40), where g = c - cos_i / cos t >= 0, squared:
+//     c_t = (cos_i^2 + cos^2 t (1 - eta^2)) / (2 cos t cos_i), a crossing where c_t cos t >= cos_i and c_t >= c_crit
+//     (T lives above it; for eta >= 1 the coefficient of m in wt is negative and wt.z < 0 throughout);
+//   - eta >= 1: c = 0, the normals that see wi;
+//   - for a narrow slope law (r0 = 1 / sqrt(pi P22(0)), the core slope scale, < 0.2), the layers where the outgoing
+//     direction's G1 changes (its Lambda does where cot theta ~ r0): wr.z = k r0 and wt.z = -k r0, k = 1, 4, 16.
+// On the side c >= c_crit the variable is w, c = c_crit + D sin^2 w, D = c0 + s - c_crit: sqrt(c - c_crit) and
+// sqrt(c0 + s - c) are both analytic in w, and dphi = 2 sqrt(D) sin w dw / sqrt(c - (c0 - s)); elsewhere phi,
+// analytic at both ends 0 and pi. Ends where the integrand is not analytic are flattened by a quadratic map: the
+// refracted horizon (G2 = B(1 + L_i, 1 + L_o) ~ |wt.z|^(1 + L_i), L_o ~ 1 / |wt.z|), and phi = pi in w (the
+// Jacobian's inverse square root).
+// The outer integral's break points are the t where an inner one enters or leaves [0, pi] (c = cos(t -+ theta_i)
+// at phi = 0, pi) or two of them meet: pi/4 -+ theta_i / 2 (the reflected horizon); pi/2 - theta_i (c = 0, eta >= 1);
+// theta_i + theta_c, |theta_c - theta_i| (the critical angle, cos theta_c = c_crit); atan((+-sin_i +- eta) /
+// cos_i), the refracted horizon at phi = 0 (upper sign of sin_i) or pi, the roots of cos_i^2 tan^2 t -+ 2 cos_i
+// sin_i tan t + 1 - eta^2 - cos_i^2 = 0, where they are crossings; cos t = cos_i / c_crit (the refracted horizon
+// meets the critical angle, c_t = c_crit = cos_i / cos t) and cos t = cos_i / (2 c_crit) (the reflected one does),
+// where that falls inside [0, pi]. The first piece is in r = tan t = r0 sinh y (the slope law's core at any
+// roughness), y = Y u (2 - u) flat at its upper end; the others in t = smoothstep, S(u) = u^2 (3 - 2u), flat at both.
+Albedos dielectric_albedos_at(FunctionRef P22, FunctionRef Lambda, double mu, double tolerance, double eta,
+                              G2Form form) {
+    const double ci = mu, si = std::sqrt((1.0 - mu) * (1.0 + mu)), ti = std::acos(mu);
     const double Li = si > 0.0 ? Lambda(ci / si) : 0.0;
-    auto facet = [&](double t, double cos_phi) {  // the integrand without P22 r dr/dt
-        const double r = std::tan(t), mz = std::cos(t);
-        const double a = ci + si * r * cos_phi, c = a * mz;  // c = wi.m
-        if (!(c > 0.0)) return 0.0;
-        const double wz = refracted_z(c, mz, ci, event.eta);
-        if (!(wz < 0.0)) return 0.0;
-        const double f = fresnel_dielectric(c, event.eta);
-        return a * (1.0 - f) * G2_from_Lambdas(Li, Lambda_of_z(Lambda, wz), false, event.form);
+    const bool tir = eta < 1.0;
+    const double c_crit = tir ? std::sqrt((1.0 - eta) * (1.0 + eta)) : 0.0;
+    const double eta2m1 = (eta - 1.0) * (eta + 1.0);
+    const double r0 = 1.0 / std::sqrt(pi * P22(0.0));
+    const bool core = r0 > 0.0 && r0 < INFINITY;  // else no core scale: the first piece in t, no layers
+    // The integrand at (t, c) without the measure: (c / cos t) {F G2_R above wr's horizon, (1 - F) G2_T below wt's}.
+    auto facet = [&](double mz, double c) -> Albedos {
+        if (!(c > 0.0)) return {};
+        Albedos v;
+        const double a = c / mz, wrz = 2.0 * c * mz - ci, g2 = eta2m1 + c * c;
+        if (!(g2 > 0.0)) {  // total internal reflection
+            if (wrz > 0.0) v.R = a * G2_from_Lambdas(Li, Lambda_of_z(Lambda, wrz), true, form);
+            return v;
+        }
+        // Walter eq. 22 (fresnel_dielectric's), with g = eta cos theta_t shared with wt (eq. 40).
+        const double g = std::sqrt(g2), A = (g - c) / (g + c), B = (c * (g + c) - 1.0) / (c * (g - c) + 1.0);
+        const double F = 0.5 * A * A * (1.0 + B * B);
+        if (wrz > 0.0) v.R = a * F * G2_from_Lambdas(Li, Lambda_of_z(Lambda, wrz), true, form);
+        const double wtz = ((c - g) * mz - ci) / eta;
+        if (wtz < 0.0 && F < 1.0) v.T = a * (1.0 - F) * G2_across(Li, Lambda_of_z(Lambda, wtz), form);
+        return v;
     };
-    auto measure = [&](double t) {
-        const double r = std::tan(t), c = std::cos(t);
-        return r * P22(r * r) / (c * c);
+    struct Piece {
+        bool in_w;       // w (c = c_crit + D sin^2 w, u = 0 at the lower c), else phi (u = 0 at phi's lower end)
+        int flat;        // 1: flat at u = 0, 2: at u = 1, 3: both
+        double lo, len;  // of w or phi
+        bool to_min;     // a w piece down to c0 - s (phi = pi)
+    };
+    enum Kind { end, reflected, critical, refracted, other };
+    struct Break {
+        double c;
+        Kind kind;
     };
     const double inner_tol = 0.1 * tolerance;
-    const double ta = si > 0.0 ? std::atan2(ci, si) : pi / 2;
-    const double full = gk(
-        [&](double t) {
-            if (t >= pi / 2) return 0.0;
-            const double w = measure(t);
-            if (!(w > 0.0)) return 0.0;
-            return w * gk([&](double phi) { return facet(t, std::cos(phi)); }, 0.0, pi, inner_tol);
-        },
-        0.0, ta, tolerance);
-    double part = 0.0;
-    if (ta < pi / 2) {
-        part = gk(
-            [&](double t) {
-                if (t >= pi / 2) return 0.0;
-                const double w = measure(t);
-                if (!(w > 0.0)) return 0.0;
-                const double phi_a = std::acos(std::clamp(-ci / (si * std::tan(t)), -1.0, 1.0));
-                return w * phi_a * gk([&](double u) { return facet(t, std::cos(phi_a * u)); }, 0.0, 1.0, inner_tol);
+    auto inner = [&](double t) -> Albedos {
+        if (!(t < pi / 2)) return {};
+        const double mz = std::cos(t), st = std::sin(t), r = st / mz;
+        const double measure = r * P22(r * r) / (mz * mz);
+        if (!(measure > 0.0)) return {};
+        const double s = si * st, c0 = ci * mz, c_max = c0 + s, c_min = c0 - s;
+        if (!(s > 0.0)) {
+            const Albedos y = facet(mz, c0);
+            return {measure * pi * y.R, measure * pi * y.T};
+        }
+        std::array<Break, 12> cb;
+        int n = 0;
+        cb[n++] = {c_max, end};
+        auto add = [&](double c, Kind kind) {
+            if (c > c_min && c < c_max) cb[n++] = {c, kind};
+        };
+        const double c_refl = ci / (2.0 * mz);
+        add(c_refl, reflected);
+        const double wrz_top = 2.0 * c_max * mz - ci;
+        for (double k : {1.0, 4.0, 16.0})
+            if (core && k * r0 < 0.2 && k * r0 < 0.25 * wrz_top) add((ci + k * r0) / (2.0 * mz), other);
+        double support = c_refl;  // no integrand below
+        if (tir) {
+            add(c_crit, critical);
+            support = std::min(support, c_crit);
+            const double c_t = (ci * ci + mz * mz * (1.0 - eta) * (1.0 + eta)) / (2.0 * mz * ci);
+            if (c_t * mz >= ci && c_t >= c_crit && c_t < c_max) {
+                add(c_t, refracted);
+                const double wtz_bottom = -((c_max - std::sqrt(eta2m1 + c_max * c_max)) * mz - ci) / eta;
+                for (double k : {1.0, 4.0, 16.0}) {
+                    // wt.z = -z: c - g = A = (cos_i - eta z) / cos t, c = (A^2 + c_crit^2) / (2 A)
+                    const double z = k * r0, A = (ci - eta * z) / mz;
+                    if (core && z < 0.2 && z < 0.25 * wtz_bottom && A > 0.0)
+                        add((A * A + c_crit * c_crit) / (2.0 * A), other);
+                }
+            }
+        } else {
+            add(0.0, other);
+            support = 0.0;
+        }
+        cb[n++] = {c_min, end};
+        std::sort(cb.begin(), cb.begin() + n, [](const Break& x, const Break& y) { return x.c > y.c; });
+        const double D = c_max - c_crit, sD = std::sqrt(std::max(D, 0.0));
+        const double w_min = tir && c_min > c_crit ? std::asin(std::sqrt((c_min - c_crit) / D)) : 0.0;
+        auto w_of = [&](double c) { return std::asin(std::min(1.0, std::sqrt((c - c_crit) / D))); };
+        std::array<Piece, 11> pc;
+        int m = 0;
+        for (int i = 0; i + 1 < n; ++i) {
+            const Break &hi = cb[i], &lo = cb[i + 1];
+            if (!(hi.c > lo.c) || !(hi.c > support)) continue;
+            if (tir && lo.c >= c_crit) {
+                const double wa = lo.kind == end ? w_min : lo.kind == critical ? 0.0 : w_of(lo.c);
+                const double wb = hi.kind == end ? pi / 2 : w_of(hi.c);
+                const int flat = (lo.kind == end || lo.kind == refracted ? 1 : 0) + (hi.kind == refracted ? 2 : 0);
+                pc[m++] = {true, flat, wa, wb - wa, lo.kind == end};
+            } else {
+                const double pa = hi.kind == end ? 0.0 : std::acos(std::clamp((hi.c - c0) / s, -1.0, 1.0));
+                const double pb = lo.kind == end ? pi : std::acos(std::clamp((lo.c - c0) / s, -1.0, 1.0));
+                const int flat = (hi.kind == refracted ? 1 : 0) + (lo.kind == refracted ? 2 : 0);
+                pc[m++] = {false, flat, pa, pb - pa, false};
+            }
+        }
+        if (m == 0) return {};
+        const Albedos sum = adapt(
+            [&](double x) -> Albedos {
+                const int i = std::min(static_cast<int>(x), m - 1);
+                const Piece& p = pc[i];
+                const double u = x - i, q = 1.0 - u;
+                double S = u, dS = 1.0;  // the map [0, 1] -> [0, 1] and its derivative
+                if (p.flat == 1) S = u * u, dS = 2.0 * u;
+                if (p.flat == 2) S = u * (1.0 + q), dS = 2.0 * q;
+                if (p.flat == 3) S = u * u * (3.0 - 2.0 * u), dS = 6.0 * u * q;
+                if (!p.in_w) {
+                    const Albedos y = facet(mz, c0 + s * std::cos(p.lo + p.len * S));
+                    return {y.R * dS * p.len, y.T * dS * p.len};
+                }
+                const double w = p.lo + p.len * S, sw = std::sin(w), c = c_crit + D * sw * sw;
+                // c - (c0 - s) = D (sin^2 w - sin^2 w_min) without cancellation at w_min
+                const double above_min = p.to_min ? D * std::sin(p.len * S) * std::sin(w + w_min) : c - c_min;
+                if (!(above_min > 0.0)) return {};
+                const Albedos y = facet(mz, c);
+                const double j = dS * p.len * 2.0 * sD * sw / std::sqrt(above_min);
+                return {y.R * j, y.T * j};
             },
-            ta, pi / 2, tolerance);
+            m, inner_tol, 200);
+        return {measure * sum.R, measure * sum.T};
+    };
+    std::vector<double> tb{0.0, pi / 2};
+    auto add_t = [&](double t) {
+        if (t > 0.0 && t < pi / 2) tb.push_back(t);
+    };
+    add_t(pi / 4 - ti / 2);
+    add_t(pi / 4 + ti / 2);
+    if (tir) {
+        const double tc = std::acos(c_crit);
+        add_t(ti + tc);
+        add_t(std::abs(tc - ti));
+        for (double a : {si, -si})
+            for (double b : {eta, -eta}) {
+                const double T = (a + b) / ci;
+                if (!(T > 0.0)) continue;
+                const double t = std::atan(T), mz = std::cos(t);
+                const double c_t = (ci * ci + mz * mz * (1.0 - eta) * (1.0 + eta)) / (2.0 * mz * ci);
+                if (c_t * mz >= ci * (1.0 - 1e-12) && c_t >= c_crit * (1.0 - 1e-12)) add_t(t);
+            }
+        auto inside = [&](double t) { return std::cos(t + ti) <= c_crit && c_crit <= std::cos(t - ti); };
+        for (double cz : {ci / c_crit, ci / (2.0 * c_crit)})
+            if (cz < 1.0 && inside(std::acos(cz))) add_t(std::acos(cz));
+    } else {
+        add_t(pi / 2 - ti);
     }
-    return 2.0 * (full + part) / ci;
+    std::sort(tb.begin(), tb.end());
+    tb.erase(std::unique(tb.begin(), tb.end()), tb.end());
+    const int pieces = static_cast<int>(tb.size()) - 1;
+    const double Y = core ? std::asinh(std::tan(tb[1]) / r0) : 0.0;
+    const Albedos sum = adapt(
+        [&](double x) -> Albedos {
+            const int i = std::min(static_cast<int>(x), pieces - 1);
+            const double u = x - i;
+            double t, dt;
+            if (i == 0 && core) {  // r = r0 sinh y, y = Y u (2 - u)
+                const double y = Y * u * (2.0 - u), r = r0 * std::sinh(y);
+                t = std::atan(r), dt = Y * 2.0 * (1.0 - u) * r0 * std::cosh(y) / (1.0 + r * r);
+            } else {
+                const double L = tb[i + 1] - tb[i];
+                t = tb[i] + L * u * u * (3.0 - 2.0 * u), dt = L * 6.0 * u * (1.0 - u);
+            }
+            const Albedos y = inner(t);
+            return {y.R * dt, y.T * dt};
+        },
+        pieces, tolerance, 400);
+    return {2.0 * sum.R / ci, 2.0 * sum.T / ci};
 }
 
 }  // namespace
@@ -179,8 +462,22 @@ double single_scattering_albedo(FunctionRef P22, FunctionRef Lambda, const Funct
         if (!F && !event.transmission && event.form == G2Form::height_correlated) return 1.0;
         return grazing_albedo(P22, Lambda, F, event, tolerance);
     }
-    return event.transmission ? transmission_albedo(P22, Lambda, mu, tolerance, event)
+    return event.transmission ? dielectric_albedos_at(P22, Lambda, mu, tolerance, event.eta, event.form).T
                               : reflection_albedo(P22, Lambda, F, mu, tolerance, event.form);
+}
+
+std::pair<double, double> dielectric_albedos(FunctionRef P22, FunctionRef Lambda, double mu, double tolerance,
+                                             double eta, G2Form form) {
+    require(mu >= 0.0 && mu <= 1.0, "mu = cos(theta_i)", "in [0, 1]", mu);
+    require(eta > 0.0 && std::isfinite(eta), "eta", "finite and > 0", eta);
+    if (mu == 0.0) {
+        auto Fd = [eta](double c) { return fresnel_dielectric(c, eta); };
+        const FunctionRef F(Fd);
+        return {grazing_albedo(P22, Lambda, &F, {false, eta, form}, tolerance),
+                grazing_albedo(P22, Lambda, nullptr, {true, eta, form}, tolerance)};
+    }
+    const Albedos a = dielectric_albedos_at(P22, Lambda, mu, tolerance, eta, form);
+    return {a.R, a.T};
 }
 
 double cosine_average(FunctionRef e, double tolerance) {

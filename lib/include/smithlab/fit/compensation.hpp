@@ -29,6 +29,18 @@
 // at grazing incidence G2 / cos_i -> 1 / lim mu Lambda(mu) = 1 / E[q+] and every visible normal reflects upward. Lambda
 // is the NDF's closed form, else a LambdaTable (lambda_table.hpp) of the given tolerance built once per NDF: a relative
 // error d in Lambda moves E by less than d.
+//
+// The dielectric albedos (dielectric(mu, eta); compensation.cpp, dielectric_albedos_at): E_R and E_T in one pass over
+// the normals that see wi, in (theta_m, phi), of (wi.m / cos theta_m) {F G2_R, (1 - F) G2_T} (Walter 2007, eqs. 20-22
+// and 40; G2 across the surface B(1 + Lambda_i, 1 + Lambda_o), Heitz 2014 eq. 101). At a fixed theta_m every kink is a
+// value of c = wi.m, which is monotone in phi: the reflected horizon c = cos_i / (2 cos theta_m) and, from inside
+// (eta < 1), the critical angle c = sqrt(1 - eta^2) and the refracted horizon c = (cos_i^2 + cos^2 theta_m (1 -
+// eta^2)) / (2 cos theta_m cos_i). The inner integral is split there (above the critical angle in w, c = c_crit +
+// (c_max - c_crit) sin^2 w, where both of its square-root ends are analytic), the outer one where a break point enters
+// or leaves [0, pi] or two meet, all in closed form; one globally adaptive 21-point Gauss-Kronrod over the pieces takes
+// R and T each to the relative tolerance. Measured (GGX, alpha 0.01 to 1, eta 1.1, 1.5, 2.5 and their inverses,
+// tolerance 1e-8, one core): 0.5-2.9 ms a value, 1.3 on average; R within 2.5e-9 and T within 5e-13 of the integrals
+// over wo of single_scattering.hpp (tests/test_compensation.cpp). At mu = 0 the grazing limits, as for E.
 #pragma once
 
 #include <cmath>
@@ -71,6 +83,10 @@ struct Event {
 // The quadrature above for one mu in [0, 1]; P22(r^2), Lambda(cot theta >= 0).
 double single_scattering_albedo(FunctionRef P22, FunctionRef Lambda, const FunctionRef* F, double mu, double tolerance,
                                 const Event& event = {});
+// {E_R, E_T} of a dielectric interface of relative index eta (below over above) for one mu in [0, 1], both G2 forms:
+// the quadrature of the last paragraph of this header's comment (the grazing limits at mu = 0).
+std::pair<double, double> dielectric_albedos(FunctionRef P22, FunctionRef Lambda, double mu, double tolerance,
+                                             double eta, G2Form form);
 // 2 integral_0^1 e(mu) mu dmu, tanh-sinh (smooth or log-like behaviour at mu = 0 costs no extra panels).
 double cosine_average(FunctionRef e, double tolerance);
 }  // namespace detail
@@ -98,13 +114,10 @@ public:
         double R = 0.0, T = 0.0;
     };
     Dielectric dielectric(double mu, double eta) const {
-        require(eta > 0.0 && std::isfinite(eta), "eta", "finite and > 0", eta);
-        auto F = [eta](double c) { return fresnel_dielectric(c, eta); };
-        const FunctionRef f(F);
         auto P22 = [&](double r2) { return slope_density(ndf_, r2); };
         auto L = [&](double m) { return Lambda_(m); };
-        return {albedo(mu, &f),
-                detail::single_scattering_albedo(P22, L, nullptr, mu, opts_.tolerance, {true, eta, opts_.g2})};
+        const auto [R, T] = detail::dielectric_albedos(P22, L, mu, opts_.tolerance, eta, opts_.g2);
+        return {R, T};
     }
     // E_avg = 2 integral_0^1 E(mu) mu dmu (Kulla and Conty 2017).
     // The average's own tolerance is 100x E's, its values of E at 10x (a relative error of 1e-9 in E moves E_avg by
