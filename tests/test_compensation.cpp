@@ -22,10 +22,12 @@
 #include <smithlab/walk/trace.hpp>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "smithlab/fit/albedo_grid.hpp"
 #include "smithlab/fit/compensation.hpp"
+#include "smithlab/fit/furnace.hpp"
 
 namespace {
 
@@ -225,120 +227,6 @@ TEST_CASE("the table: its cosines, interpolation, the lobe and its energy, the F
     for (double mu : {0.2, 0.9}) CHECK(std::abs(E(mu) * fit::turquin_scale(E(mu), 1.0) - 1.0) < 1e-15);
     CHECK(fit::turquin_scale(t, 1.0, 0.0) == 1.0);
     std::printf("compensation: one 32-point table with E_avg (GGX 0.7): %.1f ms\n", build_ms);
-}
-
-TEST_CASE("CSV writers", "[compensation]") {
-    fit::CompensationTable t{{0.0, 0.5, 1.0}, {1.0, 0.75, 0.5}, 0.625};
-    std::ostringstream csv, avg;
-    fit::write_compensation_csv(csv, {{"ggx(alpha=0.5)", t}, {"gtr(alpha=0.3, gamma=1.5)", t}});
-    fit::write_compensation_avg_csv(avg, {{"ggx(alpha=0.5)", t}});
-    CHECK(csv.str().rfind("ndf,cos_theta,E\nggx(alpha=0.5),0,1\nggx(alpha=0.5),0.5,0.75\nggx(alpha=0.5),1,0.5\n", 0) ==
-          0);
-    CHECK(csv.str().find("\"gtr(alpha=0.3, gamma=1.5)\",0.5,0.75\n") != std::string::npos);
-    CHECK(avg.str() == "ndf,E_avg\nggx(alpha=0.5),0.625\n");
-    std::istringstream in(csv.str());
-    const std::vector<smithlab::CsvRecord> rows = smithlab::read_csv(in);
-    REQUIRE(rows.size() == 7);
-    CHECK(rows[6].fields == std::vector<std::string>{"gtr(alpha=0.3, gamma=1.5)", "1", "0.5"});
-
-    // One column per NDF parameter after the ndf column; a cell count that does not match is refused.
-    const fit::SpecColumns columns{{"alpha", "gamma"}, {{"0.5", ""}, {"0.3", "1.5"}}};
-    std::ostringstream with, with_avg;
-    fit::write_compensation_csv(with, {{"ggx(alpha=0.5)", t}, {"gtr(alpha=0.3, gamma=1.5)", t}}, columns);
-    fit::write_compensation_avg_csv(with_avg, {{"ggx(alpha=0.5)", t}, {"gtr(alpha=0.3, gamma=1.5)", t}}, columns);
-    CHECK(with.str().rfind("ndf,alpha,gamma,cos_theta,E\nggx(alpha=0.5),0.5,,0,1\n", 0) == 0);
-    CHECK(with.str().find("\"gtr(alpha=0.3, gamma=1.5)\",0.3,1.5,0.5,0.75\n") != std::string::npos);
-    CHECK(with_avg.str() ==
-          "ndf,alpha,gamma,E_avg\nggx(alpha=0.5),0.5,,0.625\n\"gtr(alpha=0.3, gamma=1.5)\",0.3,1.5,0.625\n");
-    std::ostringstream bad;
-    CHECK_THROWS_AS(fit::write_compensation_csv(bad, {{"ggx(alpha=0.5)", t}}, columns), smithlab::input_error);
-    CHECK_THROWS_AS(fit::write_compensation_avg_csv(bad, {{"ggx(alpha=0.5)", t}, {"ggx(alpha=0.5)", t}},
-                                                    {{"alpha"}, {{"0.5"}, {"0.5", "1"}}}),
-                    smithlab::input_error);
-}
-
-TEST_CASE("the C header: compiles as C, and its lookups return the table and interpolate it", "[compensation]") {
-    const std::vector<double> alphas = {0.2, 0.45, 0.7, 1.0};
-    const std::vector<double> mus = fit::compensation_mus(6);
-    std::vector<std::vector<double>> E;
-    std::vector<double> avg;
-    const auto t0 = std::chrono::steady_clock::now();
-    for (double a : alphas) {
-        const fit::CompensationTable t = fit::compensation_table(smithlab::gtr(a, 1.5), 6);
-        E.push_back(t.E);
-        avg.push_back(t.E_avg);
-    }
-    std::printf("compensation: GTR(gamma = 1.5) 4 alphas x 6 cosines: %.0f ms\n", ms_since(t0));
-    CHECK(fit::compensation_header_name("gtr(gamma=1.5)") == "smithlab_gtr_gamma_1_5");
-    std::ostringstream h;
-    fit::write_compensation_header(h, "gtr(gamma=1.5)", alphas, mus, E, avg);
-    CHECK(h.str().find("#ifndef SMITHLAB_GTR_GAMMA_1_5_COMPENSATION_H") != std::string::npos);
-    CHECK_THROWS_AS(fit::write_compensation_header(h, "x", alphas, mus, E, {0.5}), smithlab::input_error);
-
-    if (std::system("gcc --version > /dev/null 2>&1") != 0) {
-        WARN("no gcc on PATH: the header is not compiled");
-        return;
-    }
-    const std::filesystem::path dir = std::filesystem::temp_directory_path() /
-        ("smithlab_comp_" + std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()));
-    std::filesystem::create_directories(dir);
-    std::ofstream(dir / "comp.h") << h.str();
-    CHECK(std::system(("gcc -std=c99 -Wall -Wextra -Werror -fsyntax-only -x c " + (dir / "comp.h").string()).c_str()) ==
-          0);
-    // A program that includes it twice (the guard) and prints lookups at the nodes and between them.
-    std::ofstream(dir / "main.c")
-        << "#include <stdio.h>\n#include \"comp.h\"\n#include \"comp.h\"\n"
-           "int main(void) {\n"
-           "    static const float a[] = {0.2f, 0.45f, 1.0f, 0.325f, 0.05f, 2.0f};\n"
-           "    static const float m[] = {0.0f, 0.6f, 1.0f, 0.1f, 0.77f, -1.0f};\n"
-           "    int i, j;\n"
-           "    for (i = 0; i < 6; ++i) {\n"
-           "        for (j = 0; j < 6; ++j) printf(\"%.9g \", smithlab_gtr_gamma_1_5_E(a[i], m[j]));\n"
-           "        printf(\"%.9g\\n\", smithlab_gtr_gamma_1_5_E_avg(a[i]));\n"
-           "    }\n    return 0;\n}\n";
-    const std::string exe = (dir / "lookup").string(), out = (dir / "out.txt").string();
-    REQUIRE(std::system(("gcc -std=c99 -Wall -Werror -o " + exe + " " + (dir / "main.c").string()).c_str()) == 0);
-    REQUIRE(std::system((exe + " > " + out).c_str()) == 0);
-    std::ifstream in(out);
-    // The truth in double: bilinear in the double table, clamped; the header's floats within 1e-6.
-    auto bilinear = [&](double a, double m) {
-        auto cell = [](const std::vector<double>& g, double x, double& t) {
-            if (x <= g.front()) {
-                t = 0.0;
-                return std::size_t{0};
-            }
-            if (x >= g.back()) {
-                t = 1.0;
-                return g.size() - 2;
-            }
-            std::size_t k = 0;
-            while (g[k + 1] <= x) ++k;
-            t = (x - g[k]) / (g[k + 1] - g[k]);
-            return k;
-        };
-        double ta, tm;
-        const std::size_t i = cell(alphas, a, ta), j = cell(mus, m, tm);
-        const double lo = E[i][j] + tm * (E[i][j + 1] - E[i][j]),
-                     hi = E[i + 1][j] + tm * (E[i + 1][j + 1] - E[i + 1][j]);
-        return lo + ta * (hi - lo);
-    };
-    const double a[] = {0.2, 0.45, 1.0, 0.325, 0.05, 2.0}, m[] = {0.0, 0.6, 1.0, 0.1, 0.77, -1.0};
-    for (int i = 0; i < 6; ++i) {
-        for (int j = 0; j < 6; ++j) {
-            double v = 0.0;
-            REQUIRE(in >> v);
-            INFO("alpha " << a[i] << " mu " << m[j]);
-            CHECK(std::abs(v - bilinear(a[i], m[j])) < 1e-6);
-        }
-        double v = 0.0;
-        REQUIRE(in >> v);
-        const double ta = std::clamp((a[i] - 0.2) / 0.25, 0.0, 1.0);
-        if (a[i] == 0.325) CHECK(std::abs(v - (avg[0] + ta * (avg[1] - avg[0]))) < 1e-6);
-        if (a[i] == 1.0) CHECK(std::abs(v - avg[3]) < 1e-7);
-    }
-    // At the nodes: the table's own values (E(alpha = 0.45, mu = 0.6) is E[1][3]).
-    CHECK(std::abs(bilinear(0.45, 0.6) - E[1][3]) < 1e-15);
-    std::filesystem::remove_all(dir);
 }
 
 // ---- Against the tracer (walk/): an independent route to the same single scattering, and the multiple scattering
@@ -600,11 +488,11 @@ TEST_CASE("the warped table: its error measure against a dense direct check, and
         }
     CHECK(t.error.max == direct);
     CHECK(t.table.at(2, 3) == row(0.25)(g.mu(2, 3)));
-    // GGX's E on 32 alphas (sqrt-spaced, 1e-4 to 1) x 48 warped cosines: within 1e-3 on the 10x finer grid, and below
+    // GGX's E on 48 alphas (sqrt-spaced, 1e-4 to 1) x 48 warped cosines: within 1e-3 on the 10x finer grid, and below
     // the grid down to alpha 1e-6.
     fit::AlbedoGrid ggx_grid{{}, 48};
-    for (int i = 0; i < 32; ++i) {
-        const double s = 0.01 + 0.99 * i / 31.0;
+    for (int i = 0; i < 48; ++i) {
+        const double s = 0.01 + 0.99 * i / 47.0;
         ggx_grid.alphas.push_back(s * s);
     }
     fit::AlbedoOptions o;
@@ -616,11 +504,73 @@ TEST_CASE("the warped table: its error measure against a dense direct check, and
     const fit::CheckedTable ggx = fit::tabulate(ggx_grid, 10, E, 2);
     const fit::InterpolationError below = fit::below_grid_error(ggx, E, {0.5, 0.1, 0.01}, 2);
     std::printf(
-        "compensation: GGX 32 x 48 warped table: interpolation error %.2e (alpha %.3g, mu %.3g), below the "
+        "compensation: GGX 48 x 48 warped table: interpolation error %.2e (alpha %.3g, mu %.3g), below the "
         "grid %.2e (alpha %.3g)\n",
         ggx.error.max, ggx.error.alpha, ggx.error.mu, below.max, below.alpha);
     CHECK(ggx.error.max < 1e-3);
     CHECK(below.max < 1e-3);
     CHECK_THROWS_AS(ggx.table.lookup(0.0, 0.5), smithlab::input_error);
     CHECK_THROWS_AS(ggx.table.lookup(0.5, 1.5), smithlab::input_error);
+
+    // The white furnace by the tables (fit/furnace.hpp): the exact single scattering (the check grid's values) plus
+    // Kulla and Conty's lobe from the table and its own 1 - E_avg, against 1, at every alpha of the check grid and
+    // theta_i <= 85 degrees.
+    const std::vector<double> missing = fit::table_missing(ggx.table);
+    const fit::InterpolationError furnace =
+        fit::worst_of(fit::kulla_conty_furnace(ggx, missing, std::cos(85.0 * std::numbers::pi / 180.0)));
+    // The table's own 1 - E_avg against the exact one (its own quadrature of 1 - E) at two of its alphas.
+    double worst_missing = 0.0;
+    for (std::size_t i : {std::size_t{20}, std::size_t{47}}) {
+        const double exact = fit::SingleScatteringAlbedo<smithlab::Ggx>(smithlab::ggx(ggx_grid.alphas[i]), o).missing();
+        worst_missing = std::max(worst_missing, std::abs(missing[i] / exact - 1.0));
+    }
+    std::printf(
+        "compensation: GGX 48 x 48, Kulla-Conty furnace by the tables: worst |albedo - 1| %.2e (alpha %.3g, mu "
+        "%.3g); the table's 1 - E_avg within %.1e (relative) of the exact one\n",
+        furnace.max, furnace.alpha, furnace.mu, worst_missing);
+    CHECK(furnace.max < 1e-3);
+    CHECK(worst_missing < 1e-3);
+}
+
+TEST_CASE("1 - E_avg: its own quadrature against 1 - E_avg's, and lookup_missing's rule", "[compensation]") {
+    fit::AlbedoOptions o;
+    o.tolerance = 1e-10;
+    for (double a : {0.3, 1.0}) {
+        const fit::SingleScatteringAlbedo<smithlab::Ggx> E(smithlab::ggx(a), o);
+        CHECK(std::abs(E.missing() - (1.0 - E.average())) < 1e-8 * E.missing() + 1e-9);
+    }
+    // ln m linear in ln alpha: a power law is exact between the nodes, below the first (continued) and the last value
+    // above.
+    const std::vector<double> alphas{1e-4, 1e-2, 0.5, 1.0}, m{2e-8, 2e-4, 0.5, 0.6};
+    CHECK(fit::lookup_missing(alphas, m, 1e-3) == Approx(2e-6).epsilon(1e-12));
+    CHECK(fit::lookup_missing(alphas, m, 1e-6) == Approx(2e-12).epsilon(1e-12));
+    CHECK(fit::lookup_missing(alphas, m, 2.0) == 0.6);
+    CHECK(fit::lookup_missing(alphas, m, 0.5) == Approx(0.5).epsilon(1e-15));
+    CHECK_THROWS_AS(fit::lookup_missing(alphas, {2e-8, 0.0, 0.5, 0.6}, 0.1), smithlab::input_error);
+    CHECK_THROWS_AS(fit::lookup_missing(alphas, m, 0.0), smithlab::input_error);
+}
+
+TEST_CASE("the separable grazing limit of a narrow NDF: finite, and tending to its alpha -> 0 limit",
+          "[compensation]") {
+    // At mu = 0 with G1 G1, E(0) = integral of P22 p G1(wo) over the visible normals / their projected area: a function
+    // of the slopes over alpha alone as alpha -> 0, approached linearly in alpha (7.4e-5 from alpha 1e-2 to 1e-4 for
+    // GGX, 2.1e-6 for Beckmann). Beckmann's slopes at alpha 1e-4 lie below theta_m ~ 1e-3.
+    fit::AlbedoOptions o;
+    o.tolerance = 1e-8;
+    o.g2 = smithlab::G2Form::uncorrelated;
+    auto at = [&](auto make, double alpha) { return fit::SingleScatteringAlbedo(make(alpha), o)(0.0); };
+    auto beckmann = [](double a) { return smithlab::beckmann(a); };
+    auto ggx = [](double a) { return smithlab::ggx(a); };
+    for (const auto& [name, e4, e3, e2] :
+         {std::tuple{"Beckmann", at(beckmann, 1e-4), at(beckmann, 1e-3), at(beckmann, 1e-2)},
+          std::tuple{"GGX", at(ggx, 1e-4), at(ggx, 1e-3), at(ggx, 1e-2)}}) {
+        std::printf("compensation: separable E(0), %s: %.9f (alpha 1e-4), %.9f (1e-3), %.9f (1e-2)\n", name, e4, e3,
+                    e2);
+        INFO(name);
+        CHECK(std::isfinite(e4));
+        CHECK(e4 > 0.9);
+        CHECK(e4 < 1.0);
+        // Each tenth of alpha closes the gap to the limit tenfold (to the quadrature's 1e-8).
+        CHECK(std::abs(e4 - e3) < 0.15 * std::abs(e3 - e2) + 1e-7);
+    }
 }

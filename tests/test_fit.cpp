@@ -9,6 +9,8 @@
 #include <sstream>
 
 #include "cli_run.hpp"
+#include "smithlab/csv.hpp"
+#include "smithlab/fit/compensation.hpp"
 #include "smithlab/fit/dataset.hpp"
 #include "smithlab/fit/fit_model.hpp"
 #include "smithlab/fit/least_squares.hpp"
@@ -411,7 +413,10 @@ TEST_CASE("fit: the tables name an NDF's parameters in columns of their own besi
     std::string text = tiny_scene;
     text.replace(text.find("family = \"ggx\""), std::string("family = \"ggx\"").size(),
                  "family = \"gtr\"\ngamma = [1.5, 3]");
-    write(d / "s.toml", text + "[compensation]\nalpha = [0.5, 1.0]\nmu = 4\n");
+    write(d / "s.toml",
+          text +
+              "[compensation]\nalpha = [0.5, 1.0]\ncosines = 4\nrefine = 2\ng2 = [\"separable\"]\n"
+              "furnace_alpha = [0.5]\nfurnace_theta = [0.0]\nfurnace_walks = 100\n");
     const Run r = run("fit '" + (d / "s.toml").string() + "' --output '" + (d / "out").string() + "' --threads 2");
     INFO(r.err);
     REQUIRE(r.rc == 0);
@@ -423,8 +428,74 @@ TEST_CASE("fit: the tables name an NDF's parameters in columns of their own besi
     CHECK(slurp(o / "training.csv").rfind("ndf,gamma,alpha,theta_i,", 0) == 0);
     CHECK_THAT(slurp(o / "validation.csv"), Contains("\ngtr(gamma=3),3,"));
     CHECK(slurp(o / "compensation.csv")
-              .rfind("ndf,alpha,gamma,cos_theta,E\n\"gtr(alpha=0.5, gamma=1.5)\",0.5,1.5,0,", 0) == 0);
-    CHECK(slurp(o / "compensation_avg.csv").rfind("ndf,alpha,gamma,E_avg\n", 0) == 0);
+              .rfind("ndf,alpha,gamma,g2,cos_theta,E\n\"gtr(alpha=0.5, gamma=1.5)\",0.5,1.5,separable,0,", 0) == 0);
+    CHECK(slurp(o / "compensation_avg.csv").rfind("ndf,alpha,gamma,g2,E_avg\n", 0) == 0);
+    fs::remove_all(d);
+}
+
+TEST_CASE("fit: [compensation] writes every table, its errors, its renderer formats and the furnace", "[fit][cli]") {
+    using namespace smithlab_test;
+    const fs::path d = fresh_directory("fitcompensation");
+    write(d / "s.toml",
+          tiny_scene +
+              "[compensation]\nalpha = {sqrt = [0.01, 1.0], n = 2}\ncosines = 6\nrefine = 2\n"
+              "eta = [1.5]\nconductors = [\"conductor(eta=0.2, k=3)\"]\nfurnace_alpha = [0.5]\n"
+              "furnace_theta = [0.0, 60.0]\nfurnace_walks = 2000\n");
+    const Run r = run("fit '" + (d / "s.toml").string() + "' --output '" + (d / "out").string() + "' --threads 2");
+    INFO(r.err);
+    REQUIRE(r.rc == 0);
+    const fs::path o = d / "out";
+    auto lines = [](const std::string& text) {
+        std::vector<std::string> out;
+        std::istringstream in(text);
+        for (std::string line; std::getline(in, line);) out.push_back(line);
+        return out;
+    };
+    auto fields = [](const std::string& line) {
+        std::istringstream in(line);
+        return smithlab::read_csv(in).at(0).fields;
+    };
+    // Two G2 forms x 2 alphas x 6 cosines; each dielectric row from both sides.
+    const std::vector<std::string> E = lines(slurp(o / "compensation.csv"));
+    REQUIRE(E.size() == 1 + 2 * 2 * 6);
+    CHECK(E[0] == "ndf,alpha,g2,cos_theta,E");
+    CHECK(E[1] == "ggx(alpha=0.01),0.01,height-correlated,0,1");  // the grazing limit of the height-correlated G2
+    CHECK_THAT(E[13], Catch::Matchers::StartsWith("ggx(alpha=0.01),0.01,separable,0,"));
+    // A node of the table is the albedo there (the cosine x = 0.6 of alpha = 1 unwarped: mu = 0.36 / 1.64).
+    const std::vector<std::string> node = fields(E[10]);
+    REQUIRE(node.size() == 5);
+    CHECK(std::stod(node[3]) == Approx(0.36 / 1.64).epsilon(1e-15));
+    const fit::SingleScatteringAlbedo<smithlab::Ggx> exact(smithlab::ggx(1.0), {.tolerance = 1e-8});
+    CHECK(std::stod(node[4]) == Approx(exact(std::stod(node[3]))).epsilon(1e-9));
+    const std::vector<std::string> dielectric = lines(slurp(o / "compensation_dielectric.csv"));
+    REQUIRE(dielectric.size() == 1 + 2 * 2 * 2 * 6);
+    CHECK(dielectric[0] == "ndf,alpha,g2,eta,side,cos_theta,E_R,E_T");
+    CHECK_THAT(slurp(o / "compensation_dielectric.csv"), Contains(",height-correlated,1.5,inside,"));
+    const std::vector<std::string> errors = lines(slurp(o / "compensation_error.csv"));
+    REQUIRE(errors.size() == 1 + 2 * 3);
+    CHECK_THAT(errors[0],
+               Catch::Matchers::StartsWith("ndf,g2,table,max_interp_error,alpha,cos_theta,below_grid_error,"));
+    CHECK_THAT(errors[3], Catch::Matchers::StartsWith("ggx,height-correlated,E_R+E_T eta=1.5 inside,"));
+    // Per G2 form and angle: mirror, the conductor, and each side's total, R and T.
+    const std::vector<std::string> furnace = lines(slurp(o / "furnace.csv"));
+    REQUIRE(furnace.size() == 1 + 2 * 2 * (2 + 2 * 3));
+    CHECK(furnace[0] == "ndf,g2,material,part,alpha,theta_i,compensated,traced,traced_stderr");
+    for (std::size_t k = 1; k < furnace.size(); ++k) {
+        const std::vector<std::string> f = fields(furnace[k]);
+        REQUIRE(f.size() == 9);
+        INFO(furnace[k]);
+        // Mirror facets and a dielectric lose nothing: every walk leaves with its energy.
+        if (f[2] == "mirror" || (f[2].rfind("dielectric", 0) == 0 && f[3] == "total")) {
+            CHECK(std::stod(f[7]) == 1.0);
+            CHECK(std::stod(f[8]) == 0.0);
+        }
+        CHECK(std::isfinite(std::stod(f[6])));
+    }
+    for (const char* id : {"smithlab_ggx_hc", "smithlab_ggx_sep", "smithlab_ggx_hc_E_R_E_T_eta_1_5_outside",
+                           "smithlab_ggx_sep_E_R_E_T_eta_1_5_inside"})
+        for (const char* ext : {".h", ".glsl", ".hlsl", ".png", ".json"})
+            CHECK(fs::exists(o / "compensation" / (std::string(id) + ext)));
+    CHECK_THAT(slurp(o / "report.md"), Contains("## Energy compensation") && Contains("| ggx | separable | E |"));
     fs::remove_all(d);
 }
 
@@ -453,9 +524,16 @@ TEST_CASE("fit: a bad scene is refused naming FILE:LINE and the item, with nothi
     bad("theta = [0.0, 40.0, 70.0]", "theta = [0.0, 40.0, 90.0]", "training.theta");
     bad("walks = 400\n[validation]", "walkz = 400\n[validation]", "walkz");
     bad("[validation]", "[validation", "malformed scene");
-    bad("[validation]", "[compensation]\nalpha = [0.5]\nmu = 4\n[validation]", "compensation.alpha needs 2 values");
-    bad("[validation]", "[compensation]\nalpha = [0.5, 0.3]\nmu = 4\n[validation]",
-        "compensation.alpha values must ascend");
+    bad("[validation]", "[compensation]\nalpha = [0.5]\n[validation]", "compensation.alpha needs 2 values");
+    bad("[validation]", "[compensation]\nalpha = [0.5, 0.3]\n[validation]", "compensation.alpha values must ascend");
+    bad("[validation]", "[compensation]\nmu = 4\n[validation]", "compensation.mu");
+    bad("[validation]", "[compensation]\ng2 = [\"smith\"]\n[validation]",
+        "compensation.g2 must name height-correlated or separable, got 'smith'");
+    bad("[validation]", "[compensation]\neta = [1.0]\n[validation]", "compensation.eta values must be in [1.01, 100]");
+    bad("[validation]", "[compensation]\nconductors = [\"mirror\"]\n[validation]",
+        "compensation.conductors must name conductor(eta=, k=) facets, got 'mirror'");
+    bad("[validation]", "[compensation]\nconductors = [\"conductor(eta=-1, k=3)\"]\n[validation]",
+        "compensation.conductors");
     bad("points = 6", "points = 0", "validation.points");
     bad("phi = [0.0, 180.0]", "phi = {lin = [0.0, 180.0], n = 30000}", "90003 direction pairs per alpha");
     fs::remove_all(d);

@@ -62,7 +62,7 @@ std::vector<double> parse_range(const std::string& text, const std::string& what
     if (!std::isfinite(lo) || !std::isfinite(hi) || !(lo < hi) || (log && !(lo > 0.0)))
         throw input_error(what + ": LO and HI must be finite with LO < HI" + (log ? " and LO > 0 (log spacing)" : "") +
                           ", got '" + text + "'");
-    return report::spaced(lo, hi, n, log);
+    return report::spaced(lo, hi, n, log ? report::Spacing::log : report::Spacing::lin);
 }
 
 std::vector<EvalPoint> eval_points(const std::string& mu, const std::string& theta, const std::string& mu_range,

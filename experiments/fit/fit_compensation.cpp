@@ -1,86 +1,300 @@
 #include "fit/fit_compensation.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <iomanip>
+#include <memory>
+#include <numbers>
 #include <sstream>
 
 #include "fit/fit_data.hpp"
+#include "fit/fit_furnace.hpp"
 #include "output/ndf_columns.hpp"
+#include "output/plot_script.hpp"
 #include "output/staged_directory.hpp"
-#include "smithlab/fit/compensation.hpp"
+#include "smithlab/csv.hpp"
+#include "smithlab/fit/compensation_formats.hpp"
+#include "smithlab/fit/furnace.hpp"
 
 namespace smithlab::fitrun {
 
 namespace fs = std::filesystem;
 
-namespace {
+std::string g2_name(G2Form form) { return form == G2Form::uncorrelated ? "separable" : "height-correlated"; }
 
-using Tables = std::vector<std::pair<std::string, fit::CompensationTable>>;
-
-// The section's table: E_avg per alpha (rows) and family (columns).
-std::string markdown(const std::vector<FitFamily>& families, const std::vector<double>& alphas,
-                     const std::vector<std::vector<double>>& avg) {
-    std::ostringstream md;
-    md << "\n## Energy compensation (Kulla and Conty 2017), single scattering off mirror facets\n\n"
-       << "E_avg, the cosine-weighted average of the directional albedo E(mu) (compensation.csv: E over cos theta; "
-       << "the C headers smithlab_NDF.h: E over (alpha, mu) and E_avg over alpha for a renderer):\n\n| alpha |";
-    for (const FitFamily& f : families) md << " " << family_label(f) << " |";
-    md << "\n|---:|";
-    for (std::size_t n = 0; n < families.size(); ++n) md << "---:|";
-    md << "\n";
-    for (std::size_t i = 0; i < alphas.size(); ++i) {
-        char a[32];
-        std::snprintf(a, sizeof a, "%.4g", alphas[i]);
-        md << "| " << a << " |";
-        for (std::size_t n = 0; n < families.size(); ++n)
-            md << " " << std::fixed << std::setprecision(4) << avg[n][i] << " |";
-        md << std::defaultfloat << "\n";
-    }
-    return md.str();
+fit::AlbedoOptions table_options(G2Form form) {
+    fit::AlbedoOptions o;
+    o.tolerance = 1e-8;
+    o.g2 = form;
+    return o;
 }
 
-// Both CSVs, the ndf column followed by one column per NDF parameter.
-void write_csvs(const fs::path& dir, const Tables& tables, const std::vector<AnyNdf>& ndfs) {
-    auto columns = [&](const std::vector<std::string>& own) {
-        const output::NdfColumns c = output::ndf_columns(ndfs, own);
-        fit::SpecColumns out{c.names, {}};
-        for (const AnyNdf& n : ndfs) out.cells.push_back(c.cells(n));
-        return out;
+namespace {
+
+const double furnace_mu_min = std::cos(furnace_theta_max * std::numbers::pi / 180.0);
+const std::vector<double> below_factors{0.5, 0.1, 0.01};
+
+// The exact albedo at one alpha, built once per alpha (an NDF without a closed-form Lambda builds its table).
+std::shared_ptr<const fit::SingleScatteringAlbedo<AnyNdf>> albedo_at(const NdfRegistry& registry, const FitFamily& f,
+                                                                     double alpha, G2Form form) {
+    return std::make_shared<const fit::SingleScatteringAlbedo<AnyNdf>>(make_ndf(registry, f, alpha),
+                                                                       table_options(form));
+}
+
+MeasuredTable measured(std::string name, fit::CheckedTable t, const fit::AlbedoRow& row, unsigned threads) {
+    MeasuredTable m{std::move(name), std::move(t), {}, {}};
+    m.below = fit::below_grid_error(m.table, row, below_factors, threads);
+    return m;
+}
+
+FamilyTables make_tables(const FitFamily& f, G2Form form, const FitScene::Compensation& c, const NdfRegistry& registry,
+                         unsigned threads) {
+    const fit::AlbedoGrid grid{c.alpha, static_cast<int>(c.cosines)};
+    const int refine = static_cast<int>(c.refine);
+    FamilyTables out;
+    out.family = &f;
+    out.g2 = form;
+    const fit::AlbedoRow mirror = [&](double alpha) -> std::function<double(double)> {
+        auto E = albedo_at(registry, f, alpha, form);
+        return [E](double mu) { return (*E)(mu); };
     };
-    std::ofstream csv(dir / "compensation.csv", std::ios::binary);
-    fit::write_compensation_csv(csv, tables, columns({"ndf", "cos_theta", "E"}));
-    output::finish(csv, dir / "compensation.csv");
-    std::ofstream avg_csv(dir / "compensation_avg.csv", std::ios::binary);
-    fit::write_compensation_avg_csv(avg_csv, tables, columns({"ndf", "E_avg"}));
-    output::finish(avg_csv, dir / "compensation_avg.csv");
+    out.E = measured("E", fit::tabulate(grid, refine, mirror, threads), mirror, threads);
+    for (double a : c.alpha) out.exact_missing.push_back(albedo_at(registry, f, a, form)->missing());
+    out.missing = fit::table_missing(out.E.table.table);
+    out.E.furnace = fit::kulla_conty_furnace(out.E.table, out.missing, furnace_mu_min);
+    for (double eta : c.eta)
+        for (bool inside : {false, true}) {
+            DielectricTables d;
+            d.eta = eta;
+            d.inside = inside;
+            const double rel = d.relative_eta();
+            const fit::AlbedoRows rows = [&](double alpha) -> std::function<void(double, double*)> {
+                auto E = albedo_at(registry, f, alpha, form);
+                return [E, rel](double mu, double* v) {
+                    const auto e = E->dielectric(mu, rel);
+                    v[0] = e.R;
+                    v[1] = e.T;
+                    v[2] = e.R + e.T;
+                };
+            };
+            const fit::AlbedoRow sum = [&](double alpha) -> std::function<double(double)> {
+                auto E = albedo_at(registry, f, alpha, form);
+                return [E, rel](double mu) {
+                    const auto e = E->dielectric(mu, rel);
+                    return e.R + e.T;
+                };
+            };
+            std::vector<fit::CheckedTable> t = fit::tabulate(grid, refine, 3, rows, threads);
+            d.R = std::move(t[0]);
+            d.T = std::move(t[1]);
+            d.sum = measured("E_R+E_T eta=" + format_shortest(eta) + (inside ? " inside" : " outside"), std::move(t[2]),
+                             sum, threads);
+            d.sum.furnace = fit::turquin_furnace(d.sum.table, furnace_mu_min);
+            out.dielectrics.push_back(std::move(d));
+        }
+    return out;
+}
+
+// The NDF at each alpha of the tables, for the CSVs' ndf and parameter columns.
+struct NdfRows {
+    std::vector<AnyNdf> ndfs;  // family-major, alpha-minor, one family per FamilyTables entry
+    output::NdfColumns columns;
+};
+
+NdfRows ndf_rows(const std::vector<FamilyTables>& all, const std::vector<double>& alphas, const NdfRegistry& registry) {
+    NdfRows r;
+    for (const FamilyTables& t : all)
+        for (double a : alphas) r.ndfs.push_back(make_ndf(registry, *t.family, a));
+    r.columns = output::ndf_columns(r.ndfs, {"alpha"});
+    return r;
+}
+
+// "ndf,alpha,PARAMETERS,REST": the NDF's spec, its alpha and its other parameters, then the table's own columns.
+std::string header_of(const output::NdfColumns& columns, const std::vector<std::string>& rest) {
+    std::string h = "ndf,alpha,";
+    for (const std::string& s : columns.names) h += csv_field(s) + ",";
+    for (std::size_t i = 0; i < rest.size(); ++i) h += rest[i] + (i + 1 < rest.size() ? "," : "\n");
+    return h;
+}
+
+std::string ndf_cells(const NdfRows& r, std::size_t k, double alpha) {
+    std::string s = csv_field(r.ndfs[k].spec()) + "," + format_g17(alpha) + ",";
+    for (const std::string& c : r.columns.cells(r.ndfs[k])) s += csv_field(c) + ",";
+    return s;
+}
+
+void write_csvs(const fs::path& dir, const std::vector<FamilyTables>& all, const FitScene::Compensation& c,
+                const NdfRegistry& registry) {
+    const NdfRows nr = ndf_rows(all, c.alpha, registry);
+    std::ostringstream E, avg, diel;
+    E << header_of(nr.columns, {"g2", "cos_theta", "E"});
+    avg << header_of(nr.columns, {"g2", "E_avg", "one_minus_E_avg", "table_one_minus_E_avg"});
+    diel << header_of(nr.columns, {"g2", "eta", "side", "cos_theta", "E_R", "E_T"});
+    for (std::size_t n = 0; n < all.size(); ++n) {
+        const FamilyTables& t = all[n];
+        const fit::AlbedoGrid& g = t.E.table.table.grid;
+        for (std::size_t i = 0; i < g.alphas.size(); ++i) {
+            const std::size_t k = n * g.alphas.size() + i;
+            const std::string lead = ndf_cells(nr, k, g.alphas[i]) + g2_name(t.g2) + ",";
+            for (int j = 0; j < g.n_x; ++j)
+                E << lead << format_g17(g.mu(i, j)) << "," << format_g17(t.E.table.table.at(i, j)) << "\n";
+            avg << lead << format_g17(1.0 - t.exact_missing[i]) << "," << format_g17(t.exact_missing[i]) << ","
+                << format_g17(t.missing[i]) << "\n";
+            for (const DielectricTables& d : t.dielectrics)
+                for (int j = 0; j < g.n_x; ++j)
+                    diel << lead << format_g17(d.eta) << "," << (d.inside ? "inside" : "outside") << ","
+                         << format_g17(g.mu(i, j)) << "," << format_g17(d.R.table.at(i, j)) << ","
+                         << format_g17(d.T.table.at(i, j)) << "\n";
+        }
+    }
+    output::write_file(dir / "compensation.csv", E.str());
+    output::write_file(dir / "compensation_avg.csv", avg.str());
+    if (!c.eta.empty()) output::write_file(dir / "compensation_dielectric.csv", diel.str());
+}
+
+// Every measured table of a family and G2 form: E, then each dielectric's sum.
+template <class F>
+void for_each_table(const FamilyTables& t, const F& f) {
+    f(t.E);
+    for (const DielectricTables& d : t.dielectrics) f(d.sum);
+}
+
+void write_errors(const fs::path& dir, const std::vector<FamilyTables>& all) {
+    std::ostringstream err, furnace;
+    err << "ndf,g2,table,max_interp_error,alpha,cos_theta,below_grid_error,below_alpha,below_cos_theta,"
+           "furnace_error,furnace_alpha,furnace_cos_theta\n";
+    furnace << "ndf,g2,table,alpha,furnace_error,cos_theta\n";
+    for (const FamilyTables& t : all)
+        for_each_table(t, [&](const MeasuredTable& m) {
+            const std::string lead =
+                csv_field(family_label(*t.family)) + "," + g2_name(t.g2) + "," + csv_field(m.name) + ",";
+            const fit::InterpolationError& e = m.table.error;
+            const fit::InterpolationError w = fit::worst_of(m.furnace);
+            err << lead << format_g17(e.max) << "," << format_g17(e.alpha) << "," << format_g17(e.mu) << ","
+                << format_g17(m.below.max) << "," << format_g17(m.below.alpha) << "," << format_g17(m.below.mu) << ","
+                << format_g17(w.max) << "," << format_g17(w.alpha) << "," << format_g17(w.mu) << "\n";
+            for (const fit::InterpolationError& f : m.furnace)
+                furnace << lead << format_g17(f.alpha) << "," << format_g17(f.max) << "," << format_g17(f.mu) << "\n";
+        });
+    output::write_file(dir / "compensation_error.csv", err.str());
+    output::write_file(dir / "furnace_tables.csv", furnace.str());
+}
+
+// Each table in every renderer format, into dir/compensation/.
+void write_formats(const fs::path& dir, const std::vector<FamilyTables>& all) {
+    const fs::path sub = dir / "compensation";
+    fs::create_directories(sub);
+    for (const FamilyTables& t : all)
+        for_each_table(t, [&](const MeasuredTable& m) {
+            const fit::CompensationExport e{family_label(*t.family),
+                                            g2_name(t.g2),
+                                            m.name,
+                                            &m.table.table,
+                                            &m == &t.E ? t.missing : std::vector<double>{},
+                                            m.table.error.max,
+                                            m.below.max};
+            const std::string id = fit::compensation_identifier(e);
+            auto text = [&](const char* ext, void (*write)(std::ostream&, const fit::CompensationExport&)) {
+                std::ostringstream s;
+                write(s, e);
+                output::write_file(sub / (id + ext), s.str());
+            };
+            text(".h", fit::write_c_header);
+            text(".glsl", fit::write_glsl);
+            text(".hlsl", fit::write_hlsl);
+            text(".json", fit::write_axes_json);
+            fit::write_png16(sub / (id + ".png"), e);
+        });
+}
+
+void write_furnace(const fs::path& dir, const std::vector<FurnaceRow>& rows) {
+    std::ostringstream f;
+    f << "ndf,g2,material,part,alpha,theta_i,compensated,traced,traced_stderr\n";
+    for (const FurnaceRow& r : rows)
+        f << csv_field(r.ndf) << "," << r.g2 << "," << csv_field(r.material) << "," << r.part << ","
+          << format_g17(r.alpha) << "," << format_g17(r.theta) << "," << format_g17(r.compensated) << ","
+          << format_g17(r.traced) << "," << format_g17(r.traced_stderr) << "\n";
+    output::write_file(dir / "furnace.csv", f.str());
+}
+
+std::string e3(double v) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.1e", v);
+    return b;
+}
+std::string g4(double v) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.4g", v);
+    return b;
+}
+
+std::string markdown(const std::vector<FamilyTables>& all, const FitScene::Compensation& c,
+                     const std::vector<FurnaceRow>& rows) {
+    std::ostringstream md;
+    md << "\n## Energy compensation (Kulla and Conty 2017, Turquin 2019)\n\n"
+       << "Tables of the single-scattering albedo over " << c.alpha.size() << " alphas (" << g4(c.alpha.front())
+       << " to " << g4(c.alpha.back()) << ", linear in sqrt(alpha)) x " << c.cosines
+       << " warped cosines x = sqrt((1 + alpha) mu / (mu + alpha)), each measured against the exact values on the "
+       << "grid " << c.refine << "x finer in both (compensation_error.csv); the renderer formats are in "
+       << "compensation/. The furnace by the tables: |compensated albedo - 1| at theta_i <= " << furnace_theta_max
+       << " degrees, mirror facets with Kulla and Conty's lobe, dielectrics divided by E_R + E_T.\n\n"
+       << "| NDF | G2 | table | interpolation error (alpha, mu) | below the grid | furnace |\n"
+       << "|---|---|---|---:|---:|---:|\n";
+    for (const FamilyTables& t : all)
+        for_each_table(t, [&](const MeasuredTable& m) {
+            const fit::InterpolationError w = fit::worst_of(m.furnace);
+            md << "| " << family_label(*t.family) << " | " << g2_name(t.g2) << " | " << m.name << " | "
+               << e3(m.table.error.max) << " (" << g4(m.table.error.alpha) << ", " << g4(m.table.error.mu) << ") | "
+               << e3(m.below.max) << " | " << e3(w.max) << " |\n";
+        });
+    if (!rows.empty()) {
+        md << "\nAgainst the walk (furnace.csv: " << c.furnace_walks
+           << " walks a cell): the worst |compensated - traced| per material and part, and in standard errors of "
+           << "the walk.\n\n| NDF | G2 | material | part | worst difference | (alpha, theta_i) | in standard errors |\n"
+           << "|---|---|---|---|---:|---|---:|\n";
+        std::vector<const FurnaceRow*> worst;
+        for (const FurnaceRow& r : rows) {
+            const FurnaceRow* same = nullptr;
+            for (const FurnaceRow*& w : worst)
+                if (w->ndf == r.ndf && w->g2 == r.g2 && w->material == r.material && w->part == r.part) {
+                    same = w;
+                    if (std::abs(r.compensated - r.traced) > std::abs(w->compensated - w->traced)) w = &r;
+                }
+            if (!same) worst.push_back(&r);
+        }
+        for (const FurnaceRow* w : worst) {
+            const double d = w->compensated - w->traced;
+            md << "| " << w->ndf << " | " << w->g2 << " | " << w->material << " | " << w->part << " | " << e3(d)
+               << " | (" << g4(w->alpha) << ", " << g4(w->theta) << ") | "
+               << (w->traced_stderr > 0.0 ? g4(std::abs(d) / w->traced_stderr) : std::string("exact")) << " |\n";
+        }
+    }
+    return md.str();
 }
 
 }  // namespace
 
 std::string write_compensation(const fs::path& dir, const std::vector<FitFamily>& families,
-                               const FitScene::Compensation& c, const NdfRegistry& registry) {
-    if (c.alpha.empty()) return "";
-    Tables all;
-    std::vector<AnyNdf> ndfs;
-    std::vector<std::vector<double>> avg(families.size());
-    for (std::size_t n = 0; n < families.size(); ++n) {
-        std::vector<std::vector<double>> E;
-        for (double a : c.alpha) {
-            ndfs.push_back(make_ndf(registry, families[n], a));
-            fit::CompensationTable t = fit::compensation_table(ndfs.back(), static_cast<int>(c.mu));
-            E.push_back(t.E);
-            avg[n].push_back(t.E_avg);
-            all.emplace_back(ndfs.back().spec(), std::move(t));
+                               const FitScene::Compensation& c, const NdfRegistry& registry, std::uint64_t seed,
+                               unsigned threads) {
+    if (!c.enabled) return "";
+    std::vector<FamilyTables> all;
+    for (const FitFamily& f : families)
+        for (G2Form form : c.g2) {
+            std::fprintf(
+                stderr, "fit: compensation tables: %s, %s G2, %zu alphas x %lld cosines (%lldx finer check)%s\n",
+                family_label(f).c_str(), g2_name(form).c_str(), c.alpha.size(), static_cast<long long>(c.cosines),
+                static_cast<long long>(c.refine), c.eta.empty() ? "" : ", dielectrics");
+            all.push_back(make_tables(f, form, c, registry, threads));
         }
-        const std::string label = family_label(families[n]);
-        const fs::path header_path = dir / (fit::compensation_header_name(label) + ".h");
-        std::ofstream header(header_path, std::ios::binary);
-        fit::write_compensation_header(header, label, c.alpha, all.back().second.mus, E, avg[n]);
-        output::finish(header, header_path);
-    }
-    write_csvs(dir, all, ndfs);
-    return markdown(families, c.alpha, avg);
+    const std::vector<FurnaceRow> rows = trace_furnace(all, c, registry, seed, threads);
+    write_csvs(dir, all, c, registry);
+    write_errors(dir, all);
+    write_formats(dir, all);
+    write_furnace(dir, rows);
+    const bool drawn =
+        output::run_plot_script("compensation_plots.py", SMITHLAB_COMPENSATION_PLOT_SCRIPT, dir, "fit: compensation");
+    return markdown(all, c, rows) + (drawn ? "\n![The furnace of the tables and against the walk](furnace.png)\n" : "");
 }
 
 }  // namespace smithlab::fitrun

@@ -82,10 +82,7 @@ void write_outputs(const fs::path& dir, const FitScene& s, const Results& r, con
     write_values(dir / "training.csv", r, ValueSet::training, s.albedos, columns);
     write_values(dir / "validation.csv", r, ValueSet::validation, s.albedos, columns);
     write_shaders(dir, r);
-    if (!s.compensation.alpha.empty())
-        std::fprintf(stderr, "fit: compensation tables: %zu NDFs x %zu alphas\n", s.ndfs.size(),
-                     s.compensation.alpha.size());
-    const std::string compensation = write_compensation(dir, s.ndfs, s.compensation, registry);
+    const std::string compensation = write_compensation(dir, s.ndfs, s.compensation, registry, s.seed, threads);
     const std::string pictures =
         write_pictures(dir, cache, {s.pictures, s.material, s.seed}, r, columns, registry, threads);
     const std::string trends = write_parameter_trends(dir, r);

@@ -5,6 +5,7 @@
 #include <limits>
 #include <variant>
 
+#include "scene/spaced.hpp"
 #include "scene/strict_table.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/fit/diffuse_models.hpp"
@@ -163,16 +164,58 @@ FitScene::Validation read_validation(StrictTable& doc, FitScene::Validation v) {
     return v;
 }
 
+}  // namespace
+
+std::vector<double> FitScene::Compensation::default_alphas() {
+    return report::spaced(1e-4, 1.0, 48, report::Spacing::sqrt);
+}
+
+namespace {
+
 FitScene::Compensation read_compensation(StrictTable& doc, FitScene::Compensation c) {
-    if (auto t = doc.optional_table("compensation", {"alpha", "mu"})) {
+    auto t = doc.optional_table(
+        "compensation",
+        {"alpha", "cosines", "refine", "g2", "eta", "conductors", "furnace_alpha", "furnace_theta", "furnace_walks"});
+    if (!t) return c;
+    c.enabled = true;
+    if (t->has("alpha")) {
         c.alpha = read_bounded(*t, "alpha", 0.0, 1.0, true, false, "(0, 1]");
-        // the C header interpolates between the alphas: two at least, ascending (fit/compensation.hpp)
-        if (c.alpha.size() < 2) t->fail("alpha", "needs 2 values or more (the header interpolates between them)");
+        // the tables interpolate between the alphas: two at least, ascending (fit/albedo_grid.hpp)
+        if (c.alpha.size() < 2) t->fail("alpha", "needs 2 values or more (the tables interpolate between them)");
         for (std::size_t i = 1; i < c.alpha.size(); ++i)
             if (!(c.alpha[i] > c.alpha[i - 1])) t->fail("alpha", "values must ascend");
-        c.mu = t->integer("mu", 2, 4096, c.mu);
-        t->done();
     }
+    c.cosines = t->integer("cosines", 2, 4096, c.cosines);
+    c.refine = t->integer("refine", 1, 100, c.refine);
+    if (t->has("g2")) {
+        c.g2.clear();
+        for (const std::string& g : t->texts("g2")) {
+            if (g != "height-correlated" && g != "separable")
+                t->fail("g2", "must name height-correlated or separable, got '" + g + "'");
+            const G2Form form = g == "separable" ? G2Form::uncorrelated : G2Form::height_correlated;
+            if (std::find(c.g2.begin(), c.g2.end(), form) != c.g2.end()) t->fail("g2", "names '" + g + "' twice");
+            c.g2.push_back(form);
+        }
+        if (c.g2.empty()) t->fail("g2", "is an empty list");
+    }
+    // eta in [1.01, 100]: a relative index of 1 is no interface; both sides of each are tabulated
+    if (t->has("eta")) c.eta = read_bounded(*t, "eta", 1.01, 100.0, false, false, "[1.01, 100]");
+    c.conductors = t->texts("conductors", {});
+    for (const std::string& m : c.conductors) {
+        walk::Material material;
+        try {
+            material = walk::parse_material(m);
+        } catch (const input_error& e) {
+            t->fail("conductors", e.what());
+        }
+        if (!std::holds_alternative<walk::Conductor>(material))
+            t->fail("conductors", "must name conductor(eta=, k=) facets, got '" + m + "'");
+    }
+    if (t->has("furnace_alpha")) c.furnace_alpha = read_bounded(*t, "furnace_alpha", 0.0, 1.0, true, false, "(0, 1]");
+    if (t->has("furnace_theta"))
+        c.furnace_theta = read_bounded(*t, "furnace_theta", 0.0, 90.0, false, true, "[0, 90) degrees");
+    c.furnace_walks = t->integer("furnace_walks", 100, 1'000'000'000, c.furnace_walks);
+    t->done();
     return c;
 }
 

@@ -11,6 +11,7 @@
 #include "scene/limits.hpp"
 #include "scene/scene_ndf.hpp"
 #include "smithlab/registry.hpp"
+#include "smithlab/smith.hpp"
 
 namespace smithlab::fitrun {
 
@@ -40,9 +41,21 @@ struct FitScene {
         std::vector<double> albedo_theta{0.0, 30.0, 50.0, 65.0, 80.0};
         std::int64_t albedo_walks = 100000;
     } validation;
+    // The energy-compensation tables (fit_compensation.hpp): absent (enabled = false) unless the scene has
+    // [compensation].
     struct Compensation {
-        std::vector<double> alpha;
-        std::int64_t mu = 32;
+        bool enabled = false;
+        std::vector<double> alpha = default_alphas();  // the tables' alphas, ascending
+        std::int64_t cosines = 48;                     // warped cosines a row (fit/albedo_grid.hpp)
+        std::int64_t refine = 10;                      // the check grid: refine x finer in sqrt(alpha) and the cosine
+        std::vector<G2Form> g2{G2Form::height_correlated, G2Form::uncorrelated};
+        std::vector<double> eta;              // dielectric tables, each eta from outside and from inside
+        std::vector<std::string> conductors;  // conductor facets of the furnace (walk/facets.hpp specs)
+        std::vector<double> furnace_alpha{0.01, 0.1, 0.3, 0.6, 1.0};
+        std::vector<double> furnace_theta{0.0, 30.0, 60.0, 75.0, 85.0};
+        std::int64_t furnace_walks = 200000;
+        // 48 alphas evenly spaced in sqrt(alpha) from 1e-4 to 1.
+        static std::vector<double> default_alphas();
     } compensation;
     // The pictures (fit_pictures.hpp): absent (enabled = false) unless the scene has [pictures].
     struct Pictures {

@@ -196,27 +196,44 @@ in the same shape. A missing file, or a malformed row, raises ValueError naming 
 
 // ---- compensation -----------------------------------------------------------------------------------------------
 
-py::dict compensation(const AnyNdf& ndf, int n) {
-    require(n >= 2 && n <= 4096, "n", "in [2, 4096] (as the fit's [compensation] mu)", n);
-    fit::CompensationTable t;
+py::dict compensation(const AnyNdf& ndf, int cosines, const std::string& g2) {
+    require(cosines >= 2 && cosines <= 4096, "cosines", "in [2, 4096] (as the fit's [compensation] cosines)", cosines);
+    if (g2 != "height-correlated" && g2 != "separable")
+        throw input_error("g2 must be 'height-correlated' or 'separable', got '" + g2 + "'");
+    if (!ndf.has_param("alpha"))
+        throw input_error("compensation: " + ndf.spec() + " has no parameter alpha (the cosines are warped by it)");
+    const double alpha = ndf.param("alpha");
+    fit::AlbedoOptions opts;
+    opts.tolerance = 1e-8;  // the fit's tables' (fit/fit_compensation.hpp)
+    opts.g2 = g2 == "separable" ? G2Form::uncorrelated : G2Form::height_correlated;
+    const fit::AlbedoGrid grid{{alpha, 2.0 * alpha}, cosines};
+    std::vector<double> mus, E;
+    double missing = 0.0;
     {
         py::gil_scoped_release free;
-        t = fit::compensation_table(ndf, n);
+        const fit::SingleScatteringAlbedo<AnyNdf> albedo(ndf, opts);
+        for (int j = 0; j < cosines; ++j) {
+            mus.push_back(grid.mu(0, j));
+            E.push_back(albedo(mus.back()));
+        }
+        missing = albedo.missing();
     }
     py::dict out;
-    out["cos_theta"] = py::array_t<double>(static_cast<py::ssize_t>(t.mus.size()), t.mus.data());
-    out["E"] = py::array_t<double>(static_cast<py::ssize_t>(t.E.size()), t.E.data());
-    out["E_avg"] = t.E_avg;
+    out["cos_theta"] = py::array_t<double>(static_cast<py::ssize_t>(mus.size()), mus.data());
+    out["E"] = py::array_t<double>(static_cast<py::ssize_t>(E.size()), E.data());
+    out["E_avg"] = 1.0 - missing;
+    out["one_minus_E_avg"] = missing;
     return out;
 }
 
-const char* const compensation_doc = R"(The energy-compensation table of the NDF (Kulla and Conty 2017): E, the
-directional albedo of single scattering off mirror facets (height-correlated G2; dimensionless), at n cosines
-cos_theta = j / (n - 1) of the incident direction (0 grazing, 1 normal; E(0) = 1, the limit), and E_avg = 2 integral
-of E(mu) mu dmu by its own quadrature. A dict: 'cos_theta' and 'E' (float64 arrays of n), 'E_avg' (a float). The
-same bits as the fit's compensation.csv and compensation_avg.csv for the same NDF and n (its [compensation] mu).
-By quadrature (fit/compensation.hpp); tens of milliseconds for 32 cosines (bench_fit's compensation rows). Runs
-without the GIL.)";
+const char* const compensation_doc = R"(One alpha's row of the energy-compensation table of the NDF (Kulla and Conty
+2017): E, the directional albedo of single scattering off mirror facets (dimensionless), at the table's warped
+cosines cos_theta = alpha x^2 / (1 + alpha - x^2), x = j / (cosines - 1) (0 grazing, 1 normal; fit/albedo_grid.hpp),
+alpha the NDF's, and 1 - E_avg = 2 integral of (1 - E(mu)) mu dmu by its own quadrature; g2 'height-correlated'
+(E(0) = 1, the limit) or 'separable' (G1 G1). A dict: 'cos_theta' and 'E' (float64 arrays of `cosines`), 'E_avg' and
+'one_minus_E_avg' (floats). The same
+bits as the fit's compensation.csv and compensation_avg.csv rows of that NDF and G2. By quadrature
+(fit/compensation.hpp, relative tolerance 1e-8); ~0.2 ms a cosine. Runs without the GIL.)";
 
 }  // namespace
 
@@ -228,7 +245,8 @@ void bind_fit(py::module_& m) {
     m.def("diffuse_f", &diffuse_f, py::arg("model"), py::arg("theta_i"), py::arg("theta_o"), py::arg("phi"),
           py::arg("alpha"), py::arg("albedo"), py::arg("constants") = py::none(), diffuse_f_doc);
     m.def("read_fit", &read_fit, py::arg("directory"), py::kw_only(), py::arg("stderr") = false, read_fit_doc);
-    m.def("compensation", &compensation, py::arg("ndf"), py::arg("n") = 32, compensation_doc);
+    m.def("compensation", &compensation, py::arg("ndf"), py::arg("cosines") = 48, py::arg("g2") = "height-correlated",
+          compensation_doc);
 }
 
 }  // namespace smithlab::python

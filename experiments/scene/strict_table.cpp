@@ -57,12 +57,17 @@ bool fits_int64(std::string token) {
 
 }  // namespace
 
-std::vector<double> spaced(double lo, double hi, std::int64_t n, bool log) {
+std::vector<double> spaced(double lo, double hi, std::int64_t n, Spacing spacing) {
     std::vector<double> out;
+    const double s0 = std::sqrt(lo), s1 = std::sqrt(hi);
     for (std::int64_t i = 0; i < n; ++i) {
         const double t = static_cast<double>(i) / static_cast<double>(n - 1);
-        out.push_back(log ? lo * std::pow(hi / lo, t) : lo + t * (hi - lo));
+        const double s = s0 + t * (s1 - s0);
+        out.push_back(spacing == Spacing::log        ? lo * std::pow(hi / lo, t)
+                          : spacing == Spacing::sqrt ? s * s
+                                                     : lo + t * (hi - lo));
     }
+    out.front() = lo;
     out.back() = hi;
     return out;
 }
@@ -330,7 +335,7 @@ toml::value parse_toml(const std::string& text, const std::string& source) {
     }
 }
 
-// A list of numbers, or {log = [lo, hi], n = N}, or {lin = [lo, hi], n = N}.
+// A list of numbers, or {log = [lo, hi], n = N}, {lin = [lo, hi], n = N} or {sqrt = [lo, hi], n = N}.
 std::vector<double> read_axis(StrictTable& t, const std::string& key) {
     const toml::value& v = t.value(key);
     if (v.is_array()) {
@@ -339,20 +344,22 @@ std::vector<double> read_axis(StrictTable& t, const std::string& key) {
         return out;
     }
     if (!v.is_table())
-        t.fail(
-            key,
-            "must be a list of numbers, {log = [lo, hi], n = N} or {lin = [lo, hi], n = N}, got " + describe_toml(v));
-    StrictTable spacing = t.table(key, {"log", "lin", "n"});
-    const bool log = spacing.has("log");
-    if (log == spacing.has("lin")) t.fail(key, "must hold exactly one of log = [lo, hi] and lin = [lo, hi]");
-    const std::string range_key = log ? "log" : "lin";
+        t.fail(key,
+               "must be a list of numbers, {log = [lo, hi], n = N}, {lin = [lo, hi], n = N} or {sqrt = [lo, hi], "
+               "n = N}, got " +
+                   describe_toml(v));
+    StrictTable spacing = t.table(key, {"log", "lin", "sqrt", "n"});
+    const int given = int{spacing.has("log")} + int{spacing.has("lin")} + int{spacing.has("sqrt")};
+    if (given != 1) t.fail(key, "must hold exactly one of log = [lo, hi], lin = [lo, hi] and sqrt = [lo, hi]");
+    const Spacing kind = spacing.has("log") ? Spacing::log : spacing.has("sqrt") ? Spacing::sqrt : Spacing::lin;
+    const std::string range_key = kind == Spacing::log ? "log" : kind == Spacing::sqrt ? "sqrt" : "lin";
     const std::vector<double> range = spacing.reals(range_key);
     const std::int64_t n = spacing.integer("n", 2, max_axis_points);
     spacing.done();
     if (range.size() != 2 || !std::isfinite(range[0]) || !std::isfinite(range[1]) || !(range[0] < range[1]) ||
-        (log && !(range[0] > 0)))
-        spacing.fail(range_key, "must be [lo, hi], finite, with lo < hi (and lo > 0 for log)");
-    return spaced(range[0], range[1], n, log);
+        (kind == Spacing::log && !(range[0] > 0)) || (kind == Spacing::sqrt && !(range[0] >= 0)))
+        spacing.fail(range_key, "must be [lo, hi], finite, with lo < hi (and lo > 0 for log, lo >= 0 for sqrt)");
+    return spaced(range[0], range[1], n, kind);
 }
 
 }  // namespace smithlab::report

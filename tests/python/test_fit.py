@@ -19,7 +19,12 @@ family = "gtr"
 gamma = [1.5]
 [compensation]
 alpha = [0.5, 1.0]
-mu = 4
+cosines = 4
+refine = 2
+g2 = ["separable"]
+furnace_alpha = [0.5]
+furnace_theta = [0.0]
+furnace_walks = 100
 """
 
 
@@ -97,13 +102,14 @@ def test_compensation_is_the_fits_tables(fit_dir):
     specs = [r["ndf"] for r in averages]
     assert len(specs) == 4
     for spec, avg in zip(specs, averages):
-        c = smithlab.compensation(smithlab.ndf(spec), n=4)
+        c = smithlab.compensation(smithlab.ndf(spec), cosines=4, g2="separable")
         points = [r for r in table if r["ndf"] == spec]
         assert c["cos_theta"].tolist() == [float(r["cos_theta"]) for r in points]
         assert c["E"].tolist() == [float(r["E"]) for r in points]
         assert c["E_avg"] == float(avg["E_avg"])
+        assert c["one_minus_E_avg"] == float(avg["one_minus_E_avg"])
     default = smithlab.compensation(smithlab.ndf("ggx(alpha=0.5)"))
-    assert default["cos_theta"].shape == default["E"].shape == (32,) and default["E"][0] == 1.0
+    assert default["cos_theta"].shape == default["E"].shape == (48,) and default["E"][0] == 1.0
 
 
 @pytest.mark.parametrize("call,message", [
@@ -119,7 +125,8 @@ def test_compensation_is_the_fits_tables(fit_dir):
     (lambda: smithlab.diffuse_f("fujii", 0, 0, math.inf, 0.5, 1), "phi must be finite, got inf"),
     (lambda: smithlab.diffuse_f("fujii", 0, 0, 0, 0.0, 1), "alpha must be in (0, 1], got 0"),
     (lambda: smithlab.diffuse_f("fujii", 0, 0, 0, 0.5, 1.5), "albedo must be in [0, 1], got 1.5"),
-    (lambda: smithlab.compensation(smithlab.ndf("ggx(alpha=0.5)"), n=1), "n must be in [2, 4096] (as the fit's [compensation] mu), got 1"),
+    (lambda: smithlab.compensation(smithlab.ndf("ggx(alpha=0.5)"), cosines=1), "cosines must be in [2, 4096] (as the fit's [compensation] cosines), got 1"),
+    (lambda: smithlab.compensation(smithlab.ndf("ggx(alpha=0.5)"), g2="smith"), "g2 must be 'height-correlated' or 'separable', got 'smith'"),
     (lambda: smithlab.read_fit("/nonexistent/fit"), "/nonexistent/fit/constants.csv: no such file"),
 ])
 def test_bad_input_raises_value_error_naming_the_item(call, message):

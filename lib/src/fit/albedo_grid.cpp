@@ -29,25 +29,22 @@ void AlbedoGrid::check() const {
 
 namespace {
 
-// The cell of v in the ascending grid g (clamped to the end cells) and the weight of its upper end in [0, 1].
-std::size_t cell(const std::vector<double>& g, double v, double& t) {
-    if (!(v > g.front())) {
+// The cell of alpha among the ascending alphas (clamped to the end cells) and the weight of its upper end in [0, 1],
+// linear in sqrt(alpha) (the cell is the same found in alpha or in its root: the root is monotone).
+std::size_t cell(const std::vector<double>& alphas, double alpha, double& t) {
+    if (!(alpha > alphas.front())) {
         t = 0.0;
         return 0;
     }
-    if (!(v < g.back())) {
+    if (!(alpha < alphas.back())) {
         t = 1.0;
-        return g.size() - 2;
+        return alphas.size() - 2;
     }
-    const std::size_t hi = static_cast<std::size_t>(std::upper_bound(g.begin(), g.end(), v) - g.begin());
-    t = (v - g[hi - 1]) / (g[hi] - g[hi - 1]);
+    const std::size_t hi =
+        static_cast<std::size_t>(std::upper_bound(alphas.begin(), alphas.end(), alpha) - alphas.begin());
+    const double s0 = std::sqrt(alphas[hi - 1]), s1 = std::sqrt(alphas[hi]);
+    t = (std::sqrt(alpha) - s0) / (s1 - s0);
     return hi - 1;
-}
-
-std::vector<double> sqrt_of(const std::vector<double>& a) {
-    std::vector<double> s(a.size());
-    std::transform(a.begin(), a.end(), s.begin(), [](double v) { return std::sqrt(v); });
-    return s;
 }
 
 // The refined alphas: refine steps of sqrt(alpha) between nodes.
@@ -87,8 +84,7 @@ double AlbedoTable::lookup(double alpha, double mu) const {
     const int j = std::min(static_cast<int>(x), grid.n_x - 2);
     const double tx = x - j;
     double ta = 0.0;
-    const std::vector<double> s = sqrt_of(grid.alphas);
-    const std::size_t i = cell(s, std::sqrt(alpha), ta);
+    const std::size_t i = cell(grid.alphas, alpha, ta);
     const double lo = at(i, j) + tx * (at(i, j + 1) - at(i, j));
     const double hi = at(i + 1, j) + tx * (at(i + 1, j + 1) - at(i + 1, j));
     return lo + ta * (hi - lo);
@@ -99,38 +95,71 @@ double lookup_alpha(const std::vector<double>& alphas, const std::vector<double>
     if (alphas.size() < 2 || values.size() != alphas.size())
         throw input_error("albedo table: malformed (fewer than 2 alphas, or values of another size)");
     double t = 0.0;
-    const std::size_t i = cell(sqrt_of(alphas), std::sqrt(alpha), t);
+    const std::size_t i = cell(alphas, alpha, t);
     return values[i] + t * (values[i + 1] - values[i]);
 }
 
-CheckedTable tabulate(const AlbedoGrid& grid, int refine, const AlbedoRow& row, unsigned threads) {
+std::vector<CheckedTable> tabulate(const AlbedoGrid& grid, int refine, int count, const AlbedoRows& rows,
+                                   unsigned threads) {
     grid.check();
     require(refine >= 1, "the check grid's refinement", ">= 1", refine);
-    CheckedTable out;
-    out.fine.grid = {refined_alphas(grid.alphas, refine), refine * (grid.n_x - 1) + 1};
-    const std::size_t na = out.fine.grid.alphas.size(), nx = static_cast<std::size_t>(out.fine.grid.n_x);
-    out.fine.values.assign(na * nx, 0.0);
+    require(count >= 1, "the number of albedos a row", ">= 1", count);
+    const AlbedoGrid fine{refined_alphas(grid.alphas, refine), refine * (grid.n_x - 1) + 1};
+    const std::size_t na = fine.alphas.size(), nx = static_cast<std::size_t>(fine.n_x);
+    const auto nv = static_cast<std::size_t>(count);
+    std::vector<CheckedTable> out(nv);
+    for (CheckedTable& t : out) {
+        t.fine.grid = fine;
+        t.fine.values.assign(na * nx, 0.0);
+        t.table.grid = grid;
+    }
     parallel_for(na, threads, [&](std::size_t i) {
-        const std::function<double(double)> f = row(out.fine.grid.alphas[i]);
+        const std::function<void(double, double*)> f = rows(fine.alphas[i]);
+        std::vector<double> v(nv);
         for (std::size_t j = 0; j < nx; ++j) {
-            const double v = f(out.fine.grid.mu(i, static_cast<int>(j)));
-            if (!std::isfinite(v))
-                throw std::runtime_error("albedo table: a value that is not finite at alpha " +
-                                         format_shortest(out.fine.grid.alphas[i]));
-            out.fine.values[i * nx + j] = v;
+            f(fine.mu(i, static_cast<int>(j)), v.data());
+            for (std::size_t k = 0; k < nv; ++k) {
+                if (!std::isfinite(v[k]))
+                    throw std::runtime_error("albedo table: a value that is not finite at alpha " +
+                                             format_shortest(fine.alphas[i]));
+                out[k].fine.values[i * nx + j] = v[k];
+            }
         }
     });
-    out.table.grid = grid;
     const auto r = static_cast<std::size_t>(refine);
-    for (std::size_t i = 0; i < grid.alphas.size(); ++i)
-        for (int j = 0; j < grid.n_x; ++j) out.table.values.push_back(out.fine.at(i * r, static_cast<int>(j * r)));
-    for (std::size_t i = 0; i < na; ++i)
-        for (std::size_t j = 0; j < nx; ++j) {
-            const double alpha = out.fine.grid.alphas[i], mu = out.fine.grid.mu(i, static_cast<int>(j));
-            const double e = std::abs(out.table.lookup(alpha, mu) - out.fine.values[i * nx + j]);
-            if (e > out.error.max) out.error = {e, alpha, mu};
-        }
+    for (CheckedTable& t : out) {
+        for (std::size_t i = 0; i < grid.alphas.size(); ++i)
+            for (int j = 0; j < grid.n_x; ++j) t.table.values.push_back(t.fine.at(i * r, static_cast<int>(j * r)));
+        for (std::size_t i = 0; i < na; ++i)
+            for (std::size_t j = 0; j < nx; ++j) {
+                const double alpha = fine.alphas[i], mu = fine.mu(i, static_cast<int>(j));
+                const double e = std::abs(t.table.lookup(alpha, mu) - t.fine.values[i * nx + j]);
+                if (e > t.error.max) t.error = {e, alpha, mu};
+            }
+    }
     return out;
+}
+
+double lookup_missing(const std::vector<double>& alphas, const std::vector<double>& missing, double alpha) {
+    require(alpha > 0.0 && std::isfinite(alpha), "alpha", "finite and > 0", alpha);
+    if (alphas.size() < 2 || missing.size() != alphas.size())
+        throw input_error("missing-energy table: malformed (fewer than 2 alphas, or values of another size)");
+    for (double m : missing) require(m > 0.0 && std::isfinite(m), "1 - E_avg", "finite and > 0", m);
+    double t = 0.0;
+    const std::size_t i = cell(alphas, alpha, t);
+    // ln m linear in ln alpha; below the first node the first cell's line continued, above the last the last value.
+    const double u = alpha < alphas.back() ? std::log(alpha / alphas[i]) / std::log(alphas[i + 1] / alphas[i]) : 1.0;
+    return std::exp(std::log(missing[i]) + u * (std::log(missing[i + 1]) - std::log(missing[i])));
+}
+
+CheckedTable tabulate(const AlbedoGrid& grid, int refine, const AlbedoRow& row, unsigned threads) {
+    return std::move(tabulate(
+        grid, refine, 1,
+        [&](double alpha) -> std::function<void(double, double*)> {
+            std::function<double(double)> f = row(alpha);
+            return [f = std::move(f)](double mu, double* out) { *out = f(mu); };
+        },
+        threads)[0]);
 }
 
 InterpolationError alpha_interpolation_error(const std::vector<double>& fine_alphas, const std::vector<double>& fine,

@@ -87,11 +87,24 @@ double grazing_albedo(FunctionRef P22, FunctionRef Lambda, const FunctionRef* F,
         return w * (smooth_gk(weight, 0.0, phi_c, 0.1 * tolerance) + smooth_gk(weight, phi_c, pi / 2, 0.1 * tolerance));
     };
     auto numerator = [&](double t) { return radial(t, true); };
+    auto denominator = [&](double t) { return radial(t, false); };  // times the integral of cos phi
+    // The inclinations in panels [10^-(k+1), 10^-k], k = 0..8, below 1 (and split at the critical angle's t_c): the
+    // slope law's mass may sit anywhere from t ~ 1e-8 to pi/2 (Beckmann at alpha 1e-4 has none beyond t ~ 1e-3, where
+    // one rule over [0, pi/2] sees only zeros), and no panel is wider than ten times its distance from 0.
     const double t_c = std::asin(c_crit);
-    const double num = c_crit < 1.0
-        ? smooth_gk(numerator, 0.0, t_c, tolerance) + smooth_gk(numerator, t_c, pi / 2, tolerance)
-        : gk(numerator, 0.0, pi / 2, tolerance);
-    const double den = gk([&](double t) { return radial(t, false); }, 0.0, pi / 2, tolerance);  // times integral of cos
+    std::vector<double> edges{0.0};
+    for (int k = 9; k >= 1; --k) edges.push_back(std::pow(10.0, -k));
+    edges.push_back(1.0);
+    if (c_crit < 1.0) edges.push_back(t_c);
+    edges.push_back(pi / 2);
+    std::sort(edges.begin(), edges.end());
+    double num = 0.0, den = 0.0;
+    for (std::size_t k = 0; k + 1 < edges.size(); ++k) {
+        const double a = edges[k], b = edges[k + 1];
+        if (!(b > a)) continue;
+        num += c_crit < 1.0 ? smooth_gk(numerator, a, b, tolerance) : gk(numerator, a, b, tolerance);
+        den += gk(denominator, a, b, tolerance);
+    }
     return num / den;
 }
 
@@ -514,12 +527,7 @@ double compensation_lobe(const CompensationTable& table, double mu_i, double mu_
 
 double fresnel_ms(double F_avg, double E_avg) { return F_avg * F_avg * E_avg / (1.0 - F_avg * (1.0 - E_avg)); }
 
-double kulla_conty_albedo(const AlbedoTable& E, const std::vector<double>& E_avg, double alpha, double mu_i,
-                          double F_avg) {
-    require(F_avg >= 0.0 && F_avg <= 1.0, "F_avg", "in [0, 1]", F_avg);
-    const double avg = lookup_alpha(E.grid.alphas, E_avg, alpha);
-    const double missing = 1.0 - avg;
-    if (!(missing > 0.0)) return 0.0;
+double table_missing(const AlbedoTable& E, double alpha) {
     // 8-point Gauss-Legendre nodes and weights on [-1, 1] (Abramowitz and Stegun, table 25.4).
     static constexpr double x8[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267, 0.9602898564975363};
     static constexpr double w8[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
@@ -533,72 +541,29 @@ double kulla_conty_albedo(const AlbedoTable& E, const std::vector<double>& E_avg
                 integral += w8[k] * half * (1.0 - E.lookup(alpha, mu)) * mu;
             }
     }
-    return fresnel_ms(F_avg, avg) * (1.0 - E.lookup(alpha, mu_i)) * 2.0 * integral / missing;
+    return 2.0 * integral;
+}
+
+std::vector<double> table_missing(const AlbedoTable& E) {
+    std::vector<double> m;
+    for (double alpha : E.grid.alphas) m.push_back(table_missing(E, alpha));
+    return m;
+}
+
+double kulla_conty_ratio(const AlbedoTable& E, const std::vector<double>& missing, double alpha) {
+    return table_missing(E, alpha) / lookup_missing(E.grid.alphas, missing, alpha);
+}
+
+double kulla_conty_albedo(const AlbedoTable& E, const std::vector<double>& missing, double alpha, double mu_i,
+                          double F_avg) {
+    require(F_avg >= 0.0 && F_avg <= 1.0, "F_avg", "in [0, 1]", F_avg);
+    const double E_avg = 1.0 - lookup_missing(E.grid.alphas, missing, alpha);
+    return fresnel_ms(F_avg, E_avg) * (1.0 - E.lookup(alpha, mu_i)) * kulla_conty_ratio(E, missing, alpha);
 }
 
 double turquin_scale(double E_view, double F0) {
     require(E_view > 0.0, "E(mu_view)", "> 0", E_view);
     return 1.0 + F0 * (1.0 - E_view) / E_view;
-}
-
-namespace {
-std::string g17(double x) { return format_g17(x); }
-std::string g9f(double x) {  // a float literal that round-trips the float nearest x
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.9gf", static_cast<double>(static_cast<float>(x)));
-    std::string s = buf;
-    if (s.find_first_of(".eE") == std::string::npos) s.insert(s.size() - 1, ".0");
-    return s;
-}
-}  // namespace
-
-namespace {
-// The first fields of table i's rows: its spec, then its cells of the extra columns.
-std::vector<std::string> spec_fields(const std::string& spec, const SpecColumns& columns, std::size_t i) {
-    std::vector<std::string> f{spec};
-    if (columns.names.empty()) return f;
-    f.insert(f.end(), columns.cells[i].begin(), columns.cells[i].end());
-    return f;
-}
-
-void write_spec_header(std::ostream& out, const SpecColumns& columns, std::size_t tables,
-                       const std::vector<std::string>& rest) {
-    if (!columns.names.empty() && columns.cells.size() != tables)
-        throw input_error("compensation CSV: " + std::to_string(columns.cells.size()) + " rows of columns for " +
-                          std::to_string(tables) + " tables");
-    for (const std::vector<std::string>& row : columns.cells)
-        if (row.size() != columns.names.size())
-            throw input_error("compensation CSV: a row of " + std::to_string(row.size()) + " cells for " +
-                              std::to_string(columns.names.size()) + " columns");
-    std::vector<std::string> header{"ndf"};
-    header.insert(header.end(), columns.names.begin(), columns.names.end());
-    header.insert(header.end(), rest.begin(), rest.end());
-    write_csv_record(out, header);
-}
-}  // namespace
-
-void write_compensation_csv(std::ostream& out, const std::vector<std::pair<std::string, CompensationTable>>& tables,
-                            const SpecColumns& columns) {
-    write_spec_header(out, columns, tables.size(), {"cos_theta", "E"});
-    for (std::size_t i = 0; i < tables.size(); ++i) {
-        const CompensationTable& t = tables[i].second;
-        for (std::size_t j = 0; j < t.mus.size() && j < t.E.size(); ++j) {
-            std::vector<std::string> row = spec_fields(tables[i].first, columns, i);
-            row.push_back(format_shortest(t.mus[j]));
-            row.push_back(g17(t.E[j]));
-            write_csv_record(out, row);
-        }
-    }
-}
-
-void write_compensation_avg_csv(std::ostream& out, const std::vector<std::pair<std::string, CompensationTable>>& tables,
-                                const SpecColumns& columns) {
-    write_spec_header(out, columns, tables.size(), {"E_avg"});
-    for (std::size_t i = 0; i < tables.size(); ++i) {
-        std::vector<std::string> row = spec_fields(tables[i].first, columns, i);
-        row.push_back(g17(tables[i].second.E_avg));
-        write_csv_record(out, row);
-    }
 }
 
 std::string compensation_header_name(std::string_view family_name) {
@@ -616,81 +581,6 @@ std::string compensation_header_name(std::string_view family_name) {
     }
     while (!id.empty() && id.back() == '_') id.pop_back();
     return id;
-}
-
-void write_compensation_header(std::ostream& out, std::string_view family_name, const std::vector<double>& alphas,
-                               const std::vector<double>& mus, const std::vector<std::vector<double>>& E,
-                               const std::vector<double>& E_avg) {
-    if (alphas.size() < 2 || mus.size() < 2 || E.size() != alphas.size() || E_avg.size() != alphas.size())
-        throw input_error(
-            "compensation header: need >= 2 alphas and mus, E[alpha][mu] and E_avg[alpha] of the grid's sizes");
-    for (const std::vector<double>& row : E)
-        if (row.size() != mus.size()) throw input_error("compensation header: a row of E differs in size from mus");
-    for (std::size_t i = 1; i < alphas.size(); ++i)
-        if (!(alphas[i] > alphas[i - 1])) throw input_error("compensation header: alphas must ascend");
-    for (std::size_t j = 1; j < mus.size(); ++j)
-        if (!(mus[j] > mus[j - 1])) throw input_error("compensation header: mus must ascend");
-    const std::string id = compensation_header_name(family_name);
-    std::string guard = id;
-    for (char& c : guard) c = static_cast<char>(c >= 'a' && c <= 'z' ? c - 'a' + 'A' : c);
-    guard += "_COMPENSATION_H";
-    std::string family(family_name);
-    for (std::size_t p; (p = family.find("*/")) != std::string::npos;) family.replace(p, 2, "* /");
-    const std::size_t na = alphas.size(), nm = mus.size();
-
-    out << "/* " << id << ": energy compensation for specular multiple scattering, NDF family " << family << ".\n"
-        << " * Generated by smithlab (fit/compensation.hpp). E(alpha, mu): the directional albedo of single\n"
-        << " * scattering off mirror facets (F = 1) with the height-correlated Smith G2 (Walter et al. 2007, eq. 20),\n"
-        << " * mu = cos(theta); E_avg(alpha) = 2 int_0^1 E mu dmu. Kulla and Conty 2017: f_ms(wi, wo) =\n"
-        << " * (1 - E(mu_i)) (1 - E(mu_o)) / (pi (1 - E_avg)), times F_avg^2 E_avg / (1 - F_avg (1 - E_avg)) for\n"
-        << " * coloured facets; Turquin 2019: f = f_ss (1 + F0 (1 - E(mu_view)) / E(mu_view)).\n"
-        << " * " << id << "_E(alpha, mu) and " << id << "_E_avg(alpha) interpolate (bi)linearly, clamped to the grid:\n"
-        << " * alpha in [" << g17(alphas.front()) << ", " << g17(alphas.back()) << "], mu in [" << g17(mus.front())
-        << ", " << g17(mus.back()) << "]. Self-contained C99 (or C++). */\n"
-        << "#ifndef " << guard << "\n#define " << guard << "\n\n";
-    auto row = [&](const std::vector<double>& v) {
-        std::string s;
-        for (std::size_t k = 0; k < v.size(); ++k) {
-            s += (k % 6 == 0 ? "\n    " : " ");
-            s += g9f(v[k]);
-            if (k + 1 < v.size()) s += ',';
-        }
-        return s;
-    };
-    out << "static const float " << id << "_alpha[" << na << "] = {" << row(alphas) << "\n};\n";
-    out << "static const float " << id << "_mu[" << nm << "] = {" << row(mus) << "\n};\n";
-    out << "static const float " << id << "_E_table[" << na << "][" << nm << "] = {";
-    for (std::size_t i = 0; i < na; ++i) out << "\n  {" << row(E[i]) << "\n  }" << (i + 1 < na ? "," : "");
-    out << "\n};\n";
-    out << "static const float " << id << "_E_avg_table[" << na << "] = {" << row(E_avg) << "\n};\n\n";
-    // The cell of x in an ascending grid g[0..n-1], clamped, and the weight of its upper end.
-    out << "static inline int " << id << "_cell(const float* g, int n, float x, float* t) {\n"
-        << "    int lo = 0, hi = n - 1;\n"
-        << "    if (!(x > g[0])) { *t = 0.0f; return 0; }\n"
-        << "    if (!(x < g[n - 1])) { *t = 1.0f; return n - 2; }\n"
-        << "    while (hi - lo > 1) { int mid = (lo + hi) / 2; if (g[mid] <= x) lo = mid; else hi = mid; }\n"
-        << "    *t = (x - g[lo]) / (g[lo + 1] - g[lo]);\n"
-        << "    return lo;\n"
-        << "}\n\n";
-    out << "/* E(alpha, mu), bilinear in (alpha, mu). */\n"
-        << "static inline float " << id << "_E(float alpha, float mu) {\n"
-        << "    float ta, tm;\n"
-        << "    int i = " << id << "_cell(" << id << "_alpha, " << na << ", alpha, &ta);\n"
-        << "    int j = " << id << "_cell(" << id << "_mu, " << nm << ", mu, &tm);\n"
-        << "    float lo = " << id << "_E_table[i][j] + tm * (" << id << "_E_table[i][j + 1] - " << id
-        << "_E_table[i][j]);\n"
-        << "    float hi = " << id << "_E_table[i + 1][j] + tm * (" << id << "_E_table[i + 1][j + 1] - " << id
-        << "_E_table[i + 1][j]);\n"
-        << "    return lo + ta * (hi - lo);\n"
-        << "}\n\n";
-    out << "/* E_avg(alpha), linear in alpha. */\n"
-        << "static inline float " << id << "_E_avg(float alpha) {\n"
-        << "    float ta;\n"
-        << "    int i = " << id << "_cell(" << id << "_alpha, " << na << ", alpha, &ta);\n"
-        << "    return " << id << "_E_avg_table[i] + ta * (" << id << "_E_avg_table[i + 1] - " << id
-        << "_E_avg_table[i]);\n"
-        << "}\n\n"
-        << "#endif /* " << guard << " */\n";
 }
 
 }  // namespace smithlab::fit

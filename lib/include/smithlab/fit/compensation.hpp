@@ -126,6 +126,12 @@ public:
         return detail::cosine_average([&](double mu) { return albedo(mu, nullptr, 10.0 * opts_.tolerance); },
                                       100.0 * opts_.tolerance);
     }
+    // 1 - E_avg = 2 integral_0^1 (1 - E(mu)) mu dmu, to a relative tolerance of its own (100x E's): the energy single
+    // scattering misses, which Kulla and Conty's lobe is divided by. At small alpha it is ~alpha^2 (1e-7 at alpha
+    // 1e-4 for GGX), far below what 1 - average() keeps; E's own error (its tolerance, relative to E ~ 1) bounds it.
+    double missing() const {
+        return detail::cosine_average([&](double mu) { return 1.0 - albedo(mu, nullptr); }, 100.0 * opts_.tolerance);
+    }
 
 private:
     double albedo(double mu, const FunctionRef* F) const { return albedo(mu, F, opts_.tolerance); }
@@ -193,36 +199,27 @@ inline double turquin_scale(const CompensationTable& table, double mu_view, doub
 }
 
 // The albedo of Kulla and Conty 2017's lobe as a renderer evaluates it from the tables: f_ms F_ms with
-// f_ms(wi, wo) = (1 - E(alpha, mu_i)) (1 - E(alpha, mu_o)) / (pi (1 - E_avg(alpha))), E and E_avg looked up (E_avg
-// at E's alphas), integrated over wo:
-//     F_ms (1 - E(alpha, mu_i)) 2 integral_0^1 (1 - E(alpha, mu)) mu dmu / (1 - E_avg(alpha)),
-// F_ms = fresnel_ms(F_avg, E_avg(alpha)) (1 for mirror facets, F_avg = 1). The integral over the table's cells in mu
-// (8-point Gauss-Legendre a cell: the lookup is linear in x, smooth in mu within a cell). 0 where E_avg >= 1.
-double kulla_conty_albedo(const AlbedoTable& E, const std::vector<double>& E_avg, double alpha, double mu_i,
+// f_ms(wi, wo) = (1 - E(alpha, mu_i)) (1 - E(alpha, mu_o)) / (pi m(alpha)), E looked up (AlbedoTable::lookup) and
+// m = 1 - E_avg by lookup_missing from `missing` (1 - E_avg at E's alphas), integrated over wo:
+//     F_ms (1 - E(alpha, mu_i)) 2 integral_0^1 (1 - E(alpha, mu)) mu dmu / m(alpha),
+// F_ms = fresnel_ms(F_avg, 1 - m(alpha)) (1 for mirror facets, F_avg = 1). The integral over the table's cells in mu
+// (8-point Gauss-Legendre a cell: the lookup is linear in x, smooth in mu within a cell).
+double kulla_conty_albedo(const AlbedoTable& E, const std::vector<double>& missing, double alpha, double mu_i,
                           double F_avg = 1.0);
+// Its factor that does not depend on mu_i: 2 integral_0^1 (1 - E(alpha, mu)) mu dmu / m(alpha), 1 where m is the
+// table's own (table_missing) at E's alphas.
+double kulla_conty_ratio(const AlbedoTable& E, const std::vector<double>& missing, double alpha);
+// The table's own 1 - E_avg at alpha: 2 integral_0^1 (1 - E(alpha, mu)) mu dmu of the lookup; and at each of its
+// alphas. Given to a renderer as its 1 - E_avg, it makes Kulla and Conty's lobe put back exactly 1 - E(alpha, mu_i)
+// of the table at its alphas (and, with lookup_missing between them, within the furnace measured by fit/furnace.hpp):
+// the exact 1 - E_avg (SingleScatteringAlbedo::missing) would leave the table's error in E, integrated, divided by
+// 1 - E_avg, which is ~alpha^2 at small alpha (4e-3 in the furnace of GGX's 32 x 48 table at alpha 0.03).
+double table_missing(const AlbedoTable& E, double alpha);
+std::vector<double> table_missing(const AlbedoTable& E);
 
-// Columns beside a CSV's ndf column (one per NDF parameter, say): their names, and each table's cells in the tables'
-// order (empty: no such columns).
-struct SpecColumns {
-    std::vector<std::string> names;
-    std::vector<std::vector<std::string>> cells;
-};
-
-// CSV: `ndf,COLUMNS,cos_theta,E`, one row per table point, ndf the spec string (e.g. "ggx(alpha=0.5)"); and
-// `ndf,COLUMNS,E_avg`. input_error when columns has cells for another number of tables, or rows of another width.
-void write_compensation_csv(std::ostream& out, const std::vector<std::pair<std::string, CompensationTable>>& tables,
-                            const SpecColumns& columns = {});
-void write_compensation_avg_csv(std::ostream& out, const std::vector<std::pair<std::string, CompensationTable>>& tables,
-                                const SpecColumns& columns = {});
-
-// A self-contained C header (C99, or C++) for a renderer: static const float tables of E over (alpha, mu) and
-// E_avg over alpha for one NDF family, and lookups NAME_E(alpha, mu) and NAME_E_avg(alpha) with bilinear
-// (linear) interpolation, clamped to the grid; NAME is family_name made an identifier ("gtr(gamma=1.5)" ->
-// smithlab_gtr_gamma_1_5). alphas and mus ascending, E[alpha][mu]; input_error on mismatched sizes.
-void write_compensation_header(std::ostream& out, std::string_view family_name, const std::vector<double>& alphas,
-                               const std::vector<double>& mus, const std::vector<std::vector<double>>& E,
-                               const std::vector<double>& E_avg);
-// The identifier the header's names start with.
+// "smithlab_" + the family name made an identifier: runs of other characters than letters and digits become one '_'
+// ("gtr(gamma=1.5)" -> smithlab_gtr_gamma_1_5); the names of the renderer formats start with it
+// (compensation_formats.hpp).
 std::string compensation_header_name(std::string_view family_name);
 
 }  // namespace smithlab::fit
