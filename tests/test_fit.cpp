@@ -429,7 +429,8 @@ TEST_CASE("fit: the tables name an NDF's parameters in columns of their own besi
     CHECK_THAT(slurp(o / "validation.csv"), Contains("\ngtr(gamma=3),3,"));
     CHECK(slurp(o / "compensation.csv")
               .rfind("ndf,alpha,gamma,g2,cos_theta,E\n\"gtr(alpha=0.5, gamma=1.5)\",0.5,1.5,separable,0,", 0) == 0);
-    CHECK(slurp(o / "compensation_avg.csv").rfind("ndf,alpha,gamma,g2,E_avg\n", 0) == 0);
+    CHECK(slurp(o / "compensation_avg.csv")
+              .rfind("ndf,alpha,gamma,g2,E_avg,one_minus_E_avg,table_one_minus_E_avg\n", 0) == 0);
     fs::remove_all(d);
 }
 
