@@ -439,7 +439,7 @@ TEST_CASE("fit: [compensation] writes every table, its errors, its renderer form
     const fs::path d = fresh_directory("fitcompensation");
     write(d / "s.toml",
           tiny_scene +
-              "[compensation]\nalpha = {sqrt = [0.01, 1.0], n = 2}\ncosines = 6\nrefine = 2\n"
+              "[compensation]\nalpha = {sqrt = [0.01, 1.0], n = 3}\ncosines = 6\nrefine = 2\n"
               "eta = [1.5]\nconductors = [\"conductor(eta=0.2, k=3)\"]\nfurnace_alpha = [0.5]\n"
               "furnace_theta = [0.0, 60.0]\nfurnace_walks = 2000\n");
     const Run r = run("fit '" + (d / "s.toml").string() + "' --output '" + (d / "out").string() + "' --threads 2");
@@ -456,20 +456,22 @@ TEST_CASE("fit: [compensation] writes every table, its errors, its renderer form
         std::istringstream in(line);
         return smithlab::read_csv(in).at(0).fields;
     };
-    // Two G2 forms x 2 alphas x 6 cosines; each dielectric row from both sides.
+    // Two G2 forms x 3 alphas (0.01, 0.55^2, 1: evenly spaced in sqrt(alpha)) x 6 cosines; each dielectric row from
+    // both sides.
     const std::vector<std::string> E = lines(slurp(o / "compensation.csv"));
-    REQUIRE(E.size() == 1 + 2 * 2 * 6);
+    REQUIRE(E.size() == 1 + 2 * 3 * 6);
     CHECK(E[0] == "ndf,alpha,g2,cos_theta,E");
     CHECK(E[1] == "ggx(alpha=0.01),0.01,height-correlated,0,1");  // the grazing limit of the height-correlated G2
-    CHECK_THAT(E[13], Catch::Matchers::StartsWith("ggx(alpha=0.01),0.01,separable,0,"));
+    CHECK(std::stod(fields(E[7])[1]) == Approx(0.3025).epsilon(1e-15));
+    CHECK_THAT(E[19], Catch::Matchers::StartsWith("ggx(alpha=0.01),0.01,separable,0,"));
     // A node of the table is the albedo there (the cosine x = 0.6 of alpha = 1 unwarped: mu = 0.36 / 1.64).
-    const std::vector<std::string> node = fields(E[10]);
+    const std::vector<std::string> node = fields(E[16]);
     REQUIRE(node.size() == 5);
     CHECK(std::stod(node[3]) == Approx(0.36 / 1.64).epsilon(1e-15));
     const fit::SingleScatteringAlbedo<smithlab::Ggx> exact(smithlab::ggx(1.0), {.tolerance = 1e-8});
     CHECK(std::stod(node[4]) == Approx(exact(std::stod(node[3]))).epsilon(1e-9));
     const std::vector<std::string> dielectric = lines(slurp(o / "compensation_dielectric.csv"));
-    REQUIRE(dielectric.size() == 1 + 2 * 2 * 2 * 6);
+    REQUIRE(dielectric.size() == 1 + 2 * 3 * 2 * 6);
     CHECK(dielectric[0] == "ndf,alpha,g2,eta,side,cos_theta,E_R,E_T");
     CHECK_THAT(slurp(o / "compensation_dielectric.csv"), Contains(",height-correlated,1.5,inside,"));
     const std::vector<std::string> errors = lines(slurp(o / "compensation_error.csv"));
@@ -491,6 +493,23 @@ TEST_CASE("fit: [compensation] writes every table, its errors, its renderer form
             CHECK(std::stod(f[8]) == 0.0);
         }
         CHECK(std::isfinite(std::stod(f[6])));
+    }
+    // A dielectric's rows come as total, R, T: the parts add up, traced and compensated (Turquin's division keeps the
+    // single scattering's ratio), and from outside R is the small part, as the walk finds it (a side or hemisphere
+    // mixed up would swap them).
+    for (std::size_t k = 1; k + 2 < furnace.size(); ++k) {
+        const std::vector<std::string> total = fields(furnace[k]);
+        if (total[2].rfind("dielectric", 0) != 0 || total[3] != "total") continue;
+        const std::vector<std::string> R = fields(furnace[k + 1]), T = fields(furnace[k + 2]);
+        INFO(furnace[k] << "\n" << furnace[k + 1] << "\n" << furnace[k + 2]);
+        REQUIRE(R[3] == "R");
+        REQUIRE(T[3] == "T");
+        CHECK(std::abs(std::stod(R[6]) + std::stod(T[6]) - std::stod(total[6])) < 1e-12);
+        CHECK(std::abs(std::stod(R[7]) + std::stod(T[7]) - std::stod(total[7])) < 1e-12);
+        if (total[2].find("outside") != std::string::npos) {
+            CHECK(std::stod(R[6]) < 0.25);
+            CHECK(std::abs(std::stod(R[6]) - std::stod(R[7])) < 0.05);
+        }
     }
     for (const char* id : {"smithlab_ggx_hc", "smithlab_ggx_sep", "smithlab_ggx_hc_E_R_E_T_eta_1_5_outside",
                            "smithlab_ggx_sep_E_R_E_T_eta_1_5_inside"})

@@ -78,10 +78,10 @@ FamilyTables make_tables(const FitFamily& f, G2Form form, const FitScene::Compen
                 };
             };
             const fit::AlbedoRow sum = [&](double alpha) -> std::function<double(double)> {
-                auto E = albedo_at(registry, f, alpha, form);
-                return [E, rel](double mu) {
-                    const auto e = E->dielectric(mu, rel);
-                    return e.R + e.T;
+                return [row = rows(alpha)](double mu) {
+                    double v[3];
+                    row(mu, v);
+                    return v[2];
                 };
             };
             std::vector<fit::CheckedTable> t = fit::tabulate(grid, refine, 3, rows, threads);

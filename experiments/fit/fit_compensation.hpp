@@ -45,7 +45,7 @@ struct FamilyTables {
     G2Form g2 = G2Form::height_correlated;
     MeasuredTable E;
     std::vector<double> exact_missing;  // 1 - E_avg at E's alphas, each by its own quadrature (of 1 - E)
-    std::vector<double> missing;        // the table's own 1 - E_avg there (fit::table_missing): the renderers'
+    std::vector<double> missing;        // the table's own 1 - E_avg there (fit::table_missing): the formats'
     std::vector<DielectricTables> dielectrics;
 };
 

@@ -200,6 +200,10 @@ FitScene::Compensation read_compensation(StrictTable& doc, FitScene::Compensatio
     }
     // eta in [1.01, 100]: a relative index of 1 is no interface; both sides of each are tabulated
     if (t->has("eta")) c.eta = read_bounded(*t, "eta", 1.01, 100.0, false, false, "[1.01, 100]");
+    for (std::size_t i = 0; i < c.eta.size(); ++i)
+        if (std::find(c.eta.begin(), c.eta.begin() + static_cast<std::ptrdiff_t>(i), c.eta[i]) !=
+            c.eta.begin() + static_cast<std::ptrdiff_t>(i))
+            t->fail("eta", "names " + format_shortest(c.eta[i]) + " twice");
     c.conductors = t->texts("conductors", {});
     for (const std::string& m : c.conductors) {
         walk::Material material;

@@ -90,15 +90,6 @@ double AlbedoTable::lookup(double alpha, double mu) const {
     return lo + ta * (hi - lo);
 }
 
-double lookup_alpha(const std::vector<double>& alphas, const std::vector<double>& values, double alpha) {
-    require(alpha > 0.0 && std::isfinite(alpha), "alpha", "finite and > 0", alpha);
-    if (alphas.size() < 2 || values.size() != alphas.size())
-        throw input_error("albedo table: malformed (fewer than 2 alphas, or values of another size)");
-    double t = 0.0;
-    const std::size_t i = cell(alphas, alpha, t);
-    return values[i] + t * (values[i + 1] - values[i]);
-}
-
 std::vector<CheckedTable> tabulate(const AlbedoGrid& grid, int refine, int count, const AlbedoRows& rows,
                                    unsigned threads) {
     grid.check();
@@ -160,21 +151,6 @@ CheckedTable tabulate(const AlbedoGrid& grid, int refine, const AlbedoRow& row, 
             return [f = std::move(f)](double mu, double* out) { *out = f(mu); };
         },
         threads)[0]);
-}
-
-InterpolationError alpha_interpolation_error(const std::vector<double>& fine_alphas, const std::vector<double>& fine,
-                                             int refine) {
-    std::vector<double> alphas, values;
-    for (std::size_t i = 0; i < fine_alphas.size(); i += static_cast<std::size_t>(refine)) {
-        alphas.push_back(fine_alphas[i]);
-        values.push_back(fine[i]);
-    }
-    InterpolationError worst;
-    for (std::size_t i = 0; i < fine_alphas.size(); ++i) {
-        const double e = std::abs(lookup_alpha(alphas, values, fine_alphas[i]) - fine[i]);
-        if (e > worst.max) worst = {e, fine_alphas[i], 0.0};
-    }
-    return worst;
 }
 
 InterpolationError below_grid_error(const CheckedTable& t, const AlbedoRow& row, const std::vector<double>& factors,

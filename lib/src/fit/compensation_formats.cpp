@@ -373,10 +373,12 @@ void write_png16(const std::filesystem::path& path, const CompensationExport& e)
     const AlbedoTable& t = *e.E;
     std::vector<png_uint_16> pixels(t.values.size());
     for (std::size_t k = 0; k < t.values.size(); ++k) {
-        const double v = t.values[k];
-        if (!(v >= 0.0 && v <= 1.0))
-            throw input_error("16-bit PNG " + path.string() + ": " + table_item(t, k) + " is " + format_g17(v) +
-                              ", outside [0, 1] (a pixel is round(E * 65535))");
+        // An albedo computed to its quadrature's tolerance may pass 1 (or 0) by a rounding (1 + 2e-16 at a node where
+        // E -> 1): within 1e-9, far below a pixel's 1.5e-5, it is the end value; beyond, the table is refused.
+        const double v = std::clamp(t.values[k], 0.0, 1.0);
+        if (!(std::abs(v - t.values[k]) <= 1e-9))
+            throw input_error("16-bit PNG " + path.string() + ": " + table_item(t, k) + " is " +
+                              format_g17(t.values[k]) + ", outside [0, 1] (a pixel is round(E * 65535))");
         pixels[k] = static_cast<png_uint_16>(std::lround(v * 65535.0));
     }
     // libpng's simplified API (png.h, "SIMPLIFIED API"): a linear 16-bit grey image is written as it is (gAMA 1.0);

@@ -75,18 +75,13 @@ using AlbedoRows = std::function<std::function<void(double mu, double* out)>(dou
 std::vector<CheckedTable> tabulate(const AlbedoGrid& grid, int refine, int count, const AlbedoRows& rows,
                                    unsigned threads = 0);
 
-// The same measure for a 1-D table over alpha (linear in sqrt(alpha), the end value outside): `fine` the exact
-// values at the refined alphas, nodes every refine-th. Returns the worst error and its alpha (mu = 0).
-InterpolationError alpha_interpolation_error(const std::vector<double>& fine_alphas, const std::vector<double>& fine,
-                                             int refine);
-double lookup_alpha(const std::vector<double>& alphas, const std::vector<double>& values, double alpha);
-
 // The missing energy m = 1 - E_avg over alpha (each > 0): ln m linear in ln alpha between the nodes; below the first
 // alpha the first interval's power of alpha continued, above the last the last value. 1 - E_avg falls as a power of
 // alpha at small alpha (~alpha^2: E is a function of mu / alpha there), which linear interpolation in sqrt(alpha)
-// misses between the first nodes by a factor 7 (GGX, 32 nodes from 1e-4); in logs it stays within 1.5 % of the
-// exact one (10x finer in sqrt(alpha), tests/test_compensation.cpp), and Kulla and Conty's lobe, divided by m, needs m
-// to a relative accuracy, which a float of 1 - m cannot keep below m ~ 1e-7.
+// misses between the first nodes by a factor 7 (GGX, 32 nodes from 1e-4 to 1, measured against the exact values 10x
+// finer in sqrt(alpha)); in logs it stays within 1.5 % there. Kulla and Conty's lobe, divided by m, needs m to a
+// relative accuracy, which 1 - E_avg as a float cannot keep: floats below 1 are 6e-8 apart (60 % of GGX's m at
+// alpha 1e-4, 9.7e-8), and 1 - m rounds to 1 below m = 3e-8.
 double lookup_missing(const std::vector<double>& alphas, const std::vector<double>& missing, double alpha);
 
 // Below the grid: the worst |lookup - exact| at alpha = alphas.front() times each of `factors` (< 1), over the
