@@ -471,8 +471,9 @@ TEST_CASE("dielectric albedo: reflection and transmission against the integrals 
     CHECK_THROWS_AS(E.dielectric(0.5, -1.0), smithlab::input_error);
 }
 
+// [slow]: 222 000 values of E (30 s of two cores in Release; past the 10-minute limit under the sanitizers).
 TEST_CASE("the warped table: its error measure against a dense direct check, and GGX's E within 1e-3",
-          "[compensation]") {
+          "[compensation][slow]") {
     CHECK(std::abs(fit::unwarp_cosine(0.01, fit::warp_cosine(0.01, 0.37)) - 0.37) < 1e-14);
     // A function with a feature at mu ~ alpha: the measured error equals the largest one found directly.
     const fit::AlbedoGrid g{{0.01, 0.09, 0.25, 1.0}, 9};
