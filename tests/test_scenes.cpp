@@ -159,7 +159,7 @@ TEST_CASE("scenes: integers are 64-bit and bounded, an axis holds at most 1e7 po
         d, "both.toml",
         "[grid]\nalpha = { log = [0.1, 1.0], lin = [0.1, 1.0], n = 3 }\nmu = [1.0]\n[[ndf]]\nfamily = \"ggx\"\n" +
             variant_lines,
-        "grid.alpha must hold exactly one of log = [lo, hi], lin = [lo, hi] and sqrt = [lo, hi]");
+        "grid.alpha must hold exactly one of log = [lo, hi], lin = [lo, hi], sqrt = [lo, hi] and cbrt = [lo, hi]");
 }
 
 TEST_CASE("scenes: work beyond the limit is refused at once with the estimate, and --max-work raises the limit",

@@ -49,7 +49,8 @@ MeasuredTable measured(std::string name, fit::CheckedTable t, const fit::AlbedoR
 
 FamilyTables make_tables(const FitFamily& f, G2Form form, const FitScene::Compensation& c, const NdfRegistry& registry,
                          unsigned threads) {
-    const fit::AlbedoGrid grid{c.alpha, static_cast<int>(c.cosines)};
+    fit::AlbedoGrid grid{c.alpha, {}, static_cast<int>(c.cosines)};
+    for (double a : c.alpha) grid.scales.push_back(albedo_at(registry, f, a, form)->warp_scale());
     const int refine = static_cast<int>(c.refine);
     FamilyTables out;
     out.family = &f;

@@ -59,12 +59,14 @@ bool fits_int64(std::string token) {
 
 std::vector<double> spaced(double lo, double hi, std::int64_t n, Spacing spacing) {
     std::vector<double> out;
-    const double s0 = std::sqrt(lo), s1 = std::sqrt(hi);
+    const bool cube = spacing == Spacing::cbrt;
+    const double s0 = cube ? std::cbrt(lo) : std::sqrt(lo), s1 = cube ? std::cbrt(hi) : std::sqrt(hi);
     for (std::int64_t i = 0; i < n; ++i) {
         const double t = static_cast<double>(i) / static_cast<double>(n - 1);
         const double s = s0 + t * (s1 - s0);
         out.push_back(spacing == Spacing::log        ? lo * std::pow(hi / lo, t)
                           : spacing == Spacing::sqrt ? s * s
+                          : cube                     ? s * s * s
                                                      : lo + t * (hi - lo));
     }
     out.front() = lo;
@@ -335,7 +337,8 @@ toml::value parse_toml(const std::string& text, const std::string& source) {
     }
 }
 
-// A list of numbers, or {log = [lo, hi], n = N}, {lin = [lo, hi], n = N} or {sqrt = [lo, hi], n = N}.
+// A list of numbers, or {log = [lo, hi], n = N}, {lin = [lo, hi], n = N}, {sqrt = [lo, hi], n = N} or
+// {cbrt = [lo, hi], n = N}.
 std::vector<double> read_axis(StrictTable& t, const std::string& key) {
     const toml::value& v = t.value(key);
     if (v.is_array()) {
@@ -345,20 +348,30 @@ std::vector<double> read_axis(StrictTable& t, const std::string& key) {
     }
     if (!v.is_table())
         t.fail(key,
-               "must be a list of numbers, {log = [lo, hi], n = N}, {lin = [lo, hi], n = N} or {sqrt = [lo, hi], "
-               "n = N}, got " +
+               "must be a list of numbers, {log = [lo, hi], n = N}, {lin = [lo, hi], n = N}, {sqrt = [lo, hi], "
+               "n = N} or {cbrt = [lo, hi], n = N}, got " +
                    describe_toml(v));
-    StrictTable spacing = t.table(key, {"log", "lin", "sqrt", "n"});
-    const int given = int{spacing.has("log")} + int{spacing.has("lin")} + int{spacing.has("sqrt")};
-    if (given != 1) t.fail(key, "must hold exactly one of log = [lo, hi], lin = [lo, hi] and sqrt = [lo, hi]");
-    const Spacing kind = spacing.has("log") ? Spacing::log : spacing.has("sqrt") ? Spacing::sqrt : Spacing::lin;
-    const std::string range_key = kind == Spacing::log ? "log" : kind == Spacing::sqrt ? "sqrt" : "lin";
+    StrictTable spacing = t.table(key, {"log", "lin", "sqrt", "cbrt", "n"});
+    const int given =
+        int{spacing.has("log")} + int{spacing.has("lin")} + int{spacing.has("sqrt")} + int{spacing.has("cbrt")};
+    if (given != 1)
+        t.fail(key, "must hold exactly one of log = [lo, hi], lin = [lo, hi], sqrt = [lo, hi] and cbrt = [lo, hi]");
+    const Spacing kind = spacing.has("log") ? Spacing::log
+        : spacing.has("sqrt")               ? Spacing::sqrt
+        : spacing.has("cbrt")               ? Spacing::cbrt
+                                            : Spacing::lin;
+    const std::string range_key = kind == Spacing::log ? "log"
+        : kind == Spacing::sqrt                        ? "sqrt"
+        : kind == Spacing::cbrt                        ? "cbrt"
+                                                       : "lin";
     const std::vector<double> range = spacing.reals(range_key);
     const std::int64_t n = spacing.integer("n", 2, max_axis_points);
     spacing.done();
     if (range.size() != 2 || !std::isfinite(range[0]) || !std::isfinite(range[1]) || !(range[0] < range[1]) ||
-        (kind == Spacing::log && !(range[0] > 0)) || (kind == Spacing::sqrt && !(range[0] >= 0)))
-        spacing.fail(range_key, "must be [lo, hi], finite, with lo < hi (and lo > 0 for log, lo >= 0 for sqrt)");
+        (kind == Spacing::log && !(range[0] > 0)) ||
+        ((kind == Spacing::sqrt || kind == Spacing::cbrt) && !(range[0] >= 0)))
+        spacing.fail(range_key,
+                     "must be [lo, hi], finite, with lo < hi (and lo > 0 for log, lo >= 0 for sqrt and cbrt)");
     return spaced(range[0], range[1], n, kind);
 }
 

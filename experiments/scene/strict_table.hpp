@@ -83,8 +83,9 @@ void check_scene_text(const std::string& text, const std::string& source);
 toml::value parse_toml(const std::string& text, const std::string& source);
 
 // An axis of a scene, the one convention of every scene format: a list of numbers, or {log = [lo, hi], n = N}
-// (N points evenly spaced in log), {lin = [lo, hi], n = N} or {sqrt = [lo, hi], n = N} (evenly spaced in the square
-// root: alpha in perceptual roughness), 2 <= N <= 1e7. An empty list is refused.
+// (N points evenly spaced in log), {lin = [lo, hi], n = N}, {sqrt = [lo, hi], n = N} (evenly spaced in the square
+// root: alpha in perceptual roughness) or {cbrt = [lo, hi], n = N} (in the cube root), 2 <= N <= 1e7. An empty list
+// is refused.
 std::vector<double> read_axis(StrictTable& t, const std::string& key);
 
 }  // namespace smithlab::report

@@ -10,12 +10,27 @@
 
 namespace smithlab::fit {
 
-double warp_cosine(double alpha, double mu) { return std::sqrt((1.0 + alpha) * mu / (mu + alpha)); }
+double warp_cosine(double c, double mu) { return std::sqrt((1.0 + c) * mu / (mu + c)); }
 
-double unwarp_cosine(double alpha, double x) {
+double unwarp_cosine(double c, double x) {
     if (x >= 1.0) return 1.0;
     const double w = x * x;
-    return alpha * w / ((1.0 + alpha) - w);
+    return c * w / ((1.0 + c) - w);
+}
+
+double warp_scale(FunctionRef Lambda) {
+    // Measured constants (albedo_grid.hpp): the dip of E lies near Lambda = 0.3; six times that cosine spreads the
+    // nodes over the dip and keeps the warp mild near mu = 1 at large alpha.
+    constexpr double Lambda_dip = 0.3, factor = 6.0;
+    double lo = 1e-30, hi = 1e30;  // cot(theta): Lambda(lo) > Lambda_dip > Lambda(hi)
+    if (!(Lambda(lo) > Lambda_dip && Lambda(hi) < Lambda_dip))
+        throw input_error("the warp's scale: Lambda does not cross 0.3 for cot(theta) in [1e-30, 1e30]");
+    while (hi / lo > 1.0 + 1e-12) {
+        const double m = std::sqrt(lo * hi);
+        (Lambda(m) > Lambda_dip ? lo : hi) = m;
+    }
+    const double cot = std::sqrt(lo * hi);
+    return factor * cot / std::sqrt(1.0 + cot * cot);
 }
 
 void AlbedoGrid::check() const {
@@ -24,6 +39,10 @@ void AlbedoGrid::check() const {
         require(alphas[i] > 0.0 && std::isfinite(alphas[i]), "albedo table: alpha", "finite and > 0", alphas[i]);
         if (i > 0 && !(alphas[i] > alphas[i - 1])) throw input_error("albedo table: alphas must ascend");
     }
+    if (scales.size() != alphas.size())
+        throw input_error("albedo table: " + std::to_string(scales.size()) + " warp scales for " +
+                          std::to_string(alphas.size()) + " alphas");
+    for (double c : scales) require(c > 0.0 && std::isfinite(c), "albedo table: a warp scale", "finite and > 0", c);
     require(n_x >= 2, "albedo table: the number of cosines", ">= 2", n_x);
 }
 
@@ -80,7 +99,7 @@ void parallel_for(std::size_t n, unsigned threads, const Job& job) {
 double AlbedoTable::lookup(double alpha, double mu) const {
     require(alpha > 0.0 && std::isfinite(alpha), "alpha", "finite and > 0", alpha);
     require(mu >= 0.0 && mu <= 1.0, "mu = cos(theta)", "in [0, 1]", mu);
-    const double x = warp_cosine(alpha, mu) * (grid.n_x - 1);
+    const double x = warp_cosine(grid.scale(alpha), mu) * (grid.n_x - 1);
     const int j = std::min(static_cast<int>(x), grid.n_x - 2);
     const double tx = x - j;
     double ta = 0.0;
@@ -95,7 +114,8 @@ std::vector<CheckedTable> tabulate(const AlbedoGrid& grid, int refine, int count
     grid.check();
     require(refine >= 1, "the check grid's refinement", ">= 1", refine);
     require(count >= 1, "the number of albedos a row", ">= 1", count);
-    const AlbedoGrid fine{refined_alphas(grid.alphas, refine), refine * (grid.n_x - 1) + 1};
+    AlbedoGrid fine{refined_alphas(grid.alphas, refine), {}, refine * (grid.n_x - 1) + 1};
+    for (double a : fine.alphas) fine.scales.push_back(grid.scale(a));
     const std::size_t na = fine.alphas.size(), nx = static_cast<std::size_t>(fine.n_x);
     const auto nv = static_cast<std::size_t>(count);
     std::vector<CheckedTable> out(nv);
@@ -131,16 +151,24 @@ std::vector<CheckedTable> tabulate(const AlbedoGrid& grid, int refine, int count
     return out;
 }
 
-double lookup_missing(const std::vector<double>& alphas, const std::vector<double>& missing, double alpha) {
+double lookup_power_law(const std::vector<double>& alphas, const std::vector<double>& values, double alpha,
+                        const char* what) {
     require(alpha > 0.0 && std::isfinite(alpha), "alpha", "finite and > 0", alpha);
-    if (alphas.size() < 2 || missing.size() != alphas.size())
-        throw input_error("missing-energy table: malformed (fewer than 2 alphas, or values of another size)");
-    for (double m : missing) require(m > 0.0 && std::isfinite(m), "1 - E_avg", "finite and > 0", m);
+    if (alphas.size() < 2 || values.size() != alphas.size())
+        throw input_error(std::string(what) +
+                          " over alpha: malformed (fewer than 2 alphas, or values of another size)");
     double t = 0.0;
     const std::size_t i = cell(alphas, alpha, t);
-    // ln m linear in ln alpha; below the first node the first cell's line continued, above the last the last value.
+    for (std::size_t k : {i, i + 1})
+        require(values[k] > 0.0 && std::isfinite(values[k]), what, "finite and > 0", values[k]);
+    // ln v linear in ln alpha; below the first node the first cell's line continued, above the last the last value.
     const double u = alpha < alphas.back() ? std::log(alpha / alphas[i]) / std::log(alphas[i + 1] / alphas[i]) : 1.0;
-    return std::exp(std::log(missing[i]) + u * (std::log(missing[i + 1]) - std::log(missing[i])));
+    return std::exp(std::log(values[i]) + u * (std::log(values[i + 1]) - std::log(values[i])));
+}
+
+double lookup_missing(const std::vector<double>& alphas, const std::vector<double>& missing, double alpha) {
+    for (double m : missing) require(m > 0.0 && std::isfinite(m), "1 - E_avg", "finite and > 0", m);
+    return lookup_power_law(alphas, missing, alpha, "1 - E_avg");
 }
 
 CheckedTable tabulate(const AlbedoGrid& grid, int refine, const AlbedoRow& row, unsigned threads) {
@@ -158,10 +186,10 @@ InterpolationError below_grid_error(const CheckedTable& t, const AlbedoRow& row,
     std::vector<InterpolationError> each(factors.size());
     parallel_for(factors.size(), threads, [&](std::size_t k) {
         require(factors[k] > 0.0 && factors[k] < 1.0, "a below-grid factor", "in (0, 1)", factors[k]);
-        const double alpha = t.table.grid.alphas.front() * factors[k];
+        const double alpha = t.table.grid.alphas.front() * factors[k], c = t.table.grid.scale(alpha);
         const std::function<double(double)> f = row(alpha);
         for (int j = 0; j < t.fine.grid.n_x; ++j) {
-            const double mu = unwarp_cosine(alpha, t.fine.grid.x(j));
+            const double mu = unwarp_cosine(c, t.fine.grid.x(j));
             const double e = std::abs(t.table.lookup(alpha, mu) - f(mu));
             if (e > each[k].max) each[k] = {e, alpha, mu};
         }

@@ -531,16 +531,16 @@ double table_missing(const AlbedoTable& E, double alpha) {
     // 8-point Gauss-Legendre nodes and weights on [-1, 1] (Abramowitz and Stegun, table 25.4).
     static constexpr double x8[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267, 0.9602898564975363};
     static constexpr double w8[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
-    // In x, cell by cell: the lookup is linear in x there, and mu(x) = alpha x^2 / (1 + alpha - x^2) rational, with
-    // dmu/dx = 2 alpha (1 + alpha) x / (1 + alpha - x^2)^2 (in mu the first cell goes like sqrt(mu)).
-    const double k = 1.0 + alpha;
+    // In x, cell by cell: the lookup is linear in x there, and mu(x) = c x^2 / (1 + c - x^2) rational (c the warp's
+    // scale at alpha), with dmu/dx = 2 c (1 + c) x / (1 + c - x^2)^2 (in mu the first cell goes like sqrt(mu)).
+    const double c = E.grid.scale(alpha), k = 1.0 + c;
     double integral = 0.0;
     for (int j = 0; j + 1 < E.grid.n_x; ++j) {
         const double a = E.grid.x(j), b = E.grid.x(j + 1), mid = 0.5 * (a + b), half = 0.5 * (b - a);
         for (int q = 0; q < 4; ++q)
             for (double sgn : {-1.0, 1.0}) {
                 const double x = mid + sgn * half * x8[q], d = k - x * x;
-                const double mu = alpha * x * x / d, dmu = 2.0 * alpha * k * x / (d * d);
+                const double mu = c * x * x / d, dmu = 2.0 * c * k * x / (d * d);
                 integral += w8[q] * half * (1.0 - E.lookup(alpha, std::min(mu, 1.0))) * mu * dmu;
             }
     }

@@ -25,17 +25,18 @@ constexpr std::string_view height_correlated = "height-correlated", separable = 
 
 // The rules every lookup follows (albedo_grid.hpp, AlbedoTable::lookup), as each file's comment and the axes state
 // them.
-constexpr std::string_view rule_x = "x = sqrt((1 + alpha) mu / (mu + alpha)), nodes x_j = j / (n_x - 1)";
+constexpr std::string_view rule_x =
+    "x = sqrt((1 + c) mu / (mu + c)), c = the warp's scale at the asked alpha, nodes x_j = j / (n_x - 1)";
 constexpr std::string_view rule_lookup =
     "bilinear in (sqrt(alpha), x): j = min(int(x (n_x - 1)), n_x - 2), linear in x between x_j and x_(j+1); the alpha "
     "cell found in sqrt(alpha) among the nodes' sqrt(alpha), linear in sqrt(alpha)";
 constexpr std::string_view rule_below = "the first row, in the x of the asked alpha";
 constexpr std::string_view rule_above = "the last row, in the x of the asked alpha (no error is measured there)";
 constexpr std::string_view rule_mu = "clamped to [0, 1] (a renderer's cosines overshoot by a rounding); NaN reads as 0";
-constexpr std::string_view rule_alpha = "finite and > 0, not checked (at alpha = 0 the warp is 0/0 at mu = 0)";
-// lookup_missing's rule (albedo_grid.hpp), for m = 1 - E_avg.
-constexpr std::string_view rule_E_avg =
-    "ln(1 - E_avg) linear in ln(alpha) between the nodes; below the first alpha the first interval's power of alpha "
+constexpr std::string_view rule_alpha = "finite and > 0, not checked";
+// lookup_power_law's rule (albedo_grid.hpp), for the warp's scale c and for m = 1 - E_avg.
+constexpr std::string_view rule_power_law =
+    "ln of it linear in ln(alpha) between the nodes; below the first alpha the first interval's power of alpha "
     "continued, above the last alpha the last value";
 
 // compensation_header_name's rule without its "smithlab_" prefix ("" when the text has no letter or digit).
@@ -85,6 +86,11 @@ void check(const CompensationExport& e) {
         if (!fits_float(t.values[k]))
             throw input_error("compensation export: " + table_item(t, k) +
                               " is not a finite float: " + format_g17(t.values[k]));
+    for (std::size_t i = 0; i < na; ++i)
+        if (!(t.grid.scales[i] >= static_cast<double>(std::numeric_limits<float>::min()) &&
+              fits_float(t.grid.scales[i])))
+            throw input_error("compensation export: the warp's scale at alpha " + format_shortest(a[i]) + " is " +
+                              format_g17(t.grid.scales[i]) + ", not a normal float");
     for (std::size_t i = 1; i < na; ++i)
         if (!(static_cast<float>(std::sqrt(a[i])) > static_cast<float>(std::sqrt(a[i - 1]))))
             throw input_error("compensation export: alphas " + format_shortest(a[i - 1]) + " and " +
@@ -166,7 +172,13 @@ std::string top_comment(const CompensationExport& e, const std::string& id, std:
             "view's cosine.",
         "Grid: n_alpha x n_x = " + std::to_string(a.size()) + " x " + std::to_string(g.n_x) + ", alpha in [" +
             format_shortest(a.front()) + ", " + format_shortest(a.back()) + "]: alphas " + alphas + "; " +
-            std::string(rule_x) + "; " + id + "_E_table[i * n_x + j] = E(alphas[i], x_j).",
+            std::string(rule_x) + "; " + id +
+            "_E_table[i * n_x + j] = E(alphas[i], x_j), at mu = c_i x_j^2 / (1 + c_i - "
+            "x_j^2), c_i = exp(" +
+            id +
+            "_log_scale[i]) the warp's scale at alphas[i] (6 cos(theta) where the NDF's "
+            "Lambda = 0.3: its rows' dip).",
+        "The warp's scale c at any alpha: " + std::string(rule_power_law) + ".",
         id + "_E(alpha, mu): " + std::string(rule_lookup) + ".",
         "Outside the grid, nothing is clamped silently:",
         "  below the first alpha: " + std::string(rule_below) + ";",
@@ -174,7 +186,7 @@ std::string top_comment(const CompensationExport& e, const std::string& id, std:
         "  mu " + std::string(rule_mu) + ";",
         "  alpha must be " + std::string(rule_alpha) + ".",
         e.missing.empty() ? "No E_avg is given with this table."
-                          : id + "_missing(alpha) = 1 - E_avg(alpha): " + std::string(rule_E_avg) + "; " + id +
+                          : id + "_missing(alpha) = 1 - E_avg(alpha): " + std::string(rule_power_law) + "; " + id +
                 "_log_missing_table[i] = ln(1 - E_avg(alphas[i])). " + id + "_E_avg(alpha) = 1 - " + id +
                 "_missing(alpha). Kulla and Conty's lobe should divide by " + id + "_missing(alpha), not by 1 - " + id +
                 "_E_avg(alpha): 1 - E_avg falls like alpha^2 at small alpha, and 1 - E_avg taken from a float E_avg "
@@ -229,7 +241,9 @@ std::string arrays_and_lookups(const CompensationExport& e, const std::string& i
         sqrt_alpha.push_back(std::sqrt(v));
         labels.push_back("alpha = " + format_shortest(v));
     }
-    std::string s = "\n" + array(d, id + "_sqrt_alpha", sqrt_alpha, 8) +
+    std::vector<double> log_scale;
+    for (const double c : t.grid.scales) log_scale.push_back(std::log(c));
+    std::string s = "\n" + array(d, id + "_sqrt_alpha", sqrt_alpha, 8) + array(d, id + "_log_scale", log_scale, 8) +
         array(d, id + "_E_table", t.values, static_cast<std::size_t>(t.grid.n_x), labels);
     if (!e.missing.empty()) {
         std::vector<double> log_missing;
@@ -244,32 +258,35 @@ std::string arrays_and_lookups(const CompensationExport& e, const std::string& i
         f + "float " + id + "_alpha_weight(float s, int i) {\n    if (!(s > " + id + "_sqrt_alpha[0])) return " + zero +
         ";\n    if (!(s < " + id + "_sqrt_alpha[" + std::to_string(a.size() - 1) + "])) return " + one +
         ";\n    return (s - " + id + "_sqrt_alpha[i]) / (" + id + "_sqrt_alpha[i + 1] - " + id +
-        "_sqrt_alpha[i]);\n}\n\n";
-    const std::string T = id + "_E_table";
+        "_sqrt_alpha[i]);\n}\n\n"
+        "/* The weight of node i + 1 in ln(alpha) (the same in ln(sqrt(alpha))): below the first node the first cell's "
+        "line\n   continued, 1 above the last. */\n" +
+        f + "float " + id + "_log_weight(float s, int i) {\n    return s < " + id + "_sqrt_alpha[" +
+        std::to_string(a.size() - 1) + "] ? " + std::string(d.log) + "(s / " + id + "_sqrt_alpha[i]) / " +
+        std::string(d.log) + "(" + id + "_sqrt_alpha[i + 1] / " + id + "_sqrt_alpha[i]) : " + one + ";\n}\n\n";
+    const std::string T = id + "_E_table", C = id + "_log_scale", ex(d.exp);
     s +=
-        "/* E(alpha, mu), alpha > 0: bilinear in (sqrt(alpha), x = sqrt((1 + alpha) mu / (mu + alpha))), mu clamped to "
-        "[0, 1]. */\n" +
+        "/* E(alpha, mu), alpha > 0: bilinear in (sqrt(alpha), x = sqrt((1 + c) mu / (mu + c))), c the warp's scale at "
+        "alpha,\n   mu clamped to [0, 1]. */\n" +
         f + "float " + id + "_E(float alpha, float mu) {\n    float m = mu > " + zero + " ? (mu < " + one +
-        " ? mu : " + one + ") : " + zero + ";\n    float x = " + std::string(d.sqrt) + "((" + one +
-        " + alpha) * m / (m + alpha)) * " + float_literal(t.grid.n_x - 1, d.suffix) +
-        ";\n    int j = " + d.cast("int", "x") + ";\n    if (j > " + std::to_string(t.grid.n_x - 2) +
-        ") j = " + std::to_string(t.grid.n_x - 2) + ";\n    float tx = x - " + d.cast("float", "j") +
-        ";\n    float s = " + std::string(d.sqrt) + "(alpha);\n    int i = " + id +
-        "_alpha_cell(s);\n    float ta = " + id + "_alpha_weight(s, i);\n    int a = i * " + nx +
-        " + j;\n    int b = a + " + nx + ";\n    float lo = " + T + "[a] + tx * (" + T + "[a + 1] - " + T +
-        "[a]);\n    float hi = " + T + "[b] + tx * (" + T + "[b + 1] - " + T +
+        " ? mu : " + one + ") : " + zero + ";\n    float s = " + std::string(d.sqrt) + "(alpha);\n    int i = " + id +
+        "_alpha_cell(s);\n    float ta = " + id + "_alpha_weight(s, i);\n    float u = " + id +
+        "_log_weight(s, i);\n    float c = " + ex + "(" + C + "[i] + u * (" + C + "[i + 1] - " + C +
+        "[i]));\n    float x = " + std::string(d.sqrt) + "((" + one + " + c) * m / (m + c)) * " +
+        float_literal(t.grid.n_x - 1, d.suffix) + ";\n    int j = " + d.cast("int", "x") + ";\n    if (j > " +
+        std::to_string(t.grid.n_x - 2) + ") j = " + std::to_string(t.grid.n_x - 2) + ";\n    float tx = x - " +
+        d.cast("float", "j") + ";\n    int a = i * " + nx + " + j;\n    int b = a + " + nx + ";\n    float lo = " + T +
+        "[a] + tx * (" + T + "[a + 1] - " + T + "[a]);\n    float hi = " + T + "[b] + tx * (" + T + "[b + 1] - " + T +
         "[b]);\n    return lo + ta * (hi - lo);\n}\n";
     if (!e.missing.empty()) {
-        // ln(alpha / alpha_i) / ln(alpha_(i+1) / alpha_i) is the same ratio in sqrt(alpha): ln alpha = 2 ln s.
-        const std::string L = id + "_log_missing_table", S = id + "_sqrt_alpha", ln(d.log);
+        const std::string L = id + "_log_missing_table";
         s += "\n/* 1 - E_avg(alpha), alpha > 0: ln(1 - E_avg) linear in ln(alpha) between the nodes; below the first "
              "node the\n   first interval's power of alpha continued, above the last node the last value. Divide "
              "Kulla and Conty's\n   lobe by this, not by 1 - " +
             id + "_E_avg(alpha) (no cancellation). */\n" + f + "float " + id +
             "_missing(float alpha) {\n    float s = " + std::string(d.sqrt) + "(alpha);\n    int i = " + id +
-            "_alpha_cell(s);\n    float u = s < " + S + "[" + std::to_string(a.size() - 1) + "] ? " + ln + "(s / " + S +
-            "[i]) / " + ln + "(" + S + "[i + 1] / " + S + "[i]) : " + one + ";\n    return " + std::string(d.exp) +
-            "(" + L + "[i] + u * (" + L + "[i + 1] - " + L +
+            "_alpha_cell(s);\n    float u = " + id + "_log_weight(s, i);\n    return " + ex + "(" + L + "[i] + u * (" +
+            L + "[i + 1] - " + L +
             "[i]));\n}\n\n"
             "/* E_avg(alpha) = 1 - " +
             id + "_missing(alpha), alpha > 0. */\n" + f + "float " + id + "_E_avg(float alpha) { return " + one +
@@ -412,14 +429,15 @@ void write_axes_json(std::ostream& out, const CompensationExport& e) {
         << ", \"bit_depth\": 16, \"color\": \"grey\", \"rows\": \"row i (from the top) is alphas[i]\", "
            "\"columns\": \"column j is x_j = j / (n_x - 1)\"},\n  \"scale\": 65535,\n  \"value\": "
         << json_string("E = pixel / 65535, pixel = round(E * 65535): within 0.5 / 65535 of E")
-        << ",\n  \"alphas\": " << json_numbers(g.alphas) << ",\n  \"n_x\": " << nx
-        << ",\n  \"x\": " << json_string(rule_x) << ",\n  \"mu_of_x\": " << json_string("alpha x^2 / (1 + alpha - x^2)")
+        << ",\n  \"alphas\": " << json_numbers(g.alphas) << ",\n  \"warp_scales\": " << json_numbers(g.scales)
+        << ",\n  \"warp_scale_lookup\": " << json_string(rule_power_law) << ",\n  \"n_x\": " << nx
+        << ",\n  \"x\": " << json_string(rule_x) << ",\n  \"mu_of_x\": " << json_string("c x^2 / (1 + c - x^2)")
         << ",\n  \"lookup\": " << json_string(rule_lookup) << ",\n  \"below_first_alpha\": " << json_string(rule_below)
         << ",\n  \"above_last_alpha\": " << json_string(rule_above) << ",\n  \"mu\": " << json_string(rule_mu)
         << ",\n  \"alpha\": " << json_string(rule_alpha) << ",\n";
     if (!e.missing.empty())
         out << "  \"one_minus_E_avg\": " << json_numbers(e.missing)
-            << ",\n  \"one_minus_E_avg_lookup\": " << json_string(rule_E_avg) << ",\n";
+            << ",\n  \"one_minus_E_avg_lookup\": " << json_string(rule_power_law) << ",\n";
     out << "  \"max_interpolation_error\": " << format_shortest(e.max_interp_error)
         << ",\n  \"below_grid_error\": " << format_shortest(e.below_grid_error) << "\n}\n";
 }

@@ -1,17 +1,23 @@
 // smithlab/fit/albedo_grid.hpp -- a table of a directional albedo over (alpha, mu) that linear interpolation can
 // follow, and the measure of how well it does.
 //
-// E(mu) of a rough surface falls from its grazing limit to a dip at mu ~ alpha and rises to E(1): a feature alpha wide
-// in the cosine, which a uniform cosine axis misses entirely at small alpha (32 cosines: 0.09 off at alpha 0.01). For
-// alpha -> 0 the curve is a function of mu / alpha alone (the Smith microsurface scaled in slope: Lambda depends on
-// cot theta / alpha, and so does every direction that matters at the dip), so the table's cosine axis is warped by
-// roughness,
-//     x = sqrt((1 + alpha) mu / (mu + alpha))   in [0, 1],   mu = alpha x^2 / (1 + alpha - x^2),
-// 70 % of its nodes below mu = alpha at small alpha, and its rows tend to one row as alpha -> 0; the root resolves the
-// first interval, where E leaves its grazing limit with an unbounded slope (without it, 48 cosines miss GGX's E by
-// 3.8e-3 at alpha 1 in the first interval; with it, 7e-4 over 32 alphas from 1e-4 to 1, tests/test_compensation.cpp);
-// the roughness axis is sqrt(alpha) (the artists' roughness, as OpenPBR's tables). Lookups are bilinear in
-// (sqrt(alpha), x), x_j = j / (n_x - 1) uniform: a renderer finds the cell without a search in x.
+// E(mu) of a rough surface falls from its grazing limit to a dip and rises to E(1): a feature in the cosine as narrow
+// as the NDF's slopes are small, which a uniform cosine axis misses entirely at small alpha (32 cosines: 0.09 off at
+// GGX alpha 0.01). The dip lies where masking sets in, near the cosine mu_L at which Lambda(mu_L) = 0.3 (mu_L ~ 0.8
+// alpha for GGX, 0.4 alpha for Beckmann, but 0.13 at alpha 1e-4 for GTR gamma = 1, whose slopes' heavy tail masks
+// far from alpha; for alpha -> 0 a light-tailed NDF's curve is a function of mu / alpha alone), so each row's cosine
+// axis is warped by a scale c = 6 mu_L of its own (warp_scale),
+//     x = sqrt((1 + c) mu / (mu + c))   in [0, 1],   mu = c x^2 / (1 + c - x^2),
+// most nodes below mu ~ c at small alpha; the root resolves the first interval, where E leaves its grazing limit with
+// an unbounded slope (without it, 48 cosines miss GGX's E by 3.8e-3 at alpha 1 there). Measured (48 x 48, alphas
+// evenly spaced in cbrt(alpha) from 1e-4 to 1, against the exact values 4x finer in both): 5.9e-4 for GGX, GTR
+// gamma 1, 1.5 and 3, 9.1e-4 for Beckmann; c = alpha instead of 6 mu_L missed GTR gamma 1 by 0.11 and Beckmann by
+// 2.3e-3 (at alpha 0.5, mu 0.94: a warp too strong near mu = 1), and alphas evenly spaced in sqrt(alpha) (a first
+// cell from 1e-4 to 1e-3) missed GTR gamma <= 1.5 by 1.4e-3 in their first cell.
+//
+// Lookups are bilinear in (sqrt(alpha), x), x_j = j / (n_x - 1) uniform (a renderer finds the cell without a search
+// in x), x taken with the scale at the asked alpha: ln c linear in ln alpha between the nodes (exact for c ~ alpha),
+// the first interval's power continued below the first alpha, the last c above the last (lookup_power_law).
 //
 // Outside the alphas: below the first one, that row in the x of the asked alpha (the row the rows tend to; its error
 // there is measured, below_grid_error); above the last one, the last row in the x of the asked alpha. Nothing is
@@ -25,18 +31,33 @@
 #include <functional>
 #include <vector>
 
+#include "smithlab/quadrature.hpp"
+
 namespace smithlab::fit {
 
-// x = sqrt((1 + alpha) mu / (mu + alpha)) and its inverse; alpha > 0, mu and x in [0, 1].
-double warp_cosine(double alpha, double mu);
-double unwarp_cosine(double alpha, double x);
+// x = sqrt((1 + c) mu / (mu + c)) and its inverse; c > 0, mu and x in [0, 1].
+double warp_cosine(double c, double mu);
+double unwarp_cosine(double c, double x);
+
+// The warp's scale of one NDF: 6 mu_L, mu_L = cos(theta) where Lambda = 0.3; Lambda a function of cot(theta) (Heitz
+// 2014's mu), decreasing. Found by bisection in ln cot(theta) to 1e-12 relative (input_error when Lambda is not
+// monotone enough to bracket 0.3 in cot(theta) in [1e-30, 1e30]).
+double warp_scale(FunctionRef Lambda);
+
+// ln v linear in ln alpha between the nodes (alphas ascending, > 0; each v > 0 and finite); below the first alpha the
+// first interval's power of alpha continued, above the last the last value. `what` names v in the messages.
+double lookup_power_law(const std::vector<double>& alphas, const std::vector<double>& values, double alpha,
+                        const char* what);
 
 struct AlbedoGrid {
     std::vector<double> alphas;  // ascending, > 0
+    std::vector<double> scales;  // the warp's scale c at each alpha (warp_scale of the NDF there), > 0
     int n_x = 32;                // cosines a row, x_j = j / (n_x - 1)
     double x(int j) const { return static_cast<double>(j) / (n_x - 1); }
-    double mu(std::size_t i, int j) const { return unwarp_cosine(alphas[i], x(j)); }
-    // input_error unless >= 2 alphas, ascending, in (0, inf), and n_x >= 2.
+    double mu(std::size_t i, int j) const { return unwarp_cosine(scales[i], x(j)); }
+    // The scale at any alpha > 0: lookup_power_law of the scales.
+    double scale(double alpha) const { return lookup_power_law(alphas, scales, alpha, "the warp's scale"); }
+    // input_error unless >= 2 alphas, ascending, in (0, inf), one finite scale > 0 each, and n_x >= 2.
     void check() const;
 };
 
@@ -75,8 +96,7 @@ using AlbedoRows = std::function<std::function<void(double mu, double* out)>(dou
 std::vector<CheckedTable> tabulate(const AlbedoGrid& grid, int refine, int count, const AlbedoRows& rows,
                                    unsigned threads = 0);
 
-// The missing energy m = 1 - E_avg over alpha (each > 0): ln m linear in ln alpha between the nodes; below the first
-// alpha the first interval's power of alpha continued, above the last the last value. 1 - E_avg falls as a power of
+// The missing energy m = 1 - E_avg over alpha (each > 0) by lookup_power_law. 1 - E_avg falls as a power of
 // alpha at small alpha (~alpha^2: E is a function of mu / alpha there), which linear interpolation in sqrt(alpha)
 // misses between the first nodes by a factor 7 (GGX, 32 nodes from 1e-4 to 1, measured against the exact values 10x
 // finer in sqrt(alpha)); in logs it stays within 1.5 % there. Kulla and Conty's lobe, divided by m, needs m to a

@@ -133,6 +133,11 @@ public:
         return detail::cosine_average([&](double mu) { return 1.0 - albedo(mu, nullptr); }, 100.0 * opts_.tolerance);
     }
 
+    // The scale of a table's warped cosine axis for this NDF (albedo_grid.hpp, warp_scale of its Lambda).
+    double warp_scale() const {
+        return fit::warp_scale([&](double m) { return Lambda_(m); });
+    }
+
 private:
     double albedo(double mu, const FunctionRef* F) const { return albedo(mu, F, opts_.tolerance); }
     double albedo(double mu, const FunctionRef* F, double tolerance) const {

@@ -2,12 +2,13 @@
 // (alpha, warped cosine x), with 1 - E_avg over alpha) written out for renderers: a C header, GLSL, HLSL, and a
 // 16-bit grey PNG with its axes in JSON.
 //
-// Every lookup written computes AlbedoTable::lookup's rule in float: x = sqrt((1 + alpha) mu / (mu + alpha)), cell j =
-// min(int(x (n_x - 1)), n_x - 2) and linear in x; the alpha cell found in sqrt(alpha) over the nodes' sqrt(alpha),
-// linear in sqrt(alpha); below the first alpha the first row, above the last the last row, both in the x of the asked
-// alpha; mu clamped to [0, 1] (a renderer's dot products overshoot by a rounding). 1 - E_avg(alpha) follows
-// lookup_missing: ln(1 - E_avg) linear in ln(alpha) between the nodes, below the first alpha the first interval's power
-// of alpha continued, above the last alpha the last value; the files carry ln(1 - E_avg), not E_avg, so that Kulla and
+// Every lookup written computes AlbedoTable::lookup's rule in float: x = sqrt((1 + c) mu / (mu + c)), c the warp's
+// scale at the asked alpha, cell j = min(int(x (n_x - 1)), n_x - 2) and linear in x; the alpha cell found in
+// sqrt(alpha) over the nodes' sqrt(alpha), linear in sqrt(alpha); below the first alpha the first row, above the last
+// the last row, both in the x of the asked alpha; mu clamped to [0, 1] (a renderer's dot products overshoot by a
+// rounding). The scale c and 1 - E_avg(alpha) follow lookup_power_law: ln of each linear in ln(alpha) between the
+// nodes, below the first alpha the first interval's power of alpha continued, above the last alpha the last value; the
+// files carry ln c and ln(1 - E_avg), not E_avg, so that Kulla and
 // Conty's lobe, divided by 1 - E_avg, keeps its relative precision where E_avg rounds to 1 as a float. Each file's top
 // comment says so, with the grid, the G2, the NDF family, the measured errors, and the formulas of Kulla and Conty 2017
 // and Turquin 2019 that use the table (fit/compensation.hpp).
@@ -45,12 +46,14 @@ struct CompensationExport {
 std::string compensation_identifier(const CompensationExport& e);
 
 // Each writer first checks the export (input_error naming the item): a table (E not null) on a valid grid
-// (AlbedoGrid::check), n_alpha x n_x finite values that fit a float, the alphas' square roots distinct as floats,
+// (AlbedoGrid::check), n_alpha x n_x finite values that fit a float, the warp's scales normal floats, the alphas'
+// square roots distinct as floats,
 // missing empty or one value per alpha, each finite, > 0 and <= 1 and a normal float, the measured errors finite and
 // >= 0.
 
-// C99 (or C++), self-contained: static const float arrays NAME_sqrt_alpha, NAME_E_table[n_alpha * n_x] (row i =
-// alphas[i]) and NAME_log_missing_table (ln(1 - E_avg) at each alpha), and static inline float NAME_E(alpha, mu),
+// C99 (or C++), self-contained: static const float arrays NAME_sqrt_alpha, NAME_log_scale (ln c at each alpha),
+// NAME_E_table[n_alpha * n_x] (row i = alphas[i]) and NAME_log_missing_table (ln(1 - E_avg) at each alpha), and
+// static inline float NAME_E(alpha, mu),
 // NAME_missing(alpha) = 1 - E_avg(alpha) and NAME_E_avg(alpha) = 1 - NAME_missing(alpha).
 void write_c_header(std::ostream& out, const CompensationExport& e);
 // GLSL 3.30 (no #version line: it goes after the includer's): const float arrays and float NAME_E(float alpha,
@@ -62,7 +65,8 @@ void write_hlsl(std::ostream& out, const CompensationExport& e);
 // round(E * 65535); input_error unless every value is in [0, 1]. Written to PATH.tmp and renamed to PATH:
 // runtime_error naming the path when it cannot be, and nothing is left behind.
 void write_png16(const std::filesystem::path& path, const CompensationExport& e);
-// The PNG's axes as JSON: family, g2, quantity, identifier, the alphas, n_x, the warp of x, the lookup and outside
+// The PNG's axes as JSON: family, g2, quantity, identifier, the alphas, the warp's scales, n_x, the warp of x, the
+// lookup and outside
 // rules, the 16-bit scale, one_minus_E_avg and its lookup rule (when given), the measured errors.
 void write_axes_json(std::ostream& out, const CompensationExport& e);
 
