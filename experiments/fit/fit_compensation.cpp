@@ -24,7 +24,7 @@ std::string g2_name(G2Form form) { return form == G2Form::uncorrelated ? "separa
 
 fit::AlbedoOptions table_options(G2Form form) {
     fit::AlbedoOptions o;
-    o.tolerance = 1e-8;
+    o.tolerance = fit::table_tolerance;
     o.g2 = form;
     return o;
 }

@@ -204,7 +204,7 @@ py::dict compensation(const AnyNdf& ndf, int cosines, const std::string& g2) {
         throw input_error("compensation: " + ndf.spec() + " has no parameter alpha (the cosines are warped by it)");
     const double alpha = ndf.param("alpha");
     fit::AlbedoOptions opts;
-    opts.tolerance = 1e-8;  // the fit's tables' (fit/fit_compensation.hpp)
+    opts.tolerance = fit::table_tolerance;  // as the fit's tables
     opts.g2 = g2 == "separable" ? G2Form::uncorrelated : G2Form::height_correlated;
     const fit::AlbedoGrid grid{{alpha, 2.0 * alpha}, cosines};
     std::vector<double> mus, E;

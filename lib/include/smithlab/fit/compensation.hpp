@@ -62,6 +62,9 @@
 
 namespace smithlab::fit {
 
+// The tables' quadrature tolerance: values to ~1e-8 relative, far below their interpolation error ~5e-4 (albedo_grid).
+inline constexpr double table_tolerance = 1e-8;
+
 struct AlbedoOptions {
     double tolerance = 1e-10;  // relative, of each Gauss-Kronrod integral (inner ones at a tenth of it)
     // The G2 the single scattering uses: height-correlated (Walter 2007 eq. 20's Smith G2 as Heitz 2014 eq. 99 and
