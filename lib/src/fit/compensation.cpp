@@ -40,7 +40,14 @@ double smooth_gk(const F& f, double a, double b, double tolerance) {
               tolerance);
 }
 
-using detail::Event;
+// One scattering event of the grazing limit: a reflection (facets of reflectance F, null: 1), or a refraction through
+// a dielectric facet of relative index eta (the index below over the index above: light comes from above; light from
+// inside a medium of index n is eta = 1 / n), weighted by 1 - F, F the exact dielectric Fresnel (fresnel.hpp).
+struct Event {
+    bool transmission = false;
+    double eta = 1.0;
+    G2Form form = G2Form::height_correlated;
+};
 
 // The z of the direction refracted through a facet of normal m (m.z = mz), wi.m = c, wi.z = ci, eta the index below
 // over the index above (Walter et al. 2007, eq. 40: wt = (c / eta - cos_t) m - wi / eta, cos_t = sqrt(1 - (1 - c^2) /
@@ -468,15 +475,11 @@ Albedos dielectric_albedos_at(FunctionRef P22, FunctionRef Lambda, double mu, do
 namespace detail {
 
 double single_scattering_albedo(FunctionRef P22, FunctionRef Lambda, const FunctionRef* F, double mu, double tolerance,
-                                const Event& event) {
+                                G2Form form) {
     require(mu >= 0.0 && mu <= 1.0, "mu = cos(theta_i)", "in [0, 1]", mu);
-    if (event.transmission) require(event.eta > 0.0 && std::isfinite(event.eta), "eta", "finite and > 0", event.eta);
-    if (mu == 0.0) {
-        if (!F && !event.transmission && event.form == G2Form::height_correlated) return 1.0;
-        return grazing_albedo(P22, Lambda, F, event, tolerance);
-    }
-    return event.transmission ? dielectric_albedos_at(P22, Lambda, mu, tolerance, event.eta, event.form).T
-                              : reflection_albedo(P22, Lambda, F, mu, tolerance, event.form);
+    if (mu > 0.0) return reflection_albedo(P22, Lambda, F, mu, tolerance, form);
+    if (!F && form == G2Form::height_correlated) return 1.0;
+    return grazing_albedo(P22, Lambda, F, {false, 1.0, form}, tolerance);
 }
 
 std::pair<double, double> dielectric_albedos(FunctionRef P22, FunctionRef Lambda, double mu, double tolerance,

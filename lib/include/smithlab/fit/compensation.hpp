@@ -75,17 +75,10 @@ struct AlbedoOptions {
 };
 
 namespace detail {
-// One scattering event of the single-scattering albedo: a reflection (F(cos wi.m), null: 1), or a refraction through a
-// dielectric facet of relative index eta (the index below over the index above: light comes from above; light from
-// inside a medium of index n is eta = 1 / n), weighted by 1 - F, F the exact dielectric Fresnel (fresnel.hpp).
-struct Event {
-    bool transmission = false;
-    double eta = 1.0;
-    G2Form form = G2Form::height_correlated;
-};
-// The quadrature above for one mu in [0, 1]; P22(r^2), Lambda(cot theta >= 0).
+// The quadrature above for one mu in [0, 1] of a reflection off facets of reflectance F(cos wi.m) (null: mirror
+// facets, 1), with G2 of the given form; P22(r^2), Lambda(cot theta >= 0).
 double single_scattering_albedo(FunctionRef P22, FunctionRef Lambda, const FunctionRef* F, double mu, double tolerance,
-                                const Event& event = {});
+                                G2Form form = G2Form::height_correlated);
 // {E_R, E_T} of a dielectric interface of relative index eta (below over above) for one mu in [0, 1], both G2 forms:
 // the quadrature of the last paragraph of this header's comment (the grazing limits at mu = 0).
 std::pair<double, double> dielectric_albedos(FunctionRef P22, FunctionRef Lambda, double mu, double tolerance,
@@ -141,7 +134,7 @@ private:
     double albedo(double mu, const FunctionRef* F, double tolerance) const {
         auto P22 = [&](double r2) { return slope_density(ndf_, r2); };
         auto L = [&](double m) { return Lambda_(m); };
-        return detail::single_scattering_albedo(P22, L, F, mu, tolerance, {false, 1.0, opts_.g2});
+        return detail::single_scattering_albedo(P22, L, F, mu, tolerance, opts_.g2);
     }
     N ndf_;
     FastLambda<N> Lambda_;
