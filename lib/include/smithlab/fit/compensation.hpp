@@ -157,46 +157,18 @@ double average_fresnel(const Fresnel& F, double tolerance = 1e-10) {
     return detail::cosine_average(F, tolerance);
 }
 
-// One NDF's table: E at the cosines mus (ascending, 0 and 1 included), and E_avg computed by its own quadrature
-// (not from the table's points).
-struct CompensationTable {
-    std::vector<double> mus, E;
-    double E_avg = 0.0;
-};
-
-// n >= 2 cosines j / (n - 1): a uniform grid with both ends, so that the piecewise-linear lookup (here and in the
-// C header) covers [0, 1] without extrapolating or clamping; E(0) = 1 exactly (the limit, above), E(1) at normal
-// incidence. Gauss-Legendre nodes would give E_avg from the table itself, but E_avg has its own quadrature here, and
-// a renderer's lookup wants the ends.
-std::vector<double> compensation_mus(int n);
-
-template <Ndf N>
-CompensationTable compensation_table(const N& ndf, int n = 32, const AlbedoOptions& opts = {}) {
-    const SingleScatteringAlbedo<N> E(ndf, opts);
-    CompensationTable t{compensation_mus(n), {}, 0.0};
-    t.E.reserve(t.mus.size());
-    for (double mu : t.mus) t.E.push_back(E(mu));
-    t.E_avg = E.average();
-    return t;
-}
-
-// E at any mu in [0, 1], linear between the table's points (input_error outside [0, 1] or for a malformed table).
-double interpolate_E(const CompensationTable& table, double mu);
-
-// Kulla and Conty 2017's lobe f_ms(wi, wo) = (1 - E(mu_i)) (1 - E(mu_o)) / (pi (1 - E_avg)), E interpolated from the
-// table (0 when E_avg = 1: no energy is missing).
-double compensation_lobe(const CompensationTable& table, double mu_i, double mu_o);
-// Its Fresnel factor F_ms = F_avg^2 E_avg / (1 - F_avg (1 - E_avg)): f_ms F_ms is the lobe of coloured facets.
+// Kulla and Conty 2017's Fresnel factor F_ms = F_avg^2 E_avg / (1 - F_avg (1 - E_avg)): f_ms F_ms is the lobe of
+// coloured facets (f_ms, compensation_lobe below).
 double fresnel_ms(double F_avg, double E_avg);
 // Turquin 2019's scale 1 + F0 (1 - E) / E, E = E(mu_v) of the direction held fixed (the view direction).
 double turquin_scale(double E_view, double F0);
-inline double turquin_scale(const CompensationTable& table, double mu_view, double F0) {
-    return turquin_scale(interpolate_E(table, mu_view), F0);
-}
 
-// The albedo of Kulla and Conty 2017's lobe as a renderer evaluates it from the tables: f_ms F_ms with
-// f_ms(wi, wo) = (1 - E(alpha, mu_i)) (1 - E(alpha, mu_o)) / (pi m(alpha)), E looked up (AlbedoTable::lookup) and
-// m = 1 - E_avg by lookup_missing from `missing` (1 - E_avg at E's alphas), integrated over wo:
+// Kulla and Conty 2017's lobe as a renderer evaluates it from the tables: f_ms(wi, wo) = (1 - E(alpha, mu_i))
+// (1 - E(alpha, mu_o)) / (pi m(alpha)), E looked up (AlbedoTable::lookup) and m = 1 - E_avg by lookup_missing from
+// `missing` (1 - E_avg at E's alphas).
+double compensation_lobe(const AlbedoTable& E, const std::vector<double>& missing, double alpha, double mu_i,
+                         double mu_o);
+// The albedo of that lobe times F_ms, integrated over wo:
 //     F_ms (1 - E(alpha, mu_i)) 2 integral_0^1 (1 - E(alpha, mu)) mu dmu / m(alpha),
 // F_ms = fresnel_ms(F_avg, 1 - m(alpha)) (1 for mirror facets, F_avg = 1). The integral over the table's cells in mu
 // (8-point Gauss-Legendre a cell: the lookup is linear in x, smooth in mu within a cell).
