@@ -263,16 +263,8 @@ void write_furnace(const fs::path& dir, const std::vector<FurnaceRow>& rows) {
     output::write_file(dir / "furnace.csv", f.str());
 }
 
-std::string e3(double v) {
-    char b[32];
-    std::snprintf(b, sizeof b, "%.1e", v);
-    return b;
-}
-std::string g4(double v) {
-    char b[32];
-    std::snprintf(b, sizeof b, "%.4g", v);
-    return b;
-}
+std::string e3(double v) { return format_printf("%.1e", v); }
+std::string g4(double v) { return format_printf("%.4g", v); }
 
 std::string markdown(const std::vector<FamilyTables>& all, const FitScene::Compensation& c,
                      const std::vector<FurnaceRow>& rows) {
