@@ -243,8 +243,7 @@ TEST_CASE("fit: smithlab fit writes its outputs, reuses its cache, and the same 
           "[fit][cli]") {
     using namespace smithlab_test;
     const fs::path d = fresh_directory("fit");
-    write(d / "s.toml", tiny_scene);
-    const Run r = run("fit '" + (d / "s.toml").string() + "' --output '" + (d / "out").string() + "' --threads 2");
+    const Run r = run_fit(d, tiny_scene);
     INFO(r.err);
     REQUIRE(r.rc == 0);
     CHECK_THAT(r.out, Contains("fujii-fitted"));
@@ -288,11 +287,10 @@ TEST_CASE("fit: a pictures section traces and draws the spheres, slices and miss
           "[fit][cli]") {
     using namespace smithlab_test;
     const fs::path d = fresh_directory("fitpics");
-    write(d / "s.toml",
-          tiny_scene +
-              "[pictures]\nsphere_alpha = [0.001, 1.0]\npixels = 8\nwalks = 200\n"
-              "slice_alpha = [1.0]\nslice_n = 4\n");
-    const Run r = run("fit '" + (d / "s.toml").string() + "' --output '" + (d / "out").string() + "' --threads 2");
+    const Run r = run_fit(d,
+                          tiny_scene +
+                              "[pictures]\nsphere_alpha = [0.001, 1.0]\npixels = 8\nwalks = 200\n"
+                              "slice_alpha = [1.0]\nslice_n = 4\n");
     INFO(r.err);
     REQUIRE(r.rc == 0);
     const fs::path p = d / "out" / "pictures";
@@ -347,7 +345,7 @@ TEST_CASE("fit: fits that leave their model's domain or measure worse than their
     using namespace smithlab_test;
     const fs::path d = fresh_directory("fitflags");
     // Hammon's facets and enough points for hammon-2017's five constants and smithlab-2026's eight.
-    write(d / "s.toml", R"TOML(title = "flags"
+    const Run r = run_fit(d, R"TOML(title = "flags"
 material = "fresnel-diffuse(f0=0.04, albedo=1)"
 albedos = [0.5, 1.0]
 models = ["oren-nayar", "hammon-2017", "smithlab-2026"]
@@ -364,7 +362,6 @@ walks = 400
 albedo_theta = [0.0, 60.0]
 albedo_walks = 400
 )TOML");
-    const Run r = run("fit '" + (d / "s.toml").string() + "' --output '" + (d / "out").string() + "' --threads 2");
     INFO(r.err);
     REQUIRE(r.rc == 0);
     const std::string report = slurp(d / "out" / "report.md");
@@ -413,11 +410,10 @@ TEST_CASE("fit: the tables name an NDF's parameters in columns of their own besi
     std::string text = tiny_scene;
     text.replace(text.find("family = \"ggx\""), std::string("family = \"ggx\"").size(),
                  "family = \"gtr\"\ngamma = [1.5, 3]");
-    write(d / "s.toml",
-          text +
-              "[compensation]\nalpha = [0.5, 1.0]\ncosines = 4\nrefine = 2\ng2 = [\"separable\"]\n"
-              "furnace_alpha = [0.5]\nfurnace_theta = [0.0]\nfurnace_walks = 100\n");
-    const Run r = run("fit '" + (d / "s.toml").string() + "' --output '" + (d / "out").string() + "' --threads 2");
+    const Run r = run_fit(d,
+                          text +
+                              "[compensation]\nalpha = [0.5, 1.0]\ncosines = 4\nrefine = 2\ng2 = [\"separable\"]\n"
+                              "furnace_alpha = [0.5]\nfurnace_theta = [0.0]\nfurnace_walks = 100\n");
     INFO(r.err);
     REQUIRE(r.rc == 0);
     const fs::path o = d / "out";
@@ -437,12 +433,11 @@ TEST_CASE("fit: the tables name an NDF's parameters in columns of their own besi
 TEST_CASE("fit: [compensation] writes every table, its errors, its renderer formats and the furnace", "[fit][cli]") {
     using namespace smithlab_test;
     const fs::path d = fresh_directory("fitcompensation");
-    write(d / "s.toml",
-          tiny_scene +
-              "[compensation]\nalpha = {sqrt = [0.01, 1.0], n = 3}\ncosines = 6\nrefine = 2\n"
-              "eta = [1.5]\nconductors = [\"conductor(eta=0.2, k=3)\"]\nfurnace_alpha = [0.5]\n"
-              "furnace_theta = [0.0, 60.0]\nfurnace_walks = 2000\n");
-    const Run r = run("fit '" + (d / "s.toml").string() + "' --output '" + (d / "out").string() + "' --threads 2");
+    const Run r = run_fit(d,
+                          tiny_scene +
+                              "[compensation]\nalpha = {sqrt = [0.01, 1.0], n = 3}\ncosines = 6\nrefine = 2\n"
+                              "eta = [1.5]\nconductors = [\"conductor(eta=0.2, k=3)\"]\nfurnace_alpha = [0.5]\n"
+                              "furnace_theta = [0.0, 60.0]\nfurnace_walks = 2000\n");
     INFO(r.err);
     REQUIRE(r.rc == 0);
     const fs::path o = d / "out";
