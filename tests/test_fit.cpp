@@ -554,6 +554,46 @@ TEST_CASE("fit: a bad scene is refused naming FILE:LINE and the item, with nothi
     fs::remove_all(d);
 }
 
+TEST_CASE("fit: [compensation]'s tables and furnace count against --max-walks, refused over it naming the keys",
+          "[fit][cli]") {
+    using namespace smithlab_test;
+    const fs::path d = fresh_directory("fitcompensationsize");
+    auto fit_with = [&](const std::string& name, const std::string& compensation, const std::string& options) {
+        write(d / name, tiny_scene + "[compensation]\n" + compensation);
+        return run("fit '" + (d / name).string() + "' --output '" + (d / "out").string() + "' " + options);
+    };
+    // The default 48 alphas at the largest refine and cosines: (47 x 100 + 1) x (4095 x 100 + 1) values a table, two
+    // G2 forms of one NDF.
+    const Run big = fit_with("big.toml", "cosines = 4096\nrefine = 100\n", "");
+    INFO(big.err);
+    CHECK(big.rc == 2);
+    CHECK_THAT(big.err,
+               Contains("big.toml:") &&
+                   Contains("compensation.refine with alpha, cosines, g2 and eta makes the tables 3850128402 "
+                            "values of E (4701 x 409501 check-grid points x (1 + 10 x 0 dielectric sides) x 2 "
+                            "NDFs and G2 forms)") &&
+                   Contains("more than --max-walks 1e+11 (raise it with --max-walks N)"));
+    CHECK_FALSE(fs::exists(d / "out"));
+    // A small one: 3 x 7 values a table (alphas 0.5 and 1, 4 cosines, refine 2), two G2 forms, at 1000 walks a value
+    // 42 000; the furnace's 100 walks (mirror facets at one angle) and the fit's 10 400 (18 training and 8 validation
+    // points at 400 walks): 52 500 in all.
+    const std::string small =
+        "alpha = [0.5, 1.0]\ncosines = 4\nrefine = 2\nfurnace_alpha = [0.5]\n"
+        "furnace_theta = [0.0]\nfurnace_walks = 100\n";
+    const Run over = fit_with("small.toml", small, "--max-walks 52499");
+    INFO(over.err);
+    CHECK(over.rc == 2);
+    CHECK_THAT(over.err,
+               Contains("the work of 42000 walks; with the furnace's 100 and the fit's 10400, more than "
+                        "--max-walks 52499"));
+    CHECK_FALSE(fs::exists(d / "out"));
+    const Run at = fit_with("small.toml", small, "--max-walks 52500 --threads 2");
+    INFO(at.err);
+    CHECK(at.rc == 0);
+    CHECK(fs::exists(d / "out" / "compensation.csv"));
+    fs::remove_all(d);
+}
+
 TEST_CASE("fit: a model's directional albedo by the fitter's rule against closed forms", "[fit]") {
     // Lambert integrates to its albedo exactly (the Gauss-Legendre rule is exact for mu); EON's directional albedo has
     // a closed form (Portsmouth et al. 2025, E_EON), which the rule meets to 1e-4 (Fujii's kink in phi at s = 0).
