@@ -55,6 +55,12 @@ inline Run run_scene(const fs::path& d, const std::string& name, const std::stri
     return run(report_args(d, name, out));
 }
 
+// `smithlab fit` on scene_text written to d/s.toml, into d/out, on two threads.
+inline Run run_fit(const fs::path& d, const std::string& scene_text) {
+    write(d / "s.toml", scene_text);
+    return run("fit '" + (d / "s.toml").string() + "' --output '" + (d / "out").string() + "' --threads 2");
+}
+
 // A malformed scene: exit 2, a message holding `expected`, and no output directory. Returns the message.
 inline std::string check_bad_scene(const fs::path& d, const std::string& name, const std::string& text,
                                    const std::string& expected) {

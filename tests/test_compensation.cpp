@@ -94,6 +94,18 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// A table's grid over `alphas` x n_x warped cosines, with the warp's scale of the NDF make(alpha) at each alpha.
+template <class Make>
+fit::AlbedoGrid warped_grid(const Make& make, const std::vector<double>& alphas, int n_x) {
+    fit::AlbedoGrid g{alphas, {}, n_x};
+    for (double a : alphas) g.scales.push_back(fit::SingleScatteringAlbedo(make(a)).warp_scale());
+    return g;
+}
+
+fit::AlbedoGrid ggx_grid(const std::vector<double>& alphas, int n_x) {
+    return warped_grid([](double a) { return smithlab::ggx(a); }, alphas, n_x);
+}
+
 }  // namespace
 
 TEST_CASE("E at normal incidence on GGX alpha = 1 is 1 - ln 2", "[compensation]") {
@@ -178,55 +190,55 @@ TEST_CASE("E_avg and F_avg: averages by their own quadrature", "[compensation]")
     CHECK(avg < 1.0);
 }
 
-TEST_CASE("the table: its cosines, interpolation, the lobe and its energy, the Fresnel and Turquin factors",
+TEST_CASE("the lobe from the (alpha, mu) table: symmetric, its albedo 1 - E(mu_i), the Fresnel and Turquin factors",
           "[compensation]") {
-    const smithlab::Ggx ggx = smithlab::ggx(0.7);
+    // GGX's E on 4 alphas (evenly spaced in sqrt(alpha), 0.49 to 1) x 32 warped cosines, at the tables' tolerance.
+    const fit::AlbedoOptions o{.tolerance = fit::table_tolerance};
+    const fit::AlbedoRow row = [&](double a) -> std::function<double(double)> {
+        auto e = std::make_shared<fit::SingleScatteringAlbedo<smithlab::Ggx>>(smithlab::ggx(a), o);
+        return [e](double mu) { return (*e)(mu); };
+    };
     const auto t0 = std::chrono::steady_clock::now();
-    const fit::CompensationTable t = fit::compensation_table(ggx, 32);
+    const fit::CheckedTable checked = fit::tabulate(ggx_grid({0.49, 0.64, 0.81, 1.0}, 32), 1, row, 2);
     const double build_ms = ms_since(t0);
-    REQUIRE(t.mus.size() == 32);
-    REQUIRE(t.E.size() == 32);
-    CHECK(t.mus.front() == 0.0);
-    CHECK(t.mus.back() == 1.0);
-    CHECK(t.E.front() == 1.0);
-    CHECK(std::abs(t.mus[1] - 1.0 / 31.0) < 1e-16);
-    CHECK(std::abs(t.E_avg - fit::average_albedo(ggx)) < 1e-14);
-    const fit::SingleScatteringAlbedo E(ggx);
-    for (std::size_t j = 0; j < t.mus.size(); j += 7) {
-        CHECK(t.E[j] == E(t.mus[j]));
-        CHECK(fit::interpolate_E(t, t.mus[j]) == t.E[j]);
-    }
-    // Linear between points; within 2e-3 of E there at 32 points (away from grazing, where E has a steep dip at mu ~
-    // alpha).
-    const double mid = 0.5 * (t.mus[10] + t.mus[11]);
-    CHECK(std::abs(fit::interpolate_E(t, mid) - 0.5 * (t.E[10] + t.E[11])) < 1e-15);
-    CHECK(std::abs(fit::interpolate_E(t, mid) - E(mid)) < 2e-3);
-    CHECK_THROWS_AS(fit::interpolate_E(t, 1.01), smithlab::input_error);
-    CHECK_THROWS_AS(fit::compensation_mus(1), smithlab::input_error);
+    const fit::AlbedoTable& t = checked.table;
+    const std::vector<double> missing = fit::table_missing(t);
+    const double alpha = 0.64;
+    const fit::SingleScatteringAlbedo E(smithlab::ggx(alpha), o);
+    for (int j = 0; j < t.grid.n_x; j += 7) CHECK(t.at(1, j) == E(t.grid.mu(1, j)));
+    CHECK(t.at(1, 0) == 1.0);  // the grazing limit
 
-    // The lobe: symmetric, and its albedo is what single scattering misses, 1 - E(mu_i) (the white furnace),
-    // to the table's interpolation.
-    CHECK(fit::compensation_lobe(t, 0.3, 0.8) == fit::compensation_lobe(t, 0.8, 0.3));
+    // The lobe: symmetric, and its albedo 2 pi integral f_ms mu_o dmu_o (Gauss-Kronrod in mu_o, split at the table's
+    // cosines, where the lookup has kinks) is what the table's single scattering misses, 1 - E(alpha, mu_i), at its
+    // alphas with its own 1 - E_avg; against the exact E, to the table's interpolation.
+    CHECK(fit::compensation_lobe(t, missing, alpha, 0.3, 0.8) == fit::compensation_lobe(t, missing, alpha, 0.8, 0.3));
+    std::vector<double> cuts;
+    for (int j = 1; j + 1 < t.grid.n_x; ++j) cuts.push_back(t.grid.mu(1, j));
     for (double mu_i : {0.1, 0.5, 1.0}) {
-        const double lobe_albedo =
-            2.0 * pi *
-            boost::math::quadrature::gauss_kronrod<double, 61>::integrate(
-                [&](double mu_o) { return fit::compensation_lobe(t, mu_i, mu_o) * mu_o; }, 0.0, 1.0, 8, 1e-12);
+        const double lobe_albedo = 2.0 * pi *
+            split_integral([&](double mu_o) { return fit::compensation_lobe(t, missing, alpha, mu_i, mu_o) * mu_o; },
+                           0.0, 1.0, cuts);
         INFO("mu_i " << mu_i << ": E " << E(mu_i) << " + lobe " << lobe_albedo);
+        CHECK(std::abs(t.lookup(alpha, mu_i) + lobe_albedo - 1.0) < 1e-10);
+        CHECK(std::abs(fit::kulla_conty_albedo(t, missing, alpha, mu_i) - lobe_albedo) < 1e-10);
         CHECK(std::abs(E(mu_i) + lobe_albedo - 1.0) < 2e-3);
     }
     // Fresnel: white facets keep the lobe as it is; F_ms is the geometric series of bounces 2, 3, ...
-    CHECK(std::abs(fit::fresnel_ms(1.0, t.E_avg) - 1.0) < 1e-15);
+    const double E_avg = 1.0 - fit::lookup_missing(t.grid.alphas, missing, alpha);
+    CHECK(std::abs(fit::fresnel_ms(1.0, E_avg) - 1.0) < 1e-15);
     {
-        const double Fa = 0.8, Ea = t.E_avg;
+        const double Fa = 0.8, Ea = E_avg;
         double series = 0.0;
         for (int k = 2; k < 400; ++k) series += std::pow(Fa, k) * Ea * std::pow(1.0 - Ea, k - 1);
         CHECK(std::abs(fit::fresnel_ms(Fa, Ea) * (1.0 - Ea) - series) < 1e-14);
+        CHECK(std::abs(fit::kulla_conty_albedo(t, missing, alpha, 0.5, Fa) -
+                       fit::fresnel_ms(Fa, Ea) * fit::kulla_conty_albedo(t, missing, alpha, 0.5)) < 1e-15);
     }
     // Turquin: with F0 = 1 the scaled single scattering is a white furnace at the direction held fixed.
     for (double mu : {0.2, 0.9}) CHECK(std::abs(E(mu) * fit::turquin_scale(E(mu), 1.0) - 1.0) < 1e-15);
-    CHECK(fit::turquin_scale(t, 1.0, 0.0) == 1.0);
-    std::printf("compensation: one 32-point table with E_avg (GGX 0.7): %.1f ms\n", build_ms);
+    CHECK(fit::turquin_scale(t.lookup(alpha, 1.0), 0.0) == 1.0);
+    CHECK_THROWS_AS(fit::compensation_lobe(t, missing, alpha, 0.5, 1.01), smithlab::input_error);
+    std::printf("compensation: one 4 x 32 table (GGX 0.49 to 1): %.1f ms\n", build_ms);
 }
 
 // ---- Against the tracer (walk/): an independent route to the same single scattering, and the multiple scattering
@@ -329,7 +341,13 @@ TEST_CASE("the compensation lobe's shape against the traced multiple-scattering 
     // difference is one of shape: the relative L2 difference over 8 x 16 equal-solid-angle bins of f cos.
     const smithlab::Ggx ggx = smithlab::ggx(1.0);
     const walk::Microsurface ms(ggx);
-    const fit::CompensationTable table = fit::compensation_table(ggx, 129);
+    // E at 0.81 and 1 (the table needs two alphas) x 129 warped cosines, and the table's own 1 - E_avg.
+    const fit::AlbedoRow row = [](double a) -> std::function<double(double)> {
+        auto e = std::make_shared<fit::SingleScatteringAlbedo<smithlab::Ggx>>(smithlab::ggx(a));
+        return [e](double mu) { return (*e)(mu); };
+    };
+    const fit::AlbedoTable table = fit::tabulate(ggx_grid({0.81, 1.0}, 129), 1, row, 2).table;
+    const std::vector<double> table_missing = fit::table_missing(table);
     for (double theta : {0.0, 60.0}) {
         walk::CellRequest r;
         r.wi = dir(theta);
@@ -339,13 +357,15 @@ TEST_CASE("the compensation lobe's shape against the traced multiple-scattering 
         r.brdf = {8, 16, false};
         const walk::CellResult c = walk::trace_cell(ms, walk::Mirror{}, r);
         double diff2 = 0.0, norm2 = 0.0, noise2 = 0.0, azimuthal2 = 0.0, lambert2 = 0.0;
-        const double missing = 1.0 - fit::interpolate_E(table, r.wi.z());
+        const double missing = 1.0 - table.lookup(1.0, r.wi.z());
         for (int t = 0; t < r.brdf.n_theta; ++t) {
             const double c_lo = 1.0 - (t + 1.0) / r.brdf.n_theta, c_hi = 1.0 - static_cast<double>(t) / r.brdf.n_theta;
             // The lobe's f cos averaged over the band (it does not depend on phi_o).
-            const double lobe =
-                boost::math::quadrature::gauss_kronrod<double, 15>::integrate(
-                    [&](double mu_o) { return fit::compensation_lobe(table, r.wi.z(), mu_o) * mu_o; }, c_lo, c_hi) /
+            const double lobe = boost::math::quadrature::gauss_kronrod<double, 15>::integrate(
+                                    [&](double mu_o) {
+                                        return fit::compensation_lobe(table, table_missing, 1.0, r.wi.z(), mu_o) * mu_o;
+                                    },
+                                    c_lo, c_hi) /
                 (c_hi - c_lo);
             // A Lambertian lobe of the same energy, (1 - E(mu_i)) mu_o / pi: the shape without Kulla-Conty's 1 -
             // E(mu_o).
@@ -384,18 +404,29 @@ TEST_CASE("the compensation lobe's shape against the traced multiple-scattering 
 }
 
 TEST_CASE("the cost of a 32 x 32 (alpha x mu) family table", "[compensation][slow]") {
-    // CPU time (the machines these run on are shared): 32 GGX tables of 32 cosines each with E_avg, and two
-    // GTR(gamma = 1.5) ones, whose Lambda is a table built per alpha.
+    // CPU time (the machines these run on are shared): GGX's E on 32 alphas x 32 warped cosines with each alpha's
+    // 1 - E_avg by its own quadrature, and GTR(gamma = 1.5)'s on two alphas, whose Lambda is a table built per alpha.
     auto cpu_ms = [](std::clock_t c0) { return 1000.0 * static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC; };
+    auto family_table = [](auto make, const std::vector<double>& alphas) {
+        const fit::AlbedoRow row = [&](double a) -> std::function<double(double)> {
+            auto e = std::make_shared<const fit::SingleScatteringAlbedo<decltype(make(a))>>(make(a));
+            return [e](double mu) { return (*e)(mu); };
+        };
+        double sum = 0.0;
+        for (double v : fit::tabulate(warped_grid(make, alphas, 32), 1, row, 1).table.values) sum += v;
+        for (double a : alphas) sum += fit::SingleScatteringAlbedo(make(a)).missing();
+        return sum;
+    };
+    std::vector<double> ggx_alphas;
+    for (int a = 1; a <= 32; ++a) ggx_alphas.push_back(a / 32.0);
     std::clock_t c0 = std::clock();
-    double e_sum = 0.0;
-    for (int a = 1; a <= 32; ++a) e_sum += fit::compensation_table(smithlab::ggx(a / 32.0), 32).E_avg;
+    double e_sum = family_table([](double a) { return smithlab::ggx(a); }, ggx_alphas);
     const double ggx_ms = cpu_ms(c0);
     c0 = std::clock();
-    for (double a : {0.25, 0.75}) e_sum += fit::compensation_table(smithlab::gtr(a, 1.5), 32).E_avg;
+    e_sum += family_table([](double a) { return smithlab::gtr(a, 1.5); }, {0.25, 0.75});
     const double gtr_ms = cpu_ms(c0) / 2.0;
     std::printf(
-        "compensation: GGX 32 alphas x 32 cosines with E_avg: %.0f ms CPU (%.1f ms per alpha); "
+        "compensation: GGX 32 alphas x 32 cosines with 1 - E_avg: %.0f ms CPU (%.1f ms per alpha); "
         "GTR(gamma = 1.5): %.0f ms CPU per alpha\n",
         ggx_ms, ggx_ms / 32.0, gtr_ms);
     CHECK(e_sum > 0.0);
@@ -471,16 +502,14 @@ TEST_CASE("dielectric albedo: reflection and transmission against the integrals 
     CHECK_THROWS_AS(E.dielectric(0.5, -1.0), smithlab::input_error);
 }
 
-// 48 alphas evenly spaced in cbrt(alpha) from 1e-4 to 1, with the warp's scale of the NDF at each.
-template <class Make>
-fit::AlbedoGrid cbrt_grid(const Make& make, int n_x) {
-    fit::AlbedoGrid g{{}, {}, n_x};
+// 48 alphas evenly spaced in cbrt(alpha) from 1e-4 to 1.
+std::vector<double> cbrt_alphas() {
+    std::vector<double> a;
     for (int i = 0; i < 48; ++i) {
         const double s = std::cbrt(1e-4) + (1.0 - std::cbrt(1e-4)) * i / 47.0;
-        g.alphas.push_back(std::min(s * s * s, 1.0));
-        g.scales.push_back(fit::SingleScatteringAlbedo(make(g.alphas.back())).warp_scale());
+        a.push_back(std::min(s * s * s, 1.0));
     }
-    return g;
+    return a;
 }
 
 TEST_CASE("the warp: its inverse, its scale against GGX's closed form, the power-law lookup", "[compensation]") {
@@ -527,14 +556,14 @@ TEST_CASE("the warped table: its error measure against a dense direct check, and
     CHECK(t.table.at(2, 3) == row(0.25)(g.mu(2, 3)));
     // GGX's E on 48 alphas (cbrt-spaced, 1e-4 to 1) x 48 warped cosines: within 1e-3 on the 10x finer grid, and below
     // the grid down to alpha 1e-6.
-    const fit::AlbedoGrid ggx_grid = cbrt_grid([](double a) { return smithlab::ggx(a); }, 48);
+    const fit::AlbedoGrid grid = ggx_grid(cbrt_alphas(), 48);
     fit::AlbedoOptions o;
     o.tolerance = 1e-8;
     const fit::AlbedoRow E = [&](double a) -> std::function<double(double)> {
         auto e = std::make_shared<fit::SingleScatteringAlbedo<smithlab::Ggx>>(smithlab::ggx(a), o);
         return [e](double mu) { return (*e)(mu); };
     };
-    const fit::CheckedTable ggx = fit::tabulate(ggx_grid, 10, E, 2);
+    const fit::CheckedTable ggx = fit::tabulate(grid, 10, E, 2);
     const fit::InterpolationError below = fit::below_grid_error(ggx, E, {0.5, 0.1, 0.01}, 2);
     std::printf(
         "compensation: GGX 48 x 48 warped table: interpolation error %.2e (alpha %.3g, mu %.3g), below the "
@@ -555,7 +584,7 @@ TEST_CASE("the warped table: its error measure against a dense direct check, and
     // and 1: their difference is the table's error in E, integrated, over 1 - E_avg).
     double worst_missing = 0.0;
     for (std::size_t i : {std::size_t{20}, std::size_t{47}}) {
-        const double exact = fit::SingleScatteringAlbedo<smithlab::Ggx>(smithlab::ggx(ggx_grid.alphas[i]), o).missing();
+        const double exact = fit::SingleScatteringAlbedo<smithlab::Ggx>(smithlab::ggx(grid.alphas[i]), o).missing();
         worst_missing = std::max(worst_missing, std::abs(missing[i] / exact - 1.0));
     }
     std::printf(
@@ -572,7 +601,7 @@ TEST_CASE("the warped table of a heavy tail (GTR gamma = 1: its dip near mu 0.1 
     fit::AlbedoOptions o;
     o.tolerance = 1e-8;
     auto check = [&](const char* name, auto make) {
-        const fit::AlbedoGrid grid = cbrt_grid(make, 48);
+        const fit::AlbedoGrid grid = warped_grid(make, cbrt_alphas(), 48);
         const fit::AlbedoRow E = [&](double a) -> std::function<double(double)> {
             auto e = std::make_shared<fit::SingleScatteringAlbedo<decltype(make(a))>>(make(a), o);
             return [e](double mu) { return (*e)(mu); };

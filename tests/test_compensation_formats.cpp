@@ -31,7 +31,9 @@ namespace {
 // A small table by hand, smooth in both axes, E = 1 at x = 0 (a white pixel), and 1 - E_avg(alpha) = 0.3 alpha^1.5.
 AlbedoTable small_table() {
     AlbedoTable t;
-    t.grid = {{0.05, 0.12, 0.3, 0.6, 1.0}, 9};
+    t.grid = {{0.05, 0.12, 0.3, 0.6, 1.0}, {}, 9};
+    // Warp scales that are not a power of alpha across the nodes (as a heavy-tailed NDF's): ln c is interpolated.
+    for (const double a : t.grid.alphas) t.grid.scales.push_back(2.4 * std::pow(a, 0.8 + 0.3 * a));
     for (const double a : t.grid.alphas)
         for (int j = 0; j < t.grid.n_x; ++j) {
             const double x = t.grid.x(j);
@@ -87,7 +89,7 @@ std::vector<Point> points(const AlbedoTable& t) {
     std::vector<Point> p;
     for (const double a : alphas) {
         std::vector<double> mus = {0.0, 0.004, 0.1, 0.37, 0.9, 1.0, -0.2, 1.25};
-        for (const int j : {1, 3, 7}) mus.push_back(unwarp_cosine(a, t.grid.x(j)));
+        for (const int j : {1, 3, 7}) mus.push_back(unwarp_cosine(t.grid.scale(a), t.grid.x(j)));
         for (const double m : mus) p.push_back({static_cast<float>(a), static_cast<float>(m)});
     }
     return p;
@@ -373,13 +375,14 @@ TEST_CASE("compensation formats: the 16-bit PNG and its axes", "[compensation][f
     CHECK(j.at("quantity").get<std::string>() == "E");
     CHECK(j.at("identifier").get<std::string>() == "smithlab_my_ndf_1_hc");
     CHECK(j.at("one_minus_E_avg").get<std::vector<double>>() == e.missing);
-    CHECK(j.at("one_minus_E_avg_lookup").get<std::string>().find("ln(1 - E_avg) linear in ln(alpha)") !=
-          std::string::npos);
+    CHECK(j.at("one_minus_E_avg_lookup").get<std::string>().find("ln of it linear in ln(alpha)") != std::string::npos);
+    CHECK(j.at("warp_scales").get<std::vector<double>>() == t.grid.scales);
+    CHECK(j.at("warp_scale_lookup").get<std::string>().find("ln of it linear in ln(alpha)") != std::string::npos);
     CHECK_FALSE(j.contains("E_avg"));
-    CHECK(j.at("mu_of_x").get<std::string>() == "alpha x^2 / (1 + alpha - x^2)");
+    CHECK(j.at("mu_of_x").get<std::string>() == "c x^2 / (1 + c - x^2)");
     CHECK(j.at("max_interpolation_error").get<double>() == e.max_interp_error);
     CHECK(j.at("below_grid_error").get<double>() == e.below_grid_error);
-    CHECK(j.at("x").get<std::string>().find("(1 + alpha) mu / (mu + alpha)") != std::string::npos);
+    CHECK(j.at("x").get<std::string>().find("(1 + c) mu / (mu + c)") != std::string::npos);
     CHECK(j.at("lookup").get<std::string>().find("bilinear in (sqrt(alpha), x)") != std::string::npos);
     CHECK(j.at("below_first_alpha").get<std::string>().find("first row") != std::string::npos);
     CHECK(j.at("above_last_alpha").get<std::string>().find("last row") != std::string::npos);
@@ -455,6 +458,11 @@ TEST_CASE("compensation formats: bad input is refused, naming the item, and leav
         t = small_table();
         std::swap(t.grid.alphas[1], t.grid.alphas[2]);
         CHECK_THROWS_WITH(write_axes_json(sink, e), Catch::Contains("alphas must ascend"));
+        t = small_table();
+        t.grid.scales[2] = 1e-40;  // a subnormal float: its logarithm in float is not the double's
+        CHECK_THROWS_WITH(write_glsl(sink, e), Catch::Contains("the warp's scale at alpha 0.3"));
+        t.grid.scales.pop_back();
+        CHECK_THROWS_WITH(write_c_header(sink, e), Catch::Contains("4 warp scales for 5 alphas"));
         t = small_table();
         e.max_interp_error = std::nan("");
         CHECK_THROWS_WITH(write_c_header(sink, e), Catch::Contains("max interpolation error"));

@@ -243,8 +243,7 @@ TEST_CASE("fit: smithlab fit writes its outputs, reuses its cache, and the same 
           "[fit][cli]") {
     using namespace smithlab_test;
     const fs::path d = fresh_directory("fit");
-    write(d / "s.toml", tiny_scene);
-    const Run r = run("fit '" + (d / "s.toml").string() + "' --output '" + (d / "out").string() + "' --threads 2");
+    const Run r = run_fit(d, tiny_scene);
     INFO(r.err);
     REQUIRE(r.rc == 0);
     CHECK_THAT(r.out, Contains("fujii-fitted"));
@@ -288,11 +287,10 @@ TEST_CASE("fit: a pictures section traces and draws the spheres, slices and miss
           "[fit][cli]") {
     using namespace smithlab_test;
     const fs::path d = fresh_directory("fitpics");
-    write(d / "s.toml",
-          tiny_scene +
-              "[pictures]\nsphere_alpha = [0.001, 1.0]\npixels = 8\nwalks = 200\n"
-              "slice_alpha = [1.0]\nslice_n = 4\n");
-    const Run r = run("fit '" + (d / "s.toml").string() + "' --output '" + (d / "out").string() + "' --threads 2");
+    const Run r = run_fit(d,
+                          tiny_scene +
+                              "[pictures]\nsphere_alpha = [0.001, 1.0]\npixels = 8\nwalks = 200\n"
+                              "slice_alpha = [1.0]\nslice_n = 4\n");
     INFO(r.err);
     REQUIRE(r.rc == 0);
     const fs::path p = d / "out" / "pictures";
@@ -347,7 +345,7 @@ TEST_CASE("fit: fits that leave their model's domain or measure worse than their
     using namespace smithlab_test;
     const fs::path d = fresh_directory("fitflags");
     // Hammon's facets and enough points for hammon-2017's five constants and smithlab-2026's eight.
-    write(d / "s.toml", R"TOML(title = "flags"
+    const Run r = run_fit(d, R"TOML(title = "flags"
 material = "fresnel-diffuse(f0=0.04, albedo=1)"
 albedos = [0.5, 1.0]
 models = ["oren-nayar", "hammon-2017", "smithlab-2026"]
@@ -364,7 +362,6 @@ walks = 400
 albedo_theta = [0.0, 60.0]
 albedo_walks = 400
 )TOML");
-    const Run r = run("fit '" + (d / "s.toml").string() + "' --output '" + (d / "out").string() + "' --threads 2");
     INFO(r.err);
     REQUIRE(r.rc == 0);
     const std::string report = slurp(d / "out" / "report.md");
@@ -413,11 +410,10 @@ TEST_CASE("fit: the tables name an NDF's parameters in columns of their own besi
     std::string text = tiny_scene;
     text.replace(text.find("family = \"ggx\""), std::string("family = \"ggx\"").size(),
                  "family = \"gtr\"\ngamma = [1.5, 3]");
-    write(d / "s.toml",
-          text +
-              "[compensation]\nalpha = [0.5, 1.0]\ncosines = 4\nrefine = 2\ng2 = [\"separable\"]\n"
-              "furnace_alpha = [0.5]\nfurnace_theta = [0.0]\nfurnace_walks = 100\n");
-    const Run r = run("fit '" + (d / "s.toml").string() + "' --output '" + (d / "out").string() + "' --threads 2");
+    const Run r = run_fit(d,
+                          text +
+                              "[compensation]\nalpha = [0.5, 1.0]\ncosines = 4\nrefine = 2\ng2 = [\"separable\"]\n"
+                              "furnace_alpha = [0.5]\nfurnace_theta = [0.0]\nfurnace_walks = 100\n");
     INFO(r.err);
     REQUIRE(r.rc == 0);
     const fs::path o = d / "out";
@@ -430,19 +426,18 @@ TEST_CASE("fit: the tables name an NDF's parameters in columns of their own besi
     CHECK(slurp(o / "compensation.csv")
               .rfind("ndf,alpha,gamma,g2,cos_theta,E\n\"gtr(alpha=0.5, gamma=1.5)\",0.5,1.5,separable,0,", 0) == 0);
     CHECK(slurp(o / "compensation_avg.csv")
-              .rfind("ndf,alpha,gamma,g2,E_avg,one_minus_E_avg,table_one_minus_E_avg\n", 0) == 0);
+              .rfind("ndf,alpha,gamma,g2,warp_scale,E_avg,one_minus_E_avg,table_one_minus_E_avg\n", 0) == 0);
     fs::remove_all(d);
 }
 
 TEST_CASE("fit: [compensation] writes every table, its errors, its renderer formats and the furnace", "[fit][cli]") {
     using namespace smithlab_test;
     const fs::path d = fresh_directory("fitcompensation");
-    write(d / "s.toml",
-          tiny_scene +
-              "[compensation]\nalpha = {sqrt = [0.01, 1.0], n = 3}\ncosines = 6\nrefine = 2\n"
-              "eta = [1.5]\nconductors = [\"conductor(eta=0.2, k=3)\"]\nfurnace_alpha = [0.5]\n"
-              "furnace_theta = [0.0, 60.0]\nfurnace_walks = 2000\n");
-    const Run r = run("fit '" + (d / "s.toml").string() + "' --output '" + (d / "out").string() + "' --threads 2");
+    const Run r = run_fit(d,
+                          tiny_scene +
+                              "[compensation]\nalpha = {cbrt = [0.001, 1.0], n = 3}\ncosines = 6\nrefine = 2\n"
+                              "eta = [1.5]\nconductors = [\"conductor(eta=0.2, k=3)\"]\nfurnace_alpha = [0.5]\n"
+                              "furnace_theta = [0.0, 60.0]\nfurnace_walks = 2000\n");
     INFO(r.err);
     REQUIRE(r.rc == 0);
     const fs::path o = d / "out";
@@ -456,18 +451,20 @@ TEST_CASE("fit: [compensation] writes every table, its errors, its renderer form
         std::istringstream in(line);
         return smithlab::read_csv(in).at(0).fields;
     };
-    // Two G2 forms x 3 alphas (0.01, 0.55^2, 1: evenly spaced in sqrt(alpha)) x 6 cosines; each dielectric row from
+    // Two G2 forms x 3 alphas (0.001, 0.55^3, 1: evenly spaced in cbrt(alpha)) x 6 cosines; each dielectric row from
     // both sides.
     const std::vector<std::string> E = lines(slurp(o / "compensation.csv"));
     REQUIRE(E.size() == 1 + 2 * 3 * 6);
     CHECK(E[0] == "ndf,alpha,g2,cos_theta,E");
-    CHECK(E[1] == "ggx(alpha=0.01),0.01,height-correlated,0,1");  // the grazing limit of the height-correlated G2
-    CHECK(std::stod(fields(E[7])[1]) == Approx(0.3025).epsilon(1e-15));
-    CHECK_THAT(E[19], Catch::Matchers::StartsWith("ggx(alpha=0.01),0.01,separable,0,"));
-    // A node of the table is the albedo there (the cosine x = 0.6 of alpha = 1 unwarped: mu = 0.36 / 1.64).
+    CHECK(E[1] == "ggx(alpha=0.001),0.001,height-correlated,0,1");  // the grazing limit of the height-correlated G2
+    CHECK(std::stod(fields(E[7])[1]) == Approx(0.166375).epsilon(1e-15));
+    CHECK_THAT(E[19], Catch::Matchers::StartsWith("ggx(alpha=0.001),0.001,separable,0,"));
+    // A node of the table is the albedo there (the cosine x = 0.6 of alpha = 1 unwarped: mu = c 0.36 / (1 + c - 0.36),
+    // c = 6 cos(theta) where GGX's Lambda = (sqrt(1 + 1 / a^2) - 1) / 2 = 0.3, a = cot(theta) / alpha).
     const std::vector<std::string> node = fields(E[16]);
     REQUIRE(node.size() == 5);
-    CHECK(std::stod(node[3]) == Approx(0.36 / 1.64).epsilon(1e-15));
+    const double cot = 1.0 / std::sqrt(1.6 * 1.6 - 1.0), c = 6.0 * cot / std::sqrt(1.0 + cot * cot);
+    CHECK(std::stod(node[3]) == Approx(c * 0.36 / (1.0 + c - 0.36)).epsilon(1e-12));
     const fit::SingleScatteringAlbedo<smithlab::Ggx> exact(smithlab::ggx(1.0), {.tolerance = 1e-8});
     CHECK(std::stod(node[4]) == Approx(exact(std::stod(node[3]))).epsilon(1e-9));
     const std::vector<std::string> dielectric = lines(slurp(o / "compensation_dielectric.csv"));
@@ -556,6 +553,46 @@ TEST_CASE("fit: a bad scene is refused naming FILE:LINE and the item, with nothi
         "compensation.conductors");
     bad("points = 6", "points = 0", "validation.points");
     bad("phi = [0.0, 180.0]", "phi = {lin = [0.0, 180.0], n = 30000}", "90003 direction pairs per alpha");
+    fs::remove_all(d);
+}
+
+TEST_CASE("fit: [compensation]'s tables and furnace count against --max-walks, refused over it naming the keys",
+          "[fit][cli]") {
+    using namespace smithlab_test;
+    const fs::path d = fresh_directory("fitcompensationsize");
+    auto fit_with = [&](const std::string& name, const std::string& compensation, const std::string& options) {
+        write(d / name, tiny_scene + "[compensation]\n" + compensation);
+        return run("fit '" + (d / name).string() + "' --output '" + (d / "out").string() + "' " + options);
+    };
+    // The default 48 alphas at the largest refine and cosines: (47 x 100 + 1) x (4095 x 100 + 1) values a table, two
+    // G2 forms of one NDF.
+    const Run big = fit_with("big.toml", "cosines = 4096\nrefine = 100\n", "");
+    INFO(big.err);
+    CHECK(big.rc == 2);
+    CHECK_THAT(big.err,
+               Contains("big.toml:") &&
+                   Contains("compensation.refine with alpha, cosines, g2 and eta makes the tables 3850128402 "
+                            "values of E (4701 x 409501 check-grid points x (1 + 10 x 0 dielectric sides) x 2 "
+                            "NDFs and G2 forms)") &&
+                   Contains("more than --max-walks 1e+11 (raise it with --max-walks N)"));
+    CHECK_FALSE(fs::exists(d / "out"));
+    // A small one: 3 x 7 values a table (alphas 0.5 and 1, 4 cosines, refine 2), two G2 forms, at 1000 walks a value
+    // 42 000; the furnace's 100 walks (mirror facets at one angle) and the fit's 10 400 (18 training and 8 validation
+    // points at 400 walks): 52 500 in all.
+    const std::string small =
+        "alpha = [0.5, 1.0]\ncosines = 4\nrefine = 2\nfurnace_alpha = [0.5]\n"
+        "furnace_theta = [0.0]\nfurnace_walks = 100\n";
+    const Run over = fit_with("small.toml", small, "--max-walks 52499");
+    INFO(over.err);
+    CHECK(over.rc == 2);
+    CHECK_THAT(over.err,
+               Contains("the work of 42000 walks; with the furnace's 100 and the fit's 10400, more than "
+                        "--max-walks 52499"));
+    CHECK_FALSE(fs::exists(d / "out"));
+    const Run at = fit_with("small.toml", small, "--max-walks 52500 --threads 2");
+    INFO(at.err);
+    CHECK(at.rc == 0);
+    CHECK(fs::exists(d / "out" / "compensation.csv"));
     fs::remove_all(d);
 }
 

@@ -1,9 +1,12 @@
 #include "fit/fit_compensation.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <memory>
+#include <mutex>
 #include <numbers>
 #include <sstream>
 
@@ -24,7 +27,7 @@ std::string g2_name(G2Form form) { return form == G2Form::uncorrelated ? "separa
 
 fit::AlbedoOptions table_options(G2Form form) {
     fit::AlbedoOptions o;
-    o.tolerance = 1e-8;
+    o.tolerance = fit::table_tolerance;
     o.g2 = form;
     return o;
 }
@@ -34,12 +37,37 @@ namespace {
 const double furnace_mu_min = std::cos(furnace_theta_max * std::numbers::pi / 180.0);
 const std::vector<double> below_factors{0.5, 0.1, 0.01};
 
-// The exact albedo at one alpha, built once per alpha (an NDF without a closed-form Lambda builds its table).
-std::shared_ptr<const fit::SingleScatteringAlbedo<AnyNdf>> albedo_at(const NdfRegistry& registry, const FitFamily& f,
-                                                                     double alpha, G2Form form) {
-    return std::make_shared<const fit::SingleScatteringAlbedo<AnyNdf>>(make_ndf(registry, f, alpha),
-                                                                       table_options(form));
-}
+using Albedo = fit::SingleScatteringAlbedo<AnyNdf>;
+
+// The exact albedos of one family and G2 form, one object per alpha (an NDF without a closed-form Lambda builds its
+// table in it). Those asked for again are kept: the node alphas (their 1 - E_avg is taken after the tables) and the
+// alphas below the grid (every table's below-grid error visits them). Safe from several threads at once.
+class AlbedoCache {
+public:
+    AlbedoCache(const NdfRegistry& registry, const FitFamily& f, G2Form form, const std::vector<double>& nodes)
+        : registry_(registry), family_(f), form_(form), nodes_(nodes) {}
+    std::shared_ptr<const Albedo> at(double alpha) {
+        {
+            const std::lock_guard lock(mutex_);
+            if (const auto it = kept_.find(alpha); it != kept_.end()) return it->second;
+        }
+        auto E = std::make_shared<const Albedo>(make_ndf(registry_, family_, alpha), table_options(form_));
+        if (!kept(alpha)) return E;
+        const std::lock_guard lock(mutex_);
+        return kept_.emplace(alpha, std::move(E)).first->second;
+    }
+
+private:
+    bool kept(double alpha) const {
+        return alpha < nodes_.front() || std::binary_search(nodes_.begin(), nodes_.end(), alpha);
+    }
+    const NdfRegistry& registry_;
+    const FitFamily& family_;
+    G2Form form_;
+    const std::vector<double>& nodes_;
+    std::mutex mutex_;
+    std::map<double, std::shared_ptr<const Albedo>> kept_;
+};
 
 MeasuredTable measured(std::string name, fit::CheckedTable t, const fit::AlbedoRow& row, unsigned threads) {
     MeasuredTable m{std::move(name), std::move(t), {}, {}};
@@ -47,52 +75,70 @@ MeasuredTable measured(std::string name, fit::CheckedTable t, const fit::AlbedoR
     return m;
 }
 
+// Each eta from outside, then from inside.
+std::vector<DielectricTables> dielectric_sides(const std::vector<double>& etas) {
+    std::vector<DielectricTables> sides;
+    for (double eta : etas)
+        for (bool inside : {false, true}) {
+            sides.emplace_back();
+            sides.back().eta = eta;
+            sides.back().inside = inside;
+        }
+    return sides;
+}
+
+// Every table in one pass over the check grid, one albedo object per alpha: E, then E_R, E_T and E_R + E_T of each
+// dielectric side.
+std::vector<fit::CheckedTable> tabulate_all(const fit::AlbedoGrid& grid, int refine, AlbedoCache& albedos,
+                                            const std::vector<DielectricTables>& sides, unsigned threads) {
+    std::vector<double> rel;
+    for (const DielectricTables& d : sides) rel.push_back(d.relative_eta());
+    const fit::AlbedoRows rows = [&](double alpha) -> std::function<void(double, double*)> {
+        return [E = albedos.at(alpha), rel](double mu, double* v) {
+            v[0] = (*E)(mu);
+            for (std::size_t k = 0; k < rel.size(); ++k) {
+                const auto e = E->dielectric(mu, rel[k]);
+                v[1 + 3 * k] = e.R;
+                v[2 + 3 * k] = e.T;
+                v[3 + 3 * k] = e.R + e.T;
+            }
+        };
+    };
+    return fit::tabulate(grid, refine, static_cast<int>(1 + 3 * rel.size()), rows, threads);
+}
+
 FamilyTables make_tables(const FitFamily& f, G2Form form, const FitScene::Compensation& c, const NdfRegistry& registry,
                          unsigned threads) {
-    fit::AlbedoGrid grid{c.alpha, {}, static_cast<int>(c.cosines)};
-    for (double a : c.alpha) grid.scales.push_back(albedo_at(registry, f, a, form)->warp_scale());
     const int refine = static_cast<int>(c.refine);
+    AlbedoCache albedos(registry, f, form, c.alpha);
+    fit::AlbedoGrid grid{c.alpha, {}, static_cast<int>(c.cosines)};
+    for (double a : c.alpha) grid.scales.push_back(albedos.at(a)->warp_scale());
     FamilyTables out;
     out.family = &f;
     out.g2 = form;
+    out.dielectrics = dielectric_sides(c.eta);
+    std::vector<fit::CheckedTable> t = tabulate_all(grid, refine, albedos, out.dielectrics, threads);
     const fit::AlbedoRow mirror = [&](double alpha) -> std::function<double(double)> {
-        auto E = albedo_at(registry, f, alpha, form);
-        return [E](double mu) { return (*E)(mu); };
+        return [E = albedos.at(alpha)](double mu) { return (*E)(mu); };
     };
-    out.E = measured("E", fit::tabulate(grid, refine, mirror, threads), mirror, threads);
-    for (double a : c.alpha) out.exact_missing.push_back(albedo_at(registry, f, a, form)->missing());
+    out.E = measured("E", std::move(t[0]), mirror, threads);
+    for (double a : c.alpha) out.exact_missing.push_back(albedos.at(a)->missing());
     out.missing = fit::table_missing(out.E.table.table);
     out.E.furnace = fit::kulla_conty_furnace(out.E.table, out.missing, furnace_mu_min);
-    for (double eta : c.eta)
-        for (bool inside : {false, true}) {
-            DielectricTables d;
-            d.eta = eta;
-            d.inside = inside;
-            const double rel = d.relative_eta();
-            const fit::AlbedoRows rows = [&](double alpha) -> std::function<void(double, double*)> {
-                auto E = albedo_at(registry, f, alpha, form);
-                return [E, rel](double mu, double* v) {
-                    const auto e = E->dielectric(mu, rel);
-                    v[0] = e.R;
-                    v[1] = e.T;
-                    v[2] = e.R + e.T;
-                };
+    for (std::size_t k = 0; k < out.dielectrics.size(); ++k) {
+        DielectricTables& d = out.dielectrics[k];
+        const fit::AlbedoRow sum = [&, rel = d.relative_eta()](double alpha) -> std::function<double(double)> {
+            return [E = albedos.at(alpha), rel](double mu) {
+                const auto e = E->dielectric(mu, rel);
+                return e.R + e.T;
             };
-            const fit::AlbedoRow sum = [&](double alpha) -> std::function<double(double)> {
-                return [row = rows(alpha)](double mu) {
-                    double v[3];
-                    row(mu, v);
-                    return v[2];
-                };
-            };
-            std::vector<fit::CheckedTable> t = fit::tabulate(grid, refine, 3, rows, threads);
-            d.R = std::move(t[0]);
-            d.T = std::move(t[1]);
-            d.sum = measured("E_R+E_T eta=" + format_shortest(eta) + (inside ? " inside" : " outside"), std::move(t[2]),
-                             sum, threads);
-            d.sum.furnace = fit::turquin_furnace(d.sum.table, furnace_mu_min);
-            out.dielectrics.push_back(std::move(d));
-        }
+        };
+        d.R = std::move(t[1 + 3 * k]);
+        d.T = std::move(t[2 + 3 * k]);
+        d.sum = measured("E_R+E_T eta=" + format_shortest(d.eta) + (d.inside ? " inside" : " outside"),
+                         std::move(t[3 + 3 * k]), sum, threads);
+        d.sum.furnace = fit::turquin_furnace(d.sum.table, furnace_mu_min);
+    }
     return out;
 }
 
@@ -129,7 +175,7 @@ void write_csvs(const fs::path& dir, const std::vector<FamilyTables>& all, const
     const NdfRows nr = ndf_rows(all, c.alpha, registry);
     std::ostringstream E, avg, diel;
     E << header_of(nr.columns, {"g2", "cos_theta", "E"});
-    avg << header_of(nr.columns, {"g2", "E_avg", "one_minus_E_avg", "table_one_minus_E_avg"});
+    avg << header_of(nr.columns, {"g2", "warp_scale", "E_avg", "one_minus_E_avg", "table_one_minus_E_avg"});
     diel << header_of(nr.columns, {"g2", "eta", "side", "cos_theta", "E_R", "E_T"});
     for (std::size_t n = 0; n < all.size(); ++n) {
         const FamilyTables& t = all[n];
@@ -139,8 +185,8 @@ void write_csvs(const fs::path& dir, const std::vector<FamilyTables>& all, const
             const std::string lead = ndf_cells(nr, k, g.alphas[i]) + g2_name(t.g2) + ",";
             for (int j = 0; j < g.n_x; ++j)
                 E << lead << format_g17(g.mu(i, j)) << "," << format_g17(t.E.table.table.at(i, j)) << "\n";
-            avg << lead << format_g17(1.0 - t.exact_missing[i]) << "," << format_g17(t.exact_missing[i]) << ","
-                << format_g17(t.missing[i]) << "\n";
+            avg << lead << format_g17(g.scales[i]) << "," << format_g17(1.0 - t.exact_missing[i]) << ","
+                << format_g17(t.exact_missing[i]) << "," << format_g17(t.missing[i]) << "\n";
             for (const DielectricTables& d : t.dielectrics)
                 for (int j = 0; j < g.n_x; ++j)
                     diel << lead << format_g17(d.eta) << "," << (d.inside ? "inside" : "outside") << ","
@@ -218,16 +264,8 @@ void write_furnace(const fs::path& dir, const std::vector<FurnaceRow>& rows) {
     output::write_file(dir / "furnace.csv", f.str());
 }
 
-std::string e3(double v) {
-    char b[32];
-    std::snprintf(b, sizeof b, "%.1e", v);
-    return b;
-}
-std::string g4(double v) {
-    char b[32];
-    std::snprintf(b, sizeof b, "%.4g", v);
-    return b;
-}
+std::string e3(double v) { return format_printf("%.1e", v); }
+std::string g4(double v) { return format_printf("%.4g", v); }
 
 std::string markdown(const std::vector<FamilyTables>& all, const FitScene::Compensation& c,
                      const std::vector<FurnaceRow>& rows) {
@@ -235,7 +273,8 @@ std::string markdown(const std::vector<FamilyTables>& all, const FitScene::Compe
     md << "\n## Energy compensation (Kulla and Conty 2017, Turquin 2019)\n\n"
        << "Tables of the single-scattering albedo over " << c.alpha.size() << " alphas (" << g4(c.alpha.front())
        << " to " << g4(c.alpha.back()) << ", linear in sqrt(alpha)) x " << c.cosines
-       << " warped cosines x = sqrt((1 + alpha) mu / (mu + alpha)), each measured against the exact values on the "
+       << " warped cosines x = sqrt((1 + c) mu / (mu + c)) (c the NDF's warp scale, compensation_avg.csv), each "
+       << "measured against the exact values on the "
        << "grid " << c.refine << "x finer in both (compensation_error.csv); the renderer formats are in "
        << "compensation/. The furnace by the tables: |compensated albedo - 1| at theta_i <= " << furnace_theta_max
        << " degrees, mirror facets with Kulla and Conty's lobe, dielectrics divided by E_R + E_T.\n\n"

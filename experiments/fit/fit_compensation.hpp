@@ -51,7 +51,7 @@ struct FamilyTables {
 
 // "height-correlated" or "separable".
 std::string g2_name(G2Form form);
-// The albedo options of every table: tolerance 1e-8 (the values' error ~1e-8, far below the tables' 1e-3).
+// The albedo options of every table: tolerance fit::table_tolerance (smithlab/fit/compensation.hpp).
 fit::AlbedoOptions table_options(G2Form form);
 
 // Writes the files into dir and returns report.md's section; "" without [compensation].

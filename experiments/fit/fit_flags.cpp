@@ -3,22 +3,17 @@
 #include <cstdio>
 #include <sstream>
 
+#include "smithlab/csv.hpp"
+
 namespace smithlab::fitrun {
 
 namespace {
 
-std::string g5(double v) {
-    char b[32];
-    std::snprintf(b, sizeof b, "%.5g", v);
-    return b;
-}
+std::string g5(double v) { return format_printf("%.5g", v); }
 
 // "[0, 1.5708]", "[0, inf)", "(-inf, inf)".
 std::string range_text(const fit::ParameterRange& r) {
-    char b[80];
-    std::snprintf(b, sizeof b, "%s%.5g, %.5g%s", r.lo == -INFINITY ? "(" : "[", r.lo, r.hi,
-                  r.hi == INFINITY ? ")" : "]");
-    return b;
+    return format_printf("%s%.5g, %.5g%s", r.lo == -INFINITY ? "(" : "[", r.lo, r.hi, r.hi == INFINITY ? ")" : "]");
 }
 
 void flag_ranges(std::vector<Flag>& out, const Measured& m, const std::string& ndf) {

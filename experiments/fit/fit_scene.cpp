@@ -167,12 +167,48 @@ FitScene::Validation read_validation(StrictTable& doc, FitScene::Validation v) {
 }  // namespace
 
 std::vector<double> FitScene::Compensation::default_alphas() {
-    return report::spaced(1e-4, 1.0, 48, report::Spacing::sqrt);
+    return report::spaced(1e-4, 1.0, 48, report::Spacing::cbrt);
 }
 
 namespace {
 
-FitScene::Compensation read_compensation(StrictTable& doc, FitScene::Compensation c) {
+// The tables' work (fit_compensation.cpp) counted in walks, the unit of --max-walks: each family and G2 form tabulates
+// E, and E_R and E_T per eta and side, on its check grid, refine x finer in sqrt(alpha) and in x. Measured
+// (docs/performance.md): GGX's 48 x 48 table, 221 841 values on its check grid, ~30 s on two cores for E (~0.27 ms of
+// a core a value, ~1000 walks of ~0.3 us) and ~5 min for a dielectric side (~10x a value of E).
+constexpr double walks_per_value = 1000.0;
+constexpr double dielectric_cost = 10.0;
+
+// What the fit's other work adds to the tables': the fitted NDFs and their walks.
+struct FitWork {
+    double ndfs = 0.0, walks = 0.0;
+};
+
+// Refuses [compensation] when its tables' work (in values of E, as walks) and its furnace's walks, with the fit's,
+// pass --max-walks.
+void check_compensation_size(const StrictTable& t, const FitScene::Compensation& c, FitWork fit,
+                             const report::SizeLimits& limits) {
+    const double alphas = (static_cast<double>(c.alpha.size()) - 1.0) * static_cast<double>(c.refine) + 1.0;
+    const double cosines = (static_cast<double>(c.cosines) - 1.0) * static_cast<double>(c.refine) + 1.0;
+    const double sides = 2.0 * static_cast<double>(c.eta.size());
+    const double tables = fit.ndfs * static_cast<double>(c.g2.size());
+    const double values = tables * alphas * cosines * (1.0 + dielectric_cost * sides);
+    const double furnace = fit.ndfs * static_cast<double>(c.furnace_alpha.size() * c.furnace_theta.size()) *
+        (1.0 + static_cast<double>(c.conductors.size()) + sides) * static_cast<double>(c.furnace_walks);
+    const double walks = values * walks_per_value + furnace + fit.walks;
+    if (!(walks > limits.max_walks)) return;
+    t.fail("refine",
+           "with alpha, cosines, g2 and eta makes the tables " + format_shortest(values) + " values of E (" +
+               format_shortest(alphas) + " x " + format_shortest(cosines) + " check-grid points x (1 + " +
+               format_shortest(dielectric_cost) + " x " + format_shortest(sides) + " dielectric sides) x " +
+               format_shortest(tables) + " NDFs and G2 forms), the work of " +
+               format_shortest(values * walks_per_value) + " walks; with the furnace's " + format_shortest(furnace) +
+               " and the fit's " + format_shortest(fit.walks) + ", more than --max-walks " +
+               format_shortest(limits.max_walks) + " (raise it with --max-walks N)");
+}
+
+FitScene::Compensation read_compensation(StrictTable& doc, FitScene::Compensation c, FitWork fit,
+                                         const report::SizeLimits& limits) {
     auto t = doc.optional_table(
         "compensation",
         {"alpha", "cosines", "refine", "g2", "eta", "conductors", "furnace_alpha", "furnace_theta", "furnace_walks"});
@@ -219,6 +255,7 @@ FitScene::Compensation read_compensation(StrictTable& doc, FitScene::Compensatio
     if (t->has("furnace_theta"))
         c.furnace_theta = read_bounded(*t, "furnace_theta", 0.0, 90.0, false, true, "[0, 90) degrees");
     c.furnace_walks = t->integer("furnace_walks", 100, 1'000'000'000, c.furnace_walks);
+    check_compensation_size(*t, c, fit, limits);
     t->done();
     return c;
 }
@@ -258,8 +295,10 @@ FitScene parse_fit_scene(const std::string& text, const std::string& source, con
     std::size_t pairs = 0;
     s.training = read_training(doc, s.training, pairs);  // before the NDFs: they size each NDF's work
     s.validation = read_validation(doc, s.validation);
-    s.ndfs = read_ndfs(doc, registry, per_ndf(s, pairs), limits);
-    s.compensation = read_compensation(doc, s.compensation);
+    const PerNdf each = per_ndf(s, pairs);
+    s.ndfs = read_ndfs(doc, registry, each, limits);
+    const double ndfs = static_cast<double>(s.ndfs.size());
+    s.compensation = read_compensation(doc, s.compensation, {ndfs, ndfs * each.walks}, limits);
     s.pictures = read_pictures(doc, s.pictures);
     doc.done();
     return s;

@@ -54,7 +54,7 @@ struct FitScene {
         std::vector<double> furnace_alpha{0.01, 0.1, 0.3, 0.6, 1.0};
         std::vector<double> furnace_theta{0.0, 30.0, 60.0, 75.0, 85.0};
         std::int64_t furnace_walks = 200000;
-        // 48 alphas evenly spaced in sqrt(alpha) from 1e-4 to 1.
+        // 48 alphas evenly spaced in cbrt(alpha) from 1e-4 to 1.
         static std::vector<double> default_alphas();
     } compensation;
     // The pictures (fit_pictures.hpp): absent (enabled = false) unless the scene has [pictures].
@@ -76,7 +76,9 @@ struct FitScene {
 // roughness (alpha is the training set's). Each NDF's values are checked by the registry when the run prepares them.
 // The fit's size is checked as its [[ndf]] entries are read, before their NDFs are made: points (training direction
 // pairs x alpha, validation points and albedo directions x validation alpha, per NDF) beyond limits.max_cells or
-// walks in all beyond limits.max_walks are refused at the entry that passes the bound (scene/limits.hpp).
+// walks in all beyond limits.max_walks are refused at the entry that passes the bound (scene/limits.hpp); so is a
+// [compensation] whose tables (each value of E counted as the walks of its time, fit_scene.cpp) and furnace walks,
+// with the fit's, pass limits.max_walks.
 FitScene parse_fit_scene(const std::string& text, const std::string& source, const NdfRegistry& registry,
                          const report::SizeLimits& limits = {});
 

@@ -1,6 +1,5 @@
 #include "fit/picture_markdown.hpp"
 
-#include <cstdio>
 #include <sstream>
 
 #include "fit/picture_traces.hpp"
@@ -10,11 +9,7 @@ namespace smithlab::fitrun {
 
 namespace {
 
-std::string fixed(double v, int digits) {
-    char b[64];
-    std::snprintf(b, sizeof b, "%.*f", digits, v);
-    return b;
-}
+std::string fixed(double v, int digits) { return format_printf("%.*f", digits, v); }
 
 void images(std::ostream& md, const std::vector<std::string>& labels, const std::string& prefix) {
     for (const std::string& l : labels) md << "![](pictures/" << prefix << file_stem(l) << ".png)\n\n";

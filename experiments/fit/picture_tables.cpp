@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <cstdio>
 #include <numbers>
 
 #include "fit/fit_trends.hpp"
@@ -28,11 +27,7 @@ double model_f(const Measured& m, const Vec3& light, const Vec3& view, double al
 }
 
 // Six significant digits: the pictures' values (the spheres' CSV holds ~10^5 rows per NDF).
-std::string short_g(double v) {
-    char b[32];
-    std::snprintf(b, sizeof b, "%.6g", v);
-    return b;
-}
+std::string short_g(double v) { return format_printf("%.6g", v); }
 
 // 1 - E_1/E = E_{k>=2}/E_{k>=1} for Lambertian facets (every event diffuse: k is the scattering order), with its
 // standard error by the delta method (the two means share their walks: fit::covariance).

@@ -200,20 +200,17 @@ py::dict compensation(const AnyNdf& ndf, int cosines, const std::string& g2) {
     require(cosines >= 2 && cosines <= 4096, "cosines", "in [2, 4096] (as the fit's [compensation] cosines)", cosines);
     if (g2 != "height-correlated" && g2 != "separable")
         throw input_error("g2 must be 'height-correlated' or 'separable', got '" + g2 + "'");
-    if (!ndf.has_param("alpha"))
-        throw input_error("compensation: " + ndf.spec() + " has no parameter alpha (the cosines are warped by it)");
-    const double alpha = ndf.param("alpha");
     fit::AlbedoOptions opts;
-    opts.tolerance = 1e-8;  // the fit's tables' (fit/fit_compensation.hpp)
+    opts.tolerance = fit::table_tolerance;  // as the fit's tables
     opts.g2 = g2 == "separable" ? G2Form::uncorrelated : G2Form::height_correlated;
-    const fit::AlbedoGrid grid{{alpha, 2.0 * alpha}, cosines};
     std::vector<double> mus, E;
-    double missing = 0.0;
+    double missing = 0.0, scale = 0.0;
     {
         py::gil_scoped_release free;
         const fit::SingleScatteringAlbedo<AnyNdf> albedo(ndf, opts);
+        scale = albedo.warp_scale();
         for (int j = 0; j < cosines; ++j) {
-            mus.push_back(grid.mu(0, j));
+            mus.push_back(fit::unwarp_cosine(scale, static_cast<double>(j) / (cosines - 1)));
             E.push_back(albedo(mus.back()));
         }
         missing = albedo.missing();
@@ -223,17 +220,18 @@ py::dict compensation(const AnyNdf& ndf, int cosines, const std::string& g2) {
     out["E"] = py::array_t<double>(static_cast<py::ssize_t>(E.size()), E.data());
     out["E_avg"] = 1.0 - missing;
     out["one_minus_E_avg"] = missing;
+    out["warp_scale"] = scale;
     return out;
 }
 
 const char* const compensation_doc = R"(One alpha's row of the energy-compensation table of the NDF (Kulla and Conty
 2017): E, the directional albedo of single scattering off mirror facets (dimensionless), at the table's warped
-cosines cos_theta = alpha x^2 / (1 + alpha - x^2), x = j / (cosines - 1) (0 grazing, 1 normal; fit/albedo_grid.hpp),
-alpha the NDF's, and 1 - E_avg = 2 integral of (1 - E(mu)) mu dmu by its own quadrature; g2 'height-correlated'
-(E(0) = 1, the limit) or 'separable' (G1 G1). A dict: 'cos_theta' and 'E' (float64 arrays of `cosines`), 'E_avg' and
-'one_minus_E_avg' (floats). The same
-bits as the fit's compensation.csv and compensation_avg.csv rows of that NDF and G2. By quadrature
-(fit/compensation.hpp, relative tolerance 1e-8); ~0.2 ms a cosine. Runs without the GIL.)";
+cosines cos_theta = c x^2 / (1 + c - x^2), x = j / (cosines - 1) (0 grazing, 1 normal; fit/albedo_grid.hpp), c the
+NDF's warp scale (6 cos(theta) where its Lambda = 0.3), and 1 - E_avg = 2 integral of (1 - E(mu)) mu dmu by its own
+quadrature; g2 'height-correlated' (E(0) = 1, the limit) or 'separable' (G1 G1). A dict: 'cos_theta' and 'E'
+(float64 arrays of `cosines`), 'E_avg', 'one_minus_E_avg' and 'warp_scale' (floats). The same bits as the fit's
+compensation.csv and compensation_avg.csv rows of that NDF and G2. By quadrature (fit/compensation.hpp, relative
+tolerance 1e-8); ~0.2 ms a cosine. Runs without the GIL.)";
 
 }  // namespace
 

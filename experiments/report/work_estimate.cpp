@@ -1,9 +1,9 @@
 #include "report/work_estimate.hpp"
 
 #include <cmath>
-#include <cstdio>
 
 #include "report/scene.hpp"
+#include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
 
 namespace smithlab::report {
@@ -16,11 +16,7 @@ double rounded_up(double x) {
     return std::ceil(x / unit) * unit;
 }
 
-std::string short_number(double x) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.3g", x);
-    return text;
-}
+std::string short_number(double x) { return format_printf("%.3g", x); }
 
 }  // namespace
 

@@ -1,6 +1,7 @@
 #include "smithlab/csv.hpp"
 
 #include <charconv>
+#include <cstdarg>
 #include <cstdio>
 #include <istream>
 #include <iterator>
@@ -77,11 +78,19 @@ std::vector<CsvRecord> read_csv(std::istream& in) {
     return records;
 }
 
-std::string format_g17(double v) {
-    char buf[40];
-    std::snprintf(buf, sizeof buf, "%.17g", v);
-    return buf;
+std::string format_printf(const char* format, ...) {
+    std::va_list args, again;
+    va_start(args, format);
+    va_copy(again, args);
+    const int n = std::vsnprintf(nullptr, 0, format, args);
+    va_end(args);
+    std::string text(n > 0 ? static_cast<std::size_t>(n) : 0, '\0');
+    if (n > 0) std::vsnprintf(text.data(), text.size() + 1, format, again);
+    va_end(again);
+    return text;
 }
+
+std::string format_g17(double v) { return format_printf("%.17g", v); }
 
 std::string format_shortest(double v) {
     char text[32];

@@ -1,11 +1,11 @@
 #include "smithlab/lambda_table.hpp"
 
 #include <cfloat>
-#include <cstdio>
 #include <deque>
 #include <string>
 #include <utility>
 
+#include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
 
 namespace smithlab {
@@ -19,11 +19,7 @@ constexpr double x_limit = 690.0;         // the ends are searched for within mu
 constexpr double underflow_width = 1e-6;  // the bisection for where Lambda crosses floor_Lambda, in ln mu
 constexpr double past_scale = 1e-5;       // the large-mu end has mu Lambda below this much of its limit c0 at mu -> 0
 
-std::string num(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.6g", v);
-    return buf;
-}
+std::string num(double v) { return format_printf("%.6g", v); }
 
 // Lambda at mu = e^x from the exact route, checked.
 struct Exact {

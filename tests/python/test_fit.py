@@ -108,6 +108,7 @@ def test_compensation_is_the_fits_tables(fit_dir):
         assert c["E"].tolist() == [float(r["E"]) for r in points]
         assert c["E_avg"] == float(avg["E_avg"])
         assert c["one_minus_E_avg"] == float(avg["one_minus_E_avg"])
+        assert c["warp_scale"] == float(avg["warp_scale"])
     default = smithlab.compensation(smithlab.ndf("ggx(alpha=0.5)"))
     assert default["cos_theta"].shape == default["E"].shape == (48,) and default["E"][0] == 1.0
 

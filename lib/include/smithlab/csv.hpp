@@ -18,6 +18,9 @@ struct CsvRecord {
 // caller can report each bad row by its line and keep going.
 std::vector<CsvRecord> read_csv(std::istream& in);
 
+// printf's text of the arguments by `format` (std::vsnprintf), whatever its length; the compiler checks the format
+// against the arguments.
+[[gnu::format(printf, 1, 2)]] std::string format_printf(const char* format, ...);
 // A number with 17 significant digits ("%.17g"): every double round-trips.
 std::string format_g17(double v);
 // The shortest text that reads back as v (std::to_chars): 0.1 as "0.1", where "%.17g" gives 0.10000000000000001.

@@ -163,6 +163,7 @@ double lookup_power_law(const std::vector<double>& alphas, const std::vector<dou
         require(values[k] > 0.0 && std::isfinite(values[k]), what, "finite and > 0", values[k]);
     // ln v linear in ln alpha; below the first node the first cell's line continued, above the last the last value.
     const double u = alpha < alphas.back() ? std::log(alpha / alphas[i]) / std::log(alphas[i + 1] / alphas[i]) : 1.0;
+    if (u == 0.0 || u == 1.0) return values[u == 0.0 ? i : i + 1];  // a node's own value, not exp(ln v)
     return std::exp(std::log(values[i]) + u * (std::log(values[i + 1]) - std::log(values[i])));
 }
 

@@ -6,7 +6,6 @@
 #include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <boost/math/special_functions/beta.hpp>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <numbers>
 #include <string>
@@ -40,7 +39,14 @@ double smooth_gk(const F& f, double a, double b, double tolerance) {
               tolerance);
 }
 
-using detail::Event;
+// One scattering event of the grazing limit: a reflection (facets of reflectance F, null: 1), or a refraction through
+// a dielectric facet of relative index eta (the index below over the index above: light comes from above; light from
+// inside a medium of index n is eta = 1 / n), weighted by 1 - F, F the exact dielectric Fresnel (fresnel.hpp).
+struct Event {
+    bool transmission = false;
+    double eta = 1.0;
+    G2Form form = G2Form::height_correlated;
+};
 
 // The z of the direction refracted through a facet of normal m (m.z = mz), wi.m = c, wi.z = ci, eta the index below
 // over the index above (Walter et al. 2007, eq. 40: wt = (c / eta - cos_t) m - wi / eta, cos_t = sqrt(1 - (1 - c^2) /
@@ -463,20 +469,38 @@ Albedos dielectric_albedos_at(FunctionRef P22, FunctionRef Lambda, double mu, do
     return {2.0 * sum.R / ci, 2.0 * sum.T / ci};
 }
 
+// 2 integral_0^1 g(mu) mu dmu in x, the table's warped cosine at alpha, cell by cell (8-point Gauss-Legendre a cell):
+// the lookup is linear in x there, and mu(x) = c x^2 / (1 + c - x^2) rational (c the warp's scale at alpha), with
+// dmu/dx = 2 c (1 + c) x / (1 + c - x^2)^2 (in mu the first cell goes like sqrt(mu)). g is given mu clamped to 1.
+template <class G>
+double cosine_integral(const AlbedoTable& E, double alpha, const G& g) {
+    // 8-point Gauss-Legendre nodes and weights on [-1, 1] (Abramowitz and Stegun, table 25.4).
+    static constexpr double x8[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267, 0.9602898564975363};
+    static constexpr double w8[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
+    const double c = E.grid.scale(alpha), k = 1.0 + c;
+    double integral = 0.0;
+    for (int j = 0; j + 1 < E.grid.n_x; ++j) {
+        const double a = E.grid.x(j), b = E.grid.x(j + 1), mid = 0.5 * (a + b), half = 0.5 * (b - a);
+        for (int q = 0; q < 4; ++q)
+            for (double sgn : {-1.0, 1.0}) {
+                const double x = mid + sgn * half * x8[q], d = k - x * x;
+                const double mu = c * x * x / d, dmu = 2.0 * c * k * x / (d * d);
+                integral += w8[q] * half * g(std::min(mu, 1.0)) * mu * dmu;
+            }
+    }
+    return 2.0 * integral;
+}
+
 }  // namespace
 
 namespace detail {
 
 double single_scattering_albedo(FunctionRef P22, FunctionRef Lambda, const FunctionRef* F, double mu, double tolerance,
-                                const Event& event) {
+                                G2Form form) {
     require(mu >= 0.0 && mu <= 1.0, "mu = cos(theta_i)", "in [0, 1]", mu);
-    if (event.transmission) require(event.eta > 0.0 && std::isfinite(event.eta), "eta", "finite and > 0", event.eta);
-    if (mu == 0.0) {
-        if (!F && !event.transmission && event.form == G2Form::height_correlated) return 1.0;
-        return grazing_albedo(P22, Lambda, F, event, tolerance);
-    }
-    return event.transmission ? dielectric_albedos_at(P22, Lambda, mu, tolerance, event.eta, event.form).T
-                              : reflection_albedo(P22, Lambda, F, mu, tolerance, event.form);
+    if (mu > 0.0) return reflection_albedo(P22, Lambda, F, mu, tolerance, form);
+    if (!F && form == G2Form::height_correlated) return 1.0;
+    return grazing_albedo(P22, Lambda, F, {false, 1.0, form}, tolerance);
 }
 
 std::pair<double, double> dielectric_albedos(FunctionRef P22, FunctionRef Lambda, double mu, double tolerance,
@@ -499,52 +523,16 @@ double cosine_average(FunctionRef e, double tolerance) {
 
 }  // namespace detail
 
-std::vector<double> compensation_mus(int n) {
-    require(n >= 2, "the number of table points", ">= 2", n);
-    std::vector<double> mus(static_cast<std::size_t>(n));
-    for (int j = 0; j < n; ++j) mus[static_cast<std::size_t>(j)] = static_cast<double>(j) / (n - 1);
-    mus.back() = 1.0;
-    return mus;
-}
-
-double interpolate_E(const CompensationTable& table, double mu) {
-    const std::vector<double>& x = table.mus;
-    if (x.size() < 2 || table.E.size() != x.size())
-        throw input_error("compensation table: malformed (fewer than 2 points, or E and mus differ in size)");
-    require(mu >= x.front() && mu <= x.back(), "mu", "within the table's cosines", mu);
-    const std::size_t i = std::min<std::size_t>(
-        static_cast<std::size_t>(std::upper_bound(x.begin(), x.end(), mu) - x.begin()), x.size() - 1);
-    const std::size_t lo = i - 1;
-    const double t = (mu - x[lo]) / (x[i] - x[lo]);
-    return table.E[lo] + t * (table.E[i] - table.E[lo]);
-}
-
-double compensation_lobe(const CompensationTable& table, double mu_i, double mu_o) {
-    const double missing = 1.0 - table.E_avg;
-    if (!(missing > 0.0)) return 0.0;
-    return (1.0 - interpolate_E(table, mu_i)) * (1.0 - interpolate_E(table, mu_o)) / (pi * missing);
+double compensation_lobe(const AlbedoTable& E, const std::vector<double>& missing, double alpha, double mu_i,
+                         double mu_o) {
+    const double m = lookup_missing(E.grid.alphas, missing, alpha);
+    return (1.0 - E.lookup(alpha, mu_i)) * (1.0 - E.lookup(alpha, mu_o)) / (pi * m);
 }
 
 double fresnel_ms(double F_avg, double E_avg) { return F_avg * F_avg * E_avg / (1.0 - F_avg * (1.0 - E_avg)); }
 
 double table_missing(const AlbedoTable& E, double alpha) {
-    // 8-point Gauss-Legendre nodes and weights on [-1, 1] (Abramowitz and Stegun, table 25.4).
-    static constexpr double x8[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267, 0.9602898564975363};
-    static constexpr double w8[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
-    // In x, cell by cell: the lookup is linear in x there, and mu(x) = c x^2 / (1 + c - x^2) rational (c the warp's
-    // scale at alpha), with dmu/dx = 2 c (1 + c) x / (1 + c - x^2)^2 (in mu the first cell goes like sqrt(mu)).
-    const double c = E.grid.scale(alpha), k = 1.0 + c;
-    double integral = 0.0;
-    for (int j = 0; j + 1 < E.grid.n_x; ++j) {
-        const double a = E.grid.x(j), b = E.grid.x(j + 1), mid = 0.5 * (a + b), half = 0.5 * (b - a);
-        for (int q = 0; q < 4; ++q)
-            for (double sgn : {-1.0, 1.0}) {
-                const double x = mid + sgn * half * x8[q], d = k - x * x;
-                const double mu = c * x * x / d, dmu = 2.0 * c * k * x / (d * d);
-                integral += w8[q] * half * (1.0 - E.lookup(alpha, std::min(mu, 1.0))) * mu * dmu;
-            }
-    }
-    return 2.0 * integral;
+    return cosine_integral(E, alpha, [&](double mu) { return 1.0 - E.lookup(alpha, mu); });
 }
 
 std::vector<double> table_missing(const AlbedoTable& E) {
@@ -561,7 +549,9 @@ double kulla_conty_albedo(const AlbedoTable& E, const std::vector<double>& missi
                           double F_avg) {
     require(F_avg >= 0.0 && F_avg <= 1.0, "F_avg", "in [0, 1]", F_avg);
     const double E_avg = 1.0 - lookup_missing(E.grid.alphas, missing, alpha);
-    return fresnel_ms(F_avg, E_avg) * (1.0 - E.lookup(alpha, mu_i)) * kulla_conty_ratio(E, missing, alpha);
+    const double lobe =
+        cosine_integral(E, alpha, [&](double mu) { return compensation_lobe(E, missing, alpha, mu_i, mu); });
+    return fresnel_ms(F_avg, E_avg) * pi * lobe;
 }
 
 double turquin_scale(double E_view, double F0) {

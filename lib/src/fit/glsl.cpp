@@ -5,9 +5,9 @@
 #include "smithlab/fit/glsl.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <numbers>
 
+#include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
 
 namespace smithlab::fit {
@@ -247,11 +247,7 @@ std::string comment_text(std::string_view text) {
     return out;
 }
 
-std::string format_g(double v, int digits) {
-    char buf[40];
-    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-    return buf;
-}
+std::string format_g(double v, int digits) { return format_printf("%.*g", digits, v); }
 
 }  // namespace
 

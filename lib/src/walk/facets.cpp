@@ -5,6 +5,7 @@
 #include <map>
 #include <string>
 
+#include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
 #include "smithlab/spec.hpp"
 #include "smithlab/walk/material_catalogue.hpp"
@@ -76,11 +77,7 @@ public:
     }
 
 private:
-    static std::string num(double x) {
-        char buf[32];
-        std::snprintf(buf, sizeof buf, "%g", x);
-        return buf;
-    }
+    static std::string num(double x) { return format_printf("%g", x); }
     std::string name_;
     std::map<std::string, double> values_;
 };

@@ -62,6 +62,9 @@
 
 namespace smithlab::fit {
 
+// The tables' quadrature tolerance: values to ~1e-8 relative, far below their interpolation error ~5e-4 (albedo_grid).
+inline constexpr double table_tolerance = 1e-8;
+
 struct AlbedoOptions {
     double tolerance = 1e-10;  // relative, of each Gauss-Kronrod integral (inner ones at a tenth of it)
     // The G2 the single scattering uses: height-correlated (Walter 2007 eq. 20's Smith G2 as Heitz 2014 eq. 99 and
@@ -72,17 +75,10 @@ struct AlbedoOptions {
 };
 
 namespace detail {
-// One scattering event of the single-scattering albedo: a reflection (F(cos wi.m), null: 1), or a refraction through a
-// dielectric facet of relative index eta (the index below over the index above: light comes from above; light from
-// inside a medium of index n is eta = 1 / n), weighted by 1 - F, F the exact dielectric Fresnel (fresnel.hpp).
-struct Event {
-    bool transmission = false;
-    double eta = 1.0;
-    G2Form form = G2Form::height_correlated;
-};
-// The quadrature above for one mu in [0, 1]; P22(r^2), Lambda(cot theta >= 0).
+// The quadrature above for one mu in [0, 1] of a reflection off facets of reflectance F(cos wi.m) (null: mirror
+// facets, 1), with G2 of the given form; P22(r^2), Lambda(cot theta >= 0).
 double single_scattering_albedo(FunctionRef P22, FunctionRef Lambda, const FunctionRef* F, double mu, double tolerance,
-                                const Event& event = {});
+                                G2Form form = G2Form::height_correlated);
 // {E_R, E_T} of a dielectric interface of relative index eta (below over above) for one mu in [0, 1], both G2 forms:
 // the quadrature of the last paragraph of this header's comment (the grazing limits at mu = 0).
 std::pair<double, double> dielectric_albedos(FunctionRef P22, FunctionRef Lambda, double mu, double tolerance,
@@ -143,7 +139,7 @@ private:
     double albedo(double mu, const FunctionRef* F, double tolerance) const {
         auto P22 = [&](double r2) { return slope_density(ndf_, r2); };
         auto L = [&](double m) { return Lambda_(m); };
-        return detail::single_scattering_albedo(P22, L, F, mu, tolerance, {false, 1.0, opts_.g2});
+        return detail::single_scattering_albedo(P22, L, F, mu, tolerance, opts_.g2);
     }
     N ndf_;
     FastLambda<N> Lambda_;
@@ -166,46 +162,18 @@ double average_fresnel(const Fresnel& F, double tolerance = 1e-10) {
     return detail::cosine_average(F, tolerance);
 }
 
-// One NDF's table: E at the cosines mus (ascending, 0 and 1 included), and E_avg computed by its own quadrature
-// (not from the table's points).
-struct CompensationTable {
-    std::vector<double> mus, E;
-    double E_avg = 0.0;
-};
-
-// n >= 2 cosines j / (n - 1): a uniform grid with both ends, so that the piecewise-linear lookup (here and in the
-// C header) covers [0, 1] without extrapolating or clamping; E(0) = 1 exactly (the limit, above), E(1) at normal
-// incidence. Gauss-Legendre nodes would give E_avg from the table itself, but E_avg has its own quadrature here, and
-// a renderer's lookup wants the ends.
-std::vector<double> compensation_mus(int n);
-
-template <Ndf N>
-CompensationTable compensation_table(const N& ndf, int n = 32, const AlbedoOptions& opts = {}) {
-    const SingleScatteringAlbedo<N> E(ndf, opts);
-    CompensationTable t{compensation_mus(n), {}, 0.0};
-    t.E.reserve(t.mus.size());
-    for (double mu : t.mus) t.E.push_back(E(mu));
-    t.E_avg = E.average();
-    return t;
-}
-
-// E at any mu in [0, 1], linear between the table's points (input_error outside [0, 1] or for a malformed table).
-double interpolate_E(const CompensationTable& table, double mu);
-
-// Kulla and Conty 2017's lobe f_ms(wi, wo) = (1 - E(mu_i)) (1 - E(mu_o)) / (pi (1 - E_avg)), E interpolated from the
-// table (0 when E_avg = 1: no energy is missing).
-double compensation_lobe(const CompensationTable& table, double mu_i, double mu_o);
-// Its Fresnel factor F_ms = F_avg^2 E_avg / (1 - F_avg (1 - E_avg)): f_ms F_ms is the lobe of coloured facets.
+// Kulla and Conty 2017's Fresnel factor F_ms = F_avg^2 E_avg / (1 - F_avg (1 - E_avg)): f_ms F_ms is the lobe of
+// coloured facets (f_ms, compensation_lobe below).
 double fresnel_ms(double F_avg, double E_avg);
 // Turquin 2019's scale 1 + F0 (1 - E) / E, E = E(mu_v) of the direction held fixed (the view direction).
 double turquin_scale(double E_view, double F0);
-inline double turquin_scale(const CompensationTable& table, double mu_view, double F0) {
-    return turquin_scale(interpolate_E(table, mu_view), F0);
-}
 
-// The albedo of Kulla and Conty 2017's lobe as a renderer evaluates it from the tables: f_ms F_ms with
-// f_ms(wi, wo) = (1 - E(alpha, mu_i)) (1 - E(alpha, mu_o)) / (pi m(alpha)), E looked up (AlbedoTable::lookup) and
-// m = 1 - E_avg by lookup_missing from `missing` (1 - E_avg at E's alphas), integrated over wo:
+// Kulla and Conty 2017's lobe as a renderer evaluates it from the tables: f_ms(wi, wo) = (1 - E(alpha, mu_i))
+// (1 - E(alpha, mu_o)) / (pi m(alpha)), E looked up (AlbedoTable::lookup) and m = 1 - E_avg by lookup_missing from
+// `missing` (1 - E_avg at E's alphas).
+double compensation_lobe(const AlbedoTable& E, const std::vector<double>& missing, double alpha, double mu_i,
+                         double mu_o);
+// The albedo of that lobe times F_ms, integrated over wo:
 //     F_ms (1 - E(alpha, mu_i)) 2 integral_0^1 (1 - E(alpha, mu)) mu dmu / m(alpha),
 // F_ms = fresnel_ms(F_avg, 1 - m(alpha)) (1 for mirror facets, F_avg = 1). The integral over the table's cells in mu
 // (8-point Gauss-Legendre a cell: the lookup is linear in x, smooth in mu within a cell).
