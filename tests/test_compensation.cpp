@@ -234,6 +234,19 @@ TEST_CASE("the lobe from the (alpha, mu) table: symmetric, its albedo 1 - E(mu_i
         CHECK(std::abs(fit::kulla_conty_albedo(t, missing, alpha, 0.5, Fa) -
                        fit::fresnel_ms(Fa, Ea) * fit::kulla_conty_albedo(t, missing, alpha, 0.5)) < 1e-15);
     }
+    // Metalness: F_ms is convex in F_avg, so compensating a blended F0 once puts back less than blending the metal's
+    // and the dielectric's compensated lobes. GGX alpha = 1 at normal incidence (1 - E = ln 2, Heitz 2014's closed
+    // form of E(1)), Schlick's F_avg = F0 + (1 - F0) / 21, F0 0.04 and 0.9, metalness 0.5: 0.15 of the albedo.
+    {
+        const double Ea = fit::SingleScatteringAlbedo(smithlab::ggx(1.0)).average();
+        auto F_avg = [](double F0) { return F0 + (1.0 - F0) / 21.0; };
+        const double after = 0.5 * (fit::fresnel_ms(F_avg(0.04), Ea) + fit::fresnel_ms(F_avg(0.9), Ea));
+        const double before = fit::fresnel_ms(0.5 * (F_avg(0.04) + F_avg(0.9)), Ea);
+        const double lost = std::log(2.0) * (after - before);
+        std::printf("compensation: metalness 0.5 blended before Kulla-Conty's F_ms loses %.3f of the albedo\n", lost);
+        CHECK(lost > 0.14);
+        CHECK(lost < 0.16);
+    }
     // Turquin: with F0 = 1 the scaled single scattering is a white furnace at the direction held fixed.
     for (double mu : {0.2, 0.9}) CHECK(std::abs(E(mu) * fit::turquin_scale(E(mu), 1.0) - 1.0) < 1e-15);
     CHECK(fit::turquin_scale(t.lookup(alpha, 1.0), 0.0) == 1.0);
@@ -613,6 +626,22 @@ TEST_CASE("the warped table of a heavy tail (GTR gamma = 1: its dip near mu 0.1 
     };
     check("GTR gamma 1", [](double a) { return smithlab::gtr(a, 1.0); });
     check("Beckmann", [](double a) { return smithlab::beckmann(a); });
+}
+
+TEST_CASE("a light tail at small alpha: Beckmann's E at normal incidence, and 1 - E_avg ~ alpha^2", "[compensation]") {
+    // Beckmann's slopes, exp(-r^2 / alpha^2), are 0 to the last bit at every node of one Gauss-Kronrod panel over
+    // [0, 1] at alpha 5e-5 (E(1) came out 0); the panels scaled by the masking slope see them. As alpha -> 0, E is a
+    // function of mu / alpha and 1 - E_avg = alpha^2 times a constant (the light tail makes the limit exact).
+    fit::AlbedoOptions o;
+    o.tolerance = fit::table_tolerance;
+    const double m4 = fit::SingleScatteringAlbedo(smithlab::beckmann(1e-4), o).missing();
+    for (double alpha : {5e-5, 1e-5, 1e-6}) {
+        const fit::SingleScatteringAlbedo E(smithlab::beckmann(alpha), o);
+        INFO("alpha " << alpha);
+        CHECK(E(1.0) > 1.0 - 1e-9);
+        CHECK(E(0.5) > 1.0 - 1e-9);
+        CHECK(E.missing() / (m4 * (alpha / 1e-4) * (alpha / 1e-4)) == Approx(1.0).epsilon(1e-3));
+    }
 }
 
 TEST_CASE("1 - E_avg: its own quadrature against 1 - E_avg's, and lookup_missing's rule", "[compensation]") {

@@ -564,15 +564,15 @@ TEST_CASE("fit: [compensation]'s tables and furnace count against --max-walks, r
         write(d / name, tiny_scene + "[compensation]\n" + compensation);
         return run("fit '" + (d / name).string() + "' --output '" + (d / "out").string() + "' " + options);
     };
-    // The default 48 alphas at the largest refine and cosines: (47 x 100 + 1) x (4095 x 100 + 1) values a table, two
+    // The default 64 alphas at the largest refine and cosines: (63 x 100 + 1) x (4095 x 100 + 1) values a table, two
     // G2 forms of one NDF.
     const Run big = fit_with("big.toml", "cosines = 4096\nrefine = 100\n", "");
     INFO(big.err);
     CHECK(big.rc == 2);
     CHECK_THAT(big.err,
                Contains("big.toml:") &&
-                   Contains("compensation.refine with alpha, cosines, g2 and eta makes the tables 3850128402 "
-                            "values of E (4701 x 409501 check-grid points x (1 + 10 x 0 dielectric sides) x 2 "
+                   Contains("compensation.refine with alpha, cosines, g2 and eta makes the tables 5160531602 "
+                            "values of E (6301 x 409501 check-grid points x (1 + 10 x 0 dielectric sides) x 2 "
                             "NDFs and G2 forms)") &&
                    Contains("more than --max-walks 1e+11 (raise it with --max-walks N)"));
     CHECK_FALSE(fs::exists(d / "out"));

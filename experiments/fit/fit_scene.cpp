@@ -167,7 +167,7 @@ FitScene::Validation read_validation(StrictTable& doc, FitScene::Validation v) {
 }  // namespace
 
 std::vector<double> FitScene::Compensation::default_alphas() {
-    return report::spaced(1e-4, 1.0, 48, report::Spacing::cbrt);
+    return report::spaced(1e-4, 1.0, 64, report::Spacing::cbrt);
 }
 
 namespace {

@@ -54,7 +54,7 @@ struct FitScene {
         std::vector<double> furnace_alpha{0.01, 0.1, 0.3, 0.6, 1.0};
         std::vector<double> furnace_theta{0.0, 30.0, 60.0, 75.0, 85.0};
         std::int64_t furnace_walks = 200000;
-        // 48 alphas evenly spaced in cbrt(alpha) from 1e-4 to 1.
+        // 64 alphas evenly spaced in cbrt(alpha) from 1e-4 to 1.
         static std::vector<double> default_alphas();
     } compensation;
     // The pictures (fit_pictures.hpp): absent (enabled = false) unless the scene has [pictures].

@@ -18,18 +18,22 @@ double unwarp_cosine(double c, double x) {
     return c * w / ((1.0 + c) - w);
 }
 
-double warp_scale(FunctionRef Lambda) {
-    // Measured constants (albedo_grid.hpp): the dip of E lies near Lambda = 0.3; six times that cosine spreads the
-    // nodes over the dip and keeps the warp mild near mu = 1 at large alpha.
-    constexpr double Lambda_dip = 0.3, factor = 6.0;
-    double lo = 1e-30, hi = 1e30;  // cot(theta): Lambda(lo) > Lambda_dip > Lambda(hi)
+double masking_cot(FunctionRef Lambda) {
+    constexpr double Lambda_dip = 0.3;  // measured (albedo_grid.hpp): the dip of E lies near it
+    double lo = 1e-30, hi = 1e30;       // Lambda(lo) > Lambda_dip > Lambda(hi)
     if (!(Lambda(lo) > Lambda_dip && Lambda(hi) < Lambda_dip))
-        throw input_error("the warp's scale: Lambda does not cross 0.3 for cot(theta) in [1e-30, 1e30]");
+        throw input_error("the masking slope: Lambda does not cross 0.3 for cot(theta) in [1e-30, 1e30]");
     while (hi / lo > 1.0 + 1e-12) {
         const double m = std::sqrt(lo * hi);
         (Lambda(m) > Lambda_dip ? lo : hi) = m;
     }
-    const double cot = std::sqrt(lo * hi);
+    return std::sqrt(lo * hi);
+}
+
+double warp_scale(double cot) {
+    // Six times the cosine of the dip spreads the nodes over it and keeps the warp mild near mu = 1 at large alpha
+    // (measured, albedo_grid.hpp).
+    constexpr double factor = 6.0;
     return factor * cot / std::sqrt(1.0 + cot * cot);
 }
 

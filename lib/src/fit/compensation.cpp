@@ -117,7 +117,7 @@ double grazing_albedo(FunctionRef P22, FunctionRef Lambda, const FunctionRef* F,
 // E of one reflection at mu in (0, 1]: the quadrature of the header over [0, r1] x [0, pi] and {r1 < r < r_max,
 // |phi| < phi_max(r)}.
 double reflection_albedo(FunctionRef P22, FunctionRef Lambda, const FunctionRef* F, double mu, double tolerance,
-                         G2Form form) {
+                         G2Form form, double slope_scale) {
     const double ci = mu, si = std::sqrt((1.0 - mu) * (1.0 + mu));
     const double Li = si > 0.0 ? Lambda(ci / si) : 0.0;
     // The integrand at (r, phi), without the measure r P22(r^2): (cos_i + sin_i r cos phi) G2 F, 0 below the horizon.
@@ -131,13 +131,14 @@ double reflection_albedo(FunctionRef P22, FunctionRef Lambda, const FunctionRef*
     const double inner_tol = 0.1 * tolerance;
     // [0, r1] x [0, pi]: every azimuth reflects above the horizon.
     const double r1 = ci / (1.0 + si), rmax = (1.0 + si) / ci;
-    const double full = gk(
-        [&](double r) {
-            const double w = r * P22(r * r);
-            if (w == 0.0) return 0.0;
-            return w * gk([&](double phi) { return facet(r, std::cos(phi)); }, 0.0, pi, inner_tol);
-        },
-        0.0, r1, tolerance);
+    auto radial = [&](double r) {
+        const double w = r * P22(r * r);
+        if (w == 0.0) return 0.0;
+        return w * gk([&](double phi) { return facet(r, std::cos(phi)); }, 0.0, pi, inner_tol);
+    };
+    double full = 0.0, lo = 0.0;
+    for (double hi = slope_scale; hi > 0.0 && hi < r1; lo = hi, hi *= 4.0) full += gk(radial, lo, hi, tolerance);
+    full += gk(radial, lo, r1, tolerance);
     // (r1, rmax): |phi| < phi_max(r), cos phi_max = -cos_i (1 - r^2) / (2 sin_i r); r = r1 (rmax / r1)^S(u),
     // S(u) = u^2 (3 - 2u): logarithmic in r (rmax / r1 = ((1 + sin_i) / cos_i)^2 grows without bound at grazing
     // incidence, and the slope law's features are O(1) wide in ln r), flat at both ends (dS/du = 0 there).
@@ -496,9 +497,9 @@ double cosine_integral(const AlbedoTable& E, double alpha, const G& g) {
 namespace detail {
 
 double single_scattering_albedo(FunctionRef P22, FunctionRef Lambda, const FunctionRef* F, double mu, double tolerance,
-                                G2Form form) {
+                                G2Form form, double slope_scale) {
     require(mu >= 0.0 && mu <= 1.0, "mu = cos(theta_i)", "in [0, 1]", mu);
-    if (mu > 0.0) return reflection_albedo(P22, Lambda, F, mu, tolerance, form);
+    if (mu > 0.0) return reflection_albedo(P22, Lambda, F, mu, tolerance, form, slope_scale);
     if (!F && form == G2Form::height_correlated) return 1.0;
     return grazing_albedo(P22, Lambda, F, {false, 1.0, form}, tolerance);
 }

@@ -39,10 +39,12 @@ namespace smithlab::fit {
 double warp_cosine(double c, double mu);
 double unwarp_cosine(double c, double x);
 
-// The warp's scale of one NDF: 6 mu_L, mu_L = cos(theta) where Lambda = 0.3; Lambda a function of cot(theta) (Heitz
-// 2014's mu), decreasing. Found by bisection in ln cot(theta) to 1e-12 relative (input_error when Lambda is not
-// monotone enough to bracket 0.3 in cot(theta) in [1e-30, 1e30]).
-double warp_scale(FunctionRef Lambda);
+// Where masking sets in: cot(theta) at which Lambda = 0.3, Lambda a function of cot(theta) (Heitz 2014's mu),
+// decreasing; the NDF's slope scale (0.80 alpha for GGX, 0.41 alpha for Beckmann). By bisection in ln cot(theta) to
+// 1e-12 relative (input_error when Lambda does not cross 0.3 for cot(theta) in [1e-30, 1e30]).
+double masking_cot(FunctionRef Lambda);
+// The warp's scale of an NDF whose masking_cot is `cot`: 6 mu_L, mu_L the cosine there.
+double warp_scale(double cot);
 
 // ln v linear in ln alpha between the nodes (alphas ascending, > 0; each v > 0 and finite); below the first alpha the
 // first interval's power of alpha continued, above the last the last value. `what` names v in the messages.

@@ -76,9 +76,12 @@ struct AlbedoOptions {
 
 namespace detail {
 // The quadrature above for one mu in [0, 1] of a reflection off facets of reflectance F(cos wi.m) (null: mirror
-// facets, 1), with G2 of the given form; P22(r^2), Lambda(cot theta >= 0).
+// facets, 1), with G2 of the given form; P22(r^2), Lambda(cot theta >= 0). slope_scale > 0 (masking_cot) splits the
+// slopes below r1 into panels [0, s], [s, 4 s], [4 s, 16 s], ...: a slope law with a light tail (Beckmann's
+// exp(-r^2 / alpha^2)) is 0 to the last bit at every node of one panel [0, r1] at small alpha (E(1) was 0 for
+// Beckmann at alpha 5e-5), never at those of its own panel.
 double single_scattering_albedo(FunctionRef P22, FunctionRef Lambda, const FunctionRef* F, double mu, double tolerance,
-                                G2Form form = G2Form::height_correlated);
+                                G2Form form = G2Form::height_correlated, double slope_scale = 0.0);
 // {E_R, E_T} of a dielectric interface of relative index eta (below over above) for one mu in [0, 1], both G2 forms:
 // the quadrature of the last paragraph of this header's comment (the grazing limits at mu = 0).
 std::pair<double, double> dielectric_albedos(FunctionRef P22, FunctionRef Lambda, double mu, double tolerance,
@@ -92,7 +95,10 @@ template <Ndf N>
 class SingleScatteringAlbedo {
 public:
     explicit SingleScatteringAlbedo(const N& ndf, const AlbedoOptions& opts = {})
-        : ndf_(ndf), Lambda_(ndf_, opts.lambda_table), opts_(opts) {}
+        : ndf_(ndf),
+          Lambda_(ndf_, opts.lambda_table),
+          opts_(opts),
+          masking_cot_(fit::masking_cot([this](double m) { return Lambda_(m); })) {}
 
     // E(mu), mu = cos theta_i in [0, 1] (input_error outside), mirror facets.
     double operator()(double mu) const { return albedo(mu, nullptr); }
@@ -129,21 +135,20 @@ public:
         return detail::cosine_average([&](double mu) { return 1.0 - albedo(mu, nullptr); }, 100.0 * opts_.tolerance);
     }
 
-    // The scale of a table's warped cosine axis for this NDF (albedo_grid.hpp, warp_scale of its Lambda).
-    double warp_scale() const {
-        return fit::warp_scale([&](double m) { return Lambda_(m); });
-    }
+    // The scale of a table's warped cosine axis for this NDF (albedo_grid.hpp: warp_scale of its masking_cot).
+    double warp_scale() const { return fit::warp_scale(masking_cot_); }
 
 private:
     double albedo(double mu, const FunctionRef* F) const { return albedo(mu, F, opts_.tolerance); }
     double albedo(double mu, const FunctionRef* F, double tolerance) const {
         auto P22 = [&](double r2) { return slope_density(ndf_, r2); };
         auto L = [&](double m) { return Lambda_(m); };
-        return detail::single_scattering_albedo(P22, L, F, mu, tolerance, opts_.g2);
+        return detail::single_scattering_albedo(P22, L, F, mu, tolerance, opts_.g2, masking_cot_);
     }
     N ndf_;
     FastLambda<N> Lambda_;
     AlbedoOptions opts_;
+    double masking_cot_;  // the slope scale (albedo_grid.hpp, masking_cot): the radial quadrature's first panel
 };
 
 // One-off conveniences (each builds the Lambda table again for an NDF without a closed form).
