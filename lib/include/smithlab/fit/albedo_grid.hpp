@@ -9,11 +9,11 @@
 // axis is warped by a scale c = 6 mu_L of its own (warp_scale),
 //     x = sqrt((1 + c) mu / (mu + c))   in [0, 1],   mu = c x^2 / (1 + c - x^2),
 // most nodes below mu ~ c at small alpha; the root resolves the first interval, where E leaves its grazing limit with
-// an unbounded slope (without it, 48 cosines miss GGX's E by 3.8e-3 at alpha 1 there). Measured (48 x 48, alphas
-// evenly spaced in cbrt(alpha) from 1e-4 to 1, against the exact values 4x finer in both): 5.9e-4 for GGX, GTR
-// gamma 1, 1.5 and 3, 9.1e-4 for Beckmann; c = alpha instead of 6 mu_L missed GTR gamma 1 by 0.11 and Beckmann by
-// 2.3e-3 (at alpha 0.5, mu 0.94: a warp too strong near mu = 1), and alphas evenly spaced in sqrt(alpha) (a first
-// cell from 1e-4 to 1e-3) missed GTR gamma <= 1.5 by 1.4e-3 in their first cell.
+// an unbounded slope (without it, 48 cosines miss GGX's E by 3.8e-3 at alpha 1 there). Measured (64 x 48, alphas
+// evenly spaced in cbrt(alpha) from 1e-4 to 1, against the exact values 10x finer in both, either G2): at most
+// 5.9e-4 for GGX and GTR gamma 1, 1.5 and 3, 8.9e-4 for Beckmann (docs/compensation.md); c = alpha instead of 6 mu_L
+// missed GTR gamma 1 by 0.11 and Beckmann by 2.3e-3 (at alpha 0.5, mu 0.94: a warp too strong near mu = 1), and
+// alphas evenly spaced in sqrt(alpha) (a first cell from 1e-4 to 1e-3) missed GTR gamma <= 1.5 by 1.4e-3 there.
 //
 // Lookups are bilinear in (sqrt(alpha), x), x_j = j / (n_x - 1) uniform (a renderer finds the cell without a search
 // in x), x taken with the scale at the asked alpha: ln c linear in ln alpha between the nodes (exact for c ~ alpha),
