@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <fstream>
 #include <limits>
 #include <stdexcept>
@@ -51,18 +50,12 @@ bool fits_float(double v) { return std::isfinite(v) && std::abs(v) <= std::numer
 // The float nearest v as a literal of 9 significant digits (every float reads back exactly), with a '.' or an
 // exponent so that it is a floating literal, then `suffix` ("f" in C and HLSL).
 std::string float_literal(double v, std::string_view suffix) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.9g", static_cast<double>(static_cast<float>(v)));
-    std::string s = buf;
+    std::string s = format_printf("%.9g", static_cast<double>(static_cast<float>(v)));
     if (s.find_first_of(".e") == std::string::npos) s += ".0";
     return s + std::string(suffix);
 }
 
-std::string short_g(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.3g", v);
-    return buf;
-}
+std::string short_g(double v) { return format_printf("%.3g", v); }
 
 // Where value k of the table is, for the messages.
 std::string table_item(const AlbedoTable& t, std::size_t k) {
@@ -304,9 +297,7 @@ std::string json_string(std::string_view text) {
             s += '\\';
             s += c;
         } else if (u < 0x20) {
-            char buf[8];
-            std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(u));
-            s += buf;
+            s += format_printf("\\u%04x", static_cast<unsigned>(u));
         } else {
             s += c;
         }
