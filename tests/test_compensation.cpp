@@ -291,25 +291,28 @@ TEST_CASE("E against the tracer's order-1 albedo of mirror facets", "[compensati
     std::printf("compensation: E against the traced order 1, worst %.2f sigma over 24 cells\n", worst);
 }
 
-TEST_CASE("Kulla-Conty compensation of conductor facets against the traced total albedo", "[compensation][slow]") {
-    // The compensated albedo is E_F(mu_i) + F_ms (1 - E(mu_i)): the single scattering of the conductor (exact: it
-    // must equal the traced order 1 within its noise) plus the lobe's energy (its albedo is 1 - E(mu_i), times F_ms).
-    // Kulla and Conty's F_ms lets every bounce reflect F_avg, the cosine-weighted mean of F; the walk reflects
-    // F(wi.m) at each facet, and multiply scattered light meets facets nearer grazing than the cosine weighting
-    // assumes, where a conductor's F is larger: the compensation comes out low. The traced multiple scattering and
-    // F_ms (1 - E) both lie in [0, 1 - E(mu_i)] (every F <= 1, F_ms <= 1), so 1 - E(mu_i) bounds the difference;
-    // asserted at 0.15 (1 - E(mu_i)), twice the worst measured (0.07 (1 - E), eta = 2.9 at alpha = 1, 75 degrees):
-    // a lobe of the wrong energy or a Fresnel factor applied twice or not at all fails it, the approximation passes.
+TEST_CASE("conductor compensation in three forms against the traced total albedo", "[compensation][slow]") {
+    // Single scattering E_F(mu_i) of the conductor (exact: it must equal the traced order 1 within its noise) plus
+    // what each form puts back for the multiply scattered light, E exact:
+    //   Kulla and Conty:  F_ms (1 - E(mu_i)), F_ms = fresnel_ms(F_avg, E_avg);
+    //   Turquin:          E_F (1 + F0 (1 - E) / E) - E_F;
+    //   Fdez-Aguera:      E_F / (1 - F_avg (1 - E)) - E_F.
+    // The traced multiple scattering lies in [0, 1 - E(mu_i)] (every F <= 1), so 1 - E(mu_i) bounds each form's miss;
+    // asserted at 0.25 (1 - E), about twice the worst measured: a lobe of the wrong energy or a Fresnel factor applied
+    // twice or not at all fails it. And none of them closes the gap at alpha = 1 (docs/compensation.md: the escape
+    // chance grows with the bounce's order, which no constant factor follows): each form misses some cell there by more
+    // than 0.02 and 30 standard errors (measured: 0.028-0.063).
     struct Metal {
         const char* name;
         double eta, k;
     };
     const Metal metals[] = {{"conductor(eta=0.2, k=3)", 0.2, 3.0}, {"conductor(eta=2.9, k=3)", 2.9, 3.0}};
-    double worst = 0.0;
+    const char* forms[] = {"kulla-conty", "turquin", "fdez-aguera"};
     auto run = [&](const auto& ndf, const char* name, double alpha) {
         const walk::Microsurface ms(ndf);
         const fit::SingleScatteringAlbedo E(ndf);
         const double E_avg = E.average();
+        double worst[3] = {0.0, 0.0, 0.0}, worst_z[3] = {0.0, 0.0, 0.0};
         for (const Metal& metal : metals) {
             auto F = [&](double c) { return smithlab::fresnel_conductor(c, metal.eta, metal.k); };
             const double F_avg = fit::average_fresnel(F), F_ms = fit::fresnel_ms(F_avg, E_avg);
@@ -324,28 +327,35 @@ TEST_CASE("Kulla-Conty compensation of conductor facets against the traced total
                 const walk::Estimate total =
                     t.albedo(walk::Hemisphere::reflection, walk::all_orders, walk::Component::all);
                 const double mu = r.wi.z(), Ess = E(mu), EF = E(mu, F);
-                const double compensated = EF + F_ms * (1.0 - Ess), traced_ms = total.value - order1.value;
-                std::printf(
-                    "compensation: %s alpha %.1f %s theta_i %2.0f: single %.5f (traced %.5f +- %.5f), "
-                    "ms: KC %.5f traced %.5f; total: compensated %.5f traced %.5f +- %.5f, "
-                    "difference %+.5f (%.1f%% of the ms energy), uncompensated %+.5f\n",
-                    name, alpha, metal.name, theta, EF, order1.value, order1.stderr_, F_ms * (1.0 - Ess), traced_ms,
-                    compensated, total.value, total.stderr_, compensated - total.value,
-                    100.0 * (compensated - total.value) / traced_ms, EF - total.value);
+                const double compensated[3] = {EF + F_ms * (1.0 - Ess), EF * fit::turquin_scale(Ess, F(1.0)),
+                                               fit::fdez_aguera_albedo(EF, Ess, F_avg)};
                 INFO(name << " alpha " << alpha << " " << metal.name << " theta_i " << theta);
                 CHECK(std::abs(order1.value - EF) < 4.0 * order1.stderr_);
-                CHECK(std::abs(compensated - total.value) < 0.15 * (1.0 - Ess) + 4.0 * total.stderr_);
-                worst = std::max(worst, std::abs(compensated - total.value) / (1.0 - Ess));
+                for (int f = 0; f < 3; ++f) {
+                    const double d = compensated[f] - total.value;
+                    std::printf("compensation: %s alpha %.1f %s theta_i %2.0f: %s %.5f, traced %.5f +- %.5f, %+.5f\n",
+                                name, alpha, metal.name, theta, forms[f], compensated[f], total.value, total.stderr_,
+                                d);
+                    INFO(forms[f]);
+                    CHECK(std::abs(d) < 0.25 * (1.0 - Ess) + 4.0 * total.stderr_);
+                    if (std::abs(d) > worst[f]) {
+                        worst[f] = std::abs(d);
+                        worst_z[f] = std::abs(d) / total.stderr_;
+                    }
+                }
             }
         }
+        if (alpha == 1.0)
+            for (int f = 0; f < 3; ++f) {
+                INFO(name << " " << forms[f] << " at alpha 1: worst " << worst[f] << " (" << worst_z[f] << " sigma)");
+                CHECK(worst[f] > 0.02);
+                CHECK(worst_z[f] > 30.0);
+            }
     };
     for (double alpha : {0.5, 1.0}) {
         run(smithlab::ggx(alpha), "ggx", alpha);
         run(smithlab::gtr(alpha, 1.5), "gtr(gamma=1.5)", alpha);
     }
-    std::printf(
-        "compensation: compensated against traced total albedo of conductors, worst |difference| %.3f (1 - E)\n",
-        worst);
 }
 
 TEST_CASE("the compensation lobe's shape against the traced multiple-scattering lobe (GGX alpha = 1)",

@@ -476,20 +476,34 @@ TEST_CASE("fit: [compensation] writes every table, its errors, its renderer form
     CHECK_THAT(errors[0],
                Catch::Matchers::StartsWith("ndf,g2,table,max_interp_error,alpha,cos_theta,below_grid_error,"));
     CHECK_THAT(errors[3], Catch::Matchers::StartsWith("ggx,height-correlated,E_R+E_T eta=1.5 inside,"));
-    // Per G2 form and angle: mirror, the conductor, and each side's total, R and T.
+    // Per G2 form and angle: mirror, the conductor in three forms, and each side's total, R and T.
     const std::vector<std::string> furnace = lines(slurp(o / "furnace.csv"));
-    REQUIRE(furnace.size() == 1 + 2 * 2 * (2 + 2 * 3));
-    CHECK(furnace[0] == "ndf,g2,material,part,alpha,theta_i,compensated,traced,traced_stderr");
+    REQUIRE(furnace.size() == 1 + 2 * 2 * (1 + 3 + 2 * 3));
+    CHECK(furnace[0] == "ndf,g2,material,part,form,alpha,theta_i,compensated,traced,traced_stderr");
     for (std::size_t k = 1; k < furnace.size(); ++k) {
         const std::vector<std::string> f = fields(furnace[k]);
-        REQUIRE(f.size() == 9);
+        REQUIRE(f.size() == 10);
         INFO(furnace[k]);
         // Mirror facets and a dielectric lose nothing: every walk leaves with its energy.
         if (f[2] == "mirror" || (f[2].rfind("dielectric", 0) == 0 && f[3] == "total")) {
-            CHECK(std::stod(f[7]) == 1.0);
-            CHECK(std::stod(f[8]) == 0.0);
+            CHECK(std::stod(f[8]) == 1.0);
+            CHECK(std::stod(f[9]) == 0.0);
         }
-        CHECK(std::isfinite(std::stod(f[6])));
+        CHECK(std::isfinite(std::stod(f[7])));
+    }
+    // A conductor's three forms read the same walk (their accuracy against it: tests/test_compensation.cpp).
+    for (std::size_t k = 1; k + 2 < furnace.size(); ++k) {
+        const std::vector<std::string> kc = fields(furnace[k]);
+        if (kc[2].rfind("conductor", 0) != 0 || kc[4] != "kulla-conty") continue;
+        const std::vector<std::string> tq = fields(furnace[k + 1]), fa = fields(furnace[k + 2]);
+        INFO(furnace[k] << "\n" << furnace[k + 1] << "\n" << furnace[k + 2]);
+        CHECK(tq[4] == "turquin");
+        CHECK(fa[4] == "fdez-aguera");
+        for (const auto* f : {&tq, &fa}) {
+            CHECK((*f)[2] == kc[2]);
+            CHECK((*f)[8] == kc[8]);
+            CHECK((*f)[9] == kc[9]);
+        }
     }
     // A dielectric's rows come as total, R, T: the parts add up, traced and compensated (Turquin's division keeps the
     // single scattering's ratio), and from outside R is the small part, as the walk finds it (a side or hemisphere
@@ -501,11 +515,11 @@ TEST_CASE("fit: [compensation] writes every table, its errors, its renderer form
         INFO(furnace[k] << "\n" << furnace[k + 1] << "\n" << furnace[k + 2]);
         REQUIRE(R[3] == "R");
         REQUIRE(T[3] == "T");
-        CHECK(std::abs(std::stod(R[6]) + std::stod(T[6]) - std::stod(total[6])) < 1e-12);
         CHECK(std::abs(std::stod(R[7]) + std::stod(T[7]) - std::stod(total[7])) < 1e-12);
+        CHECK(std::abs(std::stod(R[8]) + std::stod(T[8]) - std::stod(total[8])) < 1e-12);
         if (total[2].find("outside") != std::string::npos) {
-            CHECK(std::stod(R[6]) < 0.25);
-            CHECK(std::abs(std::stod(R[6]) - std::stod(R[7])) < 0.05);
+            CHECK(std::stod(R[7]) < 0.25);
+            CHECK(std::abs(std::stod(R[7]) - std::stod(R[8])) < 0.05);
         }
     }
     for (const char* id : {"smithlab_ggx_hc", "smithlab_ggx_sep", "smithlab_ggx_hc_E_R_E_T_eta_1_5_outside",
@@ -572,7 +586,7 @@ TEST_CASE("fit: [compensation]'s tables and furnace count against --max-walks, r
     CHECK_THAT(big.err,
                Contains("big.toml:") &&
                    Contains("compensation.refine with alpha, cosines, g2 and eta makes the tables 5160531602 "
-                            "values of E (6301 x 409501 check-grid points x (1 + 10 x 0 dielectric sides) x 2 "
+                            "values of E (6301 x 409501 check-grid points x (1 + 6 x 0 dielectric sides) x 2 "
                             "NDFs and G2 forms)") &&
                    Contains("more than --max-walks 1e+11 (raise it with --max-walks N)"));
     CHECK_FALSE(fs::exists(d / "out"));

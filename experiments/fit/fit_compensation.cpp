@@ -256,9 +256,9 @@ void write_formats(const fs::path& dir, const std::vector<FamilyTables>& all) {
 
 void write_furnace(const fs::path& dir, const std::vector<FurnaceRow>& rows) {
     std::ostringstream f;
-    f << "ndf,g2,material,part,alpha,theta_i,compensated,traced,traced_stderr\n";
+    f << "ndf,g2,material,part,form,alpha,theta_i,compensated,traced,traced_stderr\n";
     for (const FurnaceRow& r : rows)
-        f << csv_field(r.ndf) << "," << r.g2 << "," << csv_field(r.material) << "," << r.part << ","
+        f << csv_field(r.ndf) << "," << r.g2 << "," << csv_field(r.material) << "," << r.part << "," << r.form << ","
           << format_g17(r.alpha) << "," << format_g17(r.theta) << "," << format_g17(r.compensated) << ","
           << format_g17(r.traced) << "," << format_g17(r.traced_stderr) << "\n";
     output::write_file(dir / "furnace.csv", f.str());
@@ -289,14 +289,15 @@ std::string markdown(const std::vector<FamilyTables>& all, const FitScene::Compe
         });
     if (!rows.empty()) {
         md << "\nAgainst the walk (furnace.csv: " << c.furnace_walks
-           << " walks a cell): the worst |compensated - traced| per material and part, and in standard errors of "
-           << "the walk.\n\n| NDF | G2 | material | part | worst difference | (alpha, theta_i) | in standard errors |\n"
-           << "|---|---|---|---|---:|---|---:|\n";
+           << " walks a cell): the worst |compensated - traced| per material, part and form, and in standard errors of "
+           << "the walk.\n\n| NDF | G2 | material | part | form | worst difference | (alpha, theta_i) | in standard "
+           << "errors |\n|---|---|---|---|---|---:|---|---:|\n";
         std::vector<const FurnaceRow*> worst;
         for (const FurnaceRow& r : rows) {
             const FurnaceRow* same = nullptr;
             for (const FurnaceRow*& w : worst)
-                if (w->ndf == r.ndf && w->g2 == r.g2 && w->material == r.material && w->part == r.part) {
+                if (w->ndf == r.ndf && w->g2 == r.g2 && w->material == r.material && w->part == r.part &&
+                    w->form == r.form) {
                     same = w;
                     if (std::abs(r.compensated - r.traced) > std::abs(w->compensated - w->traced)) w = &r;
                 }
@@ -304,8 +305,8 @@ std::string markdown(const std::vector<FamilyTables>& all, const FitScene::Compe
         }
         for (const FurnaceRow* w : worst) {
             const double d = w->compensated - w->traced;
-            md << "| " << w->ndf << " | " << w->g2 << " | " << w->material << " | " << w->part << " | " << e3(d)
-               << " | (" << g4(w->alpha) << ", " << g4(w->theta) << ") | "
+            md << "| " << w->ndf << " | " << w->g2 << " | " << w->material << " | " << w->part << " | " << w->form
+               << " | " << e3(d) << " | (" << g4(w->alpha) << ", " << g4(w->theta) << ") | "
                << (w->traced_stderr > 0.0 ? g4(std::abs(d) / w->traced_stderr) : std::string("exact")) << " |\n";
         }
     }

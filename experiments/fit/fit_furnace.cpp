@@ -48,27 +48,33 @@ std::vector<FurnaceRow> trace_furnace(const std::vector<FamilyTables>& tables, c
             for (double theta : c.furnace_theta) {
                 const double t = theta * std::numbers::pi / 180.0, mu = std::cos(t), s = std::sin(t);
                 const Vec3 above{s, 0.0, mu}, below{s, 0.0, -mu};
-                auto add = [&](const FamilyTables& ft, const std::string& material, const char* part, double value,
-                               const walk::Estimate& traced) {
-                    rows.push_back({family_label(family), g2_name(ft.g2), material, part, alpha, theta, value,
+                auto add = [&](const FamilyTables& ft, const std::string& material, const char* part, const char* form,
+                               double value, const walk::Estimate& traced) {
+                    rows.push_back({family_label(family), g2_name(ft.g2), material, part, form, alpha, theta, value,
                                     traced.value, traced.stderr_});
                 };
-                // Mirror facets and conductors: single scattering exact, Kulla and Conty's lobe from the tables.
+                // Mirror facets and conductors: single scattering exact, the compensation from the table of E.
                 std::vector<walk::Material> metals{walk::Mirror{}};
                 for (const std::string& spec : c.conductors) metals.push_back(walk::parse_material(spec));
                 for (const walk::Material& m : metals) {
                     const walk::Estimate total =
                         trace(*surface, m, above, seed, cell++, c.furnace_walks, threads)
                             .albedo(walk::Hemisphere::all, walk::all_orders, walk::Component::all);
+                    const std::string name = walk::format_material(m);
                     const auto* conductor = std::get_if<walk::Conductor>(&m);
-                    auto F = [&](double cos_m) {
-                        return conductor ? fresnel_conductor(cos_m, conductor->eta, conductor->k) : 1.0;
-                    };
-                    const double F_avg = conductor ? fit::average_fresnel(F) : 1.0;
                     for (const auto& [ft, E] : exact) {
-                        const double single = conductor ? E(mu, F) : E(mu);
-                        add(*ft, walk::format_material(m), "total",
-                            single + fit::kulla_conty_albedo(ft->E.table.table, ft->missing, alpha, mu, F_avg), total);
+                        const fit::AlbedoTable& table = ft->E.table.table;
+                        if (!conductor) {
+                            add(*ft, name, "total", "kulla-conty",
+                                E(mu) + fit::kulla_conty_albedo(table, ft->missing, alpha, mu), total);
+                            continue;
+                        }
+                        auto F = [&](double cos_m) { return fresnel_conductor(cos_m, conductor->eta, conductor->k); };
+                        const double F_avg = fit::average_fresnel(F), E_F = E(mu, F), E_mu = table.lookup(alpha, mu);
+                        add(*ft, name, "total", "kulla-conty",
+                            E_F + fit::kulla_conty_albedo(table, ft->missing, alpha, mu, F_avg), total);
+                        add(*ft, name, "total", "turquin", E_F * fit::turquin_scale(E_mu, F(1.0)), total);
+                        add(*ft, name, "total", "fdez-aguera", fit::fdez_aguera_albedo(E_F, E_mu, F_avg), total);
                     }
                 }
                 // Dielectrics from each side: single scattering over the table of E_R + E_T.
@@ -86,11 +92,11 @@ std::vector<FurnaceRow> trace_furnace(const std::vector<FamilyTables>& tables, c
                     for (const auto& [ft, E] : exact) {
                         const auto single = E.dielectric(mu, dt.relative_eta());
                         const double table = ft->dielectrics[d].sum.table.table.lookup(alpha, mu);
-                        add(*ft, material, "total", (single.R + single.T) / table,
+                        add(*ft, material, "total", "turquin", (single.R + single.T) / table,
                             tally.albedo(walk::Hemisphere::all, walk::all_orders, walk::Component::all));
-                        add(*ft, material, "R", single.R / table,
+                        add(*ft, material, "R", "turquin", single.R / table,
                             tally.albedo(same, walk::all_orders, walk::Component::all));
-                        add(*ft, material, "T", single.T / table,
+                        add(*ft, material, "T", "turquin", single.T / table,
                             tally.albedo(other, walk::all_orders, walk::Component::all));
                     }
                 }

@@ -1,8 +1,14 @@
 // The white furnace of the compensation tables against the walk (walk/trace.hpp): at each furnace alpha and theta_i,
 // the total albedo the Smith microsurface's random walk scatters (every order) beside the albedo a renderer gets from
-// the tables: single scattering exact plus Kulla and Conty's lobe from the tables (mirror facets and each conductor,
-// the lobe times F_ms), a dielectric's single scattering divided by the table of E_R + E_T (Turquin 2019), its
-// reflected and transmitted parts too.
+// the tables, E looked up, single scattering (E_F, E_R, E_T) exact:
+//   mirror facets: E + Kulla and Conty's lobe (form "kulla-conty");
+//   each conductor, three published forms:
+//     "kulla-conty": E_F + F_ms times their lobe (Kulla and Conty 2017, compensation.hpp);
+//     "turquin":     E_F (1 + F0 (1 - E) / E), F0 = F(1) (Turquin 2019);
+//     "fdez-aguera": E_F / (1 - F_avg (1 - E)) (Fdez-Aguera 2019, fit::fdez_aguera_albedo; F_avg the exact
+//                    2 int F mu dmu, not its Schlick fit);
+//   a dielectric: its single scattering divided by the table of E_R + E_T (form "turquin", Turquin 2019), the total
+//   and its reflected and transmitted parts.
 #pragma once
 
 #include <cstdint>
@@ -15,6 +21,7 @@ namespace smithlab::fitrun {
 
 struct FurnaceRow {
     std::string ndf, g2, material, part;  // part: "total", "R" or "T"
+    std::string form;                     // "kulla-conty", "turquin" or "fdez-aguera"
     double alpha = 0.0, theta = 0.0, compensated = 0.0, traced = 0.0, traced_stderr = 0.0;
 };
 

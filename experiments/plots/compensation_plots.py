@@ -5,9 +5,10 @@ compensation_plots.py DIR.
 Needs Debian's python3-matplotlib (installed by .ci/deps). experiments/fit/fit_compensation.cpp writes the data:
   furnace_tables.csv   ndf,g2,table,alpha,furnace_error,cos_theta: per alpha of a table's check grid, the worst
                        |compensated albedo - 1| by the tables over theta_i <= 85 degrees
-  furnace.csv          ndf,g2,material,part,alpha,theta_i,compensated,traced,traced_stderr: against the walk
+  furnace.csv          ndf,g2,material,part,form,alpha,theta_i,compensated,traced,traced_stderr: against the walk
 and this script draws furnace.png: left, the tables' furnace error against alpha (one line per table and G2); right,
-compensated - traced at each walk cell with 3 standard errors as bars, one panel row per material.
+compensated - traced at each walk cell with 3 standard errors as bars, one panel row per material and part (a
+conductor's three published forms in one panel, a colour each; dashed: the separable G2).
 """
 import os
 import sys
@@ -27,6 +28,7 @@ def main(out):
     tables = rows(os.path.join(out, "furnace_tables.csv"))
     cells = rows(os.path.join(out, "furnace.csv"))
     parts = {"total": 0, "R": 1, "T": 2}
+    markers = {"kulla-conty": "o", "turquin": "s", "fdez-aguera": "^"}
     materials = sorted({(r["material"], r["part"]) for r in cells},
                        key=lambda m: (m[0] != "mirror", not m[0].startswith("conductor"), m[0], parts[m[1]]))
     n = max(1, len(materials))
@@ -52,19 +54,30 @@ def main(out):
         series = defaultdict(list)
         for r in cells:
             if (r["material"], r["part"]) == (material, part):
-                series[(r["ndf"], r["g2"], num(r["alpha"]))].append(
+                series[(r["ndf"], r["g2"], num(r["alpha"]), r["form"])].append(
                     (num(r["theta_i"]), num(r["compensated"]) - num(r["traced"]), 3 * num(r["traced_stderr"])))
-        for (ndf, g2, alpha), pts in sorted(series.items()):
+        forms = sorted({key[3] for key in series})
+        alphas = sorted({key[2] for key in series})
+        for (ndf, g2, alpha, form), pts in sorted(series.items()):
             pts.sort()
-            a.errorbar([p[0] for p in pts], [p[1] for p in pts], yerr=[p[2] for p in pts], capsize=2, lw=1,
-                       ls="-" if g2 == "height-correlated" else "--", label=f"{ndf} {g2} alpha {alpha:g}")
+            style = dict(capsize=2, lw=1, ls="-" if g2 == "height-correlated" else "--", ms=3,
+                         marker=markers.get(form, "o"))
+            if len(forms) > 1:
+                # A conductor's forms: one colour each, darker the rougher; the legend names the forms only.
+                shade = 0.3 + 0.7 * alphas.index(alpha) / max(1, len(alphas) - 1)
+                style.update(color=f"C{forms.index(form)}", alpha=shade)
+                first = alpha == alphas[0] and g2 == "height-correlated"
+                style["label"] = f"{form} (darker: alpha up to {alphas[-1]:g})" if first else None
+            else:
+                style["label"] = f"{ndf} {g2} alpha {alpha:g}"
+            a.errorbar([p[0] for p in pts], [p[1] for p in pts], yerr=[p[2] for p in pts], **style)
         a.axhline(0.0, color="k", lw=0.6)
         a.set_title(f"{material}: {part}" if part != "total" else material, fontsize=9)
         a.set_ylabel("compensated - traced", fontsize=8)
         if k == n - 1:
             a.set_xlabel("theta_i (degrees)")
-        if k == 0:
-            a.legend(fontsize=6, ncol=2, loc="best")
+        if k == 0 or len(forms) > 1:
+            a.legend(fontsize=6, ncol=2 if len(forms) == 1 else 1, loc="lower left")
     fig.tight_layout()
     save(fig, os.path.join(out, "furnace.png"))
 

@@ -555,6 +555,12 @@ double kulla_conty_albedo(const AlbedoTable& E, const std::vector<double>& missi
     return fresnel_ms(F_avg, E_avg) * pi * lobe;
 }
 
+double fdez_aguera_albedo(double E_F, double E, double F_avg) {
+    require(E > 0.0 && E <= 1.0, "E(mu)", "in (0, 1]", E);
+    require(F_avg >= 0.0 && F_avg <= 1.0, "F_avg", "in [0, 1]", F_avg);
+    return E_F / (1.0 - F_avg * (1.0 - E));
+}
+
 double turquin_scale(double E_view, double F0) {
     require(E_view > 0.0, "E(mu_view)", "> 0", E_view);
     return 1.0 + F0 * (1.0 - E_view) / E_view;

@@ -172,6 +172,10 @@ double average_fresnel(const Fresnel& F, double tolerance = 1e-10) {
 double fresnel_ms(double F_avg, double E_avg);
 // Turquin 2019's scale 1 + F0 (1 - E) / E, E = E(mu_v) of the direction held fixed (the view direction).
 double turquin_scale(double E_view, double F0);
+// Fdez-Aguera 2019 ("A Multiple-Scattering Microfacet Model for Real-Time Image-based Lighting", JCGT 8(1); its
+// series summed): the albedo of coloured facets, single scattering E_F(mu) and bounces that each escape with
+// E(mu) (mirror facets' albedo) and reflect F_avg, E_F / (1 - F_avg (1 - E(mu))).
+double fdez_aguera_albedo(double E_F, double E, double F_avg);
 
 // Kulla and Conty 2017's lobe as a renderer evaluates it from the tables: f_ms(wi, wo) = (1 - E(alpha, mu_i))
 // (1 - E(alpha, mu_o)) / (pi m(alpha)), E looked up (AlbedoTable::lookup) and m = 1 - E_avg by lookup_missing from
