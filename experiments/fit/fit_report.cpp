@@ -1,7 +1,6 @@
 #include "fit/fit_report.hpp"
 
 #include <algorithm>
-#include <cstdio>
 #include <fstream>
 
 #include "output/staged_directory.hpp"
@@ -38,15 +37,12 @@ void write_errors_table(std::ostream& md, const NdfData& d, const std::vector<do
     md << "| model | RMS rel. error of f cos | max rel. error | RMS error of the directional albedo | chi^2 / value "
        << "| largest albedo at albedo 1 (alpha, theta_i) | asymmetry | smallest f |\n"
        << "|---|---:|---:|---:|---:|---:|---:|---:|\n";
-    char line[512];
     for (const ErrorRow& e : rows) {
         const char* bold = e.peak.albedo > 1.0 + 1e-3 ? "**" : "";
         const char* negative = e.grid.min_f < 0.0 ? "**" : "";
-        std::snprintf(line, sizeof line,
-                      "| %s | %.4f | %.4f | %.5f | %.3g | %s%.4f%s (%.3g, %.0f) | %.1e | %s%.3g%s |\n", e.model.c_str(),
-                      e.rms_rel, e.max_rel, e.albedo_rms, e.chi2_dof, bold, e.peak.albedo, bold, e.peak.alpha,
-                      e.peak.theta_i, e.grid.asymmetry, negative, e.grid.min_f, negative);
-        md << line;
+        md << format_printf("| %s | %.4f | %.4f | %.5f | %.3g | %s%.4f%s (%.3g, %.0f) | %.1e | %s%.3g%s |\n",
+                            e.model.c_str(), e.rms_rel, e.max_rel, e.albedo_rms, e.chi2_dof, bold, e.peak.albedo, bold,
+                            e.peak.alpha, e.peak.theta_i, e.grid.asymmetry, negative, e.grid.min_f, negative);
     }
 }
 
@@ -58,10 +54,9 @@ void write_constants_table(std::ostream& md, const Results& r) {
             if (!m.fitted()) continue;
             md << "| " << m.name << " | " << r.data[n].label << " |";
             for (std::size_t i = 0; i < m.params.size(); ++i) {
-                char v[96];
-                std::snprintf(v, sizeof v, " %s = %.5g +- %.2g", std::string(m.model->parameters[i]).c_str(),
-                              m.params[i], m.stderr_[i]);
-                md << v << (i + 1 < m.params.size() ? "," : "");
+                md << format_printf(" %s = %.5g +- %.2g", std::string(m.model->parameters[i]).c_str(), m.params[i],
+                                    m.stderr_[i])
+                   << (i + 1 < m.params.size() ? "," : "");
             }
             md << " |\n";
         }

@@ -3,7 +3,6 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <fstream>
 #include <optional>
 #include <sstream>
@@ -47,13 +46,9 @@ std::optional<Trend> polynomial_trend(const std::vector<double>& g, const std::v
 std::string formula(const Trend& t, const std::string& x) {
     std::string out;
     for (Eigen::Index d = 0; d < t.p.size(); ++d) {
-        char term[96];
-        std::snprintf(term, sizeof term, "%s%.4g (+-%.2g)",
-                      d == 0             ? ""
-                          : t.p(d) < 0.0 ? " - "
-                                         : " + ",
-                      d == 0 ? t.p(d) : std::abs(t.p(d)), t.stderr_(d));
-        out += term + (d == 0 ? "" : d == 1 ? " " + x : " " + x + "^2");
+        const char* sign = d == 0 ? "" : t.p(d) < 0.0 ? " - " : " + ";
+        out += format_printf("%s%.4g (+-%.2g)", sign, d == 0 ? t.p(d) : std::abs(t.p(d)), t.stderr_(d));
+        out += d == 0 ? "" : d == 1 ? " " + x : " " + x + "^2";
     }
     return out;
 }
@@ -95,10 +90,8 @@ std::string write_trends(const fs::path& dir, const Results& r, const ParameterS
                 row.push_back(t ? format_g17(t->chi2_dof) : "");
                 row.push_back(t ? format_g17(t->deviation) : "");
                 write_csv_record(csv, row);
-                char fit[48];
-                std::snprintf(fit, sizeof fit, "%.3g / %.2g", t ? t->chi2_dof : 0.0, t ? t->deviation : 0.0);
                 md << " " << (t ? formula(*t, x) : "(too few values of " + x + ", or an error of 0)") << " | "
-                   << (t ? fit : "") << " |";
+                   << (t ? format_printf("%.3g / %.2g", t->chi2_dof, t->deviation) : "") << " |";
             }
             md << "\n";
         }

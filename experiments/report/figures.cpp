@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <string>
@@ -53,14 +52,11 @@ void write_dimov_spline_mean(std::ostream& md) {
                 worst = std::max(worst, d);
                 ++n;
             }
-    char line[400];
-    std::snprintf(
-        line, sizeof line,
+    md << format_printf(
         "\n## Dimov 2015, sec. 5: the spline's mean difference\n\nPublished: about 0.001 (against Monte "
         "Carlo). Measured against 1D quadrature on alpha in [0.1, 0.5], mu in [0.25, 5], 15 gamma between the "
         "knots (%d points): mean |dG1| = %.2e, max |dG1| = %.2e.\n",
         n, sum / n, worst);
-    md << line;
 }
 
 // Dimov 2015 sec. 6: |G1(gamma = 4) - G1(gamma = 10)| on alpha in (0, 1], mu in (0, 2] (dimov/gamma4_vs_10.csv).
@@ -75,14 +71,12 @@ void write_dimov_gamma4_vs_10(const fs::path& dir, std::ostream& md) {
             write_csv_record(out, {format_g17(a), format_g17(mu), format_g17(d)});
         }
     output::finish(out, dir / "dimov" / "gamma4_vs_10.csv");
-    char line[400];
-    std::snprintf(line, sizeof line,
-                  "\n## Dimov 2015, sec. 6: |G1(gamma = 4) - G1(gamma = 10)|\n\nPublished: \"up to 0.3\", largest for "
-                  "mu in (0, 1), read off a plot scaled 10x. Measured with the closed forms (gamma = 10 generated) on "
-                  "alpha in (0, 1], mu in (0, 2]: max = %.3f (%.2f on the 10x scale of the figure below). So the "
-                  "published 0.3 is the difference itself, not the scaled height.\n\n![](gamma4_vs_10.png)\n",
-                  worst, 10 * worst);
-    md << line;
+    md << format_printf(
+        "\n## Dimov 2015, sec. 6: |G1(gamma = 4) - G1(gamma = 10)|\n\nPublished: \"up to 0.3\", largest for "
+        "mu in (0, 1), read off a plot scaled 10x. Measured with the closed forms (gamma = 10 generated) on "
+        "alpha in (0, 1], mu in (0, 2]: max = %.3f (%.2f on the 10x scale of the figure below). So the "
+        "published 0.3 is the difference itself, not the scaled height.\n\n![](gamma4_vs_10.png)\n",
+        worst, 10 * worst);
 }
 
 }  // namespace

@@ -140,11 +140,9 @@ void write_markdown(const G1Table& table, const std::vector<double>& alphas, con
             md << "| " << r.name() << " | 0 | | | | | applies to no NDF of this scene |\n";
             continue;
         }
-        char rel[32] = "(G1 only)", line[512];
-        if (!r.stream) std::snprintf(rel, sizeof rel, "%.2e", r.max_rel);
-        std::snprintf(line, sizeof line, "| %s | %zu | %.2e | %.2e | %s | %.0f | %s |\n", r.name().c_str(), r.points,
-                      r.max_dG1, r.sum_dG1 / r.points, rel, r.ns, worst_at(r, table).c_str());
-        md << line;
+        const std::string rel = r.stream ? "(G1 only)" : format_printf("%.2e", r.max_rel);
+        md << format_printf("| %s | %zu | %.2e | %.2e | %s | %.0f | %s |\n", r.name().c_str(), r.points, r.max_dG1,
+                            r.sum_dG1 / r.points, rel.c_str(), r.ns, worst_at(r, table).c_str());
     }
     output::finish(md, dir / "report.md");
 }

@@ -125,10 +125,8 @@ void write_g2_table(const G2Table& table, const fs::path& dir) {
     for (const G2Row& r : table.rows) {
         const std::size_t n = r.grid.size();
         write_csv_record(csv, csv_fields(r, params));
-        char line[512];
-        std::snprintf(line, sizeof line, "| %s | %zu | %.2e | %.2e | %.0f | %s |\n", r.variant.name.c_str(), n, r.max_d,
-                      n ? r.sum_d / n : NAN, r.ns, worst_at(r).c_str());
-        md << line;
+        md << format_printf("| %s | %zu | %.2e | %.2e | %.0f | %s |\n", r.variant.name.c_str(), n, r.max_d,
+                            n ? r.sum_d / n : NAN, r.ns, worst_at(r).c_str());
     }
     output::finish(csv, dir / "g2_variants.csv");
     output::finish(md, dir / "report.md");

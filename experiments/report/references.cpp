@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 
@@ -54,9 +53,7 @@ std::string check_of(const std::string& spec, const std::string& mu, const std::
         for (unsigned char c : *f) h = (h ^ c) * 1099511628211ull;
         h = (h ^ 0x1fu) * 1099511628211ull;  // a field separator no field holds
     }
-    char hex[17];
-    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
-    return hex;
+    return format_printf("%016llx", static_cast<unsigned long long>(h));
 }
 
 }  // namespace

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <fstream>
 #include <functional>
 #include <memory>
@@ -143,25 +142,21 @@ void write_sampling_section(const std::vector<SamplingRow>& rows, const Sampling
     write_csv_record(
         csv, {"family", "alpha", "strategy", "samples", "mean", "stderr", "variance", "ns_per_sample", "efficiency"});
     std::ofstream md(dir / "report.md", std::ios::app);
-    char head[600];
-    std::snprintf(
-        head, sizeof head,
-        "\n## Sampling efficiency: cosine, D cos and visible-normal sampling\n\nDirectional albedo of a white "
-        "conductor (F = 1, height-correlated G2) seen from theta_o = %g deg under a uniform white environment, "
-        "%zu samples per estimate. Efficiency = 1 / (variance x seconds per sample); time per sample by Google "
-        "Benchmark on one core. The three means estimate the same albedo.\n\n![](sampling_efficiency.png)\n\n",
-        s.theta_o, s.samples);
-    md << head << "| ndf | strategy | albedo (mean +- stderr) | variance | ns/sample | efficiency (1/s) |\n"
+    md << format_printf(
+              "\n## Sampling efficiency: cosine, D cos and visible-normal sampling\n\nDirectional albedo of a white "
+              "conductor (F = 1, height-correlated G2) seen from theta_o = %g deg under a uniform white environment, "
+              "%zu samples per estimate. Efficiency = 1 / (variance x seconds per sample); time per sample by Google "
+              "Benchmark on one core. The three means estimate the same albedo.\n\n![](sampling_efficiency.png)\n\n",
+              s.theta_o, s.samples)
+       << "| ndf | strategy | albedo (mean +- stderr) | variance | ns/sample | efficiency (1/s) |\n"
        << "|---|---|---|---:|---:|---:|\n";
     for (const SamplingRow& r : rows) {
         const double se = std::sqrt(r.variance / static_cast<double>(r.samples)), eff = 1e9 / (r.variance * r.ns);
         write_csv_record(csv,
                          {r.family, format_g17(r.alpha), r.strategy, std::to_string(r.samples), format_g17(r.mean),
                           format_g17(se), format_g17(r.variance), format_g17(r.ns), format_g17(eff)});
-        char line[300];
-        std::snprintf(line, sizeof line, "| %s(%g) | %s | %.5f +- %.5f | %.3e | %.0f | %.3e |\n", r.family.c_str(),
-                      r.alpha, r.strategy.c_str(), r.mean, se, r.variance, r.ns, eff);
-        md << line;
+        md << format_printf("| %s(%g) | %s | %.5f +- %.5f | %.3e | %.0f | %.3e |\n", r.family.c_str(), r.alpha,
+                            r.strategy.c_str(), r.mean, se, r.variance, r.ns, eff);
     }
     output::finish(csv, dir / "sampling.csv");
     output::finish(md, dir / "report.md");

@@ -175,29 +175,23 @@ void write_walk_markdown(const std::vector<WalkResult>& results, const WalkScene
     std::ofstream md(dir / "report.md", std::ios::app);
     const std::string threads = std::to_string(util::thread_count(0)) + " threads",
                       where = mpi::size() > 1 ? std::to_string(mpi::size()) + " MPI ranks x " + threads : threads;
-    char head[1200];
-    std::snprintf(
-        head, sizeof head,
-        "\n## Multiple scattering: albedo by scattering order (path-traced)\n\nThe Smith microsurface traced "
-        "by smithlab's random walk (Heitz, Hanika, d'Eon and Dachsbacher 2016, alg. 1-3: uniform heights, "
-        "Smith's downward Lambda, hit normals the visible normals of the ray): the fraction of the incident "
-        "energy that leaves after exactly 1, 2, 3 and 4 or more facet events, %lld walks per cell (seed %llu), "
-        "+- one standard error. **lost** = orders 2+: the energy a single-scattering BRDF drops, 1 - order 1 "
-        "where the facets absorb nothing (mirror, lambert(albedo=1)), what a multiple-scattering model must "
-        "restore. %zu cells, %.3g walks, %.3g events (%lld walks capped), %.1f s on %s.\n\n"
-        "![](walk_albedo.png)\n\n",
-        static_cast<long long>(w.walks), w.seed, results.size(), static_cast<double>(results.size()) * w.walks,
-        static_cast<double>(events), static_cast<long long>(capped), seconds, where.c_str());
-    md << head << "| ndf | material | alpha | theta_i | order 1 | order 2 | order 3 | order 4+ | lost (2+) | all |\n"
+    md << format_printf(
+              "\n## Multiple scattering: albedo by scattering order (path-traced)\n\nThe Smith microsurface traced "
+              "by smithlab's random walk (Heitz, Hanika, d'Eon and Dachsbacher 2016, alg. 1-3: uniform heights, "
+              "Smith's downward Lambda, hit normals the visible normals of the ray): the fraction of the incident "
+              "energy that leaves after exactly 1, 2, 3 and 4 or more facet events, %lld walks per cell (seed %llu), "
+              "+- one standard error. **lost** = orders 2+: the energy a single-scattering BRDF drops, 1 - order 1 "
+              "where the facets absorb nothing (mirror, lambert(albedo=1)), what a multiple-scattering model must "
+              "restore. %zu cells, %.3g walks, %.3g events (%lld walks capped), %.1f s on %s.\n\n"
+              "![](walk_albedo.png)\n\n",
+              static_cast<long long>(w.walks), w.seed, results.size(), static_cast<double>(results.size()) * w.walks,
+              static_cast<double>(events), static_cast<long long>(capped), seconds, where.c_str())
+       << "| ndf | material | alpha | theta_i | order 1 | order 2 | order 3 | order 4+ | lost (2+) | all |\n"
        << "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const WalkResult& r : results) {
         md << "| " << family_label(r.cell) << " | " << walk::format_material(r.cell.material) << " | "
            << format_shortest(r.cell.alpha) << " | " << format_shortest(r.cell.theta_i);
-        for (const walk::Estimate& e : r.albedo) {
-            char cell[64];
-            std::snprintf(cell, sizeof cell, " | %.5f +- %.5f", e.value, e.stderr_);
-            md << cell;
-        }
+        for (const walk::Estimate& e : r.albedo) md << format_printf(" | %.5f +- %.5f", e.value, e.stderr_);
         md << " |\n";
     }
     output::finish(md, dir / "report.md");

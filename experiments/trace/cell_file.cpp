@@ -19,9 +19,7 @@ namespace smithlab::trace {
 namespace fs = std::filesystem;
 
 fs::path cell_path(const fs::path& out, std::uint64_t index) {
-    char name[32];
-    std::snprintf(name, sizeof name, "cell-%06llu.csv", static_cast<unsigned long long>(index));
-    return out / "cells" / name;
+    return out / "cells" / format_printf("cell-%06llu.csv", static_cast<unsigned long long>(index));
 }
 
 std::string cell_key(const CellSettings& w, const TraceCell& c, const AnyNdf& ndf, const walk::Material& m) {

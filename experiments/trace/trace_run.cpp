@@ -122,12 +122,10 @@ std::vector<std::optional<CellRows>> reuse_cells(const fs::path& out, const std:
 
 // The progress line: "trace: 3 of 48 cells done on 2 ranks, 12% of the walks".
 std::string progress_text(std::int64_t traced, std::int64_t to_trace, std::uint64_t merged, std::uint64_t all) {
-    char line[128];
-    std::snprintf(line, sizeof line, "trace: %lld of %lld cells done%s, %.0f%% of the walks",
-                  static_cast<long long>(traced), static_cast<long long>(to_trace),
-                  mpi::size() > 1 ? (" on " + std::to_string(mpi::size()) + " ranks").c_str() : "",
-                  100.0 * static_cast<double>(merged) / static_cast<double>(all));
-    return line;
+    const std::string ranks = mpi::size() > 1 ? " on " + std::to_string(mpi::size()) + " ranks" : "";
+    return format_printf("trace: %lld of %lld cells done%s, %.0f%% of the walks", static_cast<long long>(traced),
+                         static_cast<long long>(to_trace), ranks.c_str(),
+                         100.0 * static_cast<double>(merged) / static_cast<double>(all));
 }
 
 // Traces the needed jobs on every rank (cluster/block_jobs.hpp); on rank 0 each finished cell's rows go to done[i]

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
 #include <fstream>
 #include <iterator>
 #include <numbers>
@@ -338,10 +337,9 @@ double TabulatedNdf::slope_density(double r2) const {
 
 std::string TabulatedNdf::note() const {
     if (std::abs(area_as_read() - 1.0) < 1e-9) return "";  // as normalized as its rows' digits carry: nothing to say
-    char text[160];
-    std::snprintf(text, sizeof text, "D multiplied by %.9g (its projected area was %.9g, not 1)",
-                  normalization_factor(), area_as_read());
-    return source() + ": " + text;
+    return source() + ": " +
+        format_printf("D multiplied by %.9g (its projected area was %.9g, not 1)", normalization_factor(),
+                      area_as_read());
 }
 
 TabulatedNdf TabulatedNdf::scaled(double s) const {
@@ -361,9 +359,7 @@ std::uint64_t TabulatedNdf::content_hash() const { return t_->hash; }
 const std::string& TabulatedNdf::source() const { return t_->source; }
 
 std::string TabulatedNdf::content_id() const {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "fnv1a64:%016llx", static_cast<unsigned long long>(t_->hash));
-    return buf;
+    return format_printf("fnv1a64:%016llx", static_cast<unsigned long long>(t_->hash));
 }
 
 }  // namespace smithlab

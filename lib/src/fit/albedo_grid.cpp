@@ -52,22 +52,39 @@ void AlbedoGrid::check() const {
 
 namespace {
 
-// The cell of alpha among the ascending alphas (clamped to the end cells) and the weight of its upper end in [0, 1],
-// linear in sqrt(alpha) (the cell is the same found in alpha or in its root: the root is monotone).
-std::size_t cell(const std::vector<double>& alphas, double alpha, double& t) {
-    if (!(alpha > alphas.front())) {
-        t = 0.0;
-        return 0;
-    }
-    if (!(alpha < alphas.back())) {
-        t = 1.0;
-        return alphas.size() - 2;
-    }
+// The cell i of alpha among the ascending alphas (clamped to the end cells) and the weight t of its upper end in
+// [0, 1], linear in sqrt(alpha) (the cell is the same found in alpha or in its root: the root is monotone).
+struct AlphaCell {
+    std::size_t i = 0;
+    double t = 0.0;
+};
+
+AlphaCell cell(const std::vector<double>& alphas, double alpha) {
+    if (!(alpha > alphas.front())) return {0, 0.0};
+    if (!(alpha < alphas.back())) return {alphas.size() - 2, 1.0};
     const std::size_t hi =
         static_cast<std::size_t>(std::upper_bound(alphas.begin(), alphas.end(), alpha) - alphas.begin());
     const double s0 = std::sqrt(alphas[hi - 1]), s1 = std::sqrt(alphas[hi]);
-    t = (std::sqrt(alpha) - s0) / (s1 - s0);
-    return hi - 1;
+    return {hi - 1, (std::sqrt(alpha) - s0) / (s1 - s0)};
+}
+
+// input_error unless there are 2 alphas or more and one value each (lookup_power_law's values).
+void require_one_value_each(const std::vector<double>& alphas, const std::vector<double>& values, const char* what) {
+    if (alphas.size() < 2 || values.size() != alphas.size())
+        throw input_error(std::string(what) +
+                          " over alpha: malformed (fewer than 2 alphas, or values of another size)");
+}
+
+// lookup_power_law at alpha, whose cell among the alphas is i; input_error unless the cell's two values are finite
+// and > 0.
+double power_law_in_cell(const std::vector<double>& alphas, const std::vector<double>& values, double alpha,
+                         std::size_t i, const char* what) {
+    for (std::size_t k : {i, i + 1})
+        require(values[k] > 0.0 && std::isfinite(values[k]), what, "finite and > 0", values[k]);
+    // ln v linear in ln alpha; below the first node the first cell's line continued, above the last the last value.
+    const double u = alpha < alphas.back() ? std::log(alpha / alphas[i]) / std::log(alphas[i + 1] / alphas[i]) : 1.0;
+    if (u == 0.0 || u == 1.0) return values[u == 0.0 ? i : i + 1];  // a node's own value, not exp(ln v)
+    return std::exp(std::log(values[i]) + u * (std::log(values[i + 1]) - std::log(values[i])));
 }
 
 // The refined alphas: refine steps of sqrt(alpha) between nodes.
@@ -103,11 +120,13 @@ void parallel_for(std::size_t n, unsigned threads, const Job& job) {
 double AlbedoTable::lookup(double alpha, double mu) const {
     require(alpha > 0.0 && std::isfinite(alpha), "alpha", "finite and > 0", alpha);
     require(mu >= 0.0 && mu <= 1.0, "mu = cos(theta)", "in [0, 1]", mu);
-    const double x = warp_cosine(grid.scale(alpha), mu) * (grid.n_x - 1);
+    const char* what = "the warp's scale";
+    require_one_value_each(grid.alphas, grid.scales, what);
+    // One search for alpha's cell: the scale's interpolation (grid.scale) and the values' weight ta.
+    const auto [i, ta] = cell(grid.alphas, alpha);
+    const double x = warp_cosine(power_law_in_cell(grid.alphas, grid.scales, alpha, i, what), mu) * (grid.n_x - 1);
     const int j = std::min(static_cast<int>(x), grid.n_x - 2);
     const double tx = x - j;
-    double ta = 0.0;
-    const std::size_t i = cell(grid.alphas, alpha, ta);
     const double lo = at(i, j) + tx * (at(i, j + 1) - at(i, j));
     const double hi = at(i + 1, j) + tx * (at(i + 1, j + 1) - at(i + 1, j));
     return lo + ta * (hi - lo);
@@ -158,17 +177,8 @@ std::vector<CheckedTable> tabulate(const AlbedoGrid& grid, int refine, int count
 double lookup_power_law(const std::vector<double>& alphas, const std::vector<double>& values, double alpha,
                         const char* what) {
     require(alpha > 0.0 && std::isfinite(alpha), "alpha", "finite and > 0", alpha);
-    if (alphas.size() < 2 || values.size() != alphas.size())
-        throw input_error(std::string(what) +
-                          " over alpha: malformed (fewer than 2 alphas, or values of another size)");
-    double t = 0.0;
-    const std::size_t i = cell(alphas, alpha, t);
-    for (std::size_t k : {i, i + 1})
-        require(values[k] > 0.0 && std::isfinite(values[k]), what, "finite and > 0", values[k]);
-    // ln v linear in ln alpha; below the first node the first cell's line continued, above the last the last value.
-    const double u = alpha < alphas.back() ? std::log(alpha / alphas[i]) / std::log(alphas[i + 1] / alphas[i]) : 1.0;
-    if (u == 0.0 || u == 1.0) return values[u == 0.0 ? i : i + 1];  // a node's own value, not exp(ln v)
-    return std::exp(std::log(values[i]) + u * (std::log(values[i + 1]) - std::log(values[i])));
+    require_one_value_each(alphas, values, what);
+    return power_law_in_cell(alphas, values, alpha, cell(alphas, alpha).i, what);
 }
 
 double lookup_missing(const std::vector<double>& alphas, const std::vector<double>& missing, double alpha) {
