@@ -62,6 +62,10 @@ std::vector<FurnaceRow> trace_furnace(const std::vector<FamilyTables>& tables, c
                             .albedo(walk::Hemisphere::all, walk::all_orders, walk::Component::all);
                     const std::string name = walk::format_material(m);
                     const auto* conductor = std::get_if<walk::Conductor>(&m);
+                    auto F = [&](double cos_m) {
+                        return conductor ? fresnel_conductor(cos_m, conductor->eta, conductor->k) : 1.0;
+                    };
+                    const double F_avg = conductor ? fit::average_fresnel(F) : 1.0;
                     for (const auto& [ft, E] : exact) {
                         const fit::AlbedoTable& table = ft->E.table.table;
                         if (!conductor) {
@@ -69,8 +73,7 @@ std::vector<FurnaceRow> trace_furnace(const std::vector<FamilyTables>& tables, c
                                 E(mu) + fit::kulla_conty_albedo(table, ft->missing, alpha, mu), total);
                             continue;
                         }
-                        auto F = [&](double cos_m) { return fresnel_conductor(cos_m, conductor->eta, conductor->k); };
-                        const double F_avg = fit::average_fresnel(F), E_F = E(mu, F), E_mu = table.lookup(alpha, mu);
+                        const double E_F = E(mu, F), E_mu = table.lookup(alpha, mu);
                         add(*ft, name, "total", "kulla-conty",
                             E_F + fit::kulla_conty_albedo(table, ft->missing, alpha, mu, F_avg), total);
                         add(*ft, name, "total", "turquin", E_F * fit::turquin_scale(E_mu, F(1.0)), total);

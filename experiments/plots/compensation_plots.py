@@ -49,6 +49,7 @@ def main(out):
     ax.set_ylabel("worst |compensated albedo - 1|, theta_i <= 85 deg (floor 1e-7)")
     ax.set_title("The furnace by the tables (check grid)")
     ax.legend(fontsize=7, loc="upper right")
+    labelled = set()  # the forms already in a legend (one entry each, whatever the NDF, G2 and alpha)
     for k, (material, part) in enumerate(materials):
         a = fig.add_subplot(grid[k, 1])
         series = defaultdict(list)
@@ -66,8 +67,8 @@ def main(out):
                 # A conductor's forms: one colour each, darker the rougher; the legend names the forms only.
                 shade = 0.3 + 0.7 * alphas.index(alpha) / max(1, len(alphas) - 1)
                 style.update(color=f"C{forms.index(form)}", alpha=shade)
-                first = alpha == alphas[0] and g2 == "height-correlated"
-                style["label"] = f"{form} (darker: alpha up to {alphas[-1]:g})" if first else None
+                style["label"] = None if (k, form) in labelled else f"{form} (darker: alpha up to {alphas[-1]:g})"
+                labelled.add((k, form))
             else:
                 style["label"] = f"{ndf} {g2} alpha {alpha:g}"
             a.errorbar([p[0] for p in pts], [p[1] for p in pts], yerr=[p[2] for p in pts], **style)

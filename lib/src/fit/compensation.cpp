@@ -555,7 +555,7 @@ double kulla_conty_albedo(const AlbedoTable& E, const std::vector<double>& missi
 }
 
 double fdez_aguera_albedo(double E_F, double E, double F_avg) {
-    require(E > 0.0 && E <= 1.0, "E(mu)", "in (0, 1]", E);
+    require(E > 0.0, "E(mu)", "> 0", E);
     require(F_avg >= 0.0 && F_avg <= 1.0, "F_avg", "in [0, 1]", F_avg);
     return E_F / (1.0 - F_avg * (1.0 - E));
 }
