@@ -97,7 +97,7 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
 // A table's grid over `alphas` x n_x warped cosines, with the warp's scale of the NDF make(alpha) at each alpha.
 template <class Make>
 fit::AlbedoGrid warped_grid(const Make& make, const std::vector<double>& alphas, int n_x) {
-    fit::AlbedoGrid g{alphas, {}, n_x};
+    fit::AlbedoGrid g{alphas, {}, n_x, {}};
     for (double a : alphas) g.scales.push_back(fit::SingleScatteringAlbedo(make(a)).warp_scale());
     return g;
 }
@@ -569,7 +569,7 @@ TEST_CASE("the warp: its inverse, its scale against GGX's closed form, the power
     CHECK(fit::lookup_power_law(alphas, v, 2.0, "v") == Approx(0.3).epsilon(1e-15));    // the last value
     CHECK(fit::lookup_power_law(alphas, v, std::sqrt(1e-3 * 1e-2), "v") == Approx(std::sqrt(2e-3 * 2e-2)));
     CHECK_THROWS_AS(fit::lookup_power_law(alphas, {2e-3, 0.0, 0.3}, 1e-2, "v"), smithlab::input_error);
-    fit::AlbedoGrid bad{{0.1, 0.2}, {0.1}, 4};
+    fit::AlbedoGrid bad{{0.1, 0.2}, {0.1}, 4, {}};
     CHECK_THROWS_AS(bad.check(), smithlab::input_error);
 }
 
@@ -577,18 +577,21 @@ TEST_CASE("the warp: its inverse, its scale against GGX's closed form, the power
 TEST_CASE("the warped table: its error measure against a dense direct check, and GGX's E within 1e-3",
           "[compensation][slow]") {
     // A function with a feature at mu ~ alpha: the measured error equals the largest one found directly.
-    const fit::AlbedoGrid g{{0.01, 0.09, 0.25, 1.0}, {0.01, 0.09, 0.25, 1.0}, 9};
+    const fit::AlbedoGrid g{{0.01, 0.09, 0.25, 1.0}, {0.01, 0.09, 0.25, 1.0}, 9, {}};
     const fit::AlbedoRow row = [](double a) -> std::function<double(double)> {
         return [a](double mu) { return std::exp(-mu / a) * mu / (mu + a); };
     };
     const fit::CheckedTable t = fit::tabulate(g, 10, row, 2);
-    double direct = 0.0;
+    double direct = 0.0, grazing = 0.0;  // at mu >= grazing_mu, and below
     for (double a : t.fine.grid.alphas)
         for (int j = 0; j <= 80; ++j) {
             const double mu = fit::unwarp_cosine(g.scale(a), j / 80.0);
-            direct = std::max(direct, std::abs(t.table.lookup(a, mu) - row(a)(mu)));
+            double& worst = mu < fit::grazing_mu ? grazing : direct;
+            worst = std::max(worst, std::abs(t.table.lookup(a, mu) - row(a)(mu)));
         }
     CHECK(t.error.max == direct);
+    CHECK(t.grazing.max == grazing);
+    CHECK(grazing > 0.0);
     CHECK(t.table.at(2, 3) == row(0.25)(g.mu(2, 3)));
     // GGX's E on 48 alphas (cbrt-spaced, 1e-4 to 1) x 48 warped cosines: within 1e-3 on the 10x finer grid, and below
     // the grid down to alpha 1e-6.
@@ -649,6 +652,124 @@ TEST_CASE("the warped table of a heavy tail (GTR gamma = 1: its dip near mu 0.1 
     };
     check("GTR gamma 1", [](double a) { return smithlab::gtr(a, 1.0); });
     check("Beckmann", [](double a) { return smithlab::beckmann(a); });
+}
+
+TEST_CASE("a node cluster: the axis and its inverse, tables of ln E, bad clusters", "[compensation]") {
+    fit::AlbedoGrid g{{0.01, 0.1, 1.0}, {0.05, 0.5, 3.0}, 33, {0.6, 0.02, 0.3}};
+    REQUIRE_NOTHROW(g.check());
+    for (double c : g.scales) {
+        CHECK(g.x_of(c, 0.0) == 0.0);
+        CHECK(std::abs(g.x_of(c, 1.0) - 1.0) < 1e-15);
+        double last = -1.0;
+        for (int j = 0; j < g.n_x; ++j) {
+            const double mu = g.mu_of(c, g.x(j));
+            CHECK(mu > last);  // increasing
+            CHECK(std::abs(g.x_of(c, mu) - g.x(j)) < 1e-15);
+            last = mu;
+        }
+    }
+    // The cluster takes its share of the nodes near mu = 0.6: of 32 cells of x, the warp alone at scale 0.05 puts
+    // less than 1 between mu 0.55 and 0.65; with the cluster more than 4 (0.3 (asinh(2.5) - asinh(-2.5)) /
+    // (asinh(30) + asinh(20)) of the axis).
+    const double c = g.scales[0];
+    CHECK((fit::warp_cosine(c, 0.65) - fit::warp_cosine(c, 0.55)) * 32 < 1.0);
+    CHECK((g.x_of(c, 0.65) - g.x_of(c, 0.55)) * 32 > 4.0);
+    // Without a cluster the axis is the warp.
+    fit::AlbedoGrid w = g;
+    w.cluster = {};
+    CHECK(w.x_of(0.5, 0.3) == fit::warp_cosine(0.5, 0.3));
+    CHECK(w.mu_of(0.5, 0.4) == fit::unwarp_cosine(0.5, 0.4));
+    for (const fit::NodeCluster bad : {fit::NodeCluster{1.5, 0.02, 0.3}, fit::NodeCluster{0.5, 0.0, 0.3},
+                                       fit::NodeCluster{0.5, 0.02, 1.0}, fit::NodeCluster{0.5, 0.02, -0.1}}) {
+        g.cluster = bad;
+        CHECK_THROWS_AS(g.check(), smithlab::input_error);
+    }
+    // A table of ln E: E at the nodes exactly, exp of the bilinear ln E between them, its error measured in E; and a
+    // value <= 0 refused.
+    g.cluster = {0.6, 0.02, 0.3};
+    const fit::AlbedoRows rows = [](double a) -> std::function<void(double, double*)> {
+        return [a](double mu, double* v) { v[0] = v[1] = 0.05 + 0.9 * mu * mu / (mu + a); };
+    };
+    const std::vector<fit::CheckedTable> t = fit::tabulate(g, 4, {fit::Stored::value, fit::Stored::log}, rows, 2);
+    REQUIRE(t.size() == 2);
+    CHECK(t[1].table.stored == fit::Stored::log);
+    CHECK(t[1].table.at(1, 5) == std::log(t[0].table.at(1, 5)));
+    CHECK(std::abs(t[1].table.lookup(0.1, g.mu(1, 5)) / t[0].table.at(1, 5) - 1.0) < 1e-15);
+    // Between two nodes of the row alpha = 0.1: ln E linear in x.
+    const double mu = 0.41, x = g.x_of(g.scales[1], mu) * 32;
+    const int j = static_cast<int>(x);
+    const double ln = t[1].table.at(1, j) + (x - j) * (t[1].table.at(1, j + 1) - t[1].table.at(1, j));
+    CHECK(std::abs(t[1].table.lookup(0.1, mu) / std::exp(ln) - 1.0) < 1e-14);
+    CHECK(t[1].error.max > 0.0);
+    CHECK(t[1].error.max != t[0].error.max);
+    const fit::AlbedoRows zero = [](double) -> std::function<void(double, double*)> {
+        return [](double mu, double* v) { *v = mu; };  // 0 at mu = 0
+    };
+    CHECK_THROWS_WITH(fit::tabulate(g, 1, {fit::Stored::log}, zero, 1), Catch::Contains("finite and > 0"));
+}
+
+// [slow]: 2 x 6 500 + 20 000 dielectric values (~40 s of two cores in Release).
+TEST_CASE("dielectric tables: the critical angle's cluster from inside, ln(E_R + E_T) for Turquin's division",
+          "[compensation][slow]") {
+    // The default grid's alphas (64, cbrt-spaced from 1e-4 to 1) and 96 cosines, in the cells where each feature is
+    // worst (measured over the whole grid, docs/compensation.md).
+    std::vector<double> alphas;
+    for (int i = 0; i < 64; ++i) {
+        const double s = std::cbrt(1e-4) + (1.0 - std::cbrt(1e-4)) * i / 63.0;
+        alphas.push_back(std::min(s * s * s, 1.0));
+    }
+    auto cells = [&](double lo, double hi) {
+        std::vector<double> a;
+        for (std::size_t i = 0; i < alphas.size(); ++i)
+            if ((i + 1 < alphas.size() && alphas[i + 1] > lo) && (i == 0 || alphas[i - 1] < hi)) a.push_back(alphas[i]);
+        return a;
+    };
+    fit::AlbedoOptions o;
+    o.tolerance = fit::table_tolerance;
+    auto rows = [&](double eta) -> fit::AlbedoRows {
+        return [&o, eta](double a) -> std::function<void(double, double*)> {
+            auto E = std::make_shared<fit::SingleScatteringAlbedo<smithlab::Ggx>>(smithlab::ggx(a), o);
+            return [E, eta](double mu, double* v) {
+                const auto d = E->dielectric(mu, eta);
+                v[0] = v[1] = d.R + d.T;
+            };
+        };
+    };
+    using fit::Stored;
+    SECTION("inside eta 1.1: E_T rises like sqrt(mu - mu_c) smoothed over ~alpha; the cluster resolves it") {
+        const double eta = 1.0 / 1.1;
+        const fit::AlbedoGrid plain = fit::dielectric_grid(ggx_grid(cells(0.01, 0.025), 48), 96, 1.0);
+        const fit::AlbedoGrid kink = fit::dielectric_grid(plain, 96, eta);
+        CHECK(kink.cluster.mu == Approx(std::sqrt(1.0 - eta * eta)).epsilon(1e-15));
+        const fit::CheckedTable p = fit::tabulate(plain, 4, {Stored::log}, rows(eta), 2)[0];
+        const fit::CheckedTable k = fit::tabulate(kink, 4, {Stored::log}, rows(eta), 2)[0];
+        std::printf(
+            "compensation: GGX inside eta 1.1, alpha %.3g to %.3g, 96 cosines: ln(E_R + E_T) within %.2e (alpha "
+            "%.3g, mu %.4g) on the warp alone, %.2e with the cluster about mu_c = %.4f\n",
+            plain.alphas.front(), plain.alphas.back(), p.error.max, p.error.alpha, p.error.mu, k.error.max,
+            kink.cluster.mu);
+        CHECK(p.error.max > 1e-3);
+        CHECK(std::abs(p.error.mu - kink.cluster.mu) < 0.02);  // the kink
+        CHECK(k.error.max < 5e-4);
+        CHECK(fit::worst_of(fit::turquin_furnace(k, std::cos(85.0 * std::numbers::pi / 180.0))).max < 1e-3);
+    }
+    SECTION("outside eta 1.1 at alpha ~ 1: single scattering keeps little, and a table of E_R + E_T misses it") {
+        const fit::AlbedoGrid g = fit::dielectric_grid(ggx_grid(cells(0.9, 1.0), 48), 96, 1.1);
+        CHECK(g.cluster.weight == 0.0);
+        const std::vector<fit::CheckedTable> t = fit::tabulate(g, 10, {Stored::value, Stored::log}, rows(1.1), 2);
+        const double mu_min = std::cos(85.0 * std::numbers::pi / 180.0);
+        const fit::InterpolationError value = fit::worst_of(fit::turquin_furnace(t[0], mu_min)),
+                                      log = fit::worst_of(fit::turquin_furnace(t[1], mu_min));
+        std::printf(
+            "compensation: GGX outside eta 1.1, alpha %.3g to 1, 96 cosines: Turquin's furnace %.2e (alpha %.3g, mu "
+            "%.3g) by a table of E_R + E_T, %.2e of ln(E_R + E_T); interpolation %.2e / %.2e, grazing %.2e / "
+            "%.2e\n",
+            g.alphas.front(), value.max, value.alpha, value.mu, log.max, t[0].error.max, t[1].error.max,
+            t[0].grazing.max, t[1].grazing.max);
+        CHECK(value.max > 2e-3);
+        CHECK(log.max < 2e-3);
+        CHECK(t[1].error.max < 1e-3);
+    }
 }
 
 TEST_CASE("a light tail at small alpha: Beckmann's E at normal incidence, and 1 - E_avg ~ alpha^2", "[compensation]") {

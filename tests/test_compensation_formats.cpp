@@ -31,7 +31,7 @@ namespace {
 // A small table by hand, smooth in both axes, E = 1 at x = 0 (a white pixel), and 1 - E_avg(alpha) = 0.3 alpha^1.5.
 AlbedoTable small_table() {
     AlbedoTable t;
-    t.grid = {{0.05, 0.12, 0.3, 0.6, 1.0}, {}, 9};
+    t.grid = {{0.05, 0.12, 0.3, 0.6, 1.0}, {}, 9, {}};
     // Warp scales that are not a power of alpha across the nodes (as a heavy-tailed NDF's): ln c is interpolated.
     for (const double a : t.grid.alphas) t.grid.scales.push_back(2.4 * std::pow(a, 0.8 + 0.3 * a));
     for (const double a : t.grid.alphas)
@@ -49,7 +49,7 @@ std::vector<double> small_missing(const AlbedoTable& t) {
 }
 
 CompensationExport export_of(const AlbedoTable& t) {
-    return {"ggx", "height-correlated", "E", &t, small_missing(t), 2.5e-4, 1.25e-3};
+    return {"ggx", "height-correlated", "E", &t, small_missing(t), 2.5e-4, 1.25e-3, 5e-4};
 }
 
 std::filesystem::path scratch_dir(const std::string& name) {
@@ -89,7 +89,7 @@ std::vector<Point> points(const AlbedoTable& t) {
     std::vector<Point> p;
     for (const double a : alphas) {
         std::vector<double> mus = {0.0, 0.004, 0.1, 0.37, 0.9, 1.0, -0.2, 1.25};
-        for (const int j : {1, 3, 7}) mus.push_back(unwarp_cosine(t.grid.scale(a), t.grid.x(j)));
+        for (const int j : {1, 3, 7}) mus.push_back(t.grid.mu_of(t.grid.scale(a), t.grid.x(j)));
         for (const double m : mus) p.push_back({static_cast<float>(a), static_cast<float>(m)});
     }
     return p;
@@ -217,7 +217,7 @@ TEST_CASE("compensation formats: identifiers", "[compensation][formats]") {
     const AlbedoTable t = small_table();
     CompensationExport e = export_of(t);
     CHECK(compensation_identifier(e) == "smithlab_ggx_hc");
-    e = {"gtr(gamma=1.5)", "separable", "E_R+E_T outside eta=1.5", &t, {}, 0.0, 0.0};
+    e = {"gtr(gamma=1.5)", "separable", "E_R+E_T outside eta=1.5", &t, {}, 0.0, 0.0, 0.0};
     CHECK(compensation_identifier(e) == "smithlab_gtr_gamma_1_5_sep_E_R_E_T_outside_eta_1_5");
     e.g2 = "uncorrelated";
     CHECK_THROWS_AS(compensation_identifier(e), input_error);
@@ -241,6 +241,9 @@ TEST_CASE("compensation formats: the C header compiles as C and looks up as Albe
     CHECK(h.find("mu clamped to [0, 1]") != std::string::npos);
     CHECK(h.find("within 0.00025 of the exact values") != std::string::npos);
     CHECK(h.find("within 0.00125 below the first alpha") != std::string::npos);
+    // The comment's lines joined: its phrases may break across them.
+    const std::string joined = std::regex_replace(h, std::regex("\n \\*   "), " ");
+    CHECK(joined.find("within 0.0005 at grazing mu < 0.002 (theta > 89.885 degrees)") != std::string::npos);
     CHECK(h.find("Kulla and Conty 2017") != std::string::npos);
     CHECK(h.find("Turquin 2019") != std::string::npos);
     CHECK(h.find("(1 - E_avg) = smithlab_ggx_hc_missing(alpha)") != std::string::npos);
@@ -316,7 +319,8 @@ TEST_CASE("compensation formats: a tiny 1 - E_avg keeps its relative precision i
 TEST_CASE("compensation formats: without E_avg, and with labels that are not identifiers", "[compensation][formats]") {
     REQUIRE(has_glslang());
     const AlbedoTable t = small_table();
-    const CompensationExport e{"gtr(gamma=1.5) /*/ \"x\"", "separable", "E_R+E_T outside eta=1.5", &t, {}, 0.0, 0.0};
+    const CompensationExport e{
+        "gtr(gamma=1.5) /*/ \"x\"", "separable", "E_R+E_T outside eta=1.5", &t, {}, 0.0, 0.0, 0.0};
     const std::string id = "smithlab_gtr_gamma_1_5_x_sep_E_R_E_T_outside_eta_1_5";
     REQUIRE(compensation_identifier(e) == id);
     const std::string h = text_of(write_c_header, e), glsl = text_of(write_glsl, e), hlsl = text_of(write_hlsl, e);
@@ -334,6 +338,72 @@ TEST_CASE("compensation formats: without E_avg, and with labels that are not ide
     check_hlsl_compiles(dir, hlsl, id, false);
     const std::vector<Point> p = points(t);
     check_lookups(dir, lookup_program("table.h", id, p, false), t, {}, p);
+    std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("compensation formats: a table of ln E with a node cluster, in every format", "[compensation][formats]") {
+    REQUIRE(has_glslang());
+    // A dielectric's table as the fit writes it from inside: ln E stored, nodes clustered about a critical cosine.
+    AlbedoTable t = small_table();
+    t.grid.cluster = {0.42, 0.02, 0.3};
+    for (double& v : t.values) v = std::log(v);
+    t.stored = Stored::log;
+    const double E = std::exp(t.at(2, 4));
+    CHECK(std::abs(t.lookup(0.3, t.grid.mu(2, 4)) - E) < 1e-14 * E);  // a node: exp of the stored ln E
+    CHECK(std::abs(t.grid.x_of(t.grid.scales[2], t.grid.mu(2, 4)) - t.grid.x(4)) < 1e-15);
+    const CompensationExport e{"ggx", "height-correlated", "E_R+E_T eta=1.5 inside", &t, {}, 2.5e-4, 1e-3, 5e-4};
+    const std::string id = "smithlab_ggx_hc_E_R_E_T_eta_1_5_inside";
+    const std::string h = text_of(write_c_header, e), glsl = text_of(write_glsl, e), hlsl = text_of(write_hlsl, e);
+    for (const std::string* s : {&h, &glsl, &hlsl}) {
+        CHECK(s->find(id + "_log_E_table[45]") != std::string::npos);
+        CHECK(s->find(id + "_E_table") == std::string::npos);
+        CHECK(s->find("nodes clustered about mu = 0.42") != std::string::npos);
+        CHECK(s->find("of ln E, then exp") != std::string::npos);
+    }
+    const std::filesystem::path dir = scratch_dir("log");
+    check_glsl_compiles(dir, glsl, id, false);
+    check_hlsl_compiles(dir, hlsl, id, false);
+    // Points on both sides of the cluster and in it, where x changes fastest.
+    std::vector<Point> p = points(t);
+    for (const double mu : {0.40, 0.415, 0.419, 0.42, 0.421, 0.43, 0.5})
+        for (const double a : {0.06, 0.3, 0.9}) p.push_back({static_cast<float>(a), static_cast<float>(mu)});
+    SECTION("C") {
+        std::ofstream(dir / "table.h") << h;
+        check_lookups(dir, lookup_program("table.h", id, p, false), t, {}, p);
+    }
+    SECTION("GLSL, its constructors as C casts") {
+        std::ofstream(dir / "table_glsl.c") << glsl_as_c(glsl);
+        check_lookups(dir, lookup_program("table_glsl.c", id, p, false), t, {}, p);
+    }
+    SECTION("HLSL, which is C here") {
+        std::ofstream(dir / "table_hlsl.c") << hlsl;
+        check_lookups(dir, lookup_program("table_hlsl.c", id, p, false), t, {}, p);
+    }
+    SECTION("the PNG holds -ln E / K, K the largest -ln E, and its axes say so") {
+        write_png16(dir / "E.png", e);
+        PngRead r;
+        REQUIRE(read_png(dir / "E.png", r));
+        REQUIRE(r.samples.size() == t.values.size());
+        const double K = -*std::min_element(t.values.begin(), t.values.end());
+        for (std::size_t k = 0; k < t.values.size(); ++k)
+            CHECK(r.samples[k] == std::lround(-t.values[k] / K * 65535.0));
+        CHECK(*std::max_element(r.samples.begin(), r.samples.end()) == 65535u);
+        std::ostringstream s;
+        write_axes_json(s, e);
+        const nlohmann::json j = nlohmann::json::parse(s.str());
+        CHECK(j.at("stored").get<std::string>() == "ln E");
+        CHECK(j.at("log_scale").get<double>() == K);
+        CHECK(j.at("cluster").at("mu").get<double>() == 0.42);
+        CHECK(j.at("cluster").at("width").get<double>() == 0.02);
+        CHECK(j.at("cluster").at("weight").get<double>() == 0.3);
+        CHECK(j.at("x").get<std::string>().find("asinh((mu - 0.42) / 0.02)") != std::string::npos);
+        CHECK(j.at("lookup").get<std::string>().find("of ln E, then exp") != std::string::npos);
+    }
+    SECTION("an E above 1 in the PNG is refused") {
+        t.values[7] = 1e-3;  // ln E > 0
+        CHECK_THROWS_WITH(write_png16(dir / "bad.png", e), Catch::Contains("outside (-inf, 0]"));
+        CHECK_FALSE(std::filesystem::exists(dir / "bad.png"));
+    }
     std::filesystem::remove_all(dir);
 }
 
@@ -382,6 +452,11 @@ TEST_CASE("compensation formats: the 16-bit PNG and its axes", "[compensation][f
     CHECK(j.at("mu_of_x").get<std::string>() == "c x^2 / (1 + c - x^2)");
     CHECK(j.at("max_interpolation_error").get<double>() == e.max_interp_error);
     CHECK(j.at("below_grid_error").get<double>() == e.below_grid_error);
+    CHECK(j.at("grazing_error").get<double>() == e.grazing_error);
+    CHECK(j.at("grazing_cos_theta").get<double>() == grazing_mu);
+    CHECK(j.at("stored").get<std::string>() == "E");
+    CHECK_FALSE(j.contains("log_scale"));
+    CHECK_FALSE(j.contains("cluster"));
     CHECK(j.at("x").get<std::string>().find("(1 + c) mu / (mu + c)") != std::string::npos);
     CHECK(j.at("lookup").get<std::string>().find("bilinear in (sqrt(alpha), x)") != std::string::npos);
     CHECK(j.at("below_first_alpha").get<std::string>().find("first row") != std::string::npos);

@@ -433,11 +433,12 @@ TEST_CASE("fit: the tables name an NDF's parameters in columns of their own besi
 TEST_CASE("fit: [compensation] writes every table, its errors, its renderer formats and the furnace", "[fit][cli]") {
     using namespace smithlab_test;
     const fs::path d = fresh_directory("fitcompensation");
-    const Run r = run_fit(d,
-                          tiny_scene +
-                              "[compensation]\nalpha = {cbrt = [0.001, 1.0], n = 3}\ncosines = 6\nrefine = 2\n"
-                              "eta = [1.5]\nconductors = [\"conductor(eta=0.2, k=3)\"]\nfurnace_alpha = [0.5]\n"
-                              "furnace_theta = [0.0, 60.0]\nfurnace_walks = 2000\n");
+    const Run r = run_fit(
+        d,
+        tiny_scene +
+            "[compensation]\nalpha = {cbrt = [0.001, 1.0], n = 3}\ncosines = 6\nrefine = 2\n"
+            "dielectric_cosines = 8\neta = [1.5]\nconductors = [\"conductor(eta=0.2, k=3)\"]\nfurnace_alpha = [0.5]\n"
+            "furnace_theta = [0.0, 60.0]\nfurnace_walks = 2000\n");
     INFO(r.err);
     REQUIRE(r.rc == 0);
     const fs::path o = d / "out";
@@ -452,7 +453,7 @@ TEST_CASE("fit: [compensation] writes every table, its errors, its renderer form
         return smithlab::read_csv(in).at(0).fields;
     };
     // Two G2 forms x 3 alphas (0.001, 0.55^3, 1: evenly spaced in cbrt(alpha)) x 6 cosines; each dielectric row from
-    // both sides.
+    // both sides, over 8 cosines.
     const std::vector<std::string> E = lines(slurp(o / "compensation.csv"));
     REQUIRE(E.size() == 1 + 2 * 3 * 6);
     CHECK(E[0] == "ndf,alpha,g2,cos_theta,E");
@@ -468,13 +469,14 @@ TEST_CASE("fit: [compensation] writes every table, its errors, its renderer form
     const fit::SingleScatteringAlbedo<smithlab::Ggx> exact(smithlab::ggx(1.0), {.tolerance = 1e-8});
     CHECK(std::stod(node[4]) == Approx(exact(std::stod(node[3]))).epsilon(1e-9));
     const std::vector<std::string> dielectric = lines(slurp(o / "compensation_dielectric.csv"));
-    REQUIRE(dielectric.size() == 1 + 2 * 3 * 2 * 6);
+    REQUIRE(dielectric.size() == 1 + 2 * 3 * 2 * 8);
     CHECK(dielectric[0] == "ndf,alpha,g2,eta,side,cos_theta,E_R,E_T");
     CHECK_THAT(slurp(o / "compensation_dielectric.csv"), Contains(",height-correlated,1.5,inside,"));
     const std::vector<std::string> errors = lines(slurp(o / "compensation_error.csv"));
     REQUIRE(errors.size() == 1 + 2 * 3);
     CHECK_THAT(errors[0],
-               Catch::Matchers::StartsWith("ndf,g2,table,max_interp_error,alpha,cos_theta,below_grid_error,"));
+               Catch::Matchers::StartsWith("ndf,g2,table,max_interp_error,alpha,cos_theta,grazing_error,grazing_alpha,"
+                                           "grazing_cos_theta,below_grid_error,"));
     CHECK_THAT(errors[3], Catch::Matchers::StartsWith("ggx,height-correlated,E_R+E_T eta=1.5 inside,"));
     // Per G2 form and angle: mirror, the conductor in three forms, and each side's total, R and T.
     const std::vector<std::string> furnace = lines(slurp(o / "furnace.csv"));
@@ -558,6 +560,7 @@ TEST_CASE("fit: a bad scene is refused naming FILE:LINE and the item, with nothi
     bad("[validation]", "[compensation]\nalpha = [0.5]\n[validation]", "compensation.alpha needs 2 values");
     bad("[validation]", "[compensation]\nalpha = [0.5, 0.3]\n[validation]", "compensation.alpha values must ascend");
     bad("[validation]", "[compensation]\nmu = 4\n[validation]", "compensation.mu");
+    bad("[validation]", "[compensation]\ndielectric_cosines = 1\n[validation]", "compensation.dielectric_cosines");
     bad("[validation]", "[compensation]\ng2 = [\"smith\"]\n[validation]",
         "compensation.g2 must name height-correlated or separable, got 'smith'");
     bad("[validation]", "[compensation]\neta = [1.0]\n[validation]", "compensation.eta values must be in [1.01, 100]");
@@ -585,9 +588,9 @@ TEST_CASE("fit: [compensation]'s tables and furnace count against --max-walks, r
     CHECK(big.rc == 2);
     CHECK_THAT(big.err,
                Contains("big.toml:") &&
-                   Contains("compensation.refine with alpha, cosines, g2 and eta makes the tables 5160531602 "
-                            "values of E (6301 x 409501 check-grid points x (1 + 6 x 0 dielectric sides) x 2 "
-                            "NDFs and G2 forms)") &&
+                   Contains("compensation.refine with alpha, cosines, dielectric_cosines, g2 and eta makes the "
+                            "tables 5160531602 values of E (6301 x (409501 + 6 x 0 dielectric sides x 9501) "
+                            "check-grid points x 2 NDFs and G2 forms)") &&
                    Contains("more than --max-walks 1e+11 (raise it with --max-walks N)"));
     CHECK_FALSE(fs::exists(d / "out"));
     // A small one: 3 x 7 values a table (alphas 0.5 and 1, 4 cosines, refine 2), two G2 forms, at 1000 walks a value

@@ -87,56 +87,53 @@ std::vector<DielectricTables> dielectric_sides(const std::vector<double>& etas) 
     return sides;
 }
 
-// Every table in one pass over the check grid, one albedo object per alpha: E, then E_R, E_T and E_R + E_T of each
-// dielectric side.
-std::vector<fit::CheckedTable> tabulate_all(const fit::AlbedoGrid& grid, int refine, AlbedoCache& albedos,
-                                            const std::vector<DielectricTables>& sides, unsigned threads) {
-    std::vector<double> rel;
-    for (const DielectricTables& d : sides) rel.push_back(d.relative_eta());
+// One dielectric side's tables in one pass over its check grid (its own cosines and node cluster,
+// fit::dielectric_grid), one albedo object per alpha: E_R, E_T and ln(E_R + E_T).
+std::vector<fit::CheckedTable> tabulate_side(const fit::AlbedoGrid& grid, int refine, AlbedoCache& albedos, double rel,
+                                             unsigned threads) {
     const fit::AlbedoRows rows = [&](double alpha) -> std::function<void(double, double*)> {
         return [E = albedos.at(alpha), rel](double mu, double* v) {
-            v[0] = (*E)(mu);
-            for (std::size_t k = 0; k < rel.size(); ++k) {
-                const auto e = E->dielectric(mu, rel[k]);
-                v[1 + 3 * k] = e.R;
-                v[2 + 3 * k] = e.T;
-                v[3 + 3 * k] = e.R + e.T;
-            }
+            const auto e = E->dielectric(mu, rel);
+            v[0] = e.R;
+            v[1] = e.T;
+            v[2] = e.R + e.T;
         };
     };
-    return fit::tabulate(grid, refine, static_cast<int>(1 + 3 * rel.size()), rows, threads);
+    using fit::Stored;
+    return fit::tabulate(grid, refine, {Stored::value, Stored::value, Stored::log}, rows, threads);
 }
 
 FamilyTables make_tables(const FitFamily& f, G2Form form, const FitScene::Compensation& c, const NdfRegistry& registry,
                          unsigned threads) {
     const int refine = static_cast<int>(c.refine);
     AlbedoCache albedos(registry, f, form, c.alpha);
-    fit::AlbedoGrid grid{c.alpha, {}, static_cast<int>(c.cosines)};
+    fit::AlbedoGrid grid{c.alpha, {}, static_cast<int>(c.cosines), {}};
     for (double a : c.alpha) grid.scales.push_back(albedos.at(a)->warp_scale());
     FamilyTables out;
     out.family = &f;
     out.g2 = form;
     out.dielectrics = dielectric_sides(c.eta);
-    std::vector<fit::CheckedTable> t = tabulate_all(grid, refine, albedos, out.dielectrics, threads);
     const fit::AlbedoRow mirror = [&](double alpha) -> std::function<double(double)> {
         return [E = albedos.at(alpha)](double mu) { return (*E)(mu); };
     };
-    out.E = measured("E", std::move(t[0]), mirror, threads);
+    out.E = measured("E", fit::tabulate(grid, refine, mirror, threads), mirror, threads);
     for (double a : c.alpha) out.exact_missing.push_back(albedos.at(a)->missing());
     out.missing = fit::table_missing(out.E.table.table);
     out.E.furnace = fit::kulla_conty_furnace(out.E.table, out.missing, furnace_mu_min);
-    for (std::size_t k = 0; k < out.dielectrics.size(); ++k) {
-        DielectricTables& d = out.dielectrics[k];
-        const fit::AlbedoRow sum = [&, rel = d.relative_eta()](double alpha) -> std::function<double(double)> {
+    for (DielectricTables& d : out.dielectrics) {
+        const double rel = d.relative_eta();
+        const fit::AlbedoGrid side = fit::dielectric_grid(grid, static_cast<int>(c.dielectric_cosines), rel);
+        std::vector<fit::CheckedTable> t = tabulate_side(side, refine, albedos, rel, threads);
+        const fit::AlbedoRow sum = [&](double alpha) -> std::function<double(double)> {
             return [E = albedos.at(alpha), rel](double mu) {
                 const auto e = E->dielectric(mu, rel);
                 return e.R + e.T;
             };
         };
-        d.R = std::move(t[1 + 3 * k]);
-        d.T = std::move(t[2 + 3 * k]);
-        d.sum = measured("E_R+E_T eta=" + format_shortest(d.eta) + (d.inside ? " inside" : " outside"),
-                         std::move(t[3 + 3 * k]), sum, threads);
+        d.R = std::move(t[0]);
+        d.T = std::move(t[1]);
+        d.sum = measured("E_R+E_T eta=" + format_shortest(d.eta) + (d.inside ? " inside" : " outside"), std::move(t[2]),
+                         sum, threads);
         d.sum.furnace = fit::turquin_furnace(d.sum.table, furnace_mu_min);
     }
     return out;
@@ -187,11 +184,13 @@ void write_csvs(const fs::path& dir, const std::vector<FamilyTables>& all, const
                 E << lead << format_g17(g.mu(i, j)) << "," << format_g17(t.E.table.table.at(i, j)) << "\n";
             avg << lead << format_g17(g.scales[i]) << "," << format_g17(1.0 - t.exact_missing[i]) << ","
                 << format_g17(t.exact_missing[i]) << "," << format_g17(t.missing[i]) << "\n";
-            for (const DielectricTables& d : t.dielectrics)
-                for (int j = 0; j < g.n_x; ++j)
+            for (const DielectricTables& d : t.dielectrics) {
+                const fit::AlbedoGrid& dg = d.R.table.grid;
+                for (int j = 0; j < dg.n_x; ++j)
                     diel << lead << format_g17(d.eta) << "," << (d.inside ? "inside" : "outside") << ","
-                         << format_g17(g.mu(i, j)) << "," << format_g17(d.R.table.at(i, j)) << ","
+                         << format_g17(dg.mu(i, j)) << "," << format_g17(d.R.table.at(i, j)) << ","
                          << format_g17(d.T.table.at(i, j)) << "\n";
+            }
         }
     }
     output::write_file(dir / "compensation.csv", E.str());
@@ -208,18 +207,21 @@ void for_each_table(const FamilyTables& t, const F& f) {
 
 void write_errors(const fs::path& dir, const std::vector<FamilyTables>& all) {
     std::ostringstream err, furnace;
-    err << "ndf,g2,table,max_interp_error,alpha,cos_theta,below_grid_error,below_alpha,below_cos_theta,"
-           "furnace_error,furnace_alpha,furnace_cos_theta\n";
+    err << "ndf,g2,table,max_interp_error,alpha,cos_theta,grazing_error,grazing_alpha,grazing_cos_theta,"
+           "below_grid_error,below_alpha,below_cos_theta,furnace_error,furnace_alpha,furnace_cos_theta\n";
     furnace << "ndf,g2,table,alpha,furnace_error,cos_theta\n";
     for (const FamilyTables& t : all)
         for_each_table(t, [&](const MeasuredTable& m) {
             const std::string lead =
                 csv_field(family_label(*t.family)) + "," + g2_name(t.g2) + "," + csv_field(m.name) + ",";
-            const fit::InterpolationError& e = m.table.error;
-            const fit::InterpolationError w = fit::worst_of(m.furnace);
-            err << lead << format_g17(e.max) << "," << format_g17(e.alpha) << "," << format_g17(e.mu) << ","
-                << format_g17(m.below.max) << "," << format_g17(m.below.alpha) << "," << format_g17(m.below.mu) << ","
-                << format_g17(w.max) << "," << format_g17(w.alpha) << "," << format_g17(w.mu) << "\n";
+            err << lead;
+            const char* sep = "";
+            for (const fit::InterpolationError& e :
+                 {m.table.error, m.table.grazing, m.below, fit::worst_of(m.furnace)}) {
+                err << sep << format_g17(e.max) << "," << format_g17(e.alpha) << "," << format_g17(e.mu);
+                sep = ",";
+            }
+            err << "\n";
             for (const fit::InterpolationError& f : m.furnace)
                 furnace << lead << format_g17(f.alpha) << "," << format_g17(f.max) << "," << format_g17(f.mu) << "\n";
         });
@@ -239,7 +241,8 @@ void write_formats(const fs::path& dir, const std::vector<FamilyTables>& all) {
                                             &m.table.table,
                                             &m == &t.E ? t.missing : std::vector<double>{},
                                             m.table.error.max,
-                                            m.below.max};
+                                            m.below.max,
+                                            m.table.grazing.max};
             const std::string id = fit::compensation_identifier(e);
             auto text = [&](const char* ext, void (*write)(std::ostream&, const fit::CompensationExport&)) {
                 std::ostringstream s;
@@ -273,19 +276,21 @@ std::string markdown(const std::vector<FamilyTables>& all, const FitScene::Compe
     md << "\n## Energy compensation (Kulla and Conty 2017, Turquin 2019)\n\n"
        << "Tables of the single-scattering albedo over " << c.alpha.size() << " alphas (" << g4(c.alpha.front())
        << " to " << g4(c.alpha.back()) << ", linear in sqrt(alpha)) x " << c.cosines
-       << " warped cosines x = sqrt((1 + c) mu / (mu + c)) (c the NDF's warp scale, compensation_avg.csv), each "
-       << "measured against the exact values on the "
-       << "grid " << c.refine << "x finer in both (compensation_error.csv); the renderer formats are in "
-       << "compensation/. The furnace by the tables: |compensated albedo - 1| at theta_i <= " << furnace_theta_max
+       << " warped cosines x = sqrt((1 + c) mu / (mu + c)) (c the NDF's warp scale, compensation_avg.csv); the "
+       << "dielectrics' ln(E_R + E_T) over " << c.dielectric_cosines << " cosines, from inside with nodes clustered "
+       << "about the critical angle. Each is measured against the exact values on the grid " << c.refine
+       << "x finer in both (compensation_error.csv), at grazing incidence (mu < " << fit::grazing_mu
+       << ") apart; the renderer formats are in compensation/. The furnace by the tables: |compensated albedo - 1| "
+       << "at theta_i <= " << furnace_theta_max
        << " degrees, mirror facets with Kulla and Conty's lobe, dielectrics divided by E_R + E_T.\n\n"
-       << "| NDF | G2 | table | interpolation error (alpha, mu) | below the grid | furnace |\n"
-       << "|---|---|---|---:|---:|---:|\n";
+       << "| NDF | G2 | table | interpolation error (alpha, mu) | grazing | below the grid | furnace |\n"
+       << "|---|---|---|---:|---:|---:|---:|\n";
     for (const FamilyTables& t : all)
         for_each_table(t, [&](const MeasuredTable& m) {
             const fit::InterpolationError w = fit::worst_of(m.furnace);
             md << "| " << family_label(*t.family) << " | " << g2_name(t.g2) << " | " << m.name << " | "
                << e3(m.table.error.max) << " (" << g4(m.table.error.alpha) << ", " << g4(m.table.error.mu) << ") | "
-               << e3(m.below.max) << " | " << e3(w.max) << " |\n";
+               << e3(m.table.grazing.max) << " | " << e3(m.below.max) << " | " << e3(w.max) << " |\n";
         });
     if (!rows.empty()) {
         md << "\nAgainst the walk (furnace.csv: " << c.furnace_walks

@@ -190,29 +190,31 @@ struct FitWork {
 void check_compensation_size(const StrictTable& t, const FitScene::Compensation& c, FitWork fit,
                              const report::SizeLimits& limits) {
     const double alphas = (static_cast<double>(c.alpha.size()) - 1.0) * static_cast<double>(c.refine) + 1.0;
-    const double cosines = (static_cast<double>(c.cosines) - 1.0) * static_cast<double>(c.refine) + 1.0;
+    auto fine = [&](std::int64_t n) { return (static_cast<double>(n) - 1.0) * static_cast<double>(c.refine) + 1.0; };
+    const double cosines = fine(c.cosines), dielectric_cosines = fine(c.dielectric_cosines);
     const double sides = 2.0 * static_cast<double>(c.eta.size());
     const double tables = fit.ndfs * static_cast<double>(c.g2.size());
-    const double values = tables * alphas * cosines * (1.0 + dielectric_cost * sides);
+    const double values = tables * alphas * (cosines + dielectric_cost * sides * dielectric_cosines);
     const double furnace = fit.ndfs * static_cast<double>(c.furnace_alpha.size() * c.furnace_theta.size()) *
         (1.0 + static_cast<double>(c.conductors.size()) + sides) * static_cast<double>(c.furnace_walks);
     const double walks = values * walks_per_value + furnace + fit.walks;
     if (!(walks > limits.max_walks)) return;
     t.fail("refine",
-           "with alpha, cosines, g2 and eta makes the tables " + format_shortest(values) + " values of E (" +
-               format_shortest(alphas) + " x " + format_shortest(cosines) + " check-grid points x (1 + " +
-               format_shortest(dielectric_cost) + " x " + format_shortest(sides) + " dielectric sides) x " +
-               format_shortest(tables) + " NDFs and G2 forms), the work of " +
-               format_shortest(values * walks_per_value) + " walks; with the furnace's " + format_shortest(furnace) +
-               " and the fit's " + format_shortest(fit.walks) + ", more than --max-walks " +
-               format_shortest(limits.max_walks) + " (raise it with --max-walks N)");
+           "with alpha, cosines, dielectric_cosines, g2 and eta makes the tables " + format_shortest(values) +
+               " values of E (" + format_shortest(alphas) + " x (" + format_shortest(cosines) + " + " +
+               format_shortest(dielectric_cost) + " x " + format_shortest(sides) + " dielectric sides x " +
+               format_shortest(dielectric_cosines) + ") check-grid points x " + format_shortest(tables) +
+               " NDFs and G2 forms), the work of " + format_shortest(values * walks_per_value) +
+               " walks; with the furnace's " + format_shortest(furnace) + " and the fit's " +
+               format_shortest(fit.walks) + ", more than --max-walks " + format_shortest(limits.max_walks) +
+               " (raise it with --max-walks N)");
 }
 
 FitScene::Compensation read_compensation(StrictTable& doc, FitScene::Compensation c, FitWork fit,
                                          const report::SizeLimits& limits) {
-    auto t = doc.optional_table(
-        "compensation",
-        {"alpha", "cosines", "refine", "g2", "eta", "conductors", "furnace_alpha", "furnace_theta", "furnace_walks"});
+    auto t = doc.optional_table("compensation",
+                                {"alpha", "cosines", "dielectric_cosines", "refine", "g2", "eta", "conductors",
+                                 "furnace_alpha", "furnace_theta", "furnace_walks"});
     if (!t) return c;
     c.enabled = true;
     if (t->has("alpha")) {
@@ -223,6 +225,7 @@ FitScene::Compensation read_compensation(StrictTable& doc, FitScene::Compensatio
             if (!(c.alpha[i] > c.alpha[i - 1])) t->fail("alpha", "values must ascend");
     }
     c.cosines = t->integer("cosines", 2, 4096, c.cosines);
+    c.dielectric_cosines = t->integer("dielectric_cosines", 2, 4096, c.dielectric_cosines);
     c.refine = t->integer("refine", 1, 100, c.refine);
     if (t->has("g2")) {
         c.g2.clear();

@@ -46,7 +46,8 @@ struct FitScene {
     struct Compensation {
         bool enabled = false;
         std::vector<double> alpha = default_alphas();  // the tables' alphas, ascending
-        std::int64_t cosines = 48;                     // warped cosines a row (fit/albedo_grid.hpp)
+        std::int64_t cosines = 48;                     // warped cosines a row of E (fit/albedo_grid.hpp)
+        std::int64_t dielectric_cosines = 96;          // a row of the dielectric tables
         std::int64_t refine = 10;                      // the check grid: refine x finer in sqrt(alpha) and the cosine
         std::vector<G2Form> g2{G2Form::height_correlated, G2Form::uncorrelated};
         std::vector<double> eta;              // dielectric tables, each eta from outside and from inside

@@ -18,6 +18,33 @@ double unwarp_cosine(double c, double x) {
     return c * w / ((1.0 + c) - w);
 }
 
+double NodeCluster::coordinate(double mu) const {
+    const double lo = std::asinh(this->mu / width), hi = std::asinh((1.0 - this->mu) / width);
+    return (std::asinh((mu - this->mu) / width) + lo) / (lo + hi);
+}
+
+void NodeCluster::check() const {
+    require(mu >= 0.0 && mu <= 1.0, "a node cluster's cosine", "in [0, 1]", mu);
+    require(width > 0.0 && std::isfinite(width), "a node cluster's width", "finite and > 0", width);
+    require(weight >= 0.0 && weight < 1.0, "a node cluster's share of the axis", "in [0, 1)", weight);
+}
+
+double AlbedoGrid::x_of(double c, double mu) const {
+    const double b = cluster.weight;
+    return b == 0.0 ? warp_cosine(c, mu) : (1.0 - b) * warp_cosine(c, mu) + b * cluster.coordinate(mu);
+}
+
+double AlbedoGrid::mu_of(double c, double x) const {
+    if (cluster.weight == 0.0) return unwarp_cosine(c, x);
+    if (x <= 0.0) return 0.0;
+    if (x >= 1.0) return 1.0;
+    double lo = 0.0, hi = 1.0;  // x_of is increasing: bisection to adjacent doubles
+    for (double m = 0.5; m > lo && m < hi; m = 0.5 * (lo + hi)) (x_of(c, m) < x ? lo : hi) = m;
+    return 0.5 * (lo + hi);
+}
+
+double AlbedoGrid::scale(double alpha) const { return lookup_power_law(alphas, scales, alpha, "the warp's scale"); }
+
 double masking_cot(FunctionRef Lambda) {
     constexpr double Lambda_dip = 0.3;  // measured (albedo_grid.hpp): the dip of E lies near it
     double lo = 1e-30, hi = 1e30;       // Lambda(lo) > Lambda_dip > Lambda(hi)
@@ -48,6 +75,7 @@ void AlbedoGrid::check() const {
                           std::to_string(alphas.size()) + " alphas");
     for (double c : scales) require(c > 0.0 && std::isfinite(c), "albedo table: a warp scale", "finite and > 0", c);
     require(n_x >= 2, "albedo table: the number of cosines", ">= 2", n_x);
+    cluster.check();
 }
 
 namespace {
@@ -124,28 +152,30 @@ double AlbedoTable::lookup(double alpha, double mu) const {
     require_one_value_each(grid.alphas, grid.scales, what);
     // One search for alpha's cell: the scale's interpolation (grid.scale) and the values' weight ta.
     const auto [i, ta] = cell(grid.alphas, alpha);
-    const double x = warp_cosine(power_law_in_cell(grid.alphas, grid.scales, alpha, i, what), mu) * (grid.n_x - 1);
+    const double x = grid.x_of(power_law_in_cell(grid.alphas, grid.scales, alpha, i, what), mu) * (grid.n_x - 1);
     const int j = std::min(static_cast<int>(x), grid.n_x - 2);
     const double tx = x - j;
     const double lo = at(i, j) + tx * (at(i, j + 1) - at(i, j));
     const double hi = at(i + 1, j) + tx * (at(i + 1, j + 1) - at(i + 1, j));
-    return lo + ta * (hi - lo);
+    const double v = lo + ta * (hi - lo);
+    return stored == Stored::log ? std::exp(v) : v;
 }
 
-std::vector<CheckedTable> tabulate(const AlbedoGrid& grid, int refine, int count, const AlbedoRows& rows,
-                                   unsigned threads) {
+std::vector<CheckedTable> tabulate(const AlbedoGrid& grid, int refine, const std::vector<Stored>& stored,
+                                   const AlbedoRows& rows, unsigned threads) {
     grid.check();
     require(refine >= 1, "the check grid's refinement", ">= 1", refine);
-    require(count >= 1, "the number of albedos a row", ">= 1", count);
-    AlbedoGrid fine{refined_alphas(grid.alphas, refine), {}, refine * (grid.n_x - 1) + 1};
+    if (stored.empty()) throw input_error("albedo table: no albedo to tabulate");
+    AlbedoGrid fine{refined_alphas(grid.alphas, refine), {}, refine * (grid.n_x - 1) + 1, grid.cluster};
     for (double a : fine.alphas) fine.scales.push_back(grid.scale(a));
     const std::size_t na = fine.alphas.size(), nx = static_cast<std::size_t>(fine.n_x);
-    const auto nv = static_cast<std::size_t>(count);
+    const std::size_t nv = stored.size();
     std::vector<CheckedTable> out(nv);
-    for (CheckedTable& t : out) {
-        t.fine.grid = fine;
-        t.fine.values.assign(na * nx, 0.0);
-        t.table.grid = grid;
+    for (std::size_t k = 0; k < nv; ++k) {
+        out[k].fine.grid = fine;
+        out[k].fine.values.assign(na * nx, 0.0);
+        out[k].table.grid = grid;
+        out[k].table.stored = stored[k];
     }
     parallel_for(na, threads, [&](std::size_t i) {
         const std::function<void(double, double*)> f = rows(fine.alphas[i]);
@@ -153,9 +183,10 @@ std::vector<CheckedTable> tabulate(const AlbedoGrid& grid, int refine, int count
         for (std::size_t j = 0; j < nx; ++j) {
             f(fine.mu(i, static_cast<int>(j)), v.data());
             for (std::size_t k = 0; k < nv; ++k) {
-                if (!std::isfinite(v[k]))
-                    throw std::runtime_error("albedo table: a value that is not finite at alpha " +
-                                             format_shortest(fine.alphas[i]));
+                if (!std::isfinite(v[k]) || (stored[k] == Stored::log && !(v[k] > 0.0)))
+                    throw std::runtime_error("albedo table: a value that is not finite" +
+                                             std::string(stored[k] == Stored::log ? " and > 0" : "") + " at alpha " +
+                                             format_shortest(fine.alphas[i]) + ": " + format_g17(v[k]));
                 out[k].fine.values[i * nx + j] = v[k];
             }
         }
@@ -163,12 +194,16 @@ std::vector<CheckedTable> tabulate(const AlbedoGrid& grid, int refine, int count
     const auto r = static_cast<std::size_t>(refine);
     for (CheckedTable& t : out) {
         for (std::size_t i = 0; i < grid.alphas.size(); ++i)
-            for (int j = 0; j < grid.n_x; ++j) t.table.values.push_back(t.fine.at(i * r, static_cast<int>(j * r)));
+            for (int j = 0; j < grid.n_x; ++j) {
+                const double v = t.fine.at(i * r, static_cast<int>(j * r));
+                t.table.values.push_back(t.table.stored == Stored::log ? std::log(v) : v);
+            }
         for (std::size_t i = 0; i < na; ++i)
             for (std::size_t j = 0; j < nx; ++j) {
                 const double alpha = fine.alphas[i], mu = fine.mu(i, static_cast<int>(j));
                 const double e = std::abs(t.table.lookup(alpha, mu) - t.fine.values[i * nx + j]);
-                if (e > t.error.max) t.error = {e, alpha, mu};
+                InterpolationError& worst = mu < grazing_mu ? t.grazing : t.error;
+                if (e > worst.max) worst = {e, alpha, mu};
             }
     }
     return out;
@@ -188,7 +223,7 @@ double lookup_missing(const std::vector<double>& alphas, const std::vector<doubl
 
 CheckedTable tabulate(const AlbedoGrid& grid, int refine, const AlbedoRow& row, unsigned threads) {
     return std::move(tabulate(
-        grid, refine, 1,
+        grid, refine, {Stored::value},
         [&](double alpha) -> std::function<void(double, double*)> {
             std::function<double(double)> f = row(alpha);
             return [f = std::move(f)](double mu, double* out) { *out = f(mu); };
@@ -204,7 +239,8 @@ InterpolationError below_grid_error(const CheckedTable& t, const AlbedoRow& row,
         const double alpha = t.table.grid.alphas.front() * factors[k], c = t.table.grid.scale(alpha);
         const std::function<double(double)> f = row(alpha);
         for (int j = 0; j < t.fine.grid.n_x; ++j) {
-            const double mu = unwarp_cosine(c, t.fine.grid.x(j));
+            const double mu = t.fine.grid.mu_of(c, t.fine.grid.x(j));
+            if (mu < grazing_mu) continue;
             const double e = std::abs(t.table.lookup(alpha, mu) - f(mu));
             if (e > each[k].max) each[k] = {e, alpha, mu};
         }

@@ -478,6 +478,8 @@ double cosine_integral(const AlbedoTable& E, double alpha, const G& g) {
     // 8-point Gauss-Legendre nodes and weights on [-1, 1] (Abramowitz and Stegun, table 25.4).
     static constexpr double x8[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267, 0.9602898564975363};
     static constexpr double w8[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
+    if (E.grid.cluster.weight != 0.0)
+        throw input_error("the cosine integral of a table: its axis has a node cluster (only the warp is integrated)");
     const double c = E.grid.scale(alpha), k = 1.0 + c;
     double integral = 0.0;
     for (int j = 0; j + 1 < E.grid.n_x; ++j) {
@@ -528,6 +530,18 @@ double compensation_lobe(const AlbedoTable& E, const std::vector<double>& missin
                          double mu_o) {
     const double m = lookup_missing(E.grid.alphas, missing, alpha);
     return (1.0 - E.lookup(alpha, mu_i)) * (1.0 - E.lookup(alpha, mu_o)) / (pi * m);
+}
+
+NodeCluster dielectric_cluster(double eta) {
+    require(eta > 0.0 && std::isfinite(eta), "eta", "finite and > 0", eta);
+    if (eta >= 1.0) return {};
+    return {std::sqrt((1.0 - eta) * (1.0 + eta)), 0.02, 0.3};
+}
+
+AlbedoGrid dielectric_grid(const AlbedoGrid& E, int n_x, double eta) {
+    AlbedoGrid g{E.alphas, E.scales, n_x, dielectric_cluster(eta)};
+    g.check();
+    return g;
 }
 
 double fresnel_ms(double F_avg, double E_avg) { return F_avg * F_avg * E_avg / (1.0 - F_avg * (1.0 - E_avg)); }

@@ -24,8 +24,7 @@ constexpr std::string_view height_correlated = "height-correlated", separable = 
 
 // The rules every lookup follows (albedo_grid.hpp, AlbedoTable::lookup), as each file's comment and the axes state
 // them.
-constexpr std::string_view rule_x =
-    "x = sqrt((1 + c) mu / (mu + c)), c = the warp's scale at the asked alpha, nodes x_j = j / (n_x - 1)";
+constexpr std::string_view rule_warp = "sqrt((1 + c) mu / (mu + c)), c = the warp's scale at the asked alpha";
 constexpr std::string_view rule_lookup =
     "bilinear in (sqrt(alpha), x): j = min(int(x (n_x - 1)), n_x - 2), linear in x between x_j and x_(j+1); the alpha "
     "cell found in sqrt(alpha) among the nodes' sqrt(alpha), linear in sqrt(alpha)";
@@ -56,6 +55,52 @@ std::string float_literal(double v, std::string_view suffix) {
 }
 
 std::string short_g(double v) { return format_printf("%.3g", v); }
+
+bool logs(const AlbedoTable& t) { return t.stored == Stored::log; }
+
+// The axis x(mu) in words: the warp, with the cluster's share where the grid has one (albedo_grid.hpp).
+std::string rule_x(const AlbedoGrid& g) {
+    std::string s = "x = ";
+    const NodeCluster& k = g.cluster;
+    if (k.weight == 0.0) {
+        s += rule_warp;
+    } else {
+        s += format_shortest(1.0 - k.weight) + " " + std::string(rule_warp.substr(0, rule_warp.find(','))) + " + " +
+            format_shortest(k.weight) + " (asinh((mu - " + format_shortest(k.mu) + ") / " + format_shortest(k.width) +
+            ") + asinh(" + format_shortest(k.mu) + " / " + format_shortest(k.width) + ")) / (asinh(" +
+            format_shortest(1.0 - k.mu) + " / " + format_shortest(k.width) + ") + asinh(" + format_shortest(k.mu) +
+            " / " + format_shortest(k.width) +
+            ")), c = the warp's scale at the asked alpha (nodes clustered about mu = " + format_shortest(k.mu) + ")";
+    }
+    return s + ", nodes x_j = j / (n_x - 1)";
+}
+
+// The cosine of node x at scale c in words.
+std::string rule_mu_of_x(const AlbedoGrid& g) {
+    return g.cluster.weight == 0.0 ? "c x^2 / (1 + c - x^2)" : "the inverse of x(mu), which increases";
+}
+
+// The table's values in words.
+std::string rule_value(const AlbedoTable& t) { return logs(t) ? "ln E" : "E"; }
+
+// The suffix of the table's array: "_E_table", or "_log_E_table" for ln E.
+std::string table_name(const AlbedoTable& t) { return logs(t) ? "_log_E_table" : "_E_table"; }
+
+// The PNG's scale K of -ln E (a table of ln E): the largest -ln E, so that the pixels span [0, 65535]; 1 when E is 1
+// everywhere, and for a table of E.
+double png_log_scale(const AlbedoTable& t) {
+    double K = 0.0;
+    if (logs(t))
+        for (const double v : t.values) K = std::max(K, -v);
+    return K > 0.0 ? K : 1.0;
+}
+
+// A pixel's value in words.
+std::string png_rule(const AlbedoTable& t) {
+    return logs(t) ? "E = exp(-K pixel / 65535), pixel = round(-ln(E) / K * 65535), K = log_scale: ln E within 0.5 K / "
+                     "65535"
+                   : "E = pixel / 65535, pixel = round(E * 65535): within 0.5 / 65535 of E";
+}
 
 // Where value k of the table is, for the messages.
 std::string table_item(const AlbedoTable& t, std::size_t k) {
@@ -101,6 +146,8 @@ void check(const CompensationExport& e) {
             "compensation export: the measured max interpolation error", "finite and >= 0", e.max_interp_error);
     require(std::isfinite(e.below_grid_error) && e.below_grid_error >= 0.0,
             "compensation export: the measured below-grid error", "finite and >= 0", e.below_grid_error);
+    require(std::isfinite(e.grazing_error) && e.grazing_error >= 0.0, "compensation export: the measured grazing error",
+            "finite and >= 0", e.grazing_error);
 }
 
 // Text for a block comment in C, GLSL or HLSL: printable ASCII (GLSL's character set), anything else '?', and a space
@@ -164,15 +211,14 @@ std::string top_comment(const CompensationExport& e, const std::string& id, std:
             "scattering compensation for microfacet models\"): f = f_ss (1 + F0 (1 - E(mu_v)) / E(mu_v)), mu_v the "
             "view's cosine.",
         "Grid: n_alpha x n_x = " + std::to_string(a.size()) + " x " + std::to_string(g.n_x) + ", alpha in [" +
-            format_shortest(a.front()) + ", " + format_shortest(a.back()) + "]: alphas " + alphas + "; " +
-            std::string(rule_x) + "; " + id +
-            "_E_table[i * n_x + j] = E(alphas[i], x_j), at mu = c_i x_j^2 / (1 + c_i - "
-            "x_j^2), c_i = exp(" +
-            id +
-            "_log_scale[i]) the warp's scale at alphas[i] (6 cos(theta) where the NDF's "
-            "Lambda = 0.3: its rows' dip).",
+            format_shortest(a.front()) + ", " + format_shortest(a.back()) + "]: alphas " + alphas + "; " + rule_x(g) +
+            "; " + id + table_name(*e.E) + "[i * n_x + j] = " + rule_value(*e.E) +
+            "(alphas[i], x_j), at mu = " + rule_mu_of_x(g) + " at x_j and c_i = exp(" + id +
+            "_log_scale[i]), the warp's scale at alphas[i] (6 cos(theta) where the NDF's Lambda = 0.3: its rows' dip)" +
+            (logs(*e.E) ? "; the table holds ln E so that its lookup's error is relative, as a division by E needs."
+                        : "."),
         "The warp's scale c at any alpha: " + std::string(rule_power_law) + ".",
-        id + "_E(alpha, mu): " + std::string(rule_lookup) + ".",
+        id + "_E(alpha, mu): " + std::string(rule_lookup) + (logs(*e.E) ? ", of ln E, then exp." : "."),
         "Outside the grid, nothing is clamped silently:",
         "  below the first alpha: " + std::string(rule_below) + ";",
         "  above the last alpha: " + std::string(rule_above) + ";",
@@ -185,7 +231,10 @@ std::string top_comment(const CompensationExport& e, const std::string& id, std:
                 "_E_avg(alpha): 1 - E_avg falls like alpha^2 at small alpha, and 1 - E_avg taken from a float E_avg "
                 "loses its relative precision (a float E_avg = 1 - 1e-8 is 1).",
         "Measured: the lookup is within " + short_g(e.max_interp_error) +
-            " of the exact values inside the grid, within " + short_g(e.below_grid_error) + " below the first alpha.",
+            " of the exact values inside the grid at mu >= " + format_shortest(grazing_mu) + ", within " +
+            short_g(e.grazing_error) + " at grazing mu < " + format_shortest(grazing_mu) +
+            " (theta > 89.885 degrees), within " + short_g(e.below_grid_error) +
+            " below the first alpha (mu >= " + format_shortest(grazing_mu) + ").",
         "The values are the floats nearest the computed doubles (9 significant digits)."};
     return comment_block(p);
 }
@@ -237,7 +286,7 @@ std::string arrays_and_lookups(const CompensationExport& e, const std::string& i
     std::vector<double> log_scale;
     for (const double c : t.grid.scales) log_scale.push_back(std::log(c));
     std::string s = "\n" + array(d, id + "_sqrt_alpha", sqrt_alpha, 8) + array(d, id + "_log_scale", log_scale, 8) +
-        array(d, id + "_E_table", t.values, static_cast<std::size_t>(t.grid.n_x), labels);
+        array(d, id + table_name(t), t.values, static_cast<std::size_t>(t.grid.n_x), labels);
     if (!e.missing.empty()) {
         std::vector<double> log_missing;
         for (const double m : e.missing) log_missing.push_back(std::log(m));
@@ -257,20 +306,33 @@ std::string arrays_and_lookups(const CompensationExport& e, const std::string& i
         f + "float " + id + "_log_weight(float s, int i) {\n    return s < " + id + "_sqrt_alpha[" +
         std::to_string(a.size() - 1) + "] ? " + std::string(d.log) + "(s / " + id + "_sqrt_alpha[i]) / " +
         std::string(d.log) + "(" + id + "_sqrt_alpha[i + 1] / " + id + "_sqrt_alpha[i]) : " + one + ";\n}\n\n";
-    const std::string T = id + "_E_table", C = id + "_log_scale", ex(d.exp);
-    s +=
-        "/* E(alpha, mu), alpha > 0: bilinear in (sqrt(alpha), x = sqrt((1 + c) mu / (mu + c))), c the warp's scale at "
-        "alpha,\n   mu clamped to [0, 1]. */\n" +
-        f + "float " + id + "_E(float alpha, float mu) {\n    float m = mu > " + zero + " ? (mu < " + one +
-        " ? mu : " + one + ") : " + zero + ";\n    float s = " + std::string(d.sqrt) + "(alpha);\n    int i = " + id +
+    const std::string T = id + table_name(t), C = id + "_log_scale", ex(d.exp), sq(d.sqrt);
+    const NodeCluster& k = t.grid.cluster;
+    std::string x = sq + "((" + one + " + c) * m / (m + c))";
+    if (k.weight != 0.0) {
+        // x = (1 - b) warp + b (asinh((m - mu_k) / w) + lo) / (lo + hi), asinh odd: sign(z) ln(|z| + sqrt(z^2 + 1)).
+        const double lo = std::asinh(k.mu / k.width), hi = std::asinh((1.0 - k.mu) / k.width);
+        s += "/* asinh(z), odd. */\n" + f + "float " + id + "_asinh(float z) {\n    float a = z < " + zero +
+            " ? -z : z;\n    float y = " + std::string(d.log) + "(a + " + sq + "(a * a + " + one +
+            "));\n    return z < " + zero + " ? -y : y;\n}\n\n";
+        x = float_literal(1.0 - k.weight, d.suffix) + " * " + x + " + " +
+            float_literal(k.weight / (lo + hi), d.suffix) + " * (" + id + "_asinh((m - " +
+            float_literal(k.mu, d.suffix) + ") / " + float_literal(k.width, d.suffix) + ") + " +
+            float_literal(lo, d.suffix) + ")";
+    }
+    s += "/* E(alpha, mu), alpha > 0: bilinear in (sqrt(alpha), x)" + std::string(logs(t) ? " of ln E, then exp" : "") +
+        ", x = " + (k.weight == 0.0 ? "sqrt((1 + c) mu / (mu + c))" : "the warp and the cluster's share") +
+        ", c the\n   warp's scale at alpha, mu clamped to [0, 1]. */\n" + f + "float " + id +
+        "_E(float alpha, float mu) {\n    float m = mu > " + zero + " ? (mu < " + one + " ? mu : " + one +
+        ") : " + zero + ";\n    float s = " + sq + "(alpha);\n    int i = " + id +
         "_alpha_cell(s);\n    float ta = " + id + "_alpha_weight(s, i);\n    float u = " + id +
         "_log_weight(s, i);\n    float c = " + ex + "(" + C + "[i] + u * (" + C + "[i + 1] - " + C +
-        "[i]));\n    float x = " + std::string(d.sqrt) + "((" + one + " + c) * m / (m + c)) * " +
-        float_literal(t.grid.n_x - 1, d.suffix) + ";\n    int j = " + d.cast("int", "x") + ";\n    if (j > " +
-        std::to_string(t.grid.n_x - 2) + ") j = " + std::to_string(t.grid.n_x - 2) + ";\n    float tx = x - " +
-        d.cast("float", "j") + ";\n    int a = i * " + nx + " + j;\n    int b = a + " + nx + ";\n    float lo = " + T +
-        "[a] + tx * (" + T + "[a + 1] - " + T + "[a]);\n    float hi = " + T + "[b] + tx * (" + T + "[b + 1] - " + T +
-        "[b]);\n    return lo + ta * (hi - lo);\n}\n";
+        "[i]));\n    float x = (" + x + ") * " + float_literal(t.grid.n_x - 1, d.suffix) +
+        ";\n    int j = " + d.cast("int", "x") + ";\n    if (j > " + std::to_string(t.grid.n_x - 2) +
+        ") j = " + std::to_string(t.grid.n_x - 2) + ";\n    float tx = x - " + d.cast("float", "j") +
+        ";\n    int a = i * " + nx + " + j;\n    int b = a + " + nx + ";\n    float lo = " + T + "[a] + tx * (" + T +
+        "[a + 1] - " + T + "[a]);\n    float hi = " + T + "[b] + tx * (" + T + "[b + 1] - " + T + "[b]);\n    return " +
+        (logs(t) ? ex + "(lo + ta * (hi - lo))" : std::string("lo + ta * (hi - lo)")) + ";\n}\n";
     if (!e.missing.empty()) {
         const std::string L = id + "_log_missing_table";
         s += "\n/* 1 - E_avg(alpha), alpha > 0: ln(1 - E_avg) linear in ln(alpha) between the nodes; below the first "
@@ -379,14 +441,17 @@ void write_hlsl(std::ostream& out, const CompensationExport& e) {
 void write_png16(const std::filesystem::path& path, const CompensationExport& e) {
     check(e);
     const AlbedoTable& t = *e.E;
+    const double K = png_log_scale(t);
     std::vector<png_uint_16> pixels(t.values.size());
     for (std::size_t k = 0; k < t.values.size(); ++k) {
         // An albedo computed to its quadrature's tolerance may pass 1 (or 0) by a rounding (1 + 2e-16 at a node where
         // E -> 1): within 1e-9, far below a pixel's 1.5e-5, it is the end value; beyond, the table is refused.
-        const double v = std::clamp(t.values[k], 0.0, 1.0);
-        if (!(std::abs(v - t.values[k]) <= 1e-9))
+        const double p = logs(t) ? -t.values[k] / K : t.values[k];
+        const double v = std::clamp(p, 0.0, 1.0);
+        if (!(std::abs(v - p) <= 1e-9))
             throw input_error("16-bit PNG " + path.string() + ": " + table_item(t, k) + " is " +
-                              format_g17(t.values[k]) + ", outside [0, 1] (a pixel is round(E * 65535))");
+                              format_g17(t.values[k]) + ", outside " + (logs(t) ? "(-inf, 0]" : "[0, 1]") + " (" +
+                              png_rule(t) + ")");
         pixels[k] = static_cast<png_uint_16>(std::lround(v * 65535.0));
     }
     // libpng's simplified API (png.h, "SIMPLIFIED API"): a linear 16-bit grey image is written as it is (gAMA 1.0);
@@ -418,19 +483,29 @@ void write_axes_json(std::ostream& out, const CompensationExport& e) {
         << ",\n  \"quantity\": " << json_string(e.quantity) << ",\n  \"image\": {\"width\": " << nx
         << ", \"height\": " << na
         << ", \"bit_depth\": 16, \"color\": \"grey\", \"rows\": \"row i (from the top) is alphas[i]\", "
-           "\"columns\": \"column j is x_j = j / (n_x - 1)\"},\n  \"scale\": 65535,\n  \"value\": "
-        << json_string("E = pixel / 65535, pixel = round(E * 65535): within 0.5 / 65535 of E")
-        << ",\n  \"alphas\": " << json_numbers(g.alphas) << ",\n  \"warp_scales\": " << json_numbers(g.scales)
+           "\"columns\": \"column j is x_j = j / (n_x - 1)\"},\n  \"scale\": 65535,\n  \"stored\": "
+        << json_string(rule_value(*e.E)) << ",\n";
+    if (logs(*e.E)) out << "  \"log_scale\": " << format_shortest(png_log_scale(*e.E)) << ",\n";
+    out << "  \"value\": " << json_string(png_rule(*e.E)) << ",\n  \"alphas\": " << json_numbers(g.alphas)
+        << ",\n  \"warp_scales\": " << json_numbers(g.scales)
         << ",\n  \"warp_scale_lookup\": " << json_string(rule_power_law) << ",\n  \"n_x\": " << nx
-        << ",\n  \"x\": " << json_string(rule_x) << ",\n  \"mu_of_x\": " << json_string("c x^2 / (1 + c - x^2)")
-        << ",\n  \"lookup\": " << json_string(rule_lookup) << ",\n  \"below_first_alpha\": " << json_string(rule_below)
+        << ",\n  \"x\": " << json_string(rule_x(g));
+    if (g.cluster.weight != 0.0)
+        out << ",\n  \"cluster\": {\"mu\": " << format_shortest(g.cluster.mu)
+            << ", \"width\": " << format_shortest(g.cluster.width)
+            << ", \"weight\": " << format_shortest(g.cluster.weight) << "}";
+    out << ",\n  \"mu_of_x\": " << json_string(rule_mu_of_x(g))
+        << ",\n  \"lookup\": " << json_string(std::string(rule_lookup) + (logs(*e.E) ? ", of ln E, then exp" : ""))
+        << ",\n  \"below_first_alpha\": " << json_string(rule_below)
         << ",\n  \"above_last_alpha\": " << json_string(rule_above) << ",\n  \"mu\": " << json_string(rule_mu)
         << ",\n  \"alpha\": " << json_string(rule_alpha) << ",\n";
     if (!e.missing.empty())
         out << "  \"one_minus_E_avg\": " << json_numbers(e.missing)
             << ",\n  \"one_minus_E_avg_lookup\": " << json_string(rule_power_law) << ",\n";
     out << "  \"max_interpolation_error\": " << format_shortest(e.max_interp_error)
-        << ",\n  \"below_grid_error\": " << format_shortest(e.below_grid_error) << "\n}\n";
+        << ",\n  \"below_grid_error\": " << format_shortest(e.below_grid_error)
+        << ",\n  \"grazing_error\": " << format_shortest(e.grazing_error)
+        << ",\n  \"grazing_cos_theta\": " << format_shortest(grazing_mu) << "\n}\n";
 }
 
 }  // namespace smithlab::fit

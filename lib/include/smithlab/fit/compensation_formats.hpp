@@ -3,9 +3,10 @@
 // 16-bit grey PNG with its axes in JSON.
 //
 // Every lookup written computes AlbedoTable::lookup's rule in float: x = sqrt((1 + c) mu / (mu + c)), c the warp's
-// scale at the asked alpha, cell j = min(int(x (n_x - 1)), n_x - 2) and linear in x; the alpha cell found in
-// sqrt(alpha) over the nodes' sqrt(alpha), linear in sqrt(alpha); below the first alpha the first row, above the last
-// the last row, both in the x of the asked alpha; mu clamped to [0, 1] (a renderer's dot products overshoot by a
+// scale at the asked alpha (with a node cluster's share, albedo_grid.hpp, where the grid has one), cell j =
+// min(int(x (n_x - 1)), n_x - 2) and linear in x (in ln E, then exp, for a table of Stored::log); the alpha cell found
+// in sqrt(alpha) over the nodes' sqrt(alpha), linear in sqrt(alpha); below the first alpha the first row, above the
+// last the last row, both in the x of the asked alpha; mu clamped to [0, 1] (a renderer's dot products overshoot by a
 // rounding). The scale c and 1 - E_avg(alpha) follow lookup_power_law: ln of each linear in ln(alpha) between the
 // nodes, below the first alpha the first interval's power of alpha continued, above the last alpha the last value; the
 // files carry ln c and ln(1 - E_avg), not E_avg, so that Kulla and
@@ -34,8 +35,9 @@ struct CompensationExport {
     // 1 - E_avg at each alpha of E->grid.alphas (each finite, > 0 and <= 1, a normal float), or empty: no such array
     // or lookup is written.
     std::vector<double> missing;
-    double max_interp_error;  // measured, written in the comment
+    double max_interp_error;  // measured at mu >= grazing_mu (albedo_grid.hpp), written in the comment
     double below_grid_error;  // measured error below the first alpha, written in the comment
+    double grazing_error;     // measured at mu < grazing_mu, written in the comment
 };
 
 // The names' prefix: "smithlab_" + the family as an identifier (compensation_header_name's rule: runs of other
@@ -52,7 +54,8 @@ std::string compensation_identifier(const CompensationExport& e);
 // >= 0.
 
 // C99 (or C++), self-contained: static const float arrays NAME_sqrt_alpha, NAME_log_scale (ln c at each alpha),
-// NAME_E_table[n_alpha * n_x] (row i = alphas[i]) and NAME_log_missing_table (ln(1 - E_avg) at each alpha), and
+// NAME_E_table[n_alpha * n_x] (row i = alphas[i]; NAME_log_E_table of ln E for a table of Stored::log) and
+// NAME_log_missing_table (ln(1 - E_avg) at each alpha), and
 // static inline float NAME_E(alpha, mu),
 // NAME_missing(alpha) = 1 - E_avg(alpha) and NAME_E_avg(alpha) = 1 - NAME_missing(alpha).
 void write_c_header(std::ostream& out, const CompensationExport& e);
@@ -62,12 +65,14 @@ void write_glsl(std::ostream& out, const CompensationExport& e);
 // HLSL: static const float arrays and the same functions.
 void write_hlsl(std::ostream& out, const CompensationExport& e);
 // A grey 16-bit PNG (libpng), width n_x, height n_alpha, row i (from the top) = alphas[i], column j = x_j, pixel
-// round(E * 65535); input_error unless every value is in [0, 1]. Written to PATH.tmp and renamed to PATH:
+// round(E * 65535), or round(-ln(E) / K * 65535) for a table of ln E, K the largest -ln E (the JSON's log_scale), so
+// that a texture unit's bilinear filter interpolates ln E; input_error unless every E is in [0, 1]. Written to
+// PATH.tmp and renamed to PATH:
 // runtime_error naming the path when it cannot be, and nothing is left behind.
 void write_png16(const std::filesystem::path& path, const CompensationExport& e);
-// The PNG's axes as JSON: family, g2, quantity, identifier, the alphas, the warp's scales, n_x, the warp of x, the
-// lookup and outside
-// rules, the 16-bit scale, one_minus_E_avg and its lookup rule (when given), the measured errors.
+// The PNG's axes as JSON: family, g2, quantity, identifier, what is stored (E or ln E, with log_scale K), the alphas,
+// the warp's scales, n_x, the axis x (and its cluster), the lookup and outside rules, the 16-bit scale, one_minus_E_avg
+// and its lookup rule (when given), the measured errors.
 void write_axes_json(std::ostream& out, const CompensationExport& e);
 
 }  // namespace smithlab::fit
