@@ -1,9 +1,11 @@
 // The diffuse fitter's costs: a training point's eval walk (split by diffuse events) and its tally, the equal-error
-// time of a point by each eval estimator, one evaluation of each diffuse model, a whole fit, and one alpha of an
-// energy-compensation table.
+// time of a point by each eval estimator, one evaluation of each diffuse model, a whole fit, one alpha of an
+// energy-compensation table, and a lookup of one.
 // Run: build/bench/bench_fit --benchmark_repetitions=5 --benchmark_report_aggregates_only
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <smithlab/fit/compensation.hpp>
 #include <smithlab/fit/dataset.hpp>
@@ -142,6 +144,27 @@ void compensation_dielectric(benchmark::State& state, double alpha, double eta) 
     state.SetItemsProcessed(state.iterations() * 21);
 }
 
+// A lookup of a table as the fit writes it (64 alphas cube-root spaced from 1e-4 to 1, GGX's warp scales): E of
+// mirror facets (48 cosines, the warp), or ln(E_R + E_T) from inside eta 1.5 (96 cosines, the warp and the critical
+// angle's cluster, then exp); 1024 points spread over alpha and mu a pass; items_per_second: lookups.
+void compensation_lookup(benchmark::State& state, bool dielectric) {
+    fit::AlbedoGrid grid{{}, {}, 48, {}};
+    for (int i = 0; i < 64; ++i) {
+        const double s = std::cbrt(1e-4) + (1.0 - std::cbrt(1e-4)) * i / 63.0;
+        grid.alphas.push_back(std::min(s * s * s, 1.0));
+        grid.scales.push_back(
+            fit::SingleScatteringAlbedo<smithlab::Ggx>(smithlab::ggx(grid.alphas.back())).warp_scale());
+    }
+    fit::AlbedoTable t{dielectric ? fit::dielectric_grid(grid, 96, 1.0 / 1.5) : grid, {}, fit::Stored::value};
+    if (dielectric) t.stored = fit::Stored::log;
+    t.values.assign(t.grid.alphas.size() * static_cast<std::size_t>(t.grid.n_x), -0.1);
+    std::vector<std::pair<double, double>> points;
+    for (int k = 0; k < 1024; ++k) points.emplace_back(std::pow(10.0, -4.0 * ((k * 37) % 1024) / 1024.0), k / 1023.0);
+    for (auto _ : state)
+        for (const auto& [alpha, mu] : points) benchmark::DoNotOptimize(t.lookup(alpha, mu));
+    state.SetItemsProcessed(state.iterations() * 1024);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -162,6 +185,8 @@ int main(int argc, char** argv) {
                 ("compensation_dielectric/ggx(" + std::to_string(a).substr(0, 3) + ")/eta=" + label).c_str(),
                 compensation_dielectric, a, eta)
                 ->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark("compensation_lookup/E", compensation_lookup, false);
+    benchmark::RegisterBenchmark("compensation_lookup/ln(E_R+E_T) inside eta=1.5", compensation_lookup, true);
     benchmark::Initialize(&argc, argv);
     benchmark::RunSpecifiedBenchmarks();
     benchmark::Shutdown();

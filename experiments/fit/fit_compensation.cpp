@@ -122,6 +122,10 @@ FamilyTables make_tables(const FitFamily& f, G2Form form, const FitScene::Compen
     out.E.furnace = fit::kulla_conty_furnace(out.E.table, out.missing, furnace_mu_min);
     for (DielectricTables& d : out.dielectrics) {
         const double rel = d.relative_eta();
+        std::fprintf(stderr,
+                     "fit: compensation tables: %s, %s G2, dielectric eta %s from %s, %zu alphas x %lld cosines\n",
+                     family_label(f).c_str(), g2_name(form).c_str(), format_shortest(d.eta).c_str(),
+                     d.inside ? "inside" : "outside", c.alpha.size(), static_cast<long long>(c.dielectric_cosines));
         const fit::AlbedoGrid side = fit::dielectric_grid(grid, static_cast<int>(c.dielectric_cosines), rel);
         std::vector<fit::CheckedTable> t = tabulate_side(side, refine, albedos, rel, threads);
         const fit::AlbedoRow sum = [&](double alpha) -> std::function<double(double)> {
@@ -327,10 +331,9 @@ std::string write_compensation(const fs::path& dir, const std::vector<FitFamily>
     std::vector<FamilyTables> all;
     for (const FitFamily& f : families)
         for (G2Form form : c.g2) {
-            std::fprintf(
-                stderr, "fit: compensation tables: %s, %s G2, %zu alphas x %lld cosines (%lldx finer check)%s\n",
-                family_label(f).c_str(), g2_name(form).c_str(), c.alpha.size(), static_cast<long long>(c.cosines),
-                static_cast<long long>(c.refine), c.eta.empty() ? "" : ", dielectrics");
+            std::fprintf(stderr, "fit: compensation tables: %s, %s G2, %zu alphas x %lld cosines (%lldx finer check)\n",
+                         family_label(f).c_str(), g2_name(form).c_str(), c.alpha.size(),
+                         static_cast<long long>(c.cosines), static_cast<long long>(c.refine));
             all.push_back(make_tables(f, form, c, registry, threads));
         }
     const std::vector<FurnaceRow> rows = trace_furnace(all, c, registry, seed, threads);
