@@ -5,7 +5,6 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <map>
 #include <span>
 #include <string>
@@ -16,6 +15,7 @@
 #include "bindings.hpp"
 #include "cli/commands.hpp"
 #include "cli/eval_route.hpp"
+#include "smithlab/csv.hpp"
 #include "smithlab/gtr/family_stream.hpp"
 #include "smithlab/gtr/registry.hpp"
 #include "smithlab/samplers.hpp"
@@ -104,11 +104,7 @@ AnyNdf tabulated(const std::string& name, const py::object& cos_theta, const py:
     if (catalogue().registry.find(name) && !made_here)
         throw input_error("tabulated: the name '" + name + "' is taken (smithlab.list() names every NDF)");
     std::string text = by_cos ? "cos_theta,D\n" : "theta_deg,D\n";
-    char row[64];
-    for (py::ssize_t i = 0; i < x.size(); ++i) {
-        std::snprintf(row, sizeof row, "%.17g,%.17g\n", x.data()[i], d.data()[i]);
-        text += row;
-    }
+    for (py::ssize_t i = 0; i < x.size(); ++i) text += format_g17(x.data()[i]) + "," + format_g17(d.data()[i]) + "\n";
     // The table is read once here: its refusals (rows out of order, a negative D, an area far from 1) come now,
     // naming the row ("NAME:LINE: ..."; line 2 is the first value).
     catalogue().tables.insert_or_assign(name, tabulated_ndf_from_csv(text, name, {.normalize = normalize}));

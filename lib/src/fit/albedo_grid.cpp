@@ -10,6 +10,11 @@
 
 namespace smithlab::fit {
 
+namespace {
+// The warp's scale in lookup_power_law's messages.
+constexpr const char* warp_scale_name = "the warp's scale";
+}  // namespace
+
 double warp_cosine(double c, double mu) { return std::sqrt((1.0 + c) * mu / (mu + c)); }
 
 double unwarp_cosine(double c, double x) {
@@ -43,7 +48,7 @@ double AlbedoGrid::mu_of(double c, double x) const {
     return 0.5 * (lo + hi);
 }
 
-double AlbedoGrid::scale(double alpha) const { return lookup_power_law(alphas, scales, alpha, "the warp's scale"); }
+double AlbedoGrid::scale(double alpha) const { return lookup_power_law(alphas, scales, alpha, warp_scale_name); }
 
 double masking_cot(FunctionRef Lambda) {
     constexpr double Lambda_dip = 0.3;  // measured (albedo_grid.hpp): the dip of E lies near it
@@ -148,7 +153,7 @@ void parallel_for(std::size_t n, unsigned threads, const Job& job) {
 double AlbedoTable::lookup(double alpha, double mu) const {
     require(alpha > 0.0 && std::isfinite(alpha), "alpha", "finite and > 0", alpha);
     require(mu >= 0.0 && mu <= 1.0, "mu = cos(theta)", "in [0, 1]", mu);
-    const char* what = "the warp's scale";
+    const char* what = warp_scale_name;
     require_one_value_each(grid.alphas, grid.scales, what);
     // One search for alpha's cell: the scale's interpolation (grid.scale) and the values' weight ta.
     const auto [i, ta] = cell(grid.alphas, alpha);

@@ -20,9 +20,10 @@
 // own: a share b of the axis clustered about mu_k (NodeCluster),
 //     x = (1 - b) sqrt((1 + c) mu / (mu + c)) + b (asinh((mu - mu_k) / w) + asinh(mu_k / w)) / (asinh((1 - mu_k) / w)
 //         + asinh(mu_k / w)),
-// nodes a distance ~w apart near mu_k, spreading out like a logarithm beyond. Measured (GGX, inside eta 1.1, 1.5 and
-// 2.5, 64 x 96, ln(E_R + E_T) tabulated, against the exact values 5x finer in x and 2x in sqrt(alpha)): b = 0.3,
-// w = 0.02 takes the worst error from 1.26e-3 (at alpha 0.015, mu 0.42: the kink) to 2e-4 there and 9.5e-4 overall.
+// nodes a distance ~w apart near mu_k, spreading out like a logarithm beyond. Measured (GGX, height-correlated,
+// inside eta 1.1, 1.5 and 2.5, 64 x 96, ln(E_R + E_T) tabulated, against the exact values 10x finer in both): the
+// warp alone misses the kink by 1.7e-3 to 1.9e-3; with b = 0.3 and w = 0.02 (fit::dielectric_cluster) the worst
+// error of the three is 9.5e-4, at alpha 1, mu 0.90, away from the kink (docs/compensation.md).
 //
 // Lookups are bilinear in (sqrt(alpha), x), x_j = j / (n_x - 1) uniform (a renderer finds the cell without a search
 // in x), x taken with the scale at the asked alpha: ln c linear in ln alpha between the nodes (exact for c ~ alpha),
@@ -38,7 +39,7 @@
 // (the table's nodes are every refine-th point of it), against the lookup; at grazing incidence, mu < grazing_mu,
 // apart. There a dielectric seen from outside transmits a share that vanishes like a small power of mu (GGX, alpha
 // 0.1, eta 1.1: E_R + E_T is 0.25 at mu 1e-12, 0.39 at 1e-6, 0.52 at 1e-3), which no axis of a few nodes follows:
-// its tables miss by ~0.4 there, within 1e-3 above (measured, docs/compensation.md). Mirror facets and a dielectric
+// its tables miss by ~0.45 there, within 1e-3 above (measured, docs/compensation.md). Mirror facets and a dielectric
 // seen from inside keep their usual error there.
 #pragma once
 
