@@ -37,10 +37,10 @@
 //
 // The error is measured, never assumed: the exact values on the grid refined `refine` times in both sqrt(alpha) and x
 // (the table's nodes are every refine-th point of it), against the lookup; at grazing incidence, mu < grazing_mu,
-// apart. There a dielectric seen from outside transmits a share that vanishes like a small power of mu (GGX, alpha
-// 0.1, eta 1.1: E_R + E_T is 0.25 at mu 1e-12, 0.39 at 1e-6, 0.52 at 1e-3), which no axis of a few nodes follows:
-// its tables miss by ~0.45 there, within 1e-3 above (measured, docs/compensation.md). Mirror facets and a dielectric
-// seen from inside keep their usual error there.
+// apart. There a dielectric seen from outside with the height-correlated G2 transmits a share that vanishes like a
+// small power of mu (GGX, alpha 0.1, eta 1.1: E_R + E_T is 0.25 at mu 1e-12, 0.39 at 1e-6, 0.52 at 1e-3), which no
+// axis of a few nodes follows: its tables miss by ~0.45 there, within 1e-3 above (measured, docs/compensation.md).
+// Mirror facets, a dielectric seen from inside and the separable G2 keep their usual error there.
 #pragma once
 
 #include <cstddef>
