@@ -708,7 +708,7 @@ TEST_CASE("a node cluster: the axis and its inverse, tables of ln E, bad cluster
     CHECK_THROWS_WITH(fit::tabulate(g, 1, {fit::Stored::log}, zero, 1), Catch::Contains("finite and > 0"));
 }
 
-// [slow]: 2 x 6 500 + 20 000 dielectric values (~40 s of two cores in Release).
+// [slow]: 2 x 6 500 + 20 000 dielectric values (~50 s of one core in Release).
 TEST_CASE("dielectric tables: the critical angle's cluster from inside, ln(E_R + E_T) for Turquin's division",
           "[compensation][slow]") {
     // The default grid's alphas (64, cbrt-spaced from 1e-4 to 1) and 96 cosines, in the cells where each feature is
