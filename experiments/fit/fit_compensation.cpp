@@ -143,6 +143,61 @@ FamilyTables make_tables(const FitFamily& f, G2Form form, const FitScene::Compen
     return out;
 }
 
+// The first cell of the scattering orders' walks: past every furnace cell (trace_furnace numbers them from 0), so that
+// the furnace's walks and the tables it reads draw from different streams.
+constexpr std::uint64_t order_cells = std::uint64_t{1} << 40;
+
+// The walk's scattering orders of mirror facets over the order grid (fit/scattering_orders.hpp) for one family, from
+// order_walks walks a node. Node k of family n draws from cells order_cells + n * 2^32 + k; the first cosine, mu = 0,
+// from grazing_mu (a walk cannot start horizontal).
+std::shared_ptr<const fit::OrderTables> make_orders(const FitFamily& f, std::size_t n, const FitScene::Compensation& c,
+                                                    const NdfRegistry& registry, std::uint64_t seed, unsigned threads) {
+    std::fprintf(stderr, "fit: scattering orders: %s, %zu alphas x %lld cosines, %lld walks a node\n",
+                 family_label(f).c_str(), c.order_alpha.size(), static_cast<long long>(c.order_cosines),
+                 static_cast<long long>(c.order_walks));
+    fit::AlbedoGrid grid{c.order_alpha, {}, static_cast<int>(c.order_cosines), {}};
+    std::vector<std::shared_ptr<const AnySurface>> surfaces;
+    for (double a : c.order_alpha) {
+        const AnyNdf ndf = make_ndf(registry, f, a);
+        grid.scales.push_back(Albedo(ndf, table_options(G2Form::height_correlated)).warp_scale());
+        surfaces.push_back(make_surface(ndf));
+    }
+    const std::uint64_t first = order_cells + (static_cast<std::uint64_t>(n) << 32);
+    const fit::OrderCell trace = [&](std::size_t node, double, double mu) {
+        const AnySurface& s = *surfaces[node / static_cast<std::size_t>(grid.n_x)];
+        walk::CellRequest r;
+        const double m = std::max(mu, fit::grazing_mu);
+        r.wi = {std::sqrt((1.0 - m) * (1.0 + m)), 0.0, m};
+        r.seed = seed;
+        r.cell = first + node;
+        r.walks = c.order_walks;
+        walk::AlbedoTally total;
+        for (std::uint64_t b = 0; b < walk::block_count(r.walks, r.block); ++b)
+            total.merge(s.trace_block(walk::Mirror{}, r, b).albedo);
+        return total;
+    };
+    return std::make_shared<const fit::OrderTables>(fit::tabulate_orders(grid, trace, threads));
+}
+
+// The orders for a renderer of the separable G2: q_1 = (E_hc - E_sep) / (1 - E_sep) at each node, the share of the
+// light its single scattering misses that the walk scatters once (fit/scattering_orders.hpp); 0 where 1 - E_sep <
+// 1e-12.
+std::shared_ptr<const fit::OrderTables> with_single_share(const fit::OrderTables& walk, const FitFamily& f,
+                                                          const NdfRegistry& registry) {
+    auto t = std::make_shared<fit::OrderTables>(walk);
+    const fit::AlbedoGrid& g = walk.q2.grid;
+    t->q1.grid = g;
+    for (std::size_t i = 0; i < g.alphas.size(); ++i) {
+        const AnyNdf ndf = make_ndf(registry, f, g.alphas[i]);
+        const Albedo hc(ndf, table_options(G2Form::height_correlated)), sep(ndf, table_options(G2Form::uncorrelated));
+        for (int j = 0; j < g.n_x; ++j) {
+            const double mu = g.mu(i, j), missed = 1.0 - sep(mu);
+            t->q1.values.push_back(missed > 1e-12 ? std::clamp((hc(mu) - sep(mu)) / missed, 0.0, 1.0) : 0.0);
+        }
+    }
+    return t;
+}
+
 // The NDF at each alpha of the tables, for the CSVs' ndf and parameter columns.
 struct NdfRows {
     std::vector<AnyNdf> ndfs;  // family-major, alpha-minor, one family per FamilyTables entry
@@ -171,6 +226,28 @@ std::string ndf_cells(const NdfRows& r, std::size_t k, double alpha) {
     return s;
 }
 
+// compensation_orders.csv: each family's scattering orders at their nodes.
+void write_orders(const fs::path& dir, const std::vector<FamilyTables>& all, const FitScene::Compensation& c,
+                  const NdfRegistry& registry) {
+    if (c.order_walks == 0) return;
+    const NdfRows nr = ndf_rows(all, c.order_alpha, registry);
+    std::ostringstream o;
+    o << header_of(nr.columns, {"g2", "cos_theta", "q1", "q2", "q3", "p", "q2_stderr", "q3_stderr"});
+    for (std::size_t n = 0; n < all.size(); ++n) {
+        const fit::OrderTables& t = *all[n].orders;
+        const fit::AlbedoGrid& g = t.q2.grid;
+        for (std::size_t i = 0; i < g.alphas.size(); ++i)
+            for (int j = 0; j < g.n_x; ++j) {
+                const std::size_t k = i * static_cast<std::size_t>(g.n_x) + static_cast<std::size_t>(j);
+                o << ndf_cells(nr, n * g.alphas.size() + i, g.alphas[i]) << g2_name(all[n].g2) << ","
+                  << format_g17(g.mu(i, j)) << "," << format_g17(t.q1.values.empty() ? 0.0 : t.q1.values[k]) << ","
+                  << format_g17(t.q2.values[k]) << "," << format_g17(t.q3.values[k]) << "," << format_g17(t.p.values[k])
+                  << "," << format_g17(t.q2_stderr[k]) << "," << format_g17(t.q3_stderr[k]) << "\n";
+            }
+    }
+    output::write_file(dir / "compensation_orders.csv", o.str());
+}
+
 void write_csvs(const fs::path& dir, const std::vector<FamilyTables>& all, const FitScene::Compensation& c,
                 const NdfRegistry& registry) {
     const NdfRows nr = ndf_rows(all, c.alpha, registry);
@@ -197,6 +274,7 @@ void write_csvs(const fs::path& dir, const std::vector<FamilyTables>& all, const
             }
         }
     }
+    write_orders(dir, all, c, registry);
     output::write_file(dir / "compensation.csv", E.str());
     output::write_file(dir / "compensation_avg.csv", avg.str());
     if (!c.eta.empty()) output::write_file(dir / "compensation_dielectric.csv", diel.str());
@@ -329,13 +407,18 @@ std::string write_compensation(const fs::path& dir, const std::vector<FitFamily>
                                unsigned threads) {
     if (!c.enabled) return "";
     std::vector<FamilyTables> all;
-    for (const FitFamily& f : families)
+    for (std::size_t n = 0; n < families.size(); ++n) {
+        const FitFamily& f = families[n];
+        const auto orders = c.order_walks > 0 ? make_orders(f, n, c, registry, seed, threads) : nullptr;
         for (G2Form form : c.g2) {
             std::fprintf(stderr, "fit: compensation tables: %s, %s G2, %zu alphas x %lld cosines (%lldx finer check)\n",
                          family_label(f).c_str(), g2_name(form).c_str(), c.alpha.size(),
                          static_cast<long long>(c.cosines), static_cast<long long>(c.refine));
             all.push_back(make_tables(f, form, c, registry, threads));
+            all.back().orders =
+                orders && form == G2Form::uncorrelated ? with_single_share(*orders, f, registry) : orders;
         }
+    }
     const std::vector<FurnaceRow> rows = trace_furnace(all, c, registry, seed, threads);
     write_csvs(dir, all, c, registry);
     write_errors(dir, all);

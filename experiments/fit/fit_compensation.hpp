@@ -1,20 +1,23 @@
 // The energy-compensation tables of a fit scene's [compensation] for each NDF family and G2 form (no tracing but the
 // furnace's cells: quadrature of the single-scattering albedos, smithlab/fit/compensation.hpp, on the warped grid of
 // fit/albedo_grid.hpp, each table measured on its check grid): mirror facets' E and E_avg, and for each eta a
-// dielectric's E_R, E_T and their sum from outside and from inside. Written as compensation.csv,
-// compensation_avg.csv, compensation_dielectric.csv, compensation_error.csv (each table's worst interpolation error,
+// dielectric's E_R, E_T and their sum from outside and from inside; with order_walks, the walk's scattering orders
+// of mirror facets for conductors (fit/scattering_orders.hpp). Written as compensation.csv, compensation_avg.csv,
+// compensation_dielectric.csv, compensation_orders.csv, compensation_error.csv (each table's worst interpolation error,
 // below-grid error and furnace error, and where), furnace_tables.csv (the furnace by the tables per alpha of the check
 // grid), furnace.csv (fit_furnace.hpp: against the walk), and compensation/ (fit/compensation_formats.hpp: a C header,
 // GLSL, HLSL, a 16-bit PNG and its axes per table).
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "fit/fit_scene.hpp"
 #include "smithlab/fit/albedo_grid.hpp"
 #include "smithlab/fit/compensation.hpp"
+#include "smithlab/fit/scattering_orders.hpp"
 #include "smithlab/registry.hpp"
 
 namespace smithlab::fitrun {
@@ -47,6 +50,9 @@ struct FamilyTables {
     std::vector<double> exact_missing;  // 1 - E_avg at E's alphas, each by its own quadrature (of 1 - E)
     std::vector<double> missing;        // the table's own 1 - E_avg there (fit::table_missing): the formats'
     std::vector<DielectricTables> dielectrics;
+    // The walk's scattering orders of mirror facets (fit/scattering_orders.hpp): one walk per family, whatever G2 a
+    // renderer computes, with the separable G2's q_1 beside it; null without order_walks.
+    std::shared_ptr<const fit::OrderTables> orders;
 };
 
 // "height-correlated" or "separable".

@@ -78,6 +78,10 @@ std::vector<FurnaceRow> trace_furnace(const std::vector<FamilyTables>& tables, c
                             E_F + fit::kulla_conty_albedo(table, ft->missing, alpha, mu, F_avg), total);
                         add(*ft, name, "total", "turquin", E_F * fit::turquin_scale(E_mu, F(1.0)), total);
                         add(*ft, name, "total", "fdez-aguera", fit::fdez_aguera_albedo(E_F, E_mu, F_avg), total);
+                        if (ft->orders)
+                            add(*ft, name, "total", "walk-orders",
+                                E_F + fit::multiple_scattering_albedo(E_mu, ft->orders->lookup(alpha, mu), F_avg),
+                                total);
                     }
                 }
                 // Dielectrics from each side: single scattering over the table of E_R + E_T.

@@ -7,6 +7,8 @@
 //     "turquin":     E_F (1 + F0 (1 - E) / E), F0 = F(1) (Turquin 2019);
 //     "fdez-aguera": E_F / (1 - F_avg (1 - E)) (Fdez-Aguera 2019, fit::fdez_aguera_albedo; F_avg the exact
 //                    2 int F mu dmu, not its Schlick fit);
+//     "walk-orders": E_F + (1 - E) sum_k q_k F_avg^k, the walk's scattering orders of mirror facets
+//                    (fit/scattering_orders.hpp), with order_walks;
 //   a dielectric: its single scattering divided by the table of E_R + E_T (form "turquin", Turquin 2019), the total
 //   and its reflected and transmitted parts.
 #pragma once
@@ -21,7 +23,7 @@ namespace smithlab::fitrun {
 
 struct FurnaceRow {
     std::string ndf, g2, material, part;  // part: "total", "R" or "T"
-    std::string form;                     // "kulla-conty", "turquin" or "fdez-aguera"
+    std::string form;                     // "kulla-conty", "turquin", "fdez-aguera" or "walk-orders"
     double alpha = 0.0, theta = 0.0, compensated = 0.0, traced = 0.0, traced_stderr = 0.0;
 };
 

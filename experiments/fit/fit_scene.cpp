@@ -170,6 +170,10 @@ std::vector<double> FitScene::Compensation::default_alphas() {
     return report::spaced(1e-4, 1.0, 64, report::Spacing::cbrt);
 }
 
+std::vector<double> FitScene::Compensation::default_order_alphas() {
+    return report::spaced(0.01, 1.0, 16, report::Spacing::cbrt);
+}
+
 namespace {
 
 // The tables' work (fit_compensation.cpp) counted in walks, the unit of --max-walks: each family and G2 form tabulates
@@ -197,7 +201,9 @@ void check_compensation_size(const StrictTable& t, const FitScene::Compensation&
     const double values = tables * alphas * (cosines + dielectric_cost * sides * dielectric_cosines);
     const double furnace = fit.ndfs * static_cast<double>(c.furnace_alpha.size() * c.furnace_theta.size()) *
         (1.0 + static_cast<double>(c.conductors.size()) + sides) * static_cast<double>(c.furnace_walks);
-    const double walks = values * walks_per_value + furnace + fit.walks;
+    const double orders = fit.ndfs * static_cast<double>(c.order_alpha.size()) * static_cast<double>(c.order_cosines) *
+        static_cast<double>(c.order_walks);
+    const double walks = values * walks_per_value + furnace + orders + fit.walks;
     if (!(walks > limits.max_walks)) return;
     t.fail("refine",
            "with alpha, cosines, dielectric_cosines, g2 and eta makes the tables " + format_shortest(values) +
@@ -205,25 +211,29 @@ void check_compensation_size(const StrictTable& t, const FitScene::Compensation&
                format_shortest(dielectric_cost) + " x " + format_shortest(sides) + " dielectric sides x " +
                format_shortest(dielectric_cosines) + ") check-grid points x " + format_shortest(tables) +
                " NDFs and G2 forms), the work of " + format_shortest(values * walks_per_value) +
-               " walks; with the furnace's " + format_shortest(furnace) + " and the fit's " +
-               format_shortest(fit.walks) + ", more than --max-walks " + format_shortest(limits.max_walks) +
-               " (raise it with --max-walks N)");
+               " walks; with the furnace's " + format_shortest(furnace) + ", the scattering orders' " +
+               format_shortest(orders) + " and the fit's " + format_shortest(fit.walks) + ", more than --max-walks " +
+               format_shortest(limits.max_walks) + " (raise it with --max-walks N)");
+}
+
+// A table's alphas in (0, 1]: two at least, ascending (the tables interpolate between them, fit/albedo_grid.hpp).
+std::vector<double> table_alphas(StrictTable& t, const char* key) {
+    std::vector<double> a = read_bounded(t, key, 0.0, 1.0, true, false, "(0, 1]");
+    if (a.size() < 2) t.fail(key, "needs 2 values or more (the tables interpolate between them)");
+    for (std::size_t i = 1; i < a.size(); ++i)
+        if (!(a[i] > a[i - 1])) t.fail(key, "values must ascend");
+    return a;
 }
 
 FitScene::Compensation read_compensation(StrictTable& doc, FitScene::Compensation c, FitWork fit,
                                          const report::SizeLimits& limits) {
-    auto t = doc.optional_table("compensation",
-                                {"alpha", "cosines", "dielectric_cosines", "refine", "g2", "eta", "conductors",
-                                 "furnace_alpha", "furnace_theta", "furnace_walks"});
+    auto t = doc.optional_table(
+        "compensation",
+        {"alpha", "cosines", "dielectric_cosines", "refine", "g2", "eta", "conductors", "furnace_alpha",
+         "furnace_theta", "furnace_walks", "order_walks", "order_alpha", "order_cosines"});
     if (!t) return c;
     c.enabled = true;
-    if (t->has("alpha")) {
-        c.alpha = read_bounded(*t, "alpha", 0.0, 1.0, true, false, "(0, 1]");
-        // the tables interpolate between the alphas: two at least, ascending (fit/albedo_grid.hpp)
-        if (c.alpha.size() < 2) t->fail("alpha", "needs 2 values or more (the tables interpolate between them)");
-        for (std::size_t i = 1; i < c.alpha.size(); ++i)
-            if (!(c.alpha[i] > c.alpha[i - 1])) t->fail("alpha", "values must ascend");
-    }
+    if (t->has("alpha")) c.alpha = table_alphas(*t, "alpha");
     c.cosines = t->integer("cosines", 2, 4096, c.cosines);
     c.dielectric_cosines = t->integer("dielectric_cosines", 2, 4096, c.dielectric_cosines);
     c.refine = t->integer("refine", 1, 100, c.refine);
@@ -259,6 +269,9 @@ FitScene::Compensation read_compensation(StrictTable& doc, FitScene::Compensatio
     if (t->has("furnace_theta"))
         c.furnace_theta = read_bounded(*t, "furnace_theta", 0.0, 90.0, false, true, "[0, 90) degrees");
     c.furnace_walks = t->integer("furnace_walks", 100, 1'000'000'000, c.furnace_walks);
+    c.order_walks = t->integer("order_walks", 0, 1'000'000'000, c.order_walks);
+    if (t->has("order_alpha")) c.order_alpha = table_alphas(*t, "order_alpha");
+    c.order_cosines = t->integer("order_cosines", 2, 4096, c.order_cosines);
     check_compensation_size(*t, c, fit, limits);
     t->done();
     return c;

@@ -55,6 +55,13 @@ struct FitScene {
         std::vector<double> furnace_alpha{0.01, 0.1, 0.3, 0.6, 1.0};
         std::vector<double> furnace_theta{0.0, 30.0, 60.0, 75.0, 85.0};
         std::int64_t furnace_walks = 200000;
+        // The walk's scattering orders of mirror facets for conductors (fit/scattering_orders.hpp): mirror walks a
+        // node (0: none), over order_alpha x order_cosines warped cosines.
+        std::int64_t order_walks = 0;
+        std::vector<double> order_alpha = default_order_alphas();
+        std::int64_t order_cosines = 16;
+        // 16 alphas evenly spaced in cbrt(alpha) from 0.01 to 1 (below, the first row's: GGX's 1 - E_avg < 5e-4).
+        static std::vector<double> default_order_alphas();
         // 64 alphas evenly spaced in cbrt(alpha) from 1e-4 to 1.
         static std::vector<double> default_alphas();
     } compensation;
