@@ -438,7 +438,8 @@ TEST_CASE("fit: [compensation] writes every table, its errors, its renderer form
         tiny_scene +
             "[compensation]\nalpha = {cbrt = [0.001, 1.0], n = 3}\ncosines = 6\nrefine = 2\n"
             "dielectric_cosines = 8\neta = [1.5]\nconductors = [\"conductor(eta=0.2, k=3)\"]\nfurnace_alpha = [0.5]\n"
-            "furnace_theta = [0.0, 60.0]\nfurnace_walks = 2000\n");
+            "furnace_theta = [0.0, 60.0]\nfurnace_walks = 2000\norder_walks = 2000\norder_alpha = [0.5, 1.0]\n"
+            "order_cosines = 3\n");
     INFO(r.err);
     REQUIRE(r.rc == 0);
     const fs::path o = d / "out";
@@ -478,9 +479,24 @@ TEST_CASE("fit: [compensation] writes every table, its errors, its renderer form
                Catch::Matchers::StartsWith("ndf,g2,table,max_interp_error,alpha,cos_theta,grazing_error,grazing_alpha,"
                                            "grazing_cos_theta,below_grid_error,"));
     CHECK_THAT(errors[3], Catch::Matchers::StartsWith("ggx,height-correlated,E_R+E_T eta=1.5 inside,"));
-    // Per G2 form and angle: mirror, the conductor in three forms, and each side's total, R and T.
+    // The walk's scattering orders: per G2 form, 2 alphas x 3 cosines; q_1 = 0 for the height-correlated G2 (the
+    // walk's own single scattering), > 0 for the separable one where it misses more (alpha 1, mu 0.21: 0.26; at
+    // mu = 1 the two G2 are one, G1(wo)); shares in [0, 1] that leave q_4+ = 1 - q_2 - q_3 >= 0.
+    const std::vector<std::string> orders = lines(slurp(o / "compensation_orders.csv"));
+    REQUIRE(orders.size() == 1 + 2 * 2 * 3);
+    CHECK(orders[0] == "ndf,alpha,g2,cos_theta,q1,q2,q3,p,q2_stderr,q3_stderr");
+    for (std::size_t k = 1; k < orders.size(); ++k) {
+        const std::vector<std::string> q = fields(orders[k]);
+        REQUIRE(q.size() == 10);
+        INFO(orders[k]);
+        const double q1 = std::stod(q[4]), q2 = std::stod(q[5]), q3 = std::stod(q[6]), p = std::stod(q[7]);
+        CHECK((q[2] == "height-correlated" ? q1 == 0.0 : q1 >= 0.0));
+        CHECK((q2 >= 0.0 && q3 >= 0.0 && q2 + q3 <= 1.0 + 1e-15 && p > 0.0 && p <= 1.0));
+    }
+    CHECK(std::stod(fields(orders[11])[4]) > 0.1);
+    // Per G2 form and angle: mirror, the conductor in four forms, and each side's total, R and T.
     const std::vector<std::string> furnace = lines(slurp(o / "furnace.csv"));
-    REQUIRE(furnace.size() == 1 + 2 * 2 * (1 + 3 + 2 * 3));
+    REQUIRE(furnace.size() == 1 + 2 * 2 * (1 + 4 + 2 * 3));
     CHECK(furnace[0] == "ndf,g2,material,part,form,alpha,theta_i,compensated,traced,traced_stderr");
     for (std::size_t k = 1; k < furnace.size(); ++k) {
         const std::vector<std::string> f = fields(furnace[k]);
@@ -496,16 +512,18 @@ TEST_CASE("fit: [compensation] writes every table, its errors, its renderer form
         }
         CHECK(std::isfinite(std::stod(f[7])));
     }
-    // A conductor's rows come in its three forms (their accuracy against the walk: tests/test_compensation.cpp).
-    for (std::size_t k = 1; k + 2 < furnace.size(); ++k) {
+    // A conductor's rows come in its four forms (their accuracy against the walk: tests/test_compensation.cpp and
+    // tests/test_scattering_orders.cpp).
+    for (std::size_t k = 1; k + 3 < furnace.size(); ++k) {
         const std::vector<std::string> kc = fields(furnace[k]);
         if (kc[2].rfind("conductor", 0) != 0 || kc[4] != "kulla-conty") continue;
-        const std::vector<std::string> tq = fields(furnace[k + 1]), fa = fields(furnace[k + 2]);
-        INFO(furnace[k] << "\n" << furnace[k + 1] << "\n" << furnace[k + 2]);
+        const std::vector<std::string> tq = fields(furnace[k + 1]), fa = fields(furnace[k + 2]),
+                                       wo = fields(furnace[k + 3]);
+        INFO(furnace[k] << "\n" << furnace[k + 1] << "\n" << furnace[k + 2] << "\n" << furnace[k + 3]);
         CHECK(tq[4] == "turquin");
         CHECK(fa[4] == "fdez-aguera");
-        CHECK(tq[2] == kc[2]);
-        CHECK(fa[2] == kc[2]);
+        CHECK(wo[4] == "walk-orders");
+        for (const auto* f : {&tq, &fa, &wo}) CHECK((*f)[2] == kc[2]);
     }
     // A dielectric's rows come as total, R, T: the parts add up, traced and compensated (Turquin's division keeps the
     // single scattering's ratio), and from outside R is the small part, as the walk finds it (a side or hemisphere
@@ -568,6 +586,10 @@ TEST_CASE("fit: a bad scene is refused naming FILE:LINE and the item, with nothi
         "compensation.conductors must name conductor(eta=, k=) facets, got 'mirror'");
     bad("[validation]", "[compensation]\nconductors = [\"conductor(eta=-1, k=3)\"]\n[validation]",
         "compensation.conductors");
+    bad("[validation]", "[compensation]\norder_alpha = [0.5, 0.3]\n[validation]",
+        "compensation.order_alpha values must ascend");
+    bad("[validation]", "[compensation]\norder_walks = -1\n[validation]", "compensation.order_walks");
+    bad("[validation]", "[compensation]\norder_cosines = 1\n[validation]", "compensation.order_cosines");
     bad("points = 6", "points = 0", "validation.points");
     bad("phi = [0.0, 180.0]", "phi = {lin = [0.0, 180.0], n = 30000}", "90003 direction pairs per alpha");
     fs::remove_all(d);
@@ -602,9 +624,16 @@ TEST_CASE("fit: [compensation]'s tables and furnace count against --max-walks, r
     const Run over = fit_with("small.toml", small, "--max-walks 52499");
     INFO(over.err);
     CHECK(over.rc == 2);
-    CHECK_THAT(over.err,
-               Contains("the work of 42000 walks; with the furnace's 100 and the fit's 10400, more than "
-                        "--max-walks 52499"));
+    CHECK_THAT(
+        over.err,
+        Contains("the work of 42000 walks; with the furnace's 100, the scattering orders' 0 and the fit's 10400, "
+                 "more than --max-walks 52499"));
+    CHECK_FALSE(fs::exists(d / "out"));
+    // The scattering orders' walks count too: 16 x 16 nodes (the default) at 1e9 walks each.
+    const Run orders = fit_with("orders.toml", small + "order_walks = 1000000000\n", "");
+    INFO(orders.err);
+    CHECK(orders.rc == 2);
+    CHECK_THAT(orders.err, Contains("the scattering orders' 2.56e+11 and the fit's 10400, more than --max-walks"));
     CHECK_FALSE(fs::exists(d / "out"));
     const Run at = fit_with("small.toml", small, "--max-walks 52500 --threads 2");
     INFO(at.err);
