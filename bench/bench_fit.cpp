@@ -1,6 +1,7 @@
 // The diffuse fitter's costs: a training point's eval walk (split by diffuse events) and its tally, the equal-error
 // time of a point by each eval estimator, one evaluation of each diffuse model, a whole fit, one alpha of an
-// energy-compensation table, and a lookup of one.
+// energy-compensation table, and a lookup of one; one node of the conductor compensation's scattering orders, and a
+// lookup of them.
 // Run: build/bench/bench_fit --benchmark_repetitions=5 --benchmark_report_aggregates_only
 #include <benchmark/benchmark.h>
 
@@ -10,6 +11,7 @@
 #include <smithlab/fit/compensation.hpp>
 #include <smithlab/fit/dataset.hpp>
 #include <smithlab/fit/fit_model.hpp>
+#include <smithlab/fit/scattering_orders.hpp>
 #include <smithlab/smithlab.hpp>
 #include <smithlab/walk/trace.hpp>
 #include <string>
@@ -165,6 +167,43 @@ void compensation_lookup(benchmark::State& state, bool dielectric) {
     state.SetItemsProcessed(state.iterations() * 1024);
 }
 
+// One node of the scattering orders' tables (fit/scattering_orders.hpp): 10 000 mirror-facet walks from 60 degrees on
+// GGX, counted; items_per_second: walks. The fit's default, 16 x 16 nodes of 100 000 walks, is 2.56e7 walks a family.
+void order_node(benchmark::State& state, double alpha) {
+    const walk::Microsurface ms(smithlab::ggx(alpha));
+    walk::CellRequest r;
+    r.wi = smithlab::direction_from_deg(60.0, 0.0);
+    r.walks = 10'000;
+    r.threads = 1;
+    for (auto _ : state) {
+        ++r.cell;
+        benchmark::DoNotOptimize(fit::scattering_orders(walk::trace_cell(ms, walk::Mirror{}, r).albedo).orders.q2);
+    }
+    state.SetItemsProcessed(state.iterations() * r.walks);
+}
+
+// A renderer's multiply scattered albedo of a conductor from the orders' tables: q_2, q_3 and p looked up (16 alphas
+// cube-root spaced from 0.01 to 1 x 16 warped cosines, GGX's scales) and multiple_scattering_albedo; 1024 points a
+// pass; items_per_second: albedos.
+void order_lookup(benchmark::State& state) {
+    fit::AlbedoGrid grid{{}, {}, 16, {}};
+    for (int i = 0; i < 16; ++i) {
+        const double s = std::cbrt(0.01) + (1.0 - std::cbrt(0.01)) * i / 15.0;
+        grid.alphas.push_back(std::min(s * s * s, 1.0));
+        grid.scales.push_back(
+            fit::SingleScatteringAlbedo<smithlab::Ggx>(smithlab::ggx(grid.alphas.back())).warp_scale());
+    }
+    fit::OrderTables t;
+    for (auto [table, v] : {std::pair{&t.q2, 0.5}, std::pair{&t.q3, 0.2}, std::pair{&t.p, 0.7}})
+        *table = fit::AlbedoTable{grid, std::vector<double>(16 * 16, v), fit::Stored::value};
+    std::vector<std::pair<double, double>> points;
+    for (int k = 0; k < 1024; ++k) points.emplace_back(std::pow(10.0, -2.0 * ((k * 37) % 1024) / 1024.0), k / 1023.0);
+    for (auto _ : state)
+        for (const auto& [alpha, mu] : points)
+            benchmark::DoNotOptimize(fit::multiple_scattering_albedo(0.8, t.lookup(alpha, mu), 0.9));
+    state.SetItemsProcessed(state.iterations() * 1024);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -187,6 +226,10 @@ int main(int argc, char** argv) {
                 ->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark("compensation_lookup/E", compensation_lookup, false);
     benchmark::RegisterBenchmark("compensation_lookup/ln(E_R+E_T) inside eta=1.5", compensation_lookup, true);
+    for (double a : {0.1, 0.5, 1.0})
+        benchmark::RegisterBenchmark(("order_node/ggx(" + std::to_string(a).substr(0, 3) + ")").c_str(), order_node, a)
+            ->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark("order_lookup", order_lookup);
     benchmark::Initialize(&argc, argv);
     benchmark::RunSpecifiedBenchmarks();
     benchmark::Shutdown();

@@ -374,6 +374,27 @@ std::string markdown(const std::vector<FamilyTables>& all, const FitScene::Compe
                << e3(m.table.error.max) << " (" << g4(m.table.error.alpha) << ", " << g4(m.table.error.mu) << ") | "
                << e3(m.table.grazing.max) << " | " << e3(m.below.max) << " | " << e3(w.max) << " |\n";
         });
+    if (c.order_walks > 0) {
+        // The walks' standard error in A_ms: (1 - E) times that of q_2 or q_3, the larger, at each node.
+        double worst = 0.0;
+        for (const FamilyTables& t : all) {
+            const fit::AlbedoGrid& g = t.orders->q2.grid;
+            for (std::size_t i = 0; i < g.alphas.size(); ++i)
+                for (int j = 0; j < g.n_x; ++j) {
+                    const std::size_t k = i * static_cast<std::size_t>(g.n_x) + static_cast<std::size_t>(j);
+                    const double missed = 1.0 - t.E.table.table.lookup(g.alphas[i], g.mu(i, j));
+                    worst = std::max(worst, missed * std::max(t.orders->q2_stderr[k], t.orders->q3_stderr[k]));
+                }
+        }
+        md << "\nConductors (form walk-orders): the walk's scattering orders of mirror facets over "
+           << c.order_alpha.size() << " alphas x " << c.order_cosines << " warped cosines, " << c.order_walks
+           << " walks a node (compensation_orders.csv): of the light single scattering misses, 1 - E, the shares q_2 "
+              "and q_3 that leave after 2 and 3 hits and the escape chance p of each later hit (q_1: the separable "
+              "G2's share that leaves after one), read as E_F + (1 - E) (q_1 F_avg + (1 - q_1) (q_2 F_avg^2 + q_3 "
+              "F_avg^3 + q_4+ F_avg^4 p / (1 - F_avg (1 - p)))). The walks' worst standard error, (1 - E) times that "
+              "of q_2 or q_3: "
+           << e3(worst) << ".\n";
+    }
     if (!rows.empty()) {
         md << "\nAgainst the walk (furnace.csv: " << c.furnace_walks
            << " walks a cell): the worst |compensated - traced| per material, part and form, and in standard errors of "

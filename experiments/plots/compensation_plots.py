@@ -8,7 +8,7 @@ Needs Debian's python3-matplotlib (installed by .ci/deps). experiments/fit/fit_c
   furnace.csv          ndf,g2,material,part,form,alpha,theta_i,compensated,traced,traced_stderr: against the walk
 and this script draws furnace.png: left, the tables' furnace error against alpha (one line per table and G2); right,
 compensated - traced at each walk cell with 3 standard errors as bars, one panel row per material and part (a
-conductor's three published forms in one panel, a colour each; dashed: the separable G2).
+conductor's forms in one panel, a colour each; dashed: the separable G2).
 """
 import os
 import sys
