@@ -87,11 +87,9 @@ std::vector<DielectricTables> dielectric_sides(const std::vector<double>& etas) 
     return sides;
 }
 
-// One dielectric side's tables in one pass over its check grid (its own cosines and node cluster,
-// fit::dielectric_grid), one albedo object per alpha: E_R, E_T and ln(E_R + E_T).
-std::vector<fit::CheckedTable> tabulate_side(const fit::AlbedoGrid& grid, int refine, AlbedoCache& albedos, double rel,
-                                             unsigned threads) {
-    const fit::AlbedoRows rows = [&](double alpha) -> std::function<void(double, double*)> {
+// One dielectric side's albedos at an alpha, one albedo object per alpha: E_R, E_T and E_R + E_T.
+fit::AlbedoRows side_rows(AlbedoCache& albedos, double rel) {
+    return [&albedos, rel](double alpha) -> std::function<void(double, double*)> {
         return [E = albedos.at(alpha), rel](double mu, double* v) {
             const auto e = E->dielectric(mu, rel);
             v[0] = e.R;
@@ -99,8 +97,6 @@ std::vector<fit::CheckedTable> tabulate_side(const fit::AlbedoGrid& grid, int re
             v[2] = e.R + e.T;
         };
     };
-    using fit::Stored;
-    return fit::tabulate(grid, refine, {Stored::value, Stored::value, Stored::log}, rows, threads);
 }
 
 FamilyTables make_tables(const FitFamily& f, G2Form form, const FitScene::Compensation& c, const NdfRegistry& registry,
@@ -126,12 +122,18 @@ FamilyTables make_tables(const FitFamily& f, G2Form form, const FitScene::Compen
                      "fit: compensation tables: %s, %s G2, dielectric eta %s from %s, %zu alphas x %lld cosines\n",
                      family_label(f).c_str(), g2_name(form).c_str(), format_shortest(d.eta).c_str(),
                      d.inside ? "inside" : "outside", c.alpha.size(), static_cast<long long>(c.dielectric_cosines));
+        // One pass over the side's check grid (its own cosines and node cluster, fit::dielectric_grid): E_R, E_T and
+        // ln(E_R + E_T); the sum alone below the grid.
         const fit::AlbedoGrid side = fit::dielectric_grid(grid, static_cast<int>(c.dielectric_cosines), rel);
-        std::vector<fit::CheckedTable> t = tabulate_side(side, refine, albedos, rel, threads);
+        const fit::AlbedoRows rows = side_rows(albedos, rel);
+        using fit::Stored;
+        std::vector<fit::CheckedTable> t =
+            fit::tabulate(side, refine, {Stored::value, Stored::value, Stored::log}, rows, threads);
         const fit::AlbedoRow sum = [&](double alpha) -> std::function<double(double)> {
-            return [E = albedos.at(alpha), rel](double mu) {
-                const auto e = E->dielectric(mu, rel);
-                return e.R + e.T;
+            return [f = rows(alpha)](double mu) {
+                double v[3];
+                f(mu, v);
+                return v[2];
             };
         };
         d.R = std::move(t[0]);

@@ -8,7 +8,7 @@ Needs Debian's python3-matplotlib (installed by .ci/deps). experiments/fit/fit_c
   furnace.csv          ndf,g2,material,part,form,alpha,theta_i,compensated,traced,traced_stderr: against the walk
 and this script draws furnace.png: left, the tables' furnace error against alpha (one line per table and G2); right,
 compensated - traced at each walk cell with 3 standard errors as bars, one panel row per material and part (a
-conductor's forms in one panel, a colour each; dashed: the separable G2).
+conductor's forms in one panel, a colour each, its NDFs a marker each; dashed: the separable G2).
 """
 import os
 import sys
@@ -28,7 +28,8 @@ def main(out):
     tables = rows(os.path.join(out, "furnace_tables.csv"))
     cells = rows(os.path.join(out, "furnace.csv"))
     parts = {"total": 0, "R": 1, "T": 2}
-    markers = {"kulla-conty": "o", "turquin": "s", "fdez-aguera": "^"}
+    markers = {"kulla-conty": "o", "turquin": "s", "fdez-aguera": "^", "walk-orders": "D"}
+    ndf_markers = "osD^vP*X"  # a conductor panel's NDFs, one marker each (its colours are the forms)
     materials = sorted({(r["material"], r["part"]) for r in cells},
                        key=lambda m: (m[0] != "mirror", not m[0].startswith("conductor"), m[0], parts[m[1]]))
     n = max(1, len(materials))
@@ -59,6 +60,7 @@ def main(out):
                     (num(r["theta_i"]), num(r["compensated"]) - num(r["traced"]), 3 * num(r["traced_stderr"])))
         forms = sorted({key[3] for key in series})
         alphas = sorted({key[2] for key in series})
+        ndfs = sorted({key[0] for key in series})
         for (ndf, g2, alpha, form), pts in sorted(series.items()):
             pts.sort()
             style = dict(capsize=2, lw=1, ls="-" if g2 == "height-correlated" else "--", ms=3,
@@ -66,7 +68,8 @@ def main(out):
             if len(forms) > 1:
                 # A conductor's forms: one colour each, darker the rougher; the legend names the forms only.
                 shade = 0.3 + 0.7 * alphas.index(alpha) / max(1, len(alphas) - 1)
-                style.update(color=f"C{forms.index(form)}", alpha=shade)
+                style.update(color=f"C{forms.index(form)}", alpha=shade,
+                             marker=ndf_markers[ndfs.index(ndf) % len(ndf_markers)])
                 style["label"] = None if (k, form) in labelled else f"{form} (darker: alpha up to {alphas[-1]:g})"
                 labelled.add((k, form))
             else:
@@ -77,8 +80,11 @@ def main(out):
         a.set_ylabel("compensated - traced", fontsize=8)
         if k == n - 1:
             a.set_xlabel("theta_i (degrees)")
+        if len(forms) > 1 and len(ndfs) > 1:
+            for i, ndf in enumerate(ndfs):  # the NDFs by marker, beside the forms by colour
+                a.plot([], [], ls="none", color="k", marker=ndf_markers[i % len(ndf_markers)], ms=3, label=ndf)
         if k == 0 or len(forms) > 1:
-            a.legend(fontsize=6, ncol=2 if len(forms) == 1 else 1, loc="lower left")
+            a.legend(fontsize=6, ncol=2 if len(forms) == 1 or len(ndfs) > 1 else 1, loc="lower left")
     fig.tight_layout()
     save(fig, os.path.join(out, "furnace.png"))
 
