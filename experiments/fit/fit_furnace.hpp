@@ -2,7 +2,7 @@
 // the total albedo the Smith microsurface's random walk scatters (every order) beside the albedo a renderer gets from
 // the tables, E looked up, single scattering (E_F, E_R, E_T) exact:
 //   mirror facets: E + Kulla and Conty's lobe (form "kulla-conty");
-//   each conductor, three published forms:
+//   each conductor, three published forms and the walk's own orders:
 //     "kulla-conty": E_F + F_ms times their lobe (Kulla and Conty 2017, compensation.hpp);
 //     "turquin":     E_F (1 + F0 (1 - E) / E), F0 = F(1) (Turquin 2019);
 //     "fdez-aguera": E_F / (1 - F_avg (1 - E)) (Fdez-Aguera 2019, fit::fdez_aguera_albedo; F_avg the exact
