@@ -52,6 +52,9 @@ TEST_CASE("scattering orders: bad tallies are refused", "[orders]") {
     walk::AlbedoTally coloured;
     coloured.add({Vec3{0.0, 0.0, 1.0}, 0.5, 2, 0, true, false});
     CHECK_THROWS_WITH(fit::scattering_orders(coloured), Catch::Contains("mirror facets"));
+    walk::AlbedoTally absorbed = tally_of({1, 2});
+    absorbed.add({Vec3{0.0, 0.0, 1.0}, 0.0, 3, 0, false, false});
+    CHECK_THROWS_WITH(fit::scattering_orders(absorbed), Catch::Contains("did not leave"));
     walk::AlbedoTally capped = tally_of({1, 2});
     capped.add({Vec3{0.0, 0.0, 1.0}, 0.0, 1'000'000, 0, false, true});
     CHECK_THROWS_WITH(fit::scattering_orders(capped), Catch::Contains("capped"));

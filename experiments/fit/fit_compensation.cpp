@@ -150,8 +150,7 @@ FamilyTables make_tables(const FitFamily& f, G2Form form, const FitScene::Compen
 constexpr std::uint64_t order_cells = std::uint64_t{1} << 40;
 
 // The walk's scattering orders of mirror facets over the order grid (fit/scattering_orders.hpp) for one family, from
-// order_walks walks a node. Node k of family n draws from cells order_cells + n * 2^32 + k; the first cosine, mu = 0,
-// from grazing_mu (a walk cannot start horizontal).
+// order_walks walks a node. Node k of family n draws from cells order_cells + n * 2^32 + k.
 std::shared_ptr<const fit::OrderTables> make_orders(const FitFamily& f, std::size_t n, const FitScene::Compensation& c,
                                                     const NdfRegistry& registry, std::uint64_t seed, unsigned threads) {
     std::fprintf(stderr, "fit: scattering orders: %s, %zu alphas x %lld cosines, %lld walks a node\n",
@@ -168,8 +167,7 @@ std::shared_ptr<const fit::OrderTables> make_orders(const FitFamily& f, std::siz
     const fit::OrderCell trace = [&](std::size_t node, double, double mu) {
         const AnySurface& s = *surfaces[node / static_cast<std::size_t>(grid.n_x)];
         walk::CellRequest r;
-        const double m = std::max(mu, fit::grazing_mu);
-        r.wi = {std::sqrt((1.0 - m) * (1.0 + m)), 0.0, m};
+        r.wi = {std::sqrt((1.0 - mu) * (1.0 + mu)), 0.0, mu};
         r.seed = seed;
         r.cell = first + node;
         r.walks = c.order_walks;

@@ -14,7 +14,7 @@ OrderEstimate scattering_orders(const walk::AlbedoTally& mirror) {
             static_cast<double>(mirror.capped));
     // n_k: the walks leaving after k hits (bins 1, 2, 3, 4+), each of weight 1.
     double n[walk::order_bins];
-    double first_three = 0.0;  // every walk's hits up to its third
+    double first_three = 0.0, escaped = 0.0;  // every walk's hits up to its third; the walks that left
     for (int o = 0; o < walk::order_bins; ++o) {
         walk::Moments m;
         for (int h = 0; h < 2; ++h)
@@ -22,8 +22,11 @@ OrderEstimate scattering_orders(const walk::AlbedoTally& mirror) {
         if (m.sum != m.sum2)
             throw input_error("scattering orders: a walk left with a weight other than 1 (not mirror facets)");
         n[o] = m.sum;
+        escaped += m.sum;
         first_three += std::min(o + 1, 3) * m.sum;
     }
+    if (escaped != static_cast<double>(mirror.walks))
+        throw input_error("scattering orders: a walk did not leave (not mirror facets)");
     OrderEstimate e;
     const double multiple = n[1] + n[2] + n[3];
     e.multiple = static_cast<std::int64_t>(multiple);
@@ -67,7 +70,8 @@ OrderTables tabulate_orders(const AlbedoGrid& grid, const OrderCell& trace, unsi
         [&](std::uint64_t k) {
             const std::size_t i = k / nx;
             const int j = static_cast<int>(k % nx);
-            const OrderEstimate e = scattering_orders(trace(k, grid.alphas[i], grid.mu(i, j)));
+            const double mu = std::max(grid.mu(i, j), grazing_mu);  // a walk cannot start horizontal
+            const OrderEstimate e = scattering_orders(trace(k, grid.alphas[i], mu));
             t.q2.values[k] = e.orders.q2;
             t.q3.values[k] = e.orders.q3;
             t.p.values[k] = e.orders.p;

@@ -40,8 +40,8 @@ struct ScatteringOrders {
 
 // The orders of one cell of mirror-facet walks (walk/trace.hpp, walk::Mirror; every walk leaves with weight 1), with
 // the standard errors of q_2 and q_3 (multinomial, over the walks that hit twice or more). Where none hit twice (alpha
-// -> 0 at normal incidence, 1 - E ~ 0), all of it is order 2. input_error for a tally of no walks, weights other than
-// 1 (not mirror facets) or capped walks.
+// -> 0 at normal incidence, 1 - E ~ 0), all of it is order 2. input_error for a tally of no walks, capped walks, or
+// walks that did not all leave with weight 1 (not mirror facets).
 struct OrderEstimate {
     ScatteringOrders orders;
     double q2_stderr = 0.0, q3_stderr = 0.0;
@@ -62,8 +62,9 @@ struct OrderTables {
 };
 
 // The tables on `grid` from trace(node, alpha, mu), a cell of mirror-facet walks from mu at alpha, node = i n_x + j
-// the node's index (for its random stream); the nodes run on `threads` threads (0: all cores), each node's walks in
-// the thread that runs it.
+// the node's index (for its random stream); a node at mu < grazing_mu (albedo_grid.hpp) is traced from grazing_mu, as
+// a walk cannot start horizontal. The nodes run on `threads` threads (0: all cores), each node's walks in the thread
+// that runs it.
 using OrderCell = std::function<walk::AlbedoTally(std::size_t node, double alpha, double mu)>;
 OrderTables tabulate_orders(const AlbedoGrid& grid, const OrderCell& trace, unsigned threads = 0);
 
