@@ -1,7 +1,8 @@
 // The renderer formats of a compensation table (fit/compensation_formats.hpp): the C header compiled as C and run, the
 // GLSL and HLSL through glslangValidator and, rewritten into C where they differ from it, run; every lookup against
 // AlbedoTable::lookup and lookup_missing. The 16-bit PNG read back with libpng, its axes parsed with nlohmann-json; bad
-// input refused, naming the item, nothing left behind.
+// input refused, naming the item, nothing left behind. The scattering orders' tables the same way, their lookups and
+// A_ms against OrderTables::lookup and multiple_scattering_albedo.
 #include <png.h>
 
 #include <algorithm>
@@ -19,9 +20,11 @@
 #include <string>
 #include <vector>
 
+#include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
 #include "smithlab/fit/albedo_grid.hpp"
 #include "smithlab/fit/compensation_formats.hpp"
+#include "smithlab/fit/scattering_orders.hpp"
 
 using namespace smithlab;
 using namespace smithlab::fit;
@@ -60,7 +63,8 @@ std::filesystem::path scratch_dir(const std::string& name) {
     return dir;
 }
 
-std::string text_of(void (*write)(std::ostream&, const CompensationExport&), const CompensationExport& e) {
+template <class Export>
+std::string text_of(void (*write)(std::ostream&, const Export&), const Export& e) {
     std::ostringstream s;
     write(s, e);
     return s.str();
@@ -95,32 +99,43 @@ std::vector<Point> points(const AlbedoTable& t) {
     return p;
 }
 
-// A C program that includes `file` and prints NAME_E at every point (and NAME_E_avg and NAME_missing when with_avg),
-// one line each.
-std::string lookup_program(const std::string& file, const std::string& id, const std::vector<Point>& p, bool with_avg) {
+// The start of a C program that includes `file` (a header twice: its guard) and holds the points as pts[k][0] (alpha)
+// and pts[k][1] (mu).
+std::string program_head(const std::string& file, const std::vector<Point>& p) {
     std::string s = "#include <math.h>\n#include <stdio.h>\n#include \"" + file + "\"\n";
     if (file.ends_with(".h")) s += "#include \"" + file + "\"\n";  // twice: the guard
     s += "static const float pts[" + std::to_string(p.size()) + "][2] = {\n";
     for (const Point& q : p) s += "    {" + c_float(q.alpha) + ", " + c_float(q.mu) + "},\n";
-    s += "};\nint main(void) {\n    unsigned k;\n    for (k = 0; k < sizeof pts / sizeof pts[0]; ++k)\n"
-         "        printf(\"%.9g %.9g %.9g\\n\", " +
+    return s + "};\n";
+}
+
+// A C program that includes `file` and prints NAME_E at every point (and NAME_E_avg and NAME_missing when with_avg),
+// one line each.
+std::string lookup_program(const std::string& file, const std::string& id, const std::vector<Point>& p, bool with_avg) {
+    return program_head(file, p) +
+        "int main(void) {\n    unsigned k;\n    for (k = 0; k < sizeof pts / sizeof pts[0]; ++k)\n"
+        "        printf(\"%.9g %.9g %.9g\\n\", " +
         id + "_E(pts[k][0], pts[k][1]), " +
         (with_avg ? id + "_E_avg(pts[k][0]), " + id + "_missing(pts[k][0])" : std::string("0.0, 0.0")) +
         ");\n    return 0;\n}\n";
-    return s;
 }
 
-// Compiles `source` (in dir, which holds the included file) as C99 with warnings as errors, runs it, and checks each
-// lookup against the table's in double, at the same float inputs, mu clamped: E within float rounding (1e-6), 1 - E_avg
-// within 1e-5 of lookup_missing relative to it, E_avg within 1e-6 of 1 - lookup_missing.
-void check_lookups(const std::filesystem::path& dir, const std::string& source, const AlbedoTable& t,
-                   const std::vector<double>& missing, const std::vector<Point>& p) {
+// Compiles `source` (in dir, which holds the included file) as C99 with warnings as errors and runs it: its output.
+std::ifstream program_output(const std::filesystem::path& dir, const std::string& source) {
     std::ofstream(dir / "main.c") << source;
     const std::string exe = (dir / "lookup").string();
     REQUIRE(run("cc -std=c99 -Wall -Wextra -Wpedantic -Werror -o " + exe + " " + (dir / "main.c").string() + " -lm",
                 dir / "cc.log") == 0);
     REQUIRE(run(exe, dir / "out.txt") == 0);
-    std::ifstream in(dir / "out.txt");
+    return std::ifstream(dir / "out.txt");
+}
+
+// Runs the program `source` (program_output) and checks each lookup against the table's in double, at the same float
+// inputs, mu clamped: E within float rounding (1e-6), 1 - E_avg within 1e-5 of lookup_missing relative to it, E_avg
+// within 1e-6 of 1 - lookup_missing.
+void check_lookups(const std::filesystem::path& dir, const std::string& source, const AlbedoTable& t,
+                   const std::vector<double>& missing, const std::vector<Point>& p) {
+    std::ifstream in = program_output(dir, source);
     for (const Point& q : p) {
         double e = 0.0, avg = 0.0, m = 0.0;
         REQUIRE(in >> e >> avg >> m);
@@ -146,26 +161,27 @@ std::string glsl_as_c(const std::string& glsl) {
 
 bool has_glslang() { return std::system("command -v glslangValidator > /dev/null 2>&1") == 0; }
 
-// The GLSL in a fragment shader (#version 330 core) that calls the lookups, through the reference compiler.
-void check_glsl_compiles(const std::filesystem::path& dir, const std::string& glsl, const std::string& id,
-                         bool with_avg) {
+// The E lookups called in a shader: a float of alpha and mu.
+std::string E_calls(const std::string& id, bool with_avg) {
+    return id + "_E(alpha, mu)" + (with_avg ? " + " + id + "_E_avg(alpha) + " + id + "_missing(alpha)" : "");
+}
+
+// The GLSL in a fragment shader (#version 330 core) whose colour is `calls`, a float of the uniforms alpha and mu,
+// through the reference compiler.
+void check_glsl_compiles(const std::filesystem::path& dir, const std::string& glsl, const std::string& calls) {
     std::ofstream(dir / "table.frag") << "#version 330 core\n"
                                       << glsl << "\nuniform float alpha;\nuniform float mu;\nout vec4 color;\n"
-                                      << "void main() {\n    color = vec4(" << id << "_E(alpha, mu), "
-                                      << (with_avg ? id + "_E_avg(alpha), " + id + "_missing(alpha)"
-                                                   : std::string("0.0, 0.0"))
-                                      << ", 1.0);\n}\n";
+                                      << "void main() {\n    float v = " << calls
+                                      << ";\n    color = vec4(v, v, v, 1.0);\n}\n";
     CHECK(run("glslangValidator " + (dir / "table.frag").string(), dir / "glsl.log") == 0);
 }
 
-// The HLSL with a pixel shader's entry point, through glslangValidator's HLSL front end (-D; it compiles to SPIR-V).
-void check_hlsl_compiles(const std::filesystem::path& dir, const std::string& hlsl, const std::string& id,
-                         bool with_avg) {
+// The HLSL with a pixel shader's entry point whose colour is `calls`, of alpha and mu from the position, through
+// glslangValidator's HLSL front end (-D; it compiles to SPIR-V).
+void check_hlsl_compiles(const std::filesystem::path& dir, const std::string& hlsl, const std::string& calls) {
     std::ofstream(dir / "table.hlsl") << hlsl << "\nfloat4 main(float4 pos : SV_Position) : SV_Target {\n"
-                                      << "    return float4(" << id << "_E(pos.x, pos.y), "
-                                      << (with_avg ? id + "_E_avg(pos.x), " + id + "_missing(pos.x)"
-                                                   : std::string("0.0f, 0.0f"))
-                                      << ", 1.0f);\n}\n";
+                                      << "    float alpha = pos.x;\n    float mu = pos.y;\n    float v = " << calls
+                                      << ";\n    return float4(v, v, v, 1.0f);\n}\n";
     CHECK(run("glslangValidator -D -V -e main -S frag -o " + (dir / "table.spv").string() + " " +
                   (dir / "table.hlsl").string(),
               dir / "hlsl.log") == 0);
@@ -270,8 +286,8 @@ TEST_CASE("compensation formats: GLSL and HLSL compile with glslangValidator and
     const std::string glsl = text_of(write_glsl, e), hlsl = text_of(write_hlsl, e);
     CHECK(glsl.find("\n#version") == std::string::npos);  // the includer's
     const std::filesystem::path dir = scratch_dir("shaders");
-    check_glsl_compiles(dir, glsl, "smithlab_ggx_hc", true);
-    check_hlsl_compiles(dir, hlsl, "smithlab_ggx_hc", true);
+    check_glsl_compiles(dir, glsl, E_calls("smithlab_ggx_hc", true));
+    check_hlsl_compiles(dir, hlsl, E_calls("smithlab_ggx_hc", true));
     const std::vector<Point> p = points(t);
     SECTION("GLSL, its constructors as C casts") {
         std::ofstream(dir / "table_glsl.c") << glsl_as_c(glsl);
@@ -334,8 +350,8 @@ TEST_CASE("compensation formats: without E_avg, and with labels that are not ide
     std::ofstream(dir / "table.h") << h;
     CHECK(run("cc -std=c99 -Wall -Wextra -Wpedantic -Werror -fsyntax-only -x c " + (dir / "table.h").string(),
               dir / "syntax.log") == 0);
-    check_glsl_compiles(dir, glsl, id, false);
-    check_hlsl_compiles(dir, hlsl, id, false);
+    check_glsl_compiles(dir, glsl, E_calls(id, false));
+    check_hlsl_compiles(dir, hlsl, E_calls(id, false));
     const std::vector<Point> p = points(t);
     check_lookups(dir, lookup_program("table.h", id, p, false), t, {}, p);
     std::filesystem::remove_all(dir);
@@ -361,8 +377,8 @@ TEST_CASE("compensation formats: a table of ln E with a node cluster, in every f
         CHECK(s->find("of ln E, then exp") != std::string::npos);
     }
     const std::filesystem::path dir = scratch_dir("log");
-    check_glsl_compiles(dir, glsl, id, false);
-    check_hlsl_compiles(dir, hlsl, id, false);
+    check_glsl_compiles(dir, glsl, E_calls(id, false));
+    check_hlsl_compiles(dir, hlsl, E_calls(id, false));
     // Points on both sides of the cluster and in it, where x changes fastest.
     std::vector<Point> p = points(t);
     for (const double mu : {0.40, 0.415, 0.419, 0.42, 0.421, 0.43, 0.5})
@@ -555,4 +571,261 @@ TEST_CASE("compensation formats: bad input is refused, naming the item, and leav
         CHECK(std::filesystem::is_empty(png));
     }
     std::filesystem::remove_all(dir);
+}
+
+namespace {
+
+// Orders by hand on small_table's grid, smooth in both axes: q_2 + q_3 < 1, p in [0.3, 1] (1 at x = 1, where the walk
+// puts it when no walk hits a fourth time), and q_1 (from 0 at x = 1) for the separable G2.
+OrderTables small_orders(bool separable) {
+    const AlbedoGrid g = small_table().grid;
+    OrderTables o;
+    for (AlbedoTable* t : {&o.q2, &o.q3, &o.p}) t->grid = g;
+    if (separable) o.q1.grid = g;
+    for (const double a : g.alphas)
+        for (int j = 0; j < g.n_x; ++j) {
+            const double x = g.x(j);
+            o.q2.values.push_back(0.85 - 0.4 * std::sqrt(a) * x);
+            o.q3.values.push_back(0.1 + 0.15 * a * x);
+            o.p.values.push_back(0.3 + 0.7 * x * x);
+            if (separable) o.q1.values.push_back(0.2 * a * (1.0 - x));
+        }
+    return o;
+}
+
+OrderExport order_export_of(const OrderTables& o) {
+    return {"ggx", o.q1.values.empty() ? "height-correlated" : "separable", &o, 2.1e-3};
+}
+
+// The mirror facets' albedo E and the Fresnel average F_avg at which NAME_ms is asked, each at every point: E from 0
+// to 1 (where nothing is missed), F_avg from 0 to 1 (the white furnace, where A_ms = 1 - E).
+const std::vector<std::pair<float, float>> E_and_F = {{0.35f, 0.0f}, {0.35f, 0.3f}, {0.6f, 0.8f}, {0.9f, 1.0f},
+                                                      {0.0f, 0.95f}, {1.0f, 0.5f},  {0.2f, 1.0f}};
+
+// A C program that includes `file` and prints, at every point, NAME_q2, NAME_q3, NAME_p, NAME_q1 (0 without one) and
+// NAME_ms at each of E_and_F, one line each.
+std::string order_program(const std::string& file, const std::string& id, const std::vector<Point>& p, bool q1) {
+    const std::string at = "(pts[k][0], pts[k][1]";
+    std::string s = program_head(file, p) +
+        "int main(void) {\n    unsigned k;\n    for (k = 0; k < sizeof pts / sizeof pts[0]; ++k) {\n"
+        "        printf(\"%.9g %.9g %.9g %.9g\", " +
+        id + "_q2" + at + "), " + id + "_q3" + at + "), " + id + "_p" + at + "), " +
+        (q1 ? id + "_q1" + at + ")" : std::string("0.0")) + ");\n";
+    for (const auto& [E, F] : E_and_F)
+        s += "        printf(\" %.9g\", " + id + "_ms" + at + ", " + c_float(E) + ", " + c_float(F) + "));\n";
+    return s + "        printf(\"\\n\");\n    }\n    return 0;\n}\n";
+}
+
+// Runs the program `source` (program_output) and checks each lookup against OrderTables::lookup in double and NAME_ms
+// against multiple_scattering_albedo of it, at the same float inputs, mu clamped: within float rounding (1e-6).
+void check_order_lookups(const std::filesystem::path& dir, const std::string& source, const OrderTables& o,
+                         const std::vector<Point>& p) {
+    std::ifstream in = program_output(dir, source);
+    for (const Point& q : p) {
+        double q2 = 0.0, q3 = 0.0, pk = 0.0, q1 = 0.0;
+        REQUIRE(in >> q2 >> q3 >> pk >> q1);
+        const ScatteringOrders want = o.lookup(q.alpha, std::clamp(static_cast<double>(q.mu), 0.0, 1.0));
+        INFO("alpha " << q.alpha << " mu " << q.mu);
+        CHECK(std::abs(q2 - want.q2) < 1e-6);
+        CHECK(std::abs(q3 - want.q3) < 1e-6);
+        CHECK(std::abs(pk - want.p) < 1e-6);
+        CHECK(std::abs(q1 - want.q1) < 1e-6);
+        for (const auto& [E, F] : E_and_F) {
+            double ms = 0.0;
+            REQUIRE(in >> ms);
+            INFO("E " << E << " F_avg " << F);
+            CHECK(std::abs(ms - multiple_scattering_albedo(E, want, F)) < 1e-6);
+        }
+    }
+}
+
+// Every lookup of the orders called in a shader: a float of alpha and mu.
+std::string order_calls(const std::string& id, bool q1) {
+    return id + "_q2(alpha, mu) + " + id + "_q3(alpha, mu) + " + id + "_p(alpha, mu) + " +
+        (q1 ? id + "_q1(alpha, mu) + " : "") + id + "_ms(alpha, mu, 0.5, 0.8)";
+}
+
+}  // namespace
+
+TEST_CASE("compensation formats: the orders' identifiers", "[compensation][formats][orders]") {
+    const OrderTables o = small_orders(false);
+    OrderExport e = order_export_of(o);
+    CHECK(order_identifier(e) == "smithlab_ggx_hc_orders");
+    e = {"gtr(gamma=1.5)", "separable", &o, 0.0};
+    CHECK(order_identifier(e) == "smithlab_gtr_gamma_1_5_sep_orders");
+    e.g2 = "uncorrelated";
+    CHECK_THROWS_AS(order_identifier(e), input_error);
+    e = order_export_of(o);
+    e.family = "()";
+    CHECK_THROWS_AS(order_identifier(e), input_error);
+}
+
+TEST_CASE(
+    "compensation formats: the orders' C header compiles and looks up as OrderTables::lookup and "
+    "multiple_scattering_albedo",
+    "[compensation][formats][orders]") {
+    for (const bool separable : {false, true}) {
+        const OrderTables o = small_orders(separable);
+        const OrderExport e = order_export_of(o);
+        const std::string id = order_identifier(e), h = text_of(write_orders_c_header, e);
+        INFO(id);
+        // The comment's lines joined: its phrases may break across them.
+        const std::string joined = std::regex_replace(h, std::regex("\n \\*   "), " ");
+        CHECK(h.find("#ifndef " + std::string(separable ? "SMITHLAB_GGX_SEP_ORDERS_H" : "SMITHLAB_GGX_HC_ORDERS_H")) !=
+              std::string::npos);
+        CHECK(joined.find("Kulla-Conty-like conductor compensation") != std::string::npos);
+        CHECK(joined.find("single scattering E_F(mu) (with the facets' Fresnel F) exact") != std::string::npos);
+        CHECK(joined.find("A_ms(mu) = (1 - E(mu)) (q_1 F_avg + (1 - q_1) (q_2 F_avg^2 + q_3 F_avg^3 + (1 - q_2 - q_3) "
+                          "F_avg^4 p / (1 - F_avg (1 - p)))) = " +
+                          id + "_ms(alpha, mu, E, F_avg), smithlab's multiple_scattering_albedo") != std::string::npos);
+        CHECK(joined.find("the worst standard error of q_2 and q_3 is 0.0021") != std::string::npos);
+        CHECK(joined.find("Grid: n_alpha x n_x = 5 x 9, alpha in [0.05, 1]") != std::string::npos);
+        CHECK(joined.find(separable ? "separable Smith G2" : "height-correlated Smith G2") != std::string::npos);
+        CHECK(joined.find(separable ? "smithlab_ggx_sep_E(alpha, mu)" : "smithlab_ggx_hc_E(alpha, mu)") !=
+              std::string::npos);
+        CHECK(joined.find("below the first alpha: the first row") != std::string::npos);
+        CHECK(h.find(id + "_p_table[45]") != std::string::npos);
+        CHECK((h.find("_q1") != std::string::npos) == separable);
+        CHECK((joined.find("q_1 = 0 (no q_1 table)") != std::string::npos) == !separable);
+        CHECK((joined.find("q_1 = (E_hc - E_sep) / (1 - E_sep)") != std::string::npos) == separable);
+        const std::filesystem::path dir = scratch_dir("orders_c");
+        std::ofstream(dir / "orders.h") << h;
+        CHECK(run("cc -std=c99 -Wall -Wextra -Wpedantic -Werror -fsyntax-only -x c " + (dir / "orders.h").string(),
+                  dir / "syntax.log") == 0);
+        CHECK(run("c++ -std=c++17 -Wall -Wextra -Werror -fsyntax-only -x c++ " + (dir / "orders.h").string(),
+                  dir / "syntax_cxx.log") == 0);
+        const std::vector<Point> p = points(o.q2);
+        check_order_lookups(dir, order_program("orders.h", id, p, separable), o, p);
+        std::filesystem::remove_all(dir);
+    }
+}
+
+TEST_CASE("compensation formats: the orders' GLSL and HLSL compile with glslangValidator and look up as the library",
+          "[compensation][formats][orders]") {
+    REQUIRE(has_glslang());
+    for (const bool separable : {false, true}) {
+        const OrderTables o = small_orders(separable);
+        const OrderExport e = order_export_of(o);
+        const std::string id = order_identifier(e);
+        const std::string glsl = text_of(write_orders_glsl, e), hlsl = text_of(write_orders_hlsl, e);
+        INFO(id);
+        CHECK(glsl.find("\n#version") == std::string::npos);
+        const std::filesystem::path dir = scratch_dir("orders_shaders");
+        check_glsl_compiles(dir, glsl, order_calls(id, separable));
+        check_hlsl_compiles(dir, hlsl, order_calls(id, separable));
+        const std::vector<Point> p = points(o.q2);
+        std::ofstream(dir / "orders_glsl.c") << glsl_as_c(glsl);
+        check_order_lookups(dir, order_program("orders_glsl.c", id, p, separable), o, p);
+        std::ofstream(dir / "orders_hlsl.c") << hlsl;
+        check_order_lookups(dir, order_program("orders_hlsl.c", id, p, separable), o, p);
+        std::filesystem::remove_all(dir);
+    }
+}
+
+TEST_CASE("compensation formats: the orders' JSON holds the tables and their axes", "[compensation][formats][orders]") {
+    for (const bool separable : {false, true}) {
+        const OrderTables o = small_orders(separable);
+        const OrderExport e = order_export_of(o);
+        const nlohmann::json j = nlohmann::json::parse(text_of(write_orders_axes_json, e));
+        CHECK(j.at("identifier").get<std::string>() == order_identifier(e));
+        CHECK(j.at("family").get<std::string>() == "ggx");
+        CHECK(j.at("g2").get<std::string>() == e.g2);
+        CHECK(j.at("tables").at("q2").get<std::vector<double>>() == o.q2.values);
+        CHECK(j.at("tables").at("q3").get<std::vector<double>>() == o.q3.values);
+        CHECK(j.at("tables").at("p").get<std::vector<double>>() == o.p.values);
+        CHECK(j.at("tables").contains("q1") == separable);
+        if (separable) CHECK(j.at("tables").at("q1").get<std::vector<double>>() == o.q1.values);
+        CHECK(j.at("q1_rule").get<std::string>().starts_with(separable ? "q_1 = (E_hc" : "q_1 = 0"));
+        CHECK(j.at("multiple_scattering_albedo").get<std::string>().find("F_avg^4 p / (1 - F_avg (1 - p))") !=
+              std::string::npos);
+        CHECK(j.at("alphas").get<std::vector<double>>() == o.q2.grid.alphas);
+        CHECK(j.at("warp_scales").get<std::vector<double>>() == o.q2.grid.scales);
+        CHECK(j.at("n_x").get<int>() == 9);
+        CHECK(j.at("lookup").get<std::string>().find("bilinear in (sqrt(alpha), x)") != std::string::npos);
+        CHECK(j.at("below_first_alpha").get<std::string>().find("first row") != std::string::npos);
+        CHECK(j.at("max_standard_error_q2_q3").get<double>() == 2.1e-3);
+    }
+}
+
+TEST_CASE("compensation formats: bad orders are refused, naming the item, and nothing is written",
+          "[compensation][formats][orders]") {
+    OrderTables o = small_orders(true);
+    OrderExport e = order_export_of(o);
+    // Each writer throws input_error with `item` in its message, and writes nothing.
+    auto refused = [&](const std::string& item) {
+        for (auto write : {write_orders_c_header, write_orders_glsl, write_orders_hlsl, write_orders_axes_json}) {
+            std::ostringstream sink;
+            CHECK_THROWS_AS(write(sink, e), input_error);
+            CHECK_THROWS_WITH(write(sink, e), Catch::Contains(item));
+            CHECK(sink.str().empty());
+        }
+    };
+    CHECK_NOTHROW(text_of(write_orders_c_header, e));
+    SECTION("no tables") {
+        e.orders = nullptr;
+        refused("no tables");
+    }
+    SECTION("q_1 and the G2 at odds") {
+        e.g2 = "height-correlated";
+        refused("a q_1 table with the height-correlated G2");
+        o = small_orders(false);
+        e.g2 = "separable";
+        refused("no q_1 table with the separable G2");
+    }
+    SECTION("mismatched grids") {
+        o.q3.grid.alphas[2] = 0.31;
+        refused("q_3's grid is not q_2's");
+        o = small_orders(true);
+        o.p.grid.n_x = 10;
+        refused("p's grid is not q_2's");
+        o = small_orders(true);
+        o.q1.grid.scales[0] *= 1.001;
+        refused("q_1's grid is not q_2's");
+        o = small_orders(true);
+        o.q3.grid.cluster = {0.42, 0.02, 0.3};
+        refused("q_3's grid is not q_2's");
+    }
+    SECTION("a grid the lookups cannot follow, tables of the wrong size or stored as ln") {
+        for (AlbedoTable* t : {&o.q2, &o.q3, &o.p, &o.q1}) std::swap(t->grid.alphas[1], t->grid.alphas[2]);
+        refused("alphas must ascend");
+        o = small_orders(true);
+        o.q2.values.pop_back();
+        refused("q_2 has 44 values for 5 alphas x 9 cosines");
+        o = small_orders(true);
+        o.p.stored = Stored::log;
+        refused("p is stored as ln");
+    }
+    SECTION("non-finite values") {
+        o.q2.values[2 * 9 + 4] = std::nan("");
+        refused("q_2 at alpha 0.3, x_4 = 0.5 is not a finite float");
+        o = small_orders(true);
+        o.q1.values[3] = HUGE_VAL;
+        refused("q_1 at alpha 0.05, x_3");
+    }
+    SECTION("p outside (0, 1], q outside [0, 1]") {
+        for (const double bad : {0.0, -0.1, 1.0 + 1e-9, 1e-40}) {
+            o = small_orders(true);
+            o.p.values[10] = bad;
+            INFO("p " << bad);
+            refused("p at alpha 0.12, x_1 = 0.125 is " + format_g17(bad) + ", outside (0, 1]");
+        }
+        for (const auto& [name, t] : {std::pair{"q_2", &o.q2}, {"q_3", &o.q3}, {"q_1", &o.q1}})
+            for (const double bad : {-1e-9, 1.5}) {
+                o = small_orders(true);
+                t->values[7] = bad;
+                INFO(name << " " << bad);
+                refused(std::string(name) + " at alpha 0.05, x_7 = 0.875 is " + format_g17(bad) + ", outside [0, 1]");
+            }
+        o = small_orders(true);
+        o.p.values[10] = 1.0;  // no walk hits a fourth time: allowed
+        o.q2.values[0] = 0.0;
+        o.q1.values[0] = 1.0;
+        CHECK_NOTHROW(text_of(write_orders_c_header, e));
+    }
+    SECTION("the worst standard error") {
+        e.max_stderr = std::nan("");
+        refused("the worst standard error");
+        e.max_stderr = -1e-3;
+        refused("the worst standard error");
+    }
 }

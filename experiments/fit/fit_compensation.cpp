@@ -311,11 +311,17 @@ void write_errors(const fs::path& dir, const std::vector<FamilyTables>& all) {
     output::write_file(dir / "furnace_tables.csv", furnace.str());
 }
 
-// Each table in every renderer format, into dir/compensation/.
+// Each table in every renderer format, into dir/compensation/, and each family and G2's scattering orders.
 void write_formats(const fs::path& dir, const std::vector<FamilyTables>& all) {
     const fs::path sub = dir / "compensation";
     fs::create_directories(sub);
-    for (const FamilyTables& t : all)
+    const auto text = [&]<class Export>(const std::string& name, const Export& e,
+                                        void (*write)(std::ostream&, const Export&)) {
+        std::ostringstream s;
+        write(s, e);
+        output::write_file(sub / name, s.str());
+    };
+    for (const FamilyTables& t : all) {
         for_each_table(t, [&](const MeasuredTable& m) {
             const fit::CompensationExport e{family_label(*t.family),
                                             g2_name(t.g2),
@@ -326,17 +332,23 @@ void write_formats(const fs::path& dir, const std::vector<FamilyTables>& all) {
                                             m.below.max,
                                             m.table.grazing.max};
             const std::string id = fit::compensation_identifier(e);
-            auto text = [&](const char* ext, void (*write)(std::ostream&, const fit::CompensationExport&)) {
-                std::ostringstream s;
-                write(s, e);
-                output::write_file(sub / (id + ext), s.str());
-            };
-            text(".h", fit::write_c_header);
-            text(".glsl", fit::write_glsl);
-            text(".hlsl", fit::write_hlsl);
-            text(".json", fit::write_axes_json);
+            text(id + ".h", e, fit::write_c_header);
+            text(id + ".glsl", e, fit::write_glsl);
+            text(id + ".hlsl", e, fit::write_hlsl);
+            text(id + ".json", e, fit::write_axes_json);
             fit::write_png16(sub / (id + ".png"), e);
         });
+        if (!t.orders) continue;
+        double worst = 0.0;
+        for (const std::vector<double>* v : {&t.orders->q2_stderr, &t.orders->q3_stderr})
+            for (const double s : *v) worst = std::max(worst, s);
+        const fit::OrderExport o{family_label(*t.family), g2_name(t.g2), t.orders.get(), worst};
+        const std::string id = fit::order_identifier(o);
+        text(id + ".h", o, fit::write_orders_c_header);
+        text(id + ".glsl", o, fit::write_orders_glsl);
+        text(id + ".hlsl", o, fit::write_orders_hlsl);
+        text(id + ".json", o, fit::write_orders_axes_json);
+    }
 }
 
 void write_furnace(const fs::path& dir, const std::vector<FurnaceRow>& rows) {

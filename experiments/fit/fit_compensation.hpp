@@ -6,7 +6,8 @@
 // compensation_dielectric.csv, compensation_orders.csv, compensation_error.csv (each table's worst interpolation error,
 // below-grid error and furnace error, and where), furnace_tables.csv (the furnace by the tables per alpha of the check
 // grid), furnace.csv (fit_furnace.hpp: against the walk), and compensation/ (fit/compensation_formats.hpp: a C header,
-// GLSL, HLSL, a 16-bit PNG and its axes per table).
+// GLSL, HLSL, a 16-bit PNG and its axes per table; a C header, GLSL, HLSL and JSON of the scattering orders per family
+// and G2 form).
 #pragma once
 
 #include <filesystem>

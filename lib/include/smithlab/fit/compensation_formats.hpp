@@ -1,6 +1,7 @@
 // smithlab/fit/compensation_formats.hpp -- an energy-compensation table (fit/albedo_grid.hpp's AlbedoTable over
 // (alpha, warped cosine x), with 1 - E_avg over alpha) written out for renderers: a C header, GLSL, HLSL, and a
-// 16-bit grey PNG with its axes in JSON.
+// 16-bit grey PNG with its axes in JSON; and the scattering orders' tables of conductor compensation
+// (fit/scattering_orders.hpp) on such a grid: a C header, GLSL, HLSL and JSON.
 //
 // Every lookup written computes AlbedoTable::lookup's rule in float: x = sqrt((1 + c) mu / (mu + c)), c the warp's
 // scale at the asked alpha (with a node cluster's share, albedo_grid.hpp, where the grid has one), cell j =
@@ -74,5 +75,39 @@ void write_png16(const std::filesystem::path& path, const CompensationExport& e)
 // the warp's scales, n_x, the axis x (and its cluster), the lookup and outside rules, the 16-bit scale, one_minus_E_avg
 // and its lookup rule (when given), the measured errors.
 void write_axes_json(std::ostream& out, const CompensationExport& e);
+
+struct OrderTables;  // fit/scattering_orders.hpp (its walk headers are not needed here)
+
+// What is written of the scattering orders (fit/scattering_orders.hpp): the tables q_2, q_3, p and, for the
+// separable G2, q_1, with the labels and the worst standard error their comment gives.
+struct OrderExport {
+    std::string family;         // NDF family label, as CompensationExport's
+    std::string g2;             // "height-correlated" or "separable"
+    const OrderTables* orders;  // q_1 absent (no values) where the walk's G2 is the renderer's
+    double max_stderr;          // the worst standard error of q_2 and q_3 over the nodes, written in the comment
+};
+
+// compensation_identifier's prefix of the E table of the same family and G2, then "_orders": {"ggx",
+// "height-correlated"} -> smithlab_ggx_hc_orders. input_error as compensation_identifier's.
+std::string order_identifier(const OrderExport& e);
+
+// Each writer of the orders first checks the export (input_error naming the item): tables (orders not null), a q_1
+// table for the separable G2 and none for the height-correlated one, q_2, q_3, p and q_1 stored as values on one grid
+// (alphas, scales, n_x and node cluster alike) that the E table's checks accept, n_alpha x n_x values each that fit a
+// float, q_2, q_3 and q_1 in [0, 1], p in (0, 1] as a normal float, max_stderr finite and >= 0.
+//
+// The arrays NAME_sqrt_alpha and NAME_log_scale as the E table's, NAME_q2_table, NAME_q3_table, NAME_p_table and
+// (separable G2) NAME_q1_table[n_alpha * n_x]; the lookups NAME_q2(alpha, mu), NAME_q3, NAME_p and NAME_q1 by
+// AlbedoTable::lookup's rule in float, and NAME_ms(alpha, mu, E, F_avg) = multiple_scattering_albedo(E, orders at
+// (alpha, mu), F_avg) in float. The top comment states the formula, the NDF family, the G2, the grid and the worst
+// standard error. C99 (or C++), self-contained:
+void write_orders_c_header(std::ostream& out, const OrderExport& e);
+// GLSL 3.30, no #version line:
+void write_orders_glsl(std::ostream& out, const OrderExport& e);
+// HLSL:
+void write_orders_hlsl(std::ostream& out, const OrderExport& e);
+// The tables in JSON (row-major, as the arrays; no PNG: libpng's simplified API premultiplies 16-bit colour by the
+// alpha channel, which a fourth table would be) with their grid, lookup rules, formula and worst standard error.
+void write_orders_axes_json(std::ostream& out, const OrderExport& e);
 
 }  // namespace smithlab::fit
