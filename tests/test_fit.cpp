@@ -546,7 +546,16 @@ TEST_CASE("fit: [compensation] writes every table, its errors, its renderer form
                            "smithlab_ggx_sep_E_R_E_T_eta_1_5_inside"})
         for (const char* ext : {".h", ".glsl", ".hlsl", ".png", ".json"})
             CHECK(fs::exists(o / "compensation" / (std::string(id) + ext)));
-    CHECK_THAT(slurp(o / "report.md"), Contains("## Energy compensation") && Contains("| ggx | separable | E |"));
+    // The scattering orders per G2, with q_1's table for the separable one alone (their lookups against the
+    // library's: tests/test_compensation_formats.cpp).
+    for (const char* id : {"smithlab_ggx_hc_orders", "smithlab_ggx_sep_orders"})
+        for (const char* ext : {".h", ".glsl", ".hlsl", ".json"})
+            CHECK(fs::exists(o / "compensation" / (std::string(id) + ext)));
+    CHECK_THAT(slurp(o / "compensation" / "smithlab_ggx_sep_orders.h"), Contains("smithlab_ggx_sep_orders_q1_table"));
+    CHECK_THAT(slurp(o / "compensation" / "smithlab_ggx_hc_orders.h"), !Contains("_q1_table"));
+    CHECK_THAT(slurp(o / "report.md"),
+               Contains("## Energy compensation") && Contains("| ggx | separable | E |") &&
+                   Contains("Conductors (form walk-orders)") && Contains("| walk-orders |"));
     fs::remove_all(d);
 }
 
