@@ -191,8 +191,8 @@ std::shared_ptr<const fit::OrderTables> with_single_share(const fit::OrderTables
         const AnyNdf ndf = make_ndf(registry, f, g.alphas[i]);
         const Albedo hc(ndf, table_options(G2Form::height_correlated)), sep(ndf, table_options(G2Form::uncorrelated));
         for (int j = 0; j < g.n_x; ++j) {
-            const double mu = g.mu(i, j), missed = 1.0 - sep(mu);
-            t->q1.values.push_back(missed > 1e-12 ? std::clamp((hc(mu) - sep(mu)) / missed, 0.0, 1.0) : 0.0);
+            const double mu = g.mu(i, j), E_sep = sep(mu), missed = 1.0 - E_sep;
+            t->q1.values.push_back(missed > 1e-12 ? std::clamp((hc(mu) - E_sep) / missed, 0.0, 1.0) : 0.0);
         }
     }
     return t;
