@@ -532,14 +532,17 @@ double compensation_lobe(const AlbedoTable& E, const std::vector<double>& missin
     return (1.0 - E.lookup(alpha, mu_i)) * (1.0 - E.lookup(alpha, mu_o)) / (pi * m);
 }
 
-NodeCluster dielectric_cluster(double eta) {
+NodeCluster dielectric_cluster(double eta, double alpha_min) {
     require(eta > 0.0 && std::isfinite(eta), "eta", "finite and > 0", eta);
+    require(alpha_min > 0.0 && std::isfinite(alpha_min), "the grid's first alpha", "finite and > 0", alpha_min);
     if (eta >= 1.0) return {};
-    return {std::sqrt((1.0 - eta) * (1.0 + eta)), 0.02, 0.3};
+    // sin(theta_c) = eta: the kink's width in mu at alpha is ~ alpha eta.
+    return {std::sqrt((1.0 - eta) * (1.0 + eta)), 2.0 * alpha_min * eta, 0.35};
 }
 
 AlbedoGrid dielectric_grid(const AlbedoGrid& E, int n_x, double eta) {
-    AlbedoGrid g{E.alphas, E.scales, n_x, dielectric_cluster(eta)};
+    E.check();
+    AlbedoGrid g{E.alphas, E.scales, n_x, dielectric_cluster(eta, E.alphas.front())};
     g.check();
     return g;
 }

@@ -161,11 +161,12 @@ double average_albedo(const N& ndf, const AlbedoOptions& opts = {}) {
     return SingleScatteringAlbedo<N>(ndf, opts).average();
 }
 
-// The node cluster of a dielectric's tables (albedo_grid.hpp) at relative index eta (below over above): from inside
-// (eta < 1), b = 0.3 of the axis about the critical cosine mu_c = sqrt(1 - eta^2) at width w = 0.02, where E_T rises
-// like sqrt(mu - mu_c) smoothed over ~alpha; from outside, none. Measured in albedo_grid.hpp.
-NodeCluster dielectric_cluster(double eta);
-// A dielectric's grid: E's alphas and warp scales, n_x cosines a row, dielectric_cluster(eta).
+// The node cluster of a dielectric's tables (albedo_grid.hpp) at relative index eta (below over above) on a grid whose
+// first alpha is alpha_min: from inside (eta < 1), b = 0.35 of the axis about the critical cosine mu_c =
+// sqrt(1 - eta^2), where E_T rises like sqrt(mu - mu_c) smoothed over ~alpha sin(theta_c) = alpha eta, at width
+// w = 2 alpha_min eta, twice the narrowest kink the grid holds; from outside, none. Measured in albedo_grid.hpp.
+NodeCluster dielectric_cluster(double eta, double alpha_min);
+// A dielectric's grid: E's alphas and warp scales, n_x cosines a row, dielectric_cluster(eta, E's first alpha).
 AlbedoGrid dielectric_grid(const AlbedoGrid& E, int n_x, double eta);
 
 // F_avg = 2 integral_0^1 F(mu) mu dmu (Kulla and Conty 2017), F a callable of the cosine.
