@@ -566,9 +566,10 @@ double kulla_conty_ratio(const AlbedoTable& E, const std::vector<double>& missin
 double kulla_conty_albedo(const AlbedoTable& E, const std::vector<double>& missing, double alpha, double mu_i,
                           double F_avg) {
     require(F_avg >= 0.0 && F_avg <= 1.0, "F_avg", "in [0, 1]", F_avg);
-    const double E_avg = 1.0 - lookup_missing(E.grid.alphas, missing, alpha);
-    // pi times the lobe's cosine integral over wo: (1 - E(mu_i)) times 2 integral (1 - E(mu)) mu dmu / m.
-    return fresnel_ms(F_avg, E_avg) * (1.0 - E.lookup(alpha, mu_i)) * kulla_conty_ratio(E, missing, alpha);
+    const double m = lookup_missing(E.grid.alphas, missing, alpha);
+    // pi times the lobe's cosine integral over wo: (1 - E(mu_i)) times 2 integral (1 - E(mu)) mu dmu / m
+    // (kulla_conty_ratio).
+    return fresnel_ms(F_avg, 1.0 - m) * (1.0 - E.lookup(alpha, mu_i)) * table_missing(E, alpha) / m;
 }
 
 double fdez_aguera_albedo(double E_F, double E, double F_avg) {
