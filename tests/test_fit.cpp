@@ -474,11 +474,18 @@ TEST_CASE("fit: [compensation] writes every table, its errors, its renderer form
     CHECK(dielectric[0] == "ndf,alpha,g2,eta,side,cos_theta,E_R,E_T");
     CHECK_THAT(slurp(o / "compensation_dielectric.csv"), Contains(",height-correlated,1.5,inside,"));
     const std::vector<std::string> errors = lines(slurp(o / "compensation_error.csv"));
-    REQUIRE(errors.size() == 1 + 2 * 3);
+    REQUIRE(errors.size() == 1 + 2 * (3 + 2 * 2));
     CHECK_THAT(errors[0],
                Catch::Matchers::StartsWith("ndf,g2,table,max_interp_error,alpha,cos_theta,grazing_error,grazing_alpha,"
                                            "grazing_cos_theta,below_grid_error,"));
     CHECK_THAT(errors[3], Catch::Matchers::StartsWith("ggx,height-correlated,E_R+E_T eta=1.5 inside,"));
+    // E_R and E_T alone: their interpolation and grazing errors, no below-grid or furnace error.
+    const std::vector<std::string> R_inside = fields(errors[9]);
+    REQUIRE(R_inside.size() == 15);
+    CHECK(R_inside[2] == "E_R eta=1.5 inside");
+    CHECK(std::stod(R_inside[3]) > 0.0);
+    CHECK((R_inside[9].empty() && R_inside[14].empty()));
+    CHECK_THAT(errors[14], Catch::Matchers::StartsWith("ggx,separable,E_T eta=1.5 inside,"));
     // The walk's scattering orders: per G2 form, 2 alphas x 3 cosines; q_1 = 0 for the height-correlated G2 (the
     // walk's own single scattering), > 0 for the separable one where it misses more (alpha 1, mu 0.21: 0.26; at
     // mu = 1 the two G2 are one, G1(wo)); shares in [0, 1] that leave q_4+ = 1 - q_2 - q_3 >= 0.

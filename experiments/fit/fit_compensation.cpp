@@ -23,6 +23,10 @@ namespace smithlab::fitrun {
 
 namespace fs = std::filesystem;
 
+std::string DielectricTables::name(const std::string& what) const {
+    return what + " eta=" + format_shortest(eta) + (inside ? " inside" : " outside");
+}
+
 std::string g2_name(G2Form form) { return form == G2Form::uncorrelated ? "separable" : "height-correlated"; }
 
 fit::AlbedoOptions table_options(G2Form form) {
@@ -138,8 +142,7 @@ FamilyTables make_tables(const FitFamily& f, G2Form form, const FitScene::Compen
         };
         d.R = std::move(t[0]);
         d.T = std::move(t[1]);
-        d.sum = measured("E_R+E_T eta=" + format_shortest(d.eta) + (d.inside ? " inside" : " outside"), std::move(t[2]),
-                         sum, threads);
+        d.sum = measured(d.name("E_R+E_T"), std::move(t[2]), sum, threads);
         d.sum.furnace = fit::turquin_furnace(d.sum.table, furnace_mu_min);
     }
     return out;
@@ -307,6 +310,16 @@ void write_errors(const fs::path& dir, const std::vector<FamilyTables>& all) {
             for (const fit::InterpolationError& f : m.furnace)
                 furnace << lead << format_g17(f.alpha) << "," << format_g17(f.max) << "," << format_g17(f.mu) << "\n";
         });
+    // E_R and E_T alone (compensation_dielectric.csv's columns, on the sum's axis): their interpolation and grazing
+    // errors; no below-grid or furnace error (no renderer format divides by them).
+    for (const FamilyTables& t : all)
+        for (const DielectricTables& d : t.dielectrics)
+            for (const auto& [what, table] : {std::pair{"E_R", &d.R}, std::pair{"E_T", &d.T}}) {
+                err << csv_field(family_label(*t.family)) << "," << g2_name(t.g2) << "," << csv_field(d.name(what));
+                for (const fit::InterpolationError& e : {table->error, table->grazing})
+                    err << "," << format_g17(e.max) << "," << format_g17(e.alpha) << "," << format_g17(e.mu);
+                err << ",,,,,,\n";
+            }
     output::write_file(dir / "compensation_error.csv", err.str());
     output::write_file(dir / "furnace_tables.csv", furnace.str());
 }
@@ -386,6 +399,12 @@ std::string markdown(const std::vector<FamilyTables>& all, const FitScene::Compe
                << e3(m.table.error.max) << " (" << g4(m.table.error.alpha) << ", " << g4(m.table.error.mu) << ") | "
                << e3(m.table.grazing.max) << " | " << e3(m.below.max) << " | " << e3(w.max) << " |\n";
         });
+    for (const FamilyTables& t : all)
+        for (const DielectricTables& d : t.dielectrics)
+            for (const auto& [what, table] : {std::pair{"E_R", &d.R}, std::pair{"E_T", &d.T}})
+                md << "| " << family_label(*t.family) << " | " << g2_name(t.g2) << " | " << d.name(what)
+                   << " (alone) | " << e3(table->error.max) << " (" << g4(table->error.alpha) << ", "
+                   << g4(table->error.mu) << ") | " << e3(table->grazing.max) << " | - | - |\n";
     if (c.order_walks > 0) {
         // The walks' standard error in A_ms: (1 - E) times that of q_2 or q_3, the larger, at each node.
         double worst = 0.0;

@@ -41,6 +41,8 @@ struct DielectricTables {
     fit::CheckedTable R, T;
     MeasuredTable sum;
     double relative_eta() const { return inside ? 1.0 / eta : eta; }  // below over above, as the walk's facets
+    // A table's name: "E_R+E_T eta=1.5 inside" for what = "E_R+E_T".
+    std::string name(const std::string& what) const;
 };
 
 // One NDF family and G2 form.

@@ -16,14 +16,15 @@
 // alphas evenly spaced in sqrt(alpha) (a first cell from 1e-4 to 1e-3) missed GTR gamma <= 1.5 by 1.4e-3 there.
 //
 // A kink at a cosine that does not move with alpha (a dielectric seen from inside: total internal reflection sets in
-// at mu_c = sqrt(1 - eta^2), where E_T rises like sqrt(mu - mu_c) smoothed over a width ~ alpha) takes nodes of its
-// own: a share b of the axis clustered about mu_k (NodeCluster),
+// at mu_c = sqrt(1 - eta^2), where E_T rises like sqrt(mu - mu_c) smoothed over a width ~ alpha sin(theta_c)) takes
+// nodes of its own: a share b of the axis clustered about mu_k (NodeCluster),
 //     x = (1 - b) sqrt((1 + c) mu / (mu + c)) + b (asinh((mu - mu_k) / w) + asinh(mu_k / w)) / (asinh((1 - mu_k) / w)
 //         + asinh(mu_k / w)),
-// nodes a distance ~w apart near mu_k, spreading out like a logarithm beyond. Measured (GGX, height-correlated,
-// inside eta 1.1, 1.5 and 2.5, 64 x 96, ln(E_R + E_T) tabulated, against the exact values 10x finer in both): the
-// warp alone misses the kink by 1.7e-3 to 1.9e-3; with b = 0.3 and w = 0.02 (fit::dielectric_cluster) the worst
-// error of the three is 9.5e-4, at alpha 1, mu 0.90, away from the kink (docs/compensation.md).
+// nodes a distance ~w apart near mu_k, spreading out like a logarithm beyond. Measured (height-correlated, inside
+// eta 1.1, 1.5 and 2.5, 64 x 96 from alpha 1e-4, ln(E_R + E_T) tabulated, against the exact values 10x finer in
+// both): on the warp alone GGX misses the kink by 1.7e-3 to 1.9e-3; GTR gamma 1, whose heavy tail keeps the kink as
+// narrow as alpha, missed it by 1.7e-2 at alpha < 7e-3 with w = 0.02; with b = 0.35 and w = 2 alpha_min eta
+// (fit::dielectric_cluster) the worst error is 7.9e-4 for GGX and 8.3e-4 for GTR gamma 1 (docs/compensation.md).
 //
 // Lookups are bilinear in (sqrt(alpha), x), x_j = j / (n_x - 1) uniform (a renderer finds the cell without a search
 // in x), x taken with the scale at the asked alpha: ln c linear in ln alpha between the nodes (exact for c ~ alpha),
