@@ -290,6 +290,15 @@ void for_each_table(const FamilyTables& t, const F& f) {
     for (const DielectricTables& d : t.dielectrics) f(d.sum);
 }
 
+// Each dielectric side's E_R and E_T alone (compensation_dielectric.csv's columns, on the sum's axis), with its name.
+template <class F>
+void for_each_alone(const FamilyTables& t, const F& f) {
+    for (const DielectricTables& d : t.dielectrics) {
+        f(d.name("E_R"), d.R);
+        f(d.name("E_T"), d.T);
+    }
+}
+
 void write_errors(const fs::path& dir, const std::vector<FamilyTables>& all) {
     std::ostringstream err, furnace;
     err << "ndf,g2,table,max_interp_error,alpha,cos_theta,grazing_error,grazing_alpha,grazing_cos_theta,"
@@ -310,16 +319,15 @@ void write_errors(const fs::path& dir, const std::vector<FamilyTables>& all) {
             for (const fit::InterpolationError& f : m.furnace)
                 furnace << lead << format_g17(f.alpha) << "," << format_g17(f.max) << "," << format_g17(f.mu) << "\n";
         });
-    // E_R and E_T alone (compensation_dielectric.csv's columns, on the sum's axis): their interpolation and grazing
-    // errors; no below-grid or furnace error (no renderer format divides by them).
+    // E_R and E_T alone: their interpolation and grazing errors; no below-grid or furnace error (no renderer format
+    // divides by them).
     for (const FamilyTables& t : all)
-        for (const DielectricTables& d : t.dielectrics)
-            for (const auto& [what, table] : {std::pair{"E_R", &d.R}, std::pair{"E_T", &d.T}}) {
-                err << csv_field(family_label(*t.family)) << "," << g2_name(t.g2) << "," << csv_field(d.name(what));
-                for (const fit::InterpolationError& e : {table->error, table->grazing})
-                    err << "," << format_g17(e.max) << "," << format_g17(e.alpha) << "," << format_g17(e.mu);
-                err << ",,,,,,\n";
-            }
+        for_each_alone(t, [&](const std::string& name, const fit::CheckedTable& table) {
+            err << csv_field(family_label(*t.family)) << "," << g2_name(t.g2) << "," << csv_field(name);
+            for (const fit::InterpolationError& e : {table.error, table.grazing})
+                err << "," << format_g17(e.max) << "," << format_g17(e.alpha) << "," << format_g17(e.mu);
+            err << ",,,,,,\n";
+        });
     output::write_file(dir / "compensation_error.csv", err.str());
     output::write_file(dir / "furnace_tables.csv", furnace.str());
 }
@@ -400,11 +408,11 @@ std::string markdown(const std::vector<FamilyTables>& all, const FitScene::Compe
                << e3(m.table.grazing.max) << " | " << e3(m.below.max) << " | " << e3(w.max) << " |\n";
         });
     for (const FamilyTables& t : all)
-        for (const DielectricTables& d : t.dielectrics)
-            for (const auto& [what, table] : {std::pair{"E_R", &d.R}, std::pair{"E_T", &d.T}})
-                md << "| " << family_label(*t.family) << " | " << g2_name(t.g2) << " | " << d.name(what)
-                   << " (alone) | " << e3(table->error.max) << " (" << g4(table->error.alpha) << ", "
-                   << g4(table->error.mu) << ") | " << e3(table->grazing.max) << " | - | - |\n";
+        for_each_alone(t, [&](const std::string& name, const fit::CheckedTable& table) {
+            md << "| " << family_label(*t.family) << " | " << g2_name(t.g2) << " | " << name << " (alone) | "
+               << e3(table.error.max) << " (" << g4(table.error.alpha) << ", " << g4(table.error.mu) << ") | "
+               << e3(table.grazing.max) << " | - | - |\n";
+        });
     if (c.order_walks > 0) {
         // The walks' standard error in A_ms: (1 - E) times that of q_2 or q_3, the larger, at each node.
         double worst = 0.0;
