@@ -559,17 +559,23 @@ std::vector<double> table_missing(const AlbedoTable& E) {
     return m;
 }
 
+namespace {
+
+// The table's own 1 - E_avg at alpha over m, the 1 - E_avg the lobe is divided by.
+double ratio_to(const AlbedoTable& E, double alpha, double m) { return table_missing(E, alpha) / m; }
+
+}  // namespace
+
 double kulla_conty_ratio(const AlbedoTable& E, const std::vector<double>& missing, double alpha) {
-    return table_missing(E, alpha) / lookup_missing(E.grid.alphas, missing, alpha);
+    return ratio_to(E, alpha, lookup_missing(E.grid.alphas, missing, alpha));
 }
 
 double kulla_conty_albedo(const AlbedoTable& E, const std::vector<double>& missing, double alpha, double mu_i,
                           double F_avg) {
     require(F_avg >= 0.0 && F_avg <= 1.0, "F_avg", "in [0, 1]", F_avg);
     const double m = lookup_missing(E.grid.alphas, missing, alpha);
-    // pi times the lobe's cosine integral over wo: (1 - E(mu_i)) times 2 integral (1 - E(mu)) mu dmu / m
-    // (kulla_conty_ratio).
-    return fresnel_ms(F_avg, 1.0 - m) * (1.0 - E.lookup(alpha, mu_i)) * table_missing(E, alpha) / m;
+    // pi times the lobe's cosine integral over wo: (1 - E(mu_i)) times 2 integral (1 - E(mu)) mu dmu / m.
+    return fresnel_ms(F_avg, 1.0 - m) * (1.0 - E.lookup(alpha, mu_i)) * ratio_to(E, alpha, m);
 }
 
 double fdez_aguera_albedo(double E_F, double E, double F_avg) {
