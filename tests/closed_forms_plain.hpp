@@ -1,12 +1,13 @@
 // tests/closed_forms_plain.hpp -- the closed forms, GGX's Lambda and Dimov's spline evaluated straightforwardly (the
-// formulas as the papers print them: hypot, log, a Gauss rule where the spline integrates), a second route beside the
-// library's rewritten ones: test_gtr checks that Dimov's spline gives their values to a few ulp, and
-// bench_closed_forms times both on the same inputs. Not part of the library.
+// formulas as the papers print them: hypot, log, the incomplete beta function where the integer-gamma forms
+// integrate), a second route beside the library's rewritten ones: test_gtr checks that Dimov's spline and the
+// generated integer-gamma forms give their values, and bench_closed_forms times both on the same inputs. Not part
+// of the library.
 #pragma once
 
 #include <algorithm>
 #include <array>
-#include <boost/math/quadrature/gauss.hpp>
+#include <boost/math/special_functions/beta.hpp>
 #include <boost/math/special_functions/log1p.hpp>
 #include <cmath>
 #include <limits>
@@ -52,47 +53,31 @@ inline double lambda4(double alpha, double mu) {
     return v * v * v / (16.0 * c) * bracket;
 }
 
-// Sum over the 30-node Gauss-Legendre rule on [0, 1] (Boost's tabulated nodes, exact to degree 59):
-// visit(z, weight) for each node.
-template <class Visit>
-void for_each_gauss30_node(Visit visit) {
-    using rule = boost::math::quadrature::gauss<double, 30>;
-    const auto& x = rule::abscissa();  // the non-negative half of the nodes on [-1, 1]
-    const auto& wt = rule::weights();
-    for (std::size_t i = 0; i < x.size(); ++i) {
-        visit(0.5 * (1.0 + x[i]), 0.5 * wt[i]);
-        if (x[i] != 0.0) visit(0.5 * (1.0 - x[i]), 0.5 * wt[i]);
-    }
-}
-
-// The brackets b_k = A^(2k+1) I_k, k = 0..n <= 29, of Lambda_gtr_integer_sum, by whichever of two exact forms
-// has no cancellation where it is used:
-//  mu <  alpha:  b_k = 1/(2k+1) - p (1-p)^k Ghat_k(w),  Ghat_k(w) = integral_0^1 z^k (2 - w z)^k dz, a polynomial
-//                (exact by Gauss-Legendre); p <= 0.41 here and the cancellation stays below ~0.4 k.
-//  mu >= alpha:  with s = alpha/A = sin(beta), sigma = sin(psi)/sin(beta) in the angular form of I_k,
-//                b_k = 1/((2k+1)(2k+2)) + integral_0^1 sigma^(2k+1) x/(1 + sqrt(1 - x)) dsigma,
-//                x = s^2 (1 - sigma^2)/(1 - s^2 sigma^2): every term positive; the integrand is analytic out to
-//                sigma = 1/s >= sqrt(2), so Gauss-Legendre converges far below rounding.
+// The brackets b_k = A^(2k+1) I_k, k = 0..n <= 29, of Lambda_gtr_integer_sum, from the integral's definition by a
+// route of their own (the library's brackets() integrates a polynomial and an angular form by Gauss-Legendre):
+//   I_k = integral_mu^inf (q - mu) (q^2 + alpha^2)^-(k+3/2) dq
+//       = A^-(2k+1) / (2k+1) - mu alpha^-(2k+2) integral_{mu/A}^1 (1 - s^2)^k ds        (q = alpha tan phi, s = sin
+//       phi)
+// and the last integral is the incomplete beta function: with x = alpha^2 / A^2 (DLMF 8.17.7, 15.2.1),
+//   b_k = 1/(2k+1) - (mu/A) F / (2k+2),  F = 2F1(k+1, 1/2; k+2; x) = (k+1) B_x(k+1, 1/2) / x^(k+1).
+// F by its power series where x < 1/2 (terms falling by x or faster), else by Boost's incomplete beta. Where
+// mu >> alpha the two terms cancel by a factor 2k + 2 at most: two digits, against the library's every-term-positive
+// form.
 inline std::array<double, 30> brackets(int n, double alpha, double mu, double A) {
     std::array<double, 30> b{};
-    if (mu < alpha) {
-        const double p = mu / (A + mu), one_minus_p = A / (A + mu);
-        const double w = alpha * alpha / (A * (A + mu));  // 1 - mu/A
-        std::array<double, 30> G{};
-        for_each_gauss30_node([&](double z, double weight) {
-            const double u = z * (2.0 - w * z);
-            double uk = weight;
-            for (int k = 0; k <= n; ++k, uk *= u) G[k] += uk;
-        });
-        for (int k = 0; k <= n; ++k) b[k] = 1.0 / (2 * k + 1) - p * std::pow(one_minus_p, k) * G[k];
-    } else {
-        const double s2 = (alpha / A) * (alpha / A);
-        for_each_gauss30_node([&](double sigma, double weight) {
-            const double x = s2 * (1.0 - sigma) * (1.0 + sigma) / (1.0 - s2 * sigma * sigma);
-            double term = weight * sigma * x / (1.0 + std::sqrt(1.0 - x));
-            for (int k = 0; k <= n; ++k, term *= sigma * sigma) b[k] += term;
-        });
-        for (int k = 0; k <= n; ++k) b[k] += 1.0 / ((2.0 * k + 1) * (2.0 * k + 2));
+    const double ratio = alpha / A, x = ratio * ratio;
+    for (int k = 0; k <= n; ++k) {
+        double F = 0.0;
+        if (x < 0.5) {
+            double term = 1.0;  // (1/2)_j / j! x^j
+            for (int j = 0; term > 1e-18; ++j) {
+                F += (k + 1.0) / (k + 1.0 + j) * term;
+                term *= (j + 0.5) / (j + 1.0) * x;
+            }
+        } else {
+            F = (k + 1.0) * boost::math::beta(k + 1.0, 0.5, x) / std::pow(x, k + 1);
+        }
+        b[k] = 1.0 / (2 * k + 1) - mu / A * F / (2.0 * k + 2.0);
     }
     return b;
 }

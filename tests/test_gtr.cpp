@@ -94,3 +94,28 @@ TEST_CASE("Dimov's spline gives the values of its straightforward evaluation to 
     }
     WARN("Dimov's spline, largest change in G1: " << worst << " x 2^-53");
 }
+
+TEST_CASE("the generated integer-gamma forms give the incomplete-beta route's Lambda", "[gtr][closed]") {
+    // gamma = 5..31 (Lambda_gtr_integer_sum) against closed_forms_plain.hpp's brackets from the incomplete beta
+    // function, at random (alpha, mu) over alpha in [1e-4, 1], mu in [1e-6, 1e6] and at the corners. The plain route
+    // cancels by up to a factor 2k + 2 where mu >> alpha: a relative 1e-13 bounds both.
+    std::mt19937_64 rng(31);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    std::vector<std::array<double, 2>> points;
+    for (int i = 0; i < 400; ++i)
+        points.push_back({std::pow(10.0, -4.0 * u(rng)), std::pow(10.0, 12.0 * u(rng) - 6.0)});
+    for (double a : {1e-4, 0.3, 0.999999, 1.0})
+        for (double mu : {1e-90, 1e-8, 1e-4, 0.3, 1.0, 1e4, 1e8, 1e90}) points.push_back({a, mu});
+    double worst = 0.0;
+    for (int g = 5; g <= smithlab::gtr_max_closed_gamma; ++g)
+        for (const auto& [a, mu] : points) {
+            const double now = smithlab::Lambda_gtr_closed(a, g, mu),
+                         plain = smithlab_plain::Lambda_gtr_closed(a, g, mu);
+            INFO("alpha=" << a << " gamma=" << g << " mu=" << mu << " now " << now << " plain " << plain);
+            REQUIRE(plain > 0.0);
+            const double rel = std::abs(now - plain) / plain;
+            CHECK(rel <= 1e-13);
+            worst = std::max(worst, rel);
+        }
+    WARN("gamma 5..31 against the incomplete-beta route: largest relative difference in Lambda " << worst);
+}

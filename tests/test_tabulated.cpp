@@ -5,6 +5,7 @@
 // content hash follows the bytes, not the name; the example table in experiments/ndfs/ loads.
 #include <algorithm>
 #include <catch2/catch.hpp>
+
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -16,6 +17,8 @@
 #include <smithlab/tabulated.hpp>
 #include <smithlab/walk/trace.hpp>
 #include <string>
+#include <sys/stat.h>
+#include <unistd.h>
 #include <vector>
 
 namespace {
@@ -257,10 +260,29 @@ TEST_CASE("tabulated: every refusal names the file, the line and the value", "[t
     CHECK(m.find("lines 2-41") != std::string::npos);
     // A file that is not there, or a directory.
     CHECK(refusal([] { smithlab::read_tabulated_ndf("/nonexistent/ndf.csv"); }) ==
-          "tabulated ndf: cannot open '/nonexistent/ndf.csv'");
+          "tabulated ndf: cannot open '/nonexistent/ndf.csv': No such file or directory");
     CHECK(refusal([] {
               smithlab::read_tabulated_ndf(std::filesystem::temp_directory_path());
           }).find("is a directory") != std::string::npos);
+}
+
+TEST_CASE("tabulated: a device, a FIFO and a file past the cap are refused before they are read", "[tabulated]") {
+    namespace fs = std::filesystem;
+    // /dev/zero would be read without end, a FIFO with no writer would block in open.
+    CHECK(refusal([] { smithlab::read_tabulated_ndf("/dev/zero"); }) ==
+          "tabulated ndf: '/dev/zero' is not a regular file (a FIFO, a device or a socket): give a CSV file");
+    const fs::path dir = fs::temp_directory_path() / ("smithlab_tabulated_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    const fs::path fifo = dir / "fifo.csv";
+    REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+    CHECK(refusal([&] { smithlab::read_tabulated_ndf(fifo); }).find("is not a regular file") != std::string::npos);
+    // A sparse file one byte past the cap.
+    const fs::path big = dir / "big.csv";
+    std::ofstream(big).put('\n');
+    fs::resize_file(big, smithlab::tabulated_max_bytes + 1);
+    CHECK(refusal([&] { smithlab::read_tabulated_ndf(big); }).find("is larger than 67108864 bytes (64 MiB)") !=
+          std::string::npos);
+    fs::remove_all(dir);
 }
 
 TEST_CASE("tabulated: normalize divides D by its projected area", "[tabulated]") {

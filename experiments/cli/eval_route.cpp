@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
 
 namespace smithlab::cli {
@@ -56,7 +57,8 @@ Prepared prepare(AnyNdf ndf, const Route& r) {
     try {
         auto law = std::make_shared<GrazingLawOnce>();
         LambdaOfMu up = r.prepare(ndf, law);
-        return {std::move(ndf), std::move(up), std::move(law), {r.options.backend, r.options.tolerance}};
+        const bool exact = !r.variant && r.options.method != Method::spline;
+        return {std::move(ndf), std::move(up), std::move(law), {r.options.backend, r.options.tolerance}, exact};
     } catch (const input_error& e) {
         throw input_error("ndf '" + ndf.spec() + "': " + e.what());
     }
@@ -64,13 +66,18 @@ Prepared prepare(AnyNdf ndf, const Route& r) {
 
 LambdaG1 lambda_g1(const Prepared& p, double mu, Downward downward) {
     try {
-        const double up = Lambda_of_abs(mu, p.Lambda_up);
         const double a = std::abs(mu);
-        const bool overflow = up == INFINITY && a > 0.0;
-        return {Lambda_of_sign(mu, up, downward),
-                overflow ? G1_grazing(p.law->get(p.ndf, p.quadrature), a) : 1.0 / (1.0 + up)};
+        const double up = Lambda_of_abs(mu, p.Lambda_up);
+        if (!(p.exact && up == INFINITY && a > 0.0)) return {Lambda_of_sign(mu, up, downward), 1.0 / (1.0 + up)};
+        // An exact route overflowed (at mu of 1e-308 and below): both from the grazing law, exact there to rounding,
+        // Lambda finite as long as c / mu is.
+        const GrazingLaw& law = p.law->get(p.ndf, p.quadrature);
+        return {Lambda_of_sign(mu, Lambda_grazing(law, a), downward), G1_grazing(law, a)};
     } catch (const input_error& e) {
-        throw input_error("ndf '" + p.ndf.spec() + "': " + e.what());
+        // Below the surface Lambda comes from |mu|: a message about |mu| says so, with mu as given.
+        const std::string at =
+            mu < 0.0 ? "at mu = " + format_shortest(mu) + ", from |mu| = " + format_shortest(-mu) + ": " : "";
+        throw input_error("ndf '" + p.ndf.spec() + "': " + at + e.what());
     }
 }
 

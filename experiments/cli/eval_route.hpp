@@ -33,6 +33,9 @@ struct Prepared {
     LambdaOfMu Lambda_up;
     std::shared_ptr<GrazingLawOnce> law;
     QuadratureOptions quadrature;
+    // Whether Lambda = +inf at mu > 0 is the exact value overflowing (the closed forms and the quadratures), so that
+    // G1 comes from the grazing law; an approximation's +inf (an interpolated G1 clamped to 0) keeps G1 = 0.
+    bool exact = true;
 };
 Prepared prepare(const std::string& spec, const NdfRegistry& registry, const Route& route);
 // The same for an NDF already made (the Python module's NDF objects).
@@ -42,9 +45,10 @@ struct LambdaG1 {
     double lambda, g1;
 };
 // One Lambda evaluation serves both: G1 takes |mu| (Walter 2007 eq. 44), Lambda(mu < 0) follows the convention
-// (the special values of mu: smith.hpp's Lambda_of_abs and Lambda_of_sign). Where Lambda overflows at mu != 0
-// (c/mu beyond the largest double), G1 = mu / (c + ..) from the grazing law (grazing.hpp). An input_error names the
-// NDF.
+// (the special values of mu: smith.hpp's Lambda_of_abs and Lambda_of_sign). G1 = 1 / (1 + Lambda(|mu|)) in every
+// row, but where an exact route's Lambda overflows at mu != 0 (its forms overflow before c/mu does): there both come
+// from the grazing law (grazing.hpp), Lambda = c/mu - 1/2 + .. and G1 = mu / (c + ..), Lambda +inf only where c/mu
+// overflows and G1 then below 1 / DBL_MAX. An input_error names the NDF.
 LambdaG1 lambda_g1(const Prepared& p, double mu, Downward downward);
 
 }  // namespace smithlab::cli

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 #include <variant>
 
 #include "scene/spaced.hpp"
@@ -42,6 +43,15 @@ void check_material(StrictTable& doc, const std::string& spec) {
                  "is traced at albedo 1 (every albedo comes from that one trace: set albedos), got '" + spec + "'");
 }
 
+// Refuses a list that names one thing twice (equal as values: 1.5 and 1.50, or one conductor spelled two ways).
+template <class T, class Describe>
+void refuse_repeats(const StrictTable& t, const std::string& key, const std::vector<T>& v, Describe describe) {
+    for (std::size_t i = 0; i < v.size(); ++i)
+        if (std::find(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(i), v[i]) !=
+            v.begin() + static_cast<std::ptrdiff_t>(i))
+            t.fail(key, "names " + describe(v[i]) + " twice");
+}
+
 std::vector<double> read_bounded(StrictTable& t, const std::string& key, double lo, double hi, bool open_lo,
                                  bool open_hi, const std::string& range) {
     const std::vector<double> v = report::read_axis(t, key);
@@ -61,10 +71,7 @@ namespace {
 
 void read_models(StrictTable& doc, FitScene& s) {
     s.models = doc.texts("models", {});
-    for (std::size_t i = 0; i < s.models.size(); ++i)
-        if (std::find(s.models.begin(), s.models.begin() + static_cast<std::ptrdiff_t>(i), s.models[i]) !=
-            s.models.begin() + static_cast<std::ptrdiff_t>(i))
-            doc.fail("models", "names '" + s.models[i] + "' twice");
+    refuse_repeats(doc, "models", s.models, [](const std::string& m) { return "'" + m + "'"; });
     for (const std::string& m : s.models) {
         try {
             fit::find_diffuse_model(m);
@@ -225,8 +232,22 @@ std::vector<double> table_alphas(StrictTable& t, const char* key) {
     return a;
 }
 
+// Refuses, naming the key, an alpha of the tables or the furnace at which a fitted NDF cannot be made (below GGX's
+// 1e-50, say): the tables make every NDF at every alpha.
+void require_ndfs_at(const StrictTable& t, const std::string& key, const std::vector<double>& alphas,
+                     const std::vector<FitFamily>& ndfs, const NdfRegistry& registry) {
+    for (const FitFamily& f : ndfs)
+        if (f.entry.takes_alpha && !f.entry.roughness_given)
+            for (double a : alphas) try {
+                    registry.make_at_alpha(f.family(), a, f.params, f.entry.texts);
+                } catch (const input_error& e) {
+                    t.fail(key, "alpha = " + format_shortest(a) + " for " + family_label(f) + ": " + e.what());
+                }
+}
+
 FitScene::Compensation read_compensation(StrictTable& doc, FitScene::Compensation c, FitWork fit,
-                                         const report::SizeLimits& limits) {
+                                         const report::SizeLimits& limits, const std::vector<FitFamily>& ndfs,
+                                         const NdfRegistry& registry) {
     auto t = doc.optional_table(
         "compensation",
         {"alpha", "cosines", "dielectric_cosines", "refine", "g2", "eta", "conductors", "furnace_alpha",
@@ -234,6 +255,7 @@ FitScene::Compensation read_compensation(StrictTable& doc, FitScene::Compensatio
     if (!t) return c;
     c.enabled = true;
     if (t->has("alpha")) c.alpha = table_alphas(*t, "alpha");
+    require_ndfs_at(*t, "alpha", c.alpha, ndfs, registry);
     c.cosines = t->integer("cosines", 2, 4096, c.cosines);
     c.dielectric_cosines = t->integer("dielectric_cosines", 2, 4096, c.dielectric_cosines);
     c.refine = t->integer("refine", 1, 100, c.refine);
@@ -249,12 +271,12 @@ FitScene::Compensation read_compensation(StrictTable& doc, FitScene::Compensatio
         if (c.g2.empty()) t->fail("g2", "is an empty list");
     }
     // eta in [1.01, 100]: a relative index of 1 is no interface; both sides of each are tabulated
-    if (t->has("eta")) c.eta = read_bounded(*t, "eta", 1.01, 100.0, false, false, "[1.01, 100]");
-    for (std::size_t i = 0; i < c.eta.size(); ++i)
-        if (std::find(c.eta.begin(), c.eta.begin() + static_cast<std::ptrdiff_t>(i), c.eta[i]) !=
-            c.eta.begin() + static_cast<std::ptrdiff_t>(i))
-            t->fail("eta", "names " + format_shortest(c.eta[i]) + " twice");
+    // (eta = [] as the default scene writes it: no dielectric tables)
+    if (t->has("eta") && !(t->value("eta").is_array() && t->value("eta").as_array().empty()))
+        c.eta = read_bounded(*t, "eta", 1.01, 100.0, false, false, "[1.01, 100]");
+    refuse_repeats(*t, "eta", c.eta, [](double e) { return format_shortest(e); });
     c.conductors = t->texts("conductors", {});
+    std::vector<std::pair<double, double>> conductors;  // (eta, k): one conductor however it is spelled
     for (const std::string& m : c.conductors) {
         walk::Material material;
         try {
@@ -262,15 +284,21 @@ FitScene::Compensation read_compensation(StrictTable& doc, FitScene::Compensatio
         } catch (const input_error& e) {
             t->fail("conductors", e.what());
         }
-        if (!std::holds_alternative<walk::Conductor>(material))
-            t->fail("conductors", "must name conductor(eta=, k=) facets, got '" + m + "'");
+        const auto* conductor = std::get_if<walk::Conductor>(&material);
+        if (!conductor) t->fail("conductors", "must name conductor(eta=, k=) facets, got '" + m + "'");
+        conductors.emplace_back(conductor->eta, conductor->k);
     }
+    refuse_repeats(*t, "conductors", conductors, [](const std::pair<double, double>& c) {
+        return "conductor(eta=" + format_shortest(c.first) + ", k=" + format_shortest(c.second) + ")";
+    });
     if (t->has("furnace_alpha")) c.furnace_alpha = read_bounded(*t, "furnace_alpha", 0.0, 1.0, true, false, "(0, 1]");
+    require_ndfs_at(*t, "furnace_alpha", c.furnace_alpha, ndfs, registry);
     if (t->has("furnace_theta"))
         c.furnace_theta = read_bounded(*t, "furnace_theta", 0.0, 90.0, false, true, "[0, 90) degrees");
     c.furnace_walks = t->integer("furnace_walks", 100, 1'000'000'000, c.furnace_walks);
     c.order_walks = t->integer("order_walks", 0, 1'000'000'000, c.order_walks);
     if (t->has("order_alpha")) c.order_alpha = table_alphas(*t, "order_alpha");
+    require_ndfs_at(*t, "order_alpha", c.order_alpha, ndfs, registry);
     c.order_cosines = t->integer("order_cosines", 2, 4096, c.order_cosines);
     check_compensation_size(*t, c, fit, limits);
     t->done();
@@ -315,7 +343,7 @@ FitScene parse_fit_scene(const std::string& text, const std::string& source, con
     const PerNdf each = per_ndf(s, pairs);
     s.ndfs = read_ndfs(doc, registry, each, limits);
     const double ndfs = static_cast<double>(s.ndfs.size());
-    s.compensation = read_compensation(doc, s.compensation, {ndfs, ndfs * each.walks}, limits);
+    s.compensation = read_compensation(doc, s.compensation, {ndfs, ndfs * each.walks}, limits, s.ndfs, registry);
     s.pictures = read_pictures(doc, s.pictures);
     doc.done();
     return s;

@@ -38,17 +38,16 @@ struct Conductor {
 }  // namespace
 
 std::vector<AnyNdf> sampling_ndfs(const SamplingScene& s, const NdfRegistry& ndfs) {
-    require(s.theta_o >= 0.0 && s.theta_o < 90.0, "scene: sampling.theta_o", "in [0, 90) degrees", s.theta_o);
+    require(s.theta_o >= 0.0 && s.theta_o < 90.0, "sampling theta_o", "in [0, 90) degrees", s.theta_o);
     std::vector<AnyNdf> list;
     for (const std::string& family : s.families) {
         const NdfInfo* info = ndfs.find(family);
-        if (!info) throw input_error("scene: sampling.families: unknown ndf family '" + family + "'");
+        if (!info) throw input_error("unknown ndf family '" + family + "'");
         if (info->parameters != std::vector<std::string>{"alpha"})
-            throw input_error("scene: sampling.families: '" + family + "' is not a family of one parameter, alpha");
+            throw input_error("'" + family + "' is not a family of one parameter, alpha");
         for (double a : s.alphas) {
             AnyNdf n = ndfs.make(family, {{"alpha", a}});
-            if (!n.has_closed_Lambda())
-                throw input_error("scene: sampling.families: '" + family + "' has no closed-form Lambda for G2");
+            if (!n.has_closed_Lambda()) throw input_error("'" + family + "' has no closed-form Lambda for G2");
             list.push_back(std::move(n));
         }
     }

@@ -45,7 +45,8 @@ struct SamplingRow {
 inline constexpr std::array<std::string_view, 3> sampling_strategies = {"cosine", "dcos", "vndf"};
 
 // The experiment's NDFs (families x alphas), checked: each family of one parameter, alpha, with a closed-form Lambda
-// (for G2); theta_o in [0, 90). input_error naming the key otherwise.
+// (for G2); theta_o in [0, 90). input_error otherwise, naming the family (the scene's reader adds the key and its
+// FILE:LINE).
 std::vector<AnyNdf> sampling_ndfs(const SamplingScene& s, const NdfRegistry& ndfs);
 
 // One row per (NDF, strategy), estimated with s.samples samples each (a progress line on stderr past a few seconds).

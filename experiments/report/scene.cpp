@@ -1,10 +1,12 @@
 #include "report/scene.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <toml.hpp>
 
 #include "report/sections.hpp"
 #include "scene/nearest_name.hpp"
+#include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
 
 namespace smithlab::report {
@@ -15,6 +17,7 @@ void read_grid(StrictTable& doc, Settings& s) {
     StrictTable grid = doc.table("grid", {"alpha", "mu"});
     s.alphas = read_axis(grid, "alpha");
     s.mus = read_axis(grid, "mu");
+    require_positive_mus(grid, "mu", s.mus);
     grid.done();
 }
 
@@ -86,6 +89,13 @@ bool glob_match(const std::string& pattern, const std::string& name) {
     }
     while (p < pattern.size() && pattern[p] == '*') ++p;
     return p == pattern.size();
+}
+
+void require_positive_mus(const StrictTable& t, const std::string& key, const std::vector<double>& mus) {
+    for (double mu : mus)
+        if (!(mu > 0.0 && std::isfinite(mu)))
+            t.fail(key,
+                   "values must be finite and > 0 (mu = cot theta, above the surface), got " + format_shortest(mu));
 }
 
 void require_matches(const std::vector<std::string>& patterns, const std::vector<std::string>& names,

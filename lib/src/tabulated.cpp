@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <numbers>
@@ -299,12 +301,26 @@ TabulatedNdf tabulated_ndf_from_csv(const std::string& text, const std::string& 
 }
 
 TabulatedNdf read_tabulated_ndf(const std::filesystem::path& path, const TabulatedOptions& opts) {
+    namespace fs = std::filesystem;
     std::error_code ec;
-    if (std::filesystem::is_directory(path, ec))
-        throw input_error("tabulated ndf: '" + path.string() + "' is a directory, not a CSV file");
+    const fs::file_status status = fs::status(path, ec);  // through symlinks; before open, which a FIFO blocks
+    const std::string quoted = "tabulated ndf: '" + path.string() + "'";
+    const std::string too_large = quoted + " is larger than " + std::to_string(tabulated_max_bytes) +
+        " bytes (64 MiB), the most a table may hold";
+    if (status.type() == fs::file_type::directory) throw input_error(quoted + " is a directory, not a CSV file");
+    if (status.type() != fs::file_type::regular && status.type() != fs::file_type::not_found)
+        throw input_error(quoted + " is not a regular file (a FIFO, a device or a socket): give a CSV file");
+    if (const std::uintmax_t size = fs::file_size(path, ec); !ec && size > tabulated_max_bytes)
+        throw input_error(too_large);
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw input_error("tabulated ndf: cannot open '" + path.string() + "'");
-    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (!in) throw input_error("tabulated ndf: cannot open '" + path.string() + "': " + std::strerror(errno));
+    // In blocks, refused as soon as it passes the cap: a file growing as it is read is never held whole.
+    std::string text;
+    std::array<char, 1 << 16> block;
+    while (in.read(block.data(), static_cast<std::streamsize>(block.size())) || in.gcount() > 0) {
+        text.append(block.data(), static_cast<std::size_t>(in.gcount()));
+        if (text.size() > tabulated_max_bytes) throw input_error(too_large);
+    }
     if (in.bad()) throw input_error("tabulated ndf: cannot read '" + path.string() + "'");
     return tabulated_ndf_from_csv(text, path.string(), opts);
 }

@@ -5,6 +5,7 @@
 #include "report/g1_table.hpp"
 #include "report/scene.hpp"
 #include "report/sections.hpp"
+#include "smithlab/errors.hpp"
 
 namespace smithlab::report {
 
@@ -48,11 +49,14 @@ public:
     void check(const Settings& s, const NdfRegistry& ndfs, const VariantRegistry& variants) override {
         std::vector<std::string> names;
         for (const LambdaVariant& v : variants.list()) names.push_back(v.name);
-        // A selection of nothing is refused by g1_table ("selects no variant"); a pattern of a selection that matches
-        // nothing, here.
-        if (std::any_of(names.begin(), names.end(), [&](const std::string& n) { return matches_any(include_, n); }))
-            require_matches(include_, names, where_include_);
+        // A pattern that matches nothing, and a selection of nothing, named with the key's FILE:LINE.
+        require_matches(include_, names, where_include_);
         require_matches(exclude_, names, where_exclude_);
+        if (std::none_of(names.begin(), names.end(),
+                         [&](const std::string& n) { return matches_any(include_, n) && !matches_any(exclude_, n); }))
+            throw input_error(where_exclude_ +
+                              " leaves no variant of the ones include selects (see smithlab eval "
+                              "--list-methods)");
         table_ = g1_table(entries_, s.alphas, ndfs, variants, include_, exclude_);
         require_g1_domain(table_, s.mus);
         mus_ = s.mus;

@@ -5,6 +5,7 @@
 #include "report/g2_table.hpp"
 #include "report/scene.hpp"
 #include "report/sections.hpp"
+#include "smithlab/errors.hpp"
 
 namespace smithlab::report {
 
@@ -14,7 +15,7 @@ class G2Section : public Section {
 public:
     std::vector<std::string> keys() const override { return {"g2"}; }
 
-    void read(StrictTable& doc, const Settings&, const NdfRegistry&) override {
+    void read(StrictTable& doc, const Settings&, const NdfRegistry& registry) override {
         auto g2 = doc.optional_table("g2", {"include", "families", "mu"});
         if (!g2) return;
         include_ = g2->texts("include");
@@ -22,7 +23,13 @@ public:
         for (const G2Variant& v : builtin_G2_variants()) names.push_back(v.name);
         require_matches(include_, names, g2->where("include"));
         families_ = g2->texts("families", families_);
+        for (const std::string& f : families_) try {
+                registry.make(f, {{"alpha", 0.5}});  // a family of roughness alpha (each alpha is grid.alpha's)
+            } catch (const input_error& e) {
+                g2->fail("families", e.what());
+            }
         mus_ = read_axis(*g2, "mu");
+        require_positive_mus(*g2, "mu", mus_);
         g2->done();
     }
 

@@ -5,6 +5,8 @@
 
 #include "report/sampling_experiment.hpp"
 #include "report/sections.hpp"
+#include "smithlab/csv.hpp"
+#include "smithlab/errors.hpp"
 
 namespace smithlab::report {
 
@@ -14,16 +16,23 @@ class SamplingSection : public Section {
 public:
     std::vector<std::string> keys() const override { return {"sampling"}; }
 
-    void read(StrictTable& doc, const Settings&, const NdfRegistry&) override {
+    void read(StrictTable& doc, const Settings&, const NdfRegistry& registry) override {
         auto sm = doc.optional_table("sampling", {"families", "alpha", "theta_o", "samples", "seed"});
         if (!sm) return;
         scene_.families = sm->texts("families");
         if (scene_.families.empty()) sm->fail("families", "is an empty list");
         scene_.alphas = read_axis(*sm, "alpha");
         scene_.theta_o = sm->real("theta_o", scene_.theta_o);
+        if (!(scene_.theta_o >= 0.0 && scene_.theta_o < 90.0))
+            sm->fail("theta_o", "must be in [0, 90) degrees, got " + format_shortest(scene_.theta_o));
         scene_.samples = static_cast<std::size_t>(sm->integer("samples", 100, 100'000'000, 100'000));
         scene_.seed = static_cast<unsigned long long>(sm->integer("seed", 0, INT64_MAX, 1));
         sm->done();
+        try {
+            ndfs_ = sampling_ndfs(scene_, registry);
+        } catch (const input_error& e) {
+            sm->fail("families", e.what());
+        }
     }
 
     // samples: families x alpha x strategies x samples.
@@ -33,9 +42,7 @@ public:
                      static_cast<double>(scene_.samples));
     }
 
-    void check(const Settings&, const NdfRegistry& ndfs, const VariantRegistry&) override {
-        if (!scene_.families.empty()) ndfs_ = sampling_ndfs(scene_, ndfs);
-    }
+    void check(const Settings&, const NdfRegistry&, const VariantRegistry&) override {}  // all checked as read
 
     void compute() override {
         if (ndfs_.empty()) return;

@@ -77,6 +77,9 @@ namespace smithlab {
 inline constexpr double tabulated_area_tolerance = 1e-2;
 // The fewest rows the interpolation takes: Steffen's end slope is the three-point parabola's.
 inline constexpr std::size_t tabulated_min_points = 3;
+// The most bytes a table file may hold: 64 MiB, a million rows of 17-digit pairs and more, far beyond a measured
+// D(theta); /dev/zero, an endless pipe or a mistaken file is refused without being held.
+inline constexpr std::size_t tabulated_max_bytes = std::size_t{64} << 20;
 
 struct TabulatedOptions {
     bool normalize = false;  // divide D by its projected area A instead of refusing |A - 1| > tabulated_area_tolerance
@@ -126,7 +129,9 @@ private:
 // refusal above.
 TabulatedNdf tabulated_ndf_from_csv(const std::string& text, const std::string& source,
                                     const TabulatedOptions& opts = {});
-// The same from a file, read as bytes; the path as given is the source. input_error when it cannot be read.
+// The same from a file, read as bytes; the path as given is the source. input_error when it cannot be read, is not a
+// regular file (a FIFO is refused before it is opened, not waited on; so are devices) or holds more than
+// tabulated_max_bytes.
 TabulatedNdf read_tabulated_ndf(const std::filesystem::path& path, const TabulatedOptions& opts = {});
 
 // FNV-1a 64 of bytes (offset basis 0xcbf29ce484222325, prime 0x100000001b3).
