@@ -1,16 +1,18 @@
 #!/usr/bin/env python3
 """Time the main job's commands on the default scenes and rewrite the timing block of docs/performance.md.
 
-    bench/command_times.py BUILD_DIR [--threads N]
+    bench/command_times.py BUILD_DIR [--threads N] [--with-build]
 
-In a scratch directory, one after another: `smithlab check --all`, `smithlab report`, `smithlab trace`,
+With --with-build, first the README's build (configure, then `cmake --build -j2`, Release) of this source tree from
+nothing, into a scratch build directory, whose time heads the table. Then, in a scratch directory, one after another: `smithlab check --all`, `smithlab report`, `smithlab trace`,
 `smithlab fit` (cold: nothing cached) and `smithlab fit` again (warm: every traced point read from fit/cache/).
 Wall time of each, with the machine (CPU model, cores, load average before the run) and the date, between
 
     <!-- command times: bench/command_times.py -->
     <!-- end command times -->
 
-in docs/performance.md. About 5 minutes on 2 cores; a machine busy with other work gives longer times, and the
+in docs/performance.md, and the main job's total (the build, when timed, and the commands the README's first
+command runs: the first fit, not the second). About 5 minutes on 2 cores (17 with the build); a machine busy with other work gives longer times, and the
 block says what the load was.
 """
 import datetime
@@ -42,6 +44,8 @@ def cpu_model():
 
 def main(argv):
     threads = None
+    with_build = "--with-build" in argv
+    argv = [a for a in argv if a != "--with-build"]
     if "--threads" in argv:
         i = argv.index("--threads")
         threads = argv[i + 1]
@@ -53,6 +57,18 @@ def main(argv):
     rows = []
     work = pathlib.Path(tempfile.mkdtemp(prefix="smithlab-times-"))
     try:
+        if with_build:
+            build = work / "build"
+            t0 = time.monotonic()
+            for cmd in (["cmake", "-S", str(ROOT), "-B", str(build), "-DCMAKE_BUILD_TYPE=Release"],
+                        ["cmake", "--build", str(build), "-j2"]):
+                run = subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+                if run.returncode != 0:
+                    raise SystemExit(f"{' '.join(cmd)} exited {run.returncode}:\n{run.stderr[-2000:]}")
+            seconds = time.monotonic() - t0
+            print(f"the build: {seconds:.1f} s", flush=True)
+            rows.append(("the README's build from nothing, `-j2`", "cmake -S . -B build && cmake --build build -j2",
+                         seconds))
         for label, args in RUNS:
             cmd = [str(exe)] + args + (["--threads", threads] if threads and args[0] in ("trace", "fit") else [])
             t0 = time.monotonic()
@@ -72,6 +88,9 @@ def main(argv):
              "| command | what it runs | wall time |",
              "|---|---|---:|"]
     block += [f"| `{cmd}` | {label} | {seconds:.0f} s |" for label, cmd, seconds in rows]
+    total = sum(seconds for _, _, seconds in rows[:-1])  # the last row, the warm fit, is not part of it
+    what = "the build and the four commands" if with_build else "the four commands, the build not included"
+    block.append(f"| the main job | {what}, as the README's first command runs them | {total / 60:.1f} min |")
     block.append(END)
 
     text = DOC.read_text()

@@ -775,3 +775,34 @@ TEST_CASE("one convention: COMMAND [SCENE] -o PATH, shared options checked alike
         CHECK_FALSE(fs::exists(d / "never_dir"));
     }
 }
+
+TEST_CASE("scale: the same scene at a fraction of its walks, and a scale outside 0 < F <= 1000 refused", "[cli]") {
+    const fs::path d = scratch();
+    write(d / "scale.toml",
+          "materials = [\"mirror\"]\n[walks]\nn = 1000\n[grid]\ntheta_i = [30]\n[[ndf]]\nspec = \"ggx(alpha=0.5)\"\n");
+    const std::string trace = "trace '" + (d / "scale.toml").string() + "' -o '" + (d / "scaled").string() + "'";
+    fs::remove_all(d / "scaled");
+    const Run half = run(trace + " --scale 0.5");
+    INFO(half.err);
+    REQUIRE(half.rc == 0);
+    CHECK_THAT(half.out, Catch::Contains("\nwalks 500\n"));
+    // At least one walk a cell however small the scale; and the bound is checked on the scaled scene.
+    fs::remove_all(d / "scaled");
+    CHECK_THAT(run(trace + " --scale 1e-9").out, Catch::Contains("\nwalks 1\n"));
+    const Run over = run(trace + " --scale 2 --max-walks 1500");
+    CHECK(over.rc == 2);
+    CHECK_THAT(over.err, Catch::Contains("makes the scene 2000 walks"));
+    for (const std::string& bad : {trace + " --scale 0", trace + " --scale nan", trace + " --scale 1001",
+                                   "fit --scale -1 -o '" + (d / "never_dir").string() + "'",
+                                   "report --scale 0 -o '" + (d / "never_dir").string() + "'"}) {
+        const Run r = run(bad);
+        INFO(bad << "\nstderr: " << r.err);
+        CHECK(r.rc == 2);
+        CHECK_THAT(r.err, Catch::Contains("--scale"));
+        CHECK_FALSE(fs::exists(d / "never_dir"));
+    }
+    const Run flags =
+        run("trace --ndf 'ggx(alpha=0.5)' --walks 100 --scale 0.5 -o '" + (d / "never_dir").string() + "'");
+    CHECK(flags.rc == 2);
+    CHECK_THAT(flags.err, Catch::Contains("--scale goes with a scene; the cell flags give the walks"));
+}

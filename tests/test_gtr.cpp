@@ -112,7 +112,12 @@ TEST_CASE("the generated integer-gamma forms give the incomplete-beta route's La
             const double now = smithlab::Lambda_gtr_closed(a, g, mu),
                          plain = smithlab_plain::Lambda_gtr_closed(a, g, mu);
             INFO("alpha=" << a << " gamma=" << g << " mu=" << mu << " now " << now << " plain " << plain);
-            REQUIRE(plain > 0.0);
+            // Where Lambda is below the normal range (alpha = 1e-4, gamma = 20, mu = 1e90: K mu^-2 ~ 1e-332) both
+            // round to the same few subnormal bits or to 0; a relative comparison needs normal numbers.
+            if (plain < 0x1p-970) {
+                CHECK(now < 0x1p-970);
+                continue;
+            }
             const double rel = std::abs(now - plain) / plain;
             CHECK(rel <= 1e-13);
             worst = std::max(worst, rel);

@@ -266,6 +266,19 @@ TEST_CASE("tabulated: every refusal names the file, the line and the value", "[t
           }).find("is a directory") != std::string::npos);
 }
 
+TEST_CASE("tabulated: a binary table's bytes reach the message escaped, UTF-8 kept", "[tabulated]") {
+    // ESC, BEL, NUL and 0xFF in a field: as \xNN, and the NUL does not cut the message short.
+    std::string text = "theta_deg,D\n0,1\n5,\x1b[31m\x07\xff";
+    text.push_back('\0');
+    text += "x\n";
+    const std::string m = refusal_of(text);
+    CHECK(m == "ndf.csv:3: D is not a number: '\\x1b[31m\\x07\\xff\\x00x'");
+    // A header in another script stays readable; a lone continuation byte and an overlong form do not pass.
+    CHECK(refusal_of("\xce\xb8_deg,D\n0,1\n").find("(columns: '\xce\xb8_deg', 'D')") != std::string::npos);
+    CHECK(smithlab::printable("\x80 \xc0\xaf \xed\xa0\x80 \xf4\x90\x80\x80 \xe2\x82\xac\t\\") ==
+          "\\x80 \\xc0\\xaf \\xed\\xa0\\x80 \\xf4\\x90\\x80\\x80 \xe2\x82\xac\t\\");
+}
+
 TEST_CASE("tabulated: a device, a FIFO and a file past the cap are refused before they are read", "[tabulated]") {
     namespace fs = std::filesystem;
     // /dev/zero would be read without end, a FIFO with no writer would block in open.

@@ -188,3 +188,54 @@ TEST_CASE("outputs that cannot be written into are refused, naming what they are
         CHECK(fs::is_empty(d / "ro"));
     }
 }
+
+TEST_CASE("the fit's compensation tables past a file-size limit are exit 2 naming the file, not an internal error",
+          "[writes]") {
+    const fs::path d = fresh("writes_compensation_limit");
+    write(d / "s.toml",
+          slurp(SMITHLAB_TESTS_DIR "/fit_tiny_scene.toml") +
+              "[compensation]\nalpha = [0.5, 1.0]\ncosines = 4\nrefine = 2\nfurnace_alpha = [0.5]\n"
+              "furnace_theta = [0.0]\nfurnace_walks = 100\n");
+    const fs::path out = d / "out";
+    const Run r =
+        run_sh(small_files, "", "fit '" + (d / "s.toml").string() + "' -o '" + out.string() + "'", "/dev/null");
+    INFO(r.err);
+    CHECK(r.rc == 2);
+    CHECK_THAT(
+        r.err,
+        Catch::Contains("smithlab: error: cannot write " + out.string() + "/") && Catch::Contains(": File too large"));
+    CHECK_FALSE(fs::exists(out / "report.md"));
+    CHECK(temporaries(d).empty());
+}
+
+TEST_CASE("a plot script that fails is exit 2 naming the figures, and without matplotlib a warning names the output",
+          "[writes]") {
+    // A matplotlib of our own first on the path: one that fails as a full disk would, one that is not there.
+    const fs::path d = fresh("writes_plot_script");
+    for (const auto& [name, body] : {std::pair{"failing", "raise OSError(28, 'No space left on device')\n"},
+                                     std::pair{"missing", "raise ImportError('no matplotlib here')\n"}}) {
+        fs::create_directories(d / name / "matplotlib");
+        write(d / name / "matplotlib" / "__init__.py", body);
+    }
+    write(d / "scene.toml",
+          "[grid]\nalpha = [0.5]\nmu = [1.0]\n[[ndf]]\nfamily = \"ggx\"\n"
+          "[variants]\ninclude = [\"closed-form\"]\n[timing]\nmin_time = 0.01\n[figures]\npareto = true\n");
+    const std::string report = report_args(d, "scene.toml", "rep");
+
+    const Run failed = run_sh("export PYTHONPATH='" + (d / "failing").string() + "';", "", report, "/dev/null");
+    INFO(failed.err);
+    CHECK(failed.rc == 2);
+    CHECK_THAT(failed.err,
+               Catch::Contains("smithlab: error: cannot write the figures of " + (d / "rep").string() +
+                               ": report_plots.py exited with status 1"));
+    CHECK_FALSE(fs::exists(d / "rep" / "report.md"));
+    CHECK(temporaries(d).empty());
+
+    const Run missing = run_sh("export PYTHONPATH='" + (d / "missing").string() + "';", "", report, "/dev/null");
+    INFO(missing.err);
+    CHECK(missing.rc == 0);
+    CHECK_THAT(missing.err,
+               Catch::Contains("report: warning: the figures were not drawn: python3 has no matplotlib") &&
+                   Catch::Contains("their data is in " + (d / "rep").string() + "\n"));
+    CHECK_THAT(slurp(d / "rep" / "report.md"), Catch::Contains("**The figures were not drawn**"));
+}

@@ -40,6 +40,7 @@ struct ReportArgs {
     std::string scene;  // a scene file; empty: the embedded default
     std::string output = "report";
     bool print_scene = false;
+    double scale = 1.0;     // --scale (SizeLimits::scale)
     double max_work = 0.0;  // evaluations a scene may cost: report::default_max_work (set by add_report) or --max-work
 };
 void add_report(CLI::App& app, ReportArgs& args);
@@ -65,7 +66,7 @@ struct TraceArgs {
     std::string seed = "1";
     bool print_scene = false;
     std::vector<CLI::Option*> cell_options;  // the flags that name one cell: any given means "trace that cell"
-    report::SizeLimits limits;               // --max-cells, --max-walks
+    report::SizeLimits limits;               // --max-cells, --max-walks, --scale
 };
 void add_trace(CLI::App& app, TraceArgs& args);
 int run_trace(const TraceArgs& args, const NdfRegistry& registry);
@@ -84,7 +85,7 @@ struct FitArgs {
     std::string output = "fit";
     int threads = 0;
     bool print_scene = false, list_models = false;
-    report::SizeLimits limits;  // --max-cells, --max-walks
+    report::SizeLimits limits;  // --max-cells, --max-walks, --scale
 };
 void add_fit(CLI::App& app, FitArgs& args);
 int run_fit(const FitArgs& args, const NdfRegistry& registry);
@@ -118,7 +119,10 @@ CLI::Option* add_seed_option(CLI::App& command, std::string& seed);
 CLI::Option* add_downward_option(CLI::App& command, std::string& downward);
 // --max-cells N and --max-walks N: the size a scene may ask for (scene/limits.hpp), inf for no limit.
 void add_limit_options(CLI::App& command, report::SizeLimits& limits);
-// The optional positional SCENE (a TOML file) and --print-scene, of report, trace and fit.
-void add_scene_options(CLI::App& command, std::string& scene, bool& print_scene, const std::string& none);
+// The optional positional SCENE (a TOML file), --print-scene and --scale F (SizeLimits::scale), of report, trace
+// and fit; run_* checks the scale with require_scale.
+void add_scene_options(CLI::App& command, std::string& scene, bool& print_scene, double& scale,
+                       const std::string& none);
+void require_scale(double scale);
 
 }  // namespace smithlab::cli

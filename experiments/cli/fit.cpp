@@ -39,7 +39,7 @@ void add_fit(CLI::App& app, FitArgs& a) {
         "when complete. Traced points are cached in DIR/cache/ as they finish: a killed run resumes, and refitting "
         "the\n"
         "same data (other models, albedos, floor) traces nothing.");
-    add_scene_options(*c, a.scene, a.print_scene, "the embedded default");
+    add_scene_options(*c, a.scene, a.print_scene, a.limits.scale, "the embedded default");
     add_output_option(*c, a.output, "output directory")->capture_default_str();
     add_threads_option(*c, a.threads);
     add_limit_options(*c, a.limits);
@@ -62,6 +62,7 @@ int run_fit(const FitArgs& a, const NdfRegistry& registry) {
         return exit_ok;
     }
     require_threads(a.threads);
+    require_scale(a.limits.scale);
     const std::string source = a.scene.empty() ? "<default scene>" : a.scene;
     const std::string text = a.scene.empty() ? fitrun::default_fit_scene_text() : read_scene_file(a.scene);
     const fitrun::FitScene scene = fitrun::parse_fit_scene(text, source, registry, a.limits);

@@ -115,9 +115,17 @@ void add_limit_options(CLI::App& command, report::SizeLimits& limits) {
         ->check(strict_real());
 }
 
-void add_scene_options(CLI::App& command, std::string& scene, bool& print_scene, const std::string& none) {
+void add_scene_options(CLI::App& command, std::string& scene, bool& print_scene, double& scale,
+                       const std::string& none) {
     command.add_option("scene", scene, "scene file (TOML); none: " + none);
     command.add_flag("--print-scene", print_scene, "print the default scene (every key documented) and exit");
+    command
+        .add_option("--scale", scale,
+                    "the scene's walks and samples times F, in (0, 1000] (0.01: a quick run of the same scene)")
+        ->capture_default_str()
+        ->check(strict_real());
 }
+
+void require_scale(double scale) { require(scale > 0.0 && scale <= 1000.0, "--scale", "in (0, 1000]", scale); }
 
 }  // namespace smithlab::cli

@@ -35,7 +35,7 @@ void add_report(CLI::App& app, ReportArgs& a) {
         "  smithlab report\n"
         "  smithlab report my_scene.toml -o my_report\n"
         "  smithlab report big.toml --max-work 1e9");
-    add_scene_options(*c, a.scene, a.print_scene, "the embedded default");
+    add_scene_options(*c, a.scene, a.print_scene, a.scale, "the embedded default");
     add_output_option(*c, a.output, "output directory")->capture_default_str();
     a.max_work = report::default_max_work;
     c->add_option("--max-work", a.max_work, "the most evaluations a scene may cost (inf: no limit)")
@@ -48,9 +48,10 @@ int run_report(const ReportArgs& a, const NdfRegistry& registry, const VariantRe
         return exit_ok;
     }
     require(a.max_work > 0.0, "--max-work", "> 0 (inf: no limit)", a.max_work);
+    require_scale(a.scale);
     const std::string source = a.scene.empty() ? "<default scene>" : a.scene;
     report::Scene scene = report::parse_scene(a.scene.empty() ? report::default_scene_text() : read_scene_file(a.scene),
-                                              source, registry);
+                                              source, registry, a.scale);
     const report::Work work = report::estimate_work(scene, variants);
     report::check_work(work, a.max_work, source);
     if (mpi::rank() == 0)

@@ -142,7 +142,7 @@ void add_trace(CLI::App& app, TraceArgs& a) {
         "scene run again traces nothing. Walk k of cell c draws from a counter-based generator keyed by (seed, c, k):\n"
         "the files are the same bits for any --threads, resumed or not. max_order = N ends every walk after N hits\n"
         "(the orders beyond are not traced).");
-    add_scene_options(*c, a.scene, a.print_scene, "the default sweep, or the cell the flags name");
+    add_scene_options(*c, a.scene, a.print_scene, a.limits.scale, "the default sweep, or the cell the flags name");
     a.cell_options = {
         c->add_option("--ndf", a.ndf, "NDF spec")->capture_default_str(),
         c->add_option("--material", a.material, "facet material spec")->capture_default_str(),
@@ -175,6 +175,9 @@ int run_trace(const TraceArgs& a, const NdfRegistry& registry) {
         std::any_of(a.cell_options.begin(), a.cell_options.end(), [](const CLI::Option* o) { return o->count() > 0; });
     if (flags && !a.scene.empty())
         throw input_error("trace: give a scene file or the cell flags (--ndf, --material, ...), not both");
+    require_scale(a.limits.scale);
+    if (flags && a.limits.scale != 1.0)
+        throw input_error("trace: --scale goes with a scene; the cell flags give the walks (--walks N)");
     const std::string source = !a.scene.empty() ? a.scene : flags ? "<flags>" : "<default scene>";
     const trace::TraceScene scene = flags
         ? cell_scene(a)

@@ -357,7 +357,7 @@ void write_formats(const fs::path& dir, const std::vector<FamilyTables>& all) {
             text(id + ".glsl", e, fit::write_glsl);
             text(id + ".hlsl", e, fit::write_hlsl);
             text(id + ".json", e, fit::write_axes_json);
-            fit::write_png16(sub / (id + ".png"), e);
+            text(id + ".png", e, fit::write_png16);
         });
         if (!t.orders) continue;
         double worst = 0.0;
@@ -484,8 +484,8 @@ std::string write_compensation(const fs::path& dir, const std::vector<FitFamily>
     write_errors(dir, all);
     write_formats(dir, all);
     write_furnace(dir, rows);
-    const bool drawn =
-        output::run_plot_script("compensation_plots.py", SMITHLAB_COMPENSATION_PLOT_SCRIPT, dir, "fit: compensation");
+    const bool drawn = output::run_plot_script("compensation_plots.py", SMITHLAB_COMPENSATION_PLOT_SCRIPT, dir,
+                                               "fit: compensation", {"furnace.png"});
     return markdown(all, c, rows) + (drawn ? "\n![The furnace of the tables and against the walk](furnace.png)\n" : "");
 }
 

@@ -139,12 +139,12 @@ std::vector<FitFamily> read_ndfs(StrictTable& doc, const NdfRegistry& registry, 
     return out;
 }
 
-FitScene::Training read_training(StrictTable& doc, FitScene::Training t, std::size_t& pairs) {
+FitScene::Training read_training(StrictTable& doc, FitScene::Training t, double scale, std::size_t& pairs) {
     StrictTable table = doc.table("training", {"alpha", "theta", "phi", "walks"});
     t.alpha = read_bounded(table, "alpha", 0.0, 1.0, true, false, "(0, 1]");
     t.theta = read_bounded(table, "theta", 0.0, 90.0, false, true, "[0, 90) degrees");
     t.phi = read_bounded(table, "phi", 0.0, 180.0, false, false, "[0, 180] degrees");
-    t.walks = table.integer("walks", 100, 1'000'000'000, t.walks);
+    t.walks = report::scaled_count(table.integer("walks", 100, 1'000'000'000, t.walks), scale, 100);
     // A point's random stream holds its index in 16 bits (fit/data_sets.hpp).
     pairs = 0;
     for (std::size_t i = 0; i < t.theta.size(); ++i)
@@ -159,7 +159,7 @@ FitScene::Training read_training(StrictTable& doc, FitScene::Training t, std::si
     return t;
 }
 
-FitScene::Validation read_validation(StrictTable& doc, FitScene::Validation v) {
+FitScene::Validation read_validation(StrictTable& doc, FitScene::Validation v, double scale) {
     if (auto t = doc.optional_table("validation", {"points", "walks", "albedo_theta", "albedo_walks"})) {
         v.points = t->integer("points", 1, max_points - 1, v.points);
         v.walks = t->integer("walks", 100, 1'000'000'000, v.walks);
@@ -168,6 +168,8 @@ FitScene::Validation read_validation(StrictTable& doc, FitScene::Validation v) {
         v.albedo_walks = t->integer("albedo_walks", 100, 1'000'000'000, v.albedo_walks);
         t->done();
     }
+    v.walks = report::scaled_count(v.walks, scale, 100);
+    v.albedo_walks = report::scaled_count(v.albedo_walks, scale, 100);
     return v;
 }
 
@@ -259,16 +261,17 @@ FitScene::Compensation read_compensation(StrictTable& doc, FitScene::Compensatio
     c.cosines = t->integer("cosines", 2, 4096, c.cosines);
     c.dielectric_cosines = t->integer("dielectric_cosines", 2, 4096, c.dielectric_cosines);
     c.refine = t->integer("refine", 1, 100, c.refine);
+    c.refine = report::scaled_count(c.refine, limits.scale, std::min<std::int64_t>(c.refine, 2));
     if (t->has("g2")) {
+        const std::vector<std::string> names = t->texts("g2");
+        if (names.empty()) t->fail("g2", "is an empty list");
+        refuse_repeats(*t, "g2", names, [](const std::string& g) { return "'" + g + "'"; });
         c.g2.clear();
-        for (const std::string& g : t->texts("g2")) {
+        for (const std::string& g : names) {
             if (g != "height-correlated" && g != "separable")
                 t->fail("g2", "must name height-correlated or separable, got '" + g + "'");
-            const G2Form form = g == "separable" ? G2Form::uncorrelated : G2Form::height_correlated;
-            if (std::find(c.g2.begin(), c.g2.end(), form) != c.g2.end()) t->fail("g2", "names '" + g + "' twice");
-            c.g2.push_back(form);
+            c.g2.push_back(g == "separable" ? G2Form::uncorrelated : G2Form::height_correlated);
         }
-        if (c.g2.empty()) t->fail("g2", "is an empty list");
     }
     // eta in [1.01, 100]: a relative index of 1 is no interface; both sides of each are tabulated
     // (eta = [] as the default scene writes it: no dielectric tables)
@@ -295,8 +298,10 @@ FitScene::Compensation read_compensation(StrictTable& doc, FitScene::Compensatio
     require_ndfs_at(*t, "furnace_alpha", c.furnace_alpha, ndfs, registry);
     if (t->has("furnace_theta"))
         c.furnace_theta = read_bounded(*t, "furnace_theta", 0.0, 90.0, false, true, "[0, 90) degrees");
-    c.furnace_walks = t->integer("furnace_walks", 100, 1'000'000'000, c.furnace_walks);
+    c.furnace_walks =
+        report::scaled_count(t->integer("furnace_walks", 100, 1'000'000'000, c.furnace_walks), limits.scale, 100);
     c.order_walks = t->integer("order_walks", 0, 1'000'000'000, c.order_walks);
+    c.order_walks = report::scaled_count(c.order_walks, limits.scale, std::min<std::int64_t>(c.order_walks, 100));
     if (t->has("order_alpha")) c.order_alpha = table_alphas(*t, "order_alpha");
     require_ndfs_at(*t, "order_alpha", c.order_alpha, ndfs, registry);
     c.order_cosines = t->integer("order_cosines", 2, 4096, c.order_cosines);
@@ -305,12 +310,12 @@ FitScene::Compensation read_compensation(StrictTable& doc, FitScene::Compensatio
     return c;
 }
 
-FitScene::Pictures read_pictures(StrictTable& doc, FitScene::Pictures p) {
+FitScene::Pictures read_pictures(StrictTable& doc, FitScene::Pictures p, double scale) {
     if (auto t = doc.optional_table("pictures", {"sphere_alpha", "pixels", "walks", "slice_alpha", "slice_n"})) {
         p.enabled = true;
         if (t->has("sphere_alpha")) p.sphere_alpha = read_bounded(*t, "sphere_alpha", 0.0, 1.0, true, false, "(0, 1]");
         p.pixels = t->integer("pixels", 4, 1024, p.pixels);
-        p.walks = t->integer("walks", 100, 1'000'000'000, p.walks);
+        p.walks = report::scaled_count(t->integer("walks", 100, 1'000'000'000, p.walks), scale, 100);
         if (t->has("slice_alpha")) p.slice_alpha = read_bounded(*t, "slice_alpha", 0.0, 1.0, true, false, "(0, 1]");
         p.slice_n = t->integer("slice_n", 2, 1024, p.slice_n);
         t->done();
@@ -338,13 +343,13 @@ FitScene parse_fit_scene(const std::string& text, const std::string& source, con
     s.energy_bound = doc.flag("energy_bound", s.energy_bound);
     s.seed = static_cast<std::uint64_t>(doc.integer("seed", 0, std::numeric_limits<std::int64_t>::max(), 1));
     std::size_t pairs = 0;
-    s.training = read_training(doc, s.training, pairs);  // before the NDFs: they size each NDF's work
-    s.validation = read_validation(doc, s.validation);
+    s.training = read_training(doc, s.training, limits.scale, pairs);  // before the NDFs: they size each NDF's work
+    s.validation = read_validation(doc, s.validation, limits.scale);
     const PerNdf each = per_ndf(s, pairs);
     s.ndfs = read_ndfs(doc, registry, each, limits);
     const double ndfs = static_cast<double>(s.ndfs.size());
     s.compensation = read_compensation(doc, s.compensation, {ndfs, ndfs * each.walks}, limits, s.ndfs, registry);
-    s.pictures = read_pictures(doc, s.pictures);
+    s.pictures = read_pictures(doc, s.pictures, limits.scale);
     doc.done();
     return s;
 }

@@ -14,13 +14,10 @@ import os
 import sys
 from collections import defaultdict
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-
+# plot_common first: it says what is missing when matplotlib is (and selects the Agg backend).
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from plot_common import num, rows, save, use_style  # noqa: E402
+import matplotlib.pyplot as plt  # noqa: E402
 
 
 def main(out):

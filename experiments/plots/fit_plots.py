@@ -17,15 +17,12 @@ import os
 import sys
 from collections import defaultdict
 
-import matplotlib
-
-matplotlib.use("Agg")
+# plot_common first: it says what is missing when matplotlib is (and selects the Agg backend).
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from plot_common import num, rows, save, use_style  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.colors import PowerNorm  # noqa: E402
 import numpy as np  # noqa: E402
-
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from plot_common import num, rows, save, use_style  # noqa: E402
 
 # Hammon 2017's layout (slides "Direct only" ... "Approximate diffuse only"): rows the light at 0, 90, 135 degrees
 # from the viewer, each row three spheres at albedo 0.75, 0.5, 0.25; columns alpha.

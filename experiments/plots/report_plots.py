@@ -10,17 +10,14 @@ import re
 import sys
 from collections import defaultdict
 
-import matplotlib
-
-matplotlib.use("Agg")
+# plot_common first: it says what is missing when matplotlib is (and selects the Agg backend).
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from plot_common import num, place_labels, rows, save, use_style  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.colors import LogNorm  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 from matplotlib.ticker import LogLocator, NullFormatter  # noqa: E402
 import numpy as np  # noqa: E402
-
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from plot_common import num, place_labels, rows, save, use_style  # noqa: E402
 
 # ---------------------------------------------------------------------------------------------------------------------
 # pareto.png: each G1 variant's worst error against its cost

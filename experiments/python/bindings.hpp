@@ -4,9 +4,11 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cstddef>
 #include <exception>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -32,6 +34,17 @@ inline void translate_errors() {
 }
 
 using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+// An array's shape as NumPy's messages write it: (100,), (10,10), () for a scalar.
+inline std::string shape_text(const Array& a) {
+    std::string s = "(";
+    for (py::ssize_t d = 0; d < a.ndim(); ++d) {
+        if (d > 0) s += ',';
+        s += std::to_string(a.shape(d));
+    }
+    s += a.ndim() == 1 ? ",)" : ")";
+    return s;
+}
 
 // N inputs broadcast against each other (NumPy's rules: shapes aligned on the right, each dimension equal or 1), each
 // read as float64 (anything NumPy reads as numbers), and an output of the broadcast shape: result() is that array, or
@@ -116,12 +129,8 @@ private:
     static std::string mismatch(const std::array<Array, N>& a) {
         std::string m = "operands could not be broadcast together with shapes";
         for (const Array& x : a) {
-            m += " (";
-            for (py::ssize_t d = 0; d < x.ndim(); ++d) {
-                if (d > 0) m += ',';
-                m += std::to_string(x.shape(d));
-            }
-            m += x.ndim() == 1 ? ",)" : ")";
+            m += ' ';
+            m += shape_text(x);
         }
         return m;
     }
@@ -134,18 +143,42 @@ private:
     bool scalar_ = true;
 };
 
+// Ctrl-C during a long call. Python runs its SIGINT handler (KeyboardInterrupt) only when C++ hands control back,
+// so a loop that runs without the GIL calls the poll between its pieces (a block of walks, an element): on the
+// thread that made it, at most every 0.1 s, it takes the GIL and asks Python for pending signals, and a handler's
+// exception (KeyboardInterrupt) is thrown as pybind11's error_already_set, which ends the loop and reaches Python
+// as itself. Other threads' calls do nothing: the loop's own machinery stops them (util::reduce_blocks).
+class SignalPoll {
+public:
+    void operator()() const {
+        if (std::this_thread::get_id() != owner_) return;
+        const auto now = std::chrono::steady_clock::now();
+        if (now - last_ < std::chrono::milliseconds(100)) return;
+        last_ = now;
+        const py::gil_scoped_acquire hold;
+        if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    }
+
+private:
+    std::thread::id owner_ = std::this_thread::get_id();
+    mutable std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
 // f(x0[i], x1[i], ...) over the broadcast inputs (Broadcast). The loop runs in C++ with the GIL released, so f must
-// not touch Python. An exception from f (input_error naming the item) propagates after the GIL is taken back.
+// not touch Python; a pending Ctrl-C is honoured between elements (SignalPoll). An exception from f (input_error
+// naming the item) propagates after the GIL is taken back.
 template <std::size_t N, class F>
 py::object elementwise(const F& f, const std::array<py::object, N>& inputs) {
     Broadcast<N> b(inputs);
     double* y = b.output();
     {
+        const SignalPoll poll;
         py::gil_scoped_release free;
-        for (std::size_t i = 0; i < b.size(); ++i) y[i] = [&]<std::size_t... K>(std::index_sequence<K...>) {
-                return f(b.at(K, i)...);
-            }
-        (std::make_index_sequence<N>{});
+        for (std::size_t i = 0; i < b.size(); ++i) {
+            if (i % 64 == 63) poll();
+            y[i] = [&]<std::size_t... K>(std::index_sequence<K...>) { return f(b.at(K, i)...); }
+            (std::make_index_sequence<N>{});
+        }
     }
     return b.result();
 }

@@ -98,8 +98,8 @@ AnyNdf tabulated(const std::string& name, const py::object& cos_theta, const py:
     const Array x(by_cos ? cos_theta : theta_deg), d(D);
     if (x.ndim() != 1 || d.ndim() != 1 || x.size() != d.size())
         throw input_error("tabulated '" + name + "': " + (by_cos ? "cos_theta" : "theta_deg") +
-                          " and D must be 1-D arrays of one length, got " + std::to_string(x.size()) + " and " +
-                          std::to_string(d.size()) + " values");
+                          " and D must be 1-D arrays of one length, got shapes " + shape_text(x) + " and " +
+                          shape_text(d));
     const bool made_here = catalogue().tables.count(name) > 0;
     if (catalogue().registry.find(name) && !made_here)
         throw input_error("tabulated: the name '" + name + "' is taken (smithlab.list() names every NDF)");

@@ -52,8 +52,13 @@ walk::MicrosurfaceOptions walk_options(const std::string& downward, const std::s
 // The seed as the command line reads it (an integer in [0, 2^64)), from a Python int or its text.
 std::uint64_t seed_of(const py::object& seed) { return cli::parse_seed(py::str(seed).cast<std::string>(), "seed"); }
 
-void require_walks_threads(long long walks, int threads) {
+// walks in all (walks x pairs for brdf) at most max_walks, as the command line's --max-walks bounds a scene.
+void require_walks_threads(long long walks, double all, double max_walks, int threads) {
     require(walks > 0, "walks", "> 0", static_cast<double>(walks));
+    require(!std::isnan(max_walks) && max_walks > 0.0, "max_walks", "> 0 (inf: no limit)", max_walks);
+    if (all > max_walks)
+        throw input_error("walks: " + format_shortest(all) + " walks in all, more than max_walks " +
+                          format_shortest(max_walks) + " (raise it with max_walks=N)");
     require(threads >= 0, "threads", ">= 0 (0: all cores)", threads);
 }
 
@@ -66,13 +71,17 @@ struct TraceRequest {
 };
 
 // The cell `smithlab trace --ndf ... --material M --theta-i T --phi-i P --walks N --seed S` traces: the only cell of
-// its scene, index 0 (its random stream), walks in blocks of 4096 merged in block order.
-walk::AlbedoTally trace_cell(const AnyNdf& ndf, const TraceRequest& t) {
+// its scene, index 0 (its random stream), walks in blocks of 4096 merged in block order; Ctrl-C honoured between
+// blocks.
+walk::AlbedoTally trace_cell(const AnyNdf& ndf, const TraceRequest& t, const SignalPoll& poll) {
     const std::shared_ptr<const AnySurface> surface = make_surface(ndf, t.options);
     walk::CellPartial total = util::reduce_blocks(
         walk::block_count(t.cell.walks, t.cell.block), t.cell.threads, walk::empty_partial(t.cell),
-        [&](std::uint64_t b) { return surface->trace_block(t.material, t.cell, b); }, walk::merge_partial,
-        [](std::uint64_t) {});
+        [&](std::uint64_t b) {
+            poll();
+            return surface->trace_block(t.material, t.cell, b);
+        },
+        walk::merge_partial, [](std::uint64_t) {});
     return std::move(total.albedo);
 }
 
@@ -115,9 +124,9 @@ py::dict albedo_arrays(const walk::AlbedoTally& a) {
 
 py::dict trace_one_cell(const AnyNdf& ndf, const std::string& material, double theta_i, double phi_i, long long walks,
                         const py::object& seed, int threads, int max_order, const std::string& downward,
-                        const std::string& hit_normal) {
+                        const std::string& hit_normal, double max_walks) {
     TraceRequest t{walk::parse_material(material), {}, walk_options(downward, hit_normal)};
-    require_walks_threads(walks, threads);
+    require_walks_threads(walks, static_cast<double>(walks), max_walks, threads);
     require(max_order >= 0, "max_order", ">= 0 (0: no limit)", max_order);
     t.cell.wi = trace::incident_direction(theta_i, phi_i, "theta_i", "phi_i", t.material);
     t.cell.seed = seed_of(seed);
@@ -127,8 +136,9 @@ py::dict trace_one_cell(const AnyNdf& ndf, const std::string& material, double t
     t.cell.threads = static_cast<unsigned>(threads);
     walk::AlbedoTally a;
     {
+        const SignalPoll poll;
         py::gil_scoped_release free;
-        a = trace_cell(ndf, t);
+        a = trace_cell(ndf, t, poll);
     }
     answer_capped(a);
     py::dict out = albedo_arrays(a);
@@ -150,7 +160,8 @@ RuntimeWarning) and 'bounces' (facet events in all).
 The same bits as `smithlab trace --ndf SPEC --material M --theta-i T --phi-i P --walks N --seed S` (its albedo.csv):
 walk k draws from a counter-based generator keyed by (seed, cell 0, k), so any `threads` (0: all cores) gives the
 same numbers. max_order = N ends every walk after N hits; downward ('smith' or 'hammon') and hit_normal ('visible'
-or 'hammon') as trace's --downward and --hit-normal. Runs without the GIL.)";
+or 'hammon') as trace's --downward and --hit-normal. More walks than max_walks (as trace's --max-walks; inf: no
+limit) raise ValueError. Runs without the GIL; Ctrl-C raises KeyboardInterrupt within a block of walks.)";
 
 // ---- brdf -------------------------------------------------------------------------------------------------------
 
@@ -211,6 +222,8 @@ void eval_pairs(EvalSetup& s, const Broadcast<4>& a, BrdfArrays& out, const walk
     double* order = out.order.mutable_data();
     double* order_err = out.order_stderr.mutable_data();
     double* single = out.with_single ? out.single.mutable_data() : nullptr;
+    const SignalPoll poll;
+    s.request.before_block = [&poll] { poll(); };
     py::gil_scoped_release free;
     s.surface = make_surface(s.ndf, options);
     for (std::size_t i = 0; i < a.size(); ++i) {
@@ -242,12 +255,12 @@ py::dict brdf_result(const Broadcast<4>& a, const BrdfArrays& out) {
 
 py::dict brdf_pairs(const AnyNdf& ndf, const std::string& material, const py::object& theta_i, const py::object& phi_i,
                     const py::object& theta_o, const py::object& phi_o, long long walks, const py::object& seed,
-                    int threads, const std::string& downward) {
+                    int threads, const std::string& downward, double max_walks) {
     EvalSetup s{ndf, walk::parse_material(material), nullptr, {}};
     const walk::MicrosurfaceOptions options = walk_options(downward, "visible");
-    require_walks_threads(walks, threads);
     s.request.seed = seed_of(seed), s.request.walks = walks, s.request.threads = static_cast<unsigned>(threads);
     const Broadcast<4> a({theta_i, phi_i, theta_o, phi_o});
+    require_walks_threads(walks, static_cast<double>(walks) * static_cast<double>(a.size()), max_walks, threads);
     bool light_below = false;
     for (std::size_t i = 0; i < a.size(); ++i) light_below = light_below || a.at(0, i) > 90.0;
     BrdfArrays out(a.shape(), trace::has_single_analytic(s.material, light_below));
@@ -265,7 +278,9 @@ Returns a dict: 'value' and 'stderr' (the broadcast shape; Python floats when ev
 mirror and conductor facets (and dielectric facets when every theta_i < 90), 'single_analytic': the
 single-scattering BSDF times |cos theta_o| (Walter 2007 eq. 20 and 21 with the height-correlated G2).
 Each pair is the same bits as `smithlab brdf --ndf SPEC --material M --wi T,P --wo T,P --walks N --seed S`; its
-walks run on `threads` threads (0: all cores), the pairs one after another. Runs without the GIL.)";
+walks run on `threads` threads (0: all cores), the pairs one after another. More walks in all (walks x pairs) than
+max_walks (inf: no limit) raise ValueError. Runs without the GIL; Ctrl-C raises KeyboardInterrupt within a block of
+walks.)";
 
 }  // namespace
 
@@ -282,10 +297,12 @@ void bind_walk(py::module_& m) {
         "description opens with the spec and its defaults, e.g. 'lambert(albedo=1)'.");
     m.def("trace", &trace_one_cell, py::arg("ndf"), py::arg("material") = "mirror", py::arg("theta_i") = 45.0,
           py::arg("phi_i") = 0.0, py::arg("walks") = 1'000'000, py::arg("seed") = 1, py::arg("threads") = 0,
-          py::arg("max_order") = 0, py::arg("downward") = "smith", py::arg("hit_normal") = "visible", trace_doc);
+          py::arg("max_order") = 0, py::arg("downward") = "smith", py::arg("hit_normal") = "visible",
+          py::arg("max_walks") = report::SizeLimits{}.max_walks, trace_doc);
     m.def("brdf", &brdf_pairs, py::arg("ndf"), py::arg("material"), py::arg("theta_i"), py::arg("phi_i"),
           py::arg("theta_o"), py::arg("phi_o"), py::arg("walks") = 1'000'000, py::arg("seed") = 1,
-          py::arg("threads") = 0, py::arg("downward") = "smith", brdf_doc);
+          py::arg("threads") = 0, py::arg("downward") = "smith", py::arg("max_walks") = report::SizeLimits{}.max_walks,
+          brdf_doc);
 }
 
 }  // namespace smithlab::python

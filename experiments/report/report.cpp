@@ -69,7 +69,7 @@ void draw_figures(const Scene& scene, const fs::path& dir) {
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     if (!drawn) {
         std::ofstream md(dir / "report.md", std::ios::binary | std::ios::app);
-        md << "\n**The figures were not drawn** (python3-matplotlib missing?); their data is beside this file.\n";
+        md << "\n**The figures were not drawn** (python3 has no matplotlib); their data is beside this file.\n";
         output::finish(md, dir / "report.md");
     }
 }

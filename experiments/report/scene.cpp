@@ -54,17 +54,20 @@ std::vector<std::string> known_keys(const Sections& sections) {
 
 }  // namespace
 
-Scene parse_scene(const std::string& text, const std::string& source, const NdfRegistry& registry) {
-    return parse_scene(text, source, registry, builtin_sections());
+Scene parse_scene(const std::string& text, const std::string& source, const NdfRegistry& registry, double scale) {
+    return parse_scene(text, source, registry, builtin_sections(), scale);
 }
 
-Scene parse_scene(const std::string& text, const std::string& source, const NdfRegistry& registry, Sections sections) {
+Scene parse_scene(const std::string& text, const std::string& source, const NdfRegistry& registry, Sections sections,
+                  double scale) {
     const toml::value data = parse_toml(text, source);
     StrictTable doc(data, source, "", known_keys(sections));
     Scene s{.settings = {}, .sections = std::move(sections)};
+    s.settings.scale = scale;
     s.settings.title = doc.text("title", "smithlab report");
     read_grid(doc, s.settings);
     read_timing(doc, s.settings);
+    s.settings.min_time *= scale;
     read_figures(doc, s.settings.figures);
     for (const auto& section : s.sections) section->read(doc, s.settings, registry);
     doc.done();

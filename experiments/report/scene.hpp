@@ -21,9 +21,11 @@ struct Scene {
 // outside [0, 90) are refused with an input_error "SOURCE:LINE: key ..." naming the nearest known key or the
 // expected type. The [[ndf]] tables are read by scene_ndf.hpp against the registry (a family it lacks, a parameter
 // the family lacks); each NDF's values are checked by the registry, and the size of the work is estimated
-// (work_estimate.hpp), before anything is computed. `sections` are the built-in ones unless given.
-Scene parse_scene(const std::string& text, const std::string& source, const NdfRegistry& registry);
-Scene parse_scene(const std::string& text, const std::string& source, const NdfRegistry& registry, Sections sections);
+// (work_estimate.hpp), before anything is computed. `sections` are the built-in ones unless given; `scale` is
+// --scale (Settings::scale).
+Scene parse_scene(const std::string& text, const std::string& source, const NdfRegistry& registry, double scale = 1.0);
+Scene parse_scene(const std::string& text, const std::string& source, const NdfRegistry& registry, Sections sections,
+                  double scale = 1.0);
 
 // The default scene, embedded at build time from experiments/scenes/g1_report.toml.
 const std::string& default_scene_text();

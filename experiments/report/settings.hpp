@@ -11,7 +11,8 @@ namespace smithlab::report {
 struct Settings {
     std::string title;
     std::vector<double> alphas, mus;  // [grid]
-    double min_time = 0.05;           // seconds of Google Benchmark per timed item
+    double min_time = 0.05;           // seconds of Google Benchmark per timed item, times the scale
+    double scale = 1.0;               // --scale (scene/limits.hpp): the walks and samples a section reads times it
     struct Figures {
         bool pareto = false;              // error against ns/eval, log-log, every variant
         bool error_maps = false;          // |dG1| over (alpha, mu), worst over gamma, one map per variant

@@ -96,6 +96,7 @@ TraceScene parse_trace_scene(const std::string& text, const std::string& source,
             w->fail("hit_normal", "must be " + quoted_names(hit_normal_names) + ", got \"" + s.hit_normal + "\"");
         w->done();
     }
+    s.walks = report::scaled_count(s.walks, limits.scale, 1);
 
     StrictTable grid = doc.table("grid", {"alpha", "theta_i", "phi_i"});
     const std::vector<double> alphas = grid.has("alpha") ? report::read_axis(grid, "alpha") : std::vector<double>{};

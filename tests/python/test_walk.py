@@ -2,6 +2,8 @@
 brdf broadcasts its angles, bad input raises ValueError with the item named, and the walks run without the GIL."""
 import csv
 import os
+import subprocess
+import sys
 import threading
 import time
 
@@ -152,6 +154,11 @@ def test_materials_are_those_the_material_parser_knows():
     (lambda n: smithlab.brdf(n, "mirror", 30, 0, 30, 0, downward="x"), "downward must be"),
     (lambda n: smithlab.brdf(n, "dielectric(eta=1)", 30, 0, 150, 180), "index-matched (eta = 1)"),
     (lambda n: smithlab.brdf(n, "mirror", [1, 2], 0, [1, 2, 3], 0), "could not be broadcast"),
+    (lambda n: smithlab.trace(n, walks=10**12), "walks: 1e+12 walks in all, more than max_walks 1e+11 (raise it"),
+    (lambda n: smithlab.trace(n, walks=1000, max_walks=999), "1000 walks in all, more than max_walks 999"),
+    (lambda n: smithlab.trace(n, max_walks=float("nan")), "max_walks must be > 0 (inf: no limit), got nan"),
+    (lambda n: smithlab.brdf(n, "mirror", [10, 20, 30], 0, 30, 0, walks=10**11),
+     "walks: 3e+11 walks in all, more than max_walks 1e+11"),
 ])
 def test_bad_input_raises_value_error_naming_the_item(call, message):
     with pytest.raises(ValueError) as e:
@@ -207,3 +214,34 @@ def test_python_runs_while_a_trace_runs():
     took = time.perf_counter() - start
     assert turns > 1000, f"Python ran {turns} times in the trace's {took:.2f} s"
     assert longest < 0.5 * took, f"Python stood still for {longest:.2f} s of the trace's {took:.2f} s"
+
+
+# Ctrl-C during a call that would run for hours: a KeyboardInterrupt within a block of walks (or 64 elements), not
+# at the end. In a child process, which sends itself SIGINT half a second in.
+INTERRUPTED = """
+import os, signal, sys, threading, time
+import numpy as np
+import smithlab
+n = smithlab.ndf("ggx(alpha=0.5)")
+threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
+start = time.monotonic()
+try:
+    {call}
+except KeyboardInterrupt:
+    print("interrupted after", time.monotonic() - start)
+    sys.exit(0)
+sys.exit("the call ended without KeyboardInterrupt")
+"""
+
+
+@pytest.mark.parametrize("call", [
+    "smithlab.trace(n, 'lambert', walks=10**11, threads=2)",
+    "smithlab.brdf(n, 'conductor(eta=0.2, k=3)', 45, 0, 60, 180, walks=10**11, threads=2)",
+    "n.Lambda(np.full(10**7, 0.3), method='quadrature2d')",
+])
+def test_ctrl_c_interrupts_a_long_call(call):
+    run = subprocess.run([sys.executable, "-c", INTERRUPTED.format(call=call)], capture_output=True, text=True,
+                         timeout=120)
+    assert run.returncode == 0, run.stderr
+    seconds = float(run.stdout.split()[-1])
+    assert seconds < 5.0, run.stdout  # half a second, then at most a block: hours without the check

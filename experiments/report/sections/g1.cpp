@@ -38,8 +38,7 @@ public:
     void add_work(Work& work, const Settings& s, const VariantRegistry& variants) const override {
         double selected = 0.0, ndfs = 0.0;
         for (const LambdaVariant& v : variants.list())
-            if (matches_any(include_, v.name) && !matches_any(exclude_, v.name))
-                selected += v.name == "family" ? 2.0 : 1.0;
+            if (selects(v.name)) selected += v.name == "family" ? 2.0 : 1.0;
         for (const NdfEntry& e : entries_) ndfs += static_cast<double>(e.count(s.alphas.size()));
         const double points = ndfs * static_cast<double>(s.mus.size());
         work.add("Lambda", selected * points);
@@ -52,8 +51,7 @@ public:
         // A pattern that matches nothing, and a selection of nothing, named with the key's FILE:LINE.
         require_matches(include_, names, where_include_);
         require_matches(exclude_, names, where_exclude_);
-        if (std::none_of(names.begin(), names.end(),
-                         [&](const std::string& n) { return matches_any(include_, n) && !matches_any(exclude_, n); }))
+        if (std::none_of(names.begin(), names.end(), [&](const std::string& n) { return selects(n); }))
             throw input_error(where_exclude_ +
                               " leaves no variant of the ones include selects (see smithlab eval "
                               "--list-methods)");
@@ -74,6 +72,9 @@ public:
     bool draws(const Settings& s) const override { return s.figures.pareto || s.figures.error_maps; }
 
 private:
+    // Whether [variants] selects the variant: include matches it and exclude does not (as g1_table selects).
+    bool selects(const std::string& name) const { return matches_any(include_, name) && !matches_any(exclude_, name); }
+
     std::vector<NdfEntry> entries_;
     std::vector<std::string> include_, exclude_;
     std::string where_include_, where_exclude_;  // for a pattern that matches no variant

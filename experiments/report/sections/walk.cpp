@@ -8,6 +8,7 @@
 #include "cluster/mpi_world.hpp"
 #include "report/sections.hpp"
 #include "report/walk_section.hpp"
+#include "scene/limits.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
 #include "smithlab/walk/facets.hpp"
@@ -40,7 +41,7 @@ class WalkSection : public Section {
 public:
     std::vector<std::string> keys() const override { return {"walk"}; }
 
-    void read(StrictTable& doc, const Settings&, const NdfRegistry& registry) override {
+    void read(StrictTable& doc, const Settings& settings, const NdfRegistry& registry) override {
         auto w = doc.optional_table("walk", {"ndf", "materials", "alpha", "theta_i", "walks", "seed"});
         if (!w) return;
         for (StrictTable& n : w->tables("ndf", ndf_table_keys(registry))) {
@@ -50,7 +51,7 @@ public:
         if (scene_.ndfs.empty()) w->fail("ndf", "is missing: no [[walk.ndf]] table names an NDF family");
         read_materials(*w, scene_);
         read_axes(*w, scene_);
-        scene_.walks = w->integer("walks", 100, 1'000'000'000, scene_.walks);
+        scene_.walks = scaled_count(w->integer("walks", 100, 1'000'000'000, scene_.walks), settings.scale, 100);
         scene_.seed = static_cast<unsigned long long>(w->integer("seed", 0, INT64_MAX, 1));
         w->done();
     }

@@ -10,9 +10,17 @@
 
 namespace smithlab {
 
+// The message is kept as printable(message): an item echoed from a binary file (ESC, BEL, NUL, 0xFF) reaches a
+// terminal as \x1b, \x07, \x00, \xff, and a NUL cannot cut the message short.
 struct input_error : std::invalid_argument {
-    using std::invalid_argument::invalid_argument;
+    explicit input_error(std::string_view message);
+    explicit input_error(const char* message) : input_error(std::string_view(message)) {}
+    explicit input_error(const std::string& message) : input_error(std::string_view(message)) {}
 };
+
+// `text` with every byte that is neither printable ASCII, a tab, a newline nor part of a well-formed UTF-8 character
+// written as \xNN (two lowercase hex digits), and every backslash as itself: what a terminal shows of it is it.
+std::string printable(std::string_view text);
 
 // Throws input_error("<what> must be <rule>, got <value>") unless ok. Allocates nothing when ok.
 void require(bool ok, std::string_view what, std::string_view rule, double value);

@@ -4,12 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <limits>
+#include <ostream>
 #include <stdexcept>
 #include <string>
 #include <string_view>
-#include <system_error>
 #include <vector>
 
 #include "smithlab/csv.hpp"
@@ -623,30 +622,6 @@ std::string json_grid(const AlbedoGrid& g, const std::string& lookup) {
         ",\n  \"alpha\": " + json_string(rule_alpha) + ",\n";
 }
 
-// bytes to path through path.tmp, renamed: a reader never sees a half-written file, and a failure leaves none.
-void write_replacing(const std::filesystem::path& path, const std::vector<unsigned char>& bytes) {
-    std::filesystem::path tmp = path;
-    tmp += ".tmp";
-    std::error_code ignored;
-    {
-        std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-        if (!f) throw std::runtime_error("16-bit PNG: cannot open " + tmp.string() + " to write " + path.string());
-        f.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-        f.close();
-        if (!f) {
-            std::filesystem::remove(tmp, ignored);
-            throw std::runtime_error("16-bit PNG: writing " + tmp.string() + " failed (for " + path.string() + ")");
-        }
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) {
-        std::filesystem::remove(tmp, ignored);
-        throw std::runtime_error("16-bit PNG: cannot rename " + tmp.string() + " to " + path.string() + ": " +
-                                 ec.message());
-    }
-}
-
 }  // namespace
 
 std::string compensation_identifier(const CompensationExport& e) {
@@ -674,7 +649,7 @@ void write_hlsl(std::ostream& out, const CompensationExport& e) {
     out << text_in(e, compensation_identifier(e), hlsl_dialect);
 }
 
-void write_png16(const std::filesystem::path& path, const CompensationExport& e) {
+void write_png16(std::ostream& out, const CompensationExport& e) {
     check(e);
     const AlbedoTable& t = *e.E;
     const double K = png_log_scale(t);
@@ -685,9 +660,8 @@ void write_png16(const std::filesystem::path& path, const CompensationExport& e)
         const double p = logs(t) ? -t.values[k] / K : t.values[k];
         const double v = std::clamp(p, 0.0, 1.0);
         if (!(std::abs(v - p) <= 1e-9))
-            throw input_error("16-bit PNG " + path.string() + ": " + table_item(t, k) + " is " +
-                              format_g17(t.values[k]) + ", outside " + (logs(t) ? "(-inf, 0]" : "[0, 1]") + " (" +
-                              png_rule(t) + ")");
+            throw input_error("16-bit PNG: " + table_item(t, k) + " is " + format_g17(t.values[k]) + ", outside " +
+                              (logs(t) ? "(-inf, 0]" : "[0, 1]") + " (" + png_rule(t) + ")");
         pixels[k] = static_cast<png_uint_16>(std::lround(v * 65535.0));
     }
     // libpng's simplified API (png.h, "SIMPLIFIED API"): a linear 16-bit grey image is written as it is (gAMA 1.0);
@@ -704,10 +678,8 @@ void write_png16(const std::filesystem::path& path, const CompensationExport& e)
         bytes.resize(size);
         if (!png_image_write_to_memory(&image, bytes.data(), &size, 0, pixels.data(), 0, nullptr)) bytes.clear();
     }
-    if (bytes.empty())
-        throw std::runtime_error("16-bit PNG " + path.string() + ": libpng: " + std::string(image.message));
-    bytes.resize(size);
-    write_replacing(path, bytes);
+    if (bytes.empty()) throw std::runtime_error("16-bit PNG: libpng: " + std::string(image.message));
+    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(size));
 }
 
 void write_axes_json(std::ostream& out, const CompensationExport& e) {

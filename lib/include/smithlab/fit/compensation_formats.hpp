@@ -18,7 +18,6 @@
 // Numbers are the floats nearest the table's doubles, written with 9 significant digits (a float's round trip).
 #pragma once
 
-#include <filesystem>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -67,10 +66,9 @@ void write_glsl(std::ostream& out, const CompensationExport& e);
 void write_hlsl(std::ostream& out, const CompensationExport& e);
 // A grey 16-bit PNG (libpng), width n_x, height n_alpha, row i (from the top) = alphas[i], column j = x_j, pixel
 // round(E * 65535), or round(-ln(E) / K * 65535) for a table of ln E, K the largest -ln E (the JSON's log_scale), so
-// that a texture unit's bilinear filter interpolates ln E; input_error unless every E is in [0, 1]. Written to
-// PATH.tmp and renamed to PATH:
-// runtime_error naming the path when it cannot be, and nothing is left behind.
-void write_png16(const std::filesystem::path& path, const CompensationExport& e);
+// that a texture unit's bilinear filter interpolates ln E; input_error unless every E is in [0, 1], and then nothing
+// is written to out. The PNG's bytes, for the caller to write to a file as the other formats.
+void write_png16(std::ostream& out, const CompensationExport& e);
 // The PNG's axes as JSON: family, g2, quantity, identifier, what is stored (E or ln E, with log_scale K), the alphas,
 // the warp's scales, n_x, the axis x (and its cluster), the lookup and outside rules, the 16-bit scale, one_minus_E_avg
 // and its lookup rule (when given), the measured errors.

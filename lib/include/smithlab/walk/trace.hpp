@@ -89,6 +89,9 @@ struct EvalRequest {
     unsigned threads = 0;
     std::int64_t block = 4096;
     EvalEstimator estimator = EvalEstimator::next_event;  // walk.hpp; the brdf command's is next_event
+    // If set, called before each block, on the thread that runs it (a front end's check for an interruption, once
+    // per block and never inside a walk); what it throws ends the cell and is rethrown by eval_cell.
+    std::function<void()> before_block = {};
 };
 
 template <class Microsurface, class M>
@@ -96,6 +99,7 @@ EvalTally eval_cell(const Microsurface& ms, const M& material, const EvalRequest
     return util::reduce_blocks(
         block_count(r.walks, r.block), r.threads, EvalTally{},
         [&](std::uint64_t b) {
+            if (r.before_block) r.before_block();
             EvalTally p;
             const std::int64_t first = static_cast<std::int64_t>(b) * r.block,
                                last = std::min(r.walks, first + r.block);
