@@ -17,11 +17,13 @@
 namespace smithlab::mpi {
 
 namespace {
-bool started = false, is_talking = false;
+// started and launched serve the MPI build only.
+[[maybe_unused]] bool started = false;
+bool is_talking = false;
 int world_rank = 0, world_size = 1;
 
 // Open MPI's mpirun, and the PMI / PMIx launchers (srun, hydra) set these; a plain start sets none of them.
-bool launched() {
+[[maybe_unused]] bool launched() {
     for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_SIZE", "PMI_RANK"})
         if (std::getenv(v)) return true;
     return false;

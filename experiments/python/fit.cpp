@@ -206,10 +206,12 @@ py::dict compensation(const AnyNdf& ndf, int cosines, const std::string& g2) {
     std::vector<double> mus, E;
     double missing = 0.0, scale = 0.0;
     {
+        const SignalPoll poll;
         py::gil_scoped_release free;
         const fit::SingleScatteringAlbedo<AnyNdf> albedo(ndf, opts);
         scale = albedo.warp_scale();
         for (int j = 0; j < cosines; ++j) {
+            poll();
             mus.push_back(fit::unwarp_cosine(scale, static_cast<double>(j) / (cosines - 1)));
             E.push_back(albedo(mus.back()));
         }

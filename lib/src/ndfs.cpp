@@ -9,7 +9,7 @@
 namespace smithlab {
 
 namespace {
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 
 // alpha^2 and alpha^4 must neither underflow nor overflow in D and the closed forms.
 void require_alpha(const char* what, double x) { require(x >= 1e-50 && x <= 1e50, what, "in [1e-50, 1e50]", x); }

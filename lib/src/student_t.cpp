@@ -12,7 +12,7 @@
 namespace smithlab {
 
 namespace {
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 // (1 + q)^-e for q >= 0: by log1p near q = 0, where 1 + q would drop q's digits; beyond, by pow, whose error is a few
 // ulp of 1 + q times e where exp(-e log1p(q)) would add e ln(q) ulp (5e-14 at q = 1e100, e = 2).
 double inv_pow1p(double q, double e) { return q < 0.5 ? std::exp(-e * std::log1p(q)) : std::pow(1.0 + q, -e); }

@@ -62,8 +62,8 @@ std::uint64_t fnv1a64(std::string_view bytes) {
 }
 
 namespace {
-constexpr double pi = std::numbers::pi;
 using detail::TabulatedTable;
+using std::numbers::pi;
 
 // 8-point Gauss-Legendre on [-1, 1] (Abramowitz & Stegun table 25.4).
 constexpr std::array<double, 4> gl_x = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267, 0.9602898564975363};

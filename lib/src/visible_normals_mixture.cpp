@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <utility>
 
 namespace smithlab {
 
@@ -97,7 +98,7 @@ double lower_bound(const FitGrid& f, const std::vector<double>& tail_s, const st
         a2_less.erase(a2_less.begin() + k), w_less.erase(w_less.begin() + k);
         const double K_less = descend(a2_less, w_less);
         if (!(K_less < K + lobe_cost)) break;
-        a2 = a2_less, w = w_less, K = K_less;
+        a2 = std::move(a2_less), w = std::move(w_less), K = K_less;
     }
     const double sum = std::accumulate(w.begin(), w.end(), 0.0);
     for (double& x : w) x /= sum;

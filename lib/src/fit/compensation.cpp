@@ -21,7 +21,7 @@ namespace smithlab::fit {
 
 namespace {
 
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 // Globally adaptive Gauss-Kronrod (GSL's QAG through smithlab's integrate: each call has its own workspace, so the
 // nested integrals here are safe). Boost's adaptive Gauss-Kronrod halves the absolute tolerance with every level of
 // its recursion instead, which round-off in a nested integrand never meets: 2^depth panels.

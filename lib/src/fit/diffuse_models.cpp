@@ -16,7 +16,7 @@ namespace smithlab::fit {
 
 namespace {
 
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 constexpr double inv_pi = std::numbers::inv_pi;
 
 double pow5(double x) {

@@ -239,8 +239,8 @@ std::string call_of(const ShaderModel& m) {
     throw input_error("diffuse model '" + std::string(model.name) + "' has no GLSL transcription (fit/glsl.cpp)");
 }
 
-// text for a // comment: printable ASCII only (GLSL 3.30's character set), anything else as '?'.
-std::string comment_text(std::string_view text) {
+// Text for a // comment: printable ASCII only (GLSL 3.30's character set), anything else as '?'.
+std::string line_comment_text(std::string_view text) {
     std::string out(text);
     for (char& c : out)
         if (c < ' ' || c > '~') c = '?';
@@ -284,8 +284,8 @@ std::string glsl_helpers() { return helper_constants() + std::string(helper_func
 std::string glsl_function(const ShaderModel& m) {
     const DiffuseModel& model = *m.model;
     const std::string call = call_of(m);  // refuses a model without GLSL, or the wrong number of constants
-    std::string out =
-        "// " + comment_text(m.name) + " on " + comment_text(m.ndf) + ": " + comment_text(model.source) + "\n";
+    std::string out = "// " + line_comment_text(m.name) + " on " + line_comment_text(m.ndf) + ": " +
+        line_comment_text(model.source) + "\n";
     if (model.parameters.empty()) {
         out += "// no free constants\n";
     } else {
@@ -321,8 +321,9 @@ std::string glsl_library(std::span<const ShaderModel> models) {
 std::string brdf_explorer_file(const ShaderModel& m) {
     const std::string function = glsl_function(m);
     std::string out = "analytic\n\n";
-    out += "# smithlab: " + comment_text(m.name) + " on " + comment_text(m.ndf) + ", the diffuse BRDF (no cosine).\n";
-    out += "# " + comment_text(m.model->source) + "\n";
+    out += "# smithlab: " + line_comment_text(m.name) + " on " + line_comment_text(m.ndf) +
+        ", the diffuse BRDF (no cosine).\n";
+    out += "# " + line_comment_text(m.model->source) + "\n";
     out +=
         "# [type] [name] [min val] [max val] [default val]\n"
         "::begin parameters\n"
