@@ -153,7 +153,7 @@ void add_family_matrix() {
         for (const smithlab::AnyNdf& ndf : ndfs)
             for (const walk::Material& m : {walk::Material{walk::Mirror{}}, walk::Material{walk::Lambert{1.0}}}) {
                 const std::shared_ptr<const smithlab::AnySurface> surface = smithlab::make_surface(ndf);
-                const std::string material = std::holds_alternative<walk::Mirror>(m) ? "mirror" : "lambert";
+                const std::string material = (m.get_if<walk::Mirror>() != nullptr) ? "mirror" : "lambert";
                 benchmark::RegisterBenchmark(("ndf/alpha=" + a + "/" + ndf.spec() + "/" + material).c_str(),
                                              [surface, m](benchmark::State& s) {
                                                  const walk::CellRequest r = block_request();

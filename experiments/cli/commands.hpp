@@ -68,7 +68,7 @@ struct TraceArgs {
     std::vector<CLI::Option*> cell_options;  // the flags that name one cell: any given means "trace that cell"
     report::SizeLimits limits;               // --max-cells, --max-walks, --scale
 };
-void add_trace(CLI::App& app, TraceArgs& args);
+void add_trace(CLI::App& app, TraceArgs& args, const MaterialRegistry& materials);
 int run_trace(const TraceArgs& args, const NdfRegistry& registry);
 
 struct BrdfArgs {

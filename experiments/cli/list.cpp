@@ -1,4 +1,4 @@
-// smithlab list: the registered NDFs, their parameters, descriptions and example specs.
+// smithlab list: the registered NDFs, their parameters, descriptions and example specs; the facet materials.
 #include <iostream>
 
 #include "cli/commands.hpp"
@@ -6,7 +6,7 @@
 namespace smithlab::cli {
 
 CLI::App* add_list(CLI::App& app) {
-    return app.add_subcommand("list", "List the registered NDFs, their parameters and example specs");
+    return app.add_subcommand("list", "List the registered NDFs, their parameters and example specs, and the facet materials");
 }
 
 int run_list(const NdfRegistry& registry) {
@@ -21,6 +21,9 @@ int run_list(const NdfRegistry& registry) {
         for (const auto& ex : info->examples) std::cout << "  " << ex;
         std::cout << "\n";
     }
+    std::cout << "\nFacet materials (--material, a scene's material):\n";
+    for (const walk::MaterialInfo* info : registry.materials().list())
+        std::cout << info->spec() << "\n    " << info->description << "\n";
     return exit_ok;
 }
 

@@ -44,14 +44,14 @@ std::string description(const NdfRegistry& registry) {
         "it writes.";
 }
 
-void add_commands(CLI::App& app, Commands& c) {
+void add_commands(CLI::App& app, Commands& c, const NdfRegistry& registry) {
     app.set_version_flag("--version", std::string("smithlab ") + SMITHLAB_VERSION, "print the version and exit");
     app.require_subcommand(1);
     add_eval(app, c.eval);
     add_check(app, c.check);
     add_report(app, c.report);
     add_sample(app, c.sample);
-    add_trace(app, c.trace);
+    add_trace(app, c.trace, registry.materials());
     add_brdf(app, c.brdf);
     add_fit(app, c.fit);
     c.list = add_list(app);
@@ -130,7 +130,7 @@ int run_cli(int argc, char** argv, const NdfRegistry& registry) {
     const VariantRegistry variants = builtin_variants();
     CLI::App app{cli::description(registry), "smithlab"};
     cli::Commands commands;
-    cli::add_commands(app, commands);
+    cli::add_commands(app, commands, registry);
     try {
         const std::optional<int> done = cli::parse(app, argc, argv);
         const int code = done ? *done : cli::dispatch(app, commands, registry, variants);

@@ -40,14 +40,29 @@ Vec3 parse_direction(const std::string& text, const char* what, const walk::Mate
 
 const char* order_name[] = {"1", "2", "3", "4+"};
 
+// "Materials: mirror, conductor(eta=, k=), ...", every registered material's spec with its defaults, wrapped at 100
+// columns; one that transmits says what its hemisphere of transmission is.
+std::string materials_line(const MaterialRegistry& materials) {
+    const std::vector<const walk::MaterialInfo*> all = materials.list();
+    std::string text, line = "Materials:";
+    for (std::size_t i = 0; i < all.size(); ++i) {
+        std::string item = all[i]->spec();
+        if (all[i]->transmits) item += " (reflection and transmission: hemisphere transmission is the light below)";
+        item += i + 1 < all.size() ? "," : ".";
+        if (line.size() + 1 + item.size() > 100) text += line + "\n", line = item;
+        else line += " " + item;
+    }
+    return text + line + "\n";
+}
+
 // The one cell the flags name, as a scene.
-trace::TraceScene cell_scene(const TraceArgs& a) {
+trace::TraceScene cell_scene(const TraceArgs& a, const MaterialRegistry& materials) {
     require(a.walks > 0, "--walks", "> 0", static_cast<double>(a.walks));
     require(static_cast<double>(a.walks) <= a.limits.max_walks, "--walks",
             "<= --max-walks (raise it with --max-walks N)", static_cast<double>(a.walks));
     require(std::isfinite(a.phi_i), "--phi-i", "finite", a.phi_i);
     require(a.max_order >= 0, "--max-order", ">= 0", a.max_order);
-    trace::incident_direction(a.theta_i, a.phi_i, "--theta-i", "--phi-i", walk::parse_material(a.material));
+    trace::incident_direction(a.theta_i, a.phi_i, "--theta-i", "--phi-i", materials.make(a.material));
     trace::parse_walk_options(a.downward, a.hit_normal, "--");
     trace::TraceScene s;
     s.title = "one cell";
@@ -65,8 +80,8 @@ trace::TraceScene cell_scene(const TraceArgs& a) {
 
 // The eval estimator has no finite value where the BSDF holds a Dirac delta (walk::dirac_at): refused, naming --wo.
 void require_density(const walk::Material& m, const walk::EvalRequest& r, const BrdfArgs& a) {
-    if (walk::dirac_at(m, r.wi, r.wo))
-        throw input_error("--wo " + a.wo + ": '" + walk::format_material(m) +
+    if (m.dirac_at(r.wi, r.wo))
+        throw input_error("--wo " + a.wo + ": '" + m.spec() +
                           "' facets are index-matched (eta = 1): they pass every ray straight through, so the BSDF "
                           "is a Dirac delta at wo = -wi (--wi " +
                           a.wi + "), which has no finite density to estimate (every other --wo gives 0)");
@@ -119,7 +134,7 @@ void print_brdf_lines(const std::vector<BrdfLine>& lines, const BrdfArgs& a) {
 
 }  // namespace
 
-void add_trace(CLI::App& app, TraceArgs& a) {
+void add_trace(CLI::App& app, TraceArgs& a, const MaterialRegistry& materials) {
     CLI::App* c =
         app.add_subcommand("trace", "Path trace the Smith microsurface: albedo by hemisphere, order, component");
     c->footer(
@@ -131,9 +146,8 @@ void add_trace(CLI::App& app, TraceArgs& a) {
         "  smithlab trace\n"
         "  smithlab trace my_sweep.toml -o sweep/ --threads 8\n"
         "  smithlab trace --ndf 'ggx(alpha=0.5)' --material mirror --theta-i 45 --walks 1000000\n"
-        "  smithlab trace --ndf 'gtr(alpha=0.3, gamma=1.5)' --material 'lambert(albedo=1)' --theta-i 70 -o t/\n"
-        "Materials: mirror, conductor(eta=, k=), lambert(albedo=1), fresnel-diffuse(f0=0.02, albedo=1),\n"
-        "dielectric(eta=1.5) (reflection and transmission: hemisphere transmission is the light below).\n"
+        "  smithlab trace --ndf 'gtr(alpha=0.3, gamma=1.5)' --material 'lambert(albedo=1)' --theta-i 70 -o t/\n" +
+        materials_line(materials) +
         "Writes into DIR (-o, default trace/): albedo.csv (ndf,material,theta_i,phi_i,hemisphere,order,component,\n"
         "albedo,stderr,walks), with [brdf] in the scene brdf.csv (f |cos theta_o| per equal-solid-angle bin, order\n"
         "and component), and meta.json (the scene, seed, version, walks, bounces traced, seconds, threads), all only\n"
@@ -180,7 +194,7 @@ int run_trace(const TraceArgs& a, const NdfRegistry& registry) {
         throw input_error("trace: --scale goes with a scene; the cell flags give the walks (--walks N)");
     const std::string source = !a.scene.empty() ? a.scene : flags ? "<flags>" : "<default scene>";
     const trace::TraceScene scene = flags
-        ? cell_scene(a)
+        ? cell_scene(a, registry.materials())
         : trace::parse_trace_scene(a.scene.empty() ? trace::default_trace_scene_text() : read_scene_file(a.scene),
                                    source, registry, a.limits);
     const trace::RunSummary sum = trace::run_scene(scene, source, registry, a.output, static_cast<unsigned>(a.threads));
@@ -219,7 +233,7 @@ int run_brdf(const BrdfArgs& a, const NdfRegistry& registry) {
     require_threads(a.threads);
     const AnyNdf ndf = registry.make(a.ndf);
     if (!ndf.note().empty()) std::fprintf(stderr, "smithlab: note: %s\n", ndf.note().c_str());
-    const walk::Material material = walk::parse_material(a.material);
+    const walk::Material material = registry.materials().make(a.material);
     walk::EvalRequest r{.wi = parse_direction(a.wi, "--wi", &material), .wo = parse_direction(a.wo, "--wo", nullptr)};
     r.seed = seed;
     r.walks = a.walks;

@@ -112,7 +112,7 @@ AnyNdf make_ndf(const NdfRegistry& registry, const FitFamily& f, double alpha) {
 std::vector<NdfData> gather(const DataSpec& s, const NdfRegistry& registry, const fs::path& cache, unsigned threads,
                             const ProgressFn& progress, const std::function<void()>& checked,
                             cluster::Traffic* traffic) {
-    const walk::Material material = walk::parse_material(s.material);
+    const walk::Material material = registry.materials().make(s.material);
     std::vector<Plan> plans = plan_ndfs(s, registry);
     if (checked) checked();
     std::vector<Place> at = places(s, cache, plans);

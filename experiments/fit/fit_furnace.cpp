@@ -55,13 +55,13 @@ std::vector<FurnaceRow> trace_furnace(const std::vector<FamilyTables>& tables, c
                 };
                 // Mirror facets and conductors: single scattering exact, the compensation from the table of E.
                 std::vector<walk::Material> metals{walk::Mirror{}};
-                for (const std::string& spec : c.conductors) metals.push_back(walk::parse_material(spec));
+                for (const std::string& spec : c.conductors) metals.push_back(registry.materials().make(spec));
                 for (const walk::Material& m : metals) {
                     const walk::Estimate total =
                         trace(*surface, m, above, seed, cell++, c.furnace_walks, threads)
                             .albedo(walk::Hemisphere::all, walk::all_orders, walk::Component::all);
-                    const std::string name = walk::format_material(m);
-                    const auto* conductor = std::get_if<walk::Conductor>(&m);
+                    const std::string name = m.spec();
+                    const auto* conductor = m.get_if<walk::Conductor>();
                     auto F = [&](double cos_m) {
                         return conductor ? fresnel_conductor(cos_m, conductor->eta, conductor->k) : 1.0;
                     };
@@ -95,7 +95,7 @@ std::vector<FurnaceRow> trace_furnace(const std::vector<FamilyTables>& tables, c
                         dt.inside ? walk::Hemisphere::transmission : walk::Hemisphere::reflection;
                     const walk::Hemisphere other =
                         dt.inside ? walk::Hemisphere::reflection : walk::Hemisphere::transmission;
-                    const std::string material = walk::format_material(m) + (dt.inside ? " inside" : " outside");
+                    const std::string material = m.spec() + (dt.inside ? " inside" : " outside");
                     for (const auto& [ft, E] : exact) {
                         const auto single = E.dielectric(mu, dt.relative_eta());
                         const double table = ft->dielectrics[d].sum.table.table.lookup(alpha, mu);

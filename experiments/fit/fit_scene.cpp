@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <utility>
 #include <variant>
 
@@ -11,7 +12,7 @@
 #include "smithlab/csv.hpp"
 #include "smithlab/fit/diffuse_models.hpp"
 #include "smithlab/spec.hpp"
-#include "smithlab/walk/facets.hpp"
+#include "smithlab/material_registry.hpp"
 
 namespace smithlab::fitrun {
 
@@ -21,24 +22,22 @@ using report::StrictTable;
 
 constexpr std::size_t max_points = 65535;  // per group: fit/data_sets.hpp's streams give a point 16 bits
 
-// lambert(albedo=1) or fresnel-diffuse(f0=, albedo=1): the facets whose albedo enters only through the diffuse
-// events, traced at albedo 1 (the split by events then gives every albedo).
-void check_material(StrictTable& doc, const std::string& spec) {
-    walk::Material m;
+// A material with diffuse events and a parameter `albedo` (lambert, fresnel-diffuse, or a registered one): the
+// facets whose albedo enters only through the diffuse events, traced at albedo 1 (the split by events then gives
+// every albedo).
+void check_material(StrictTable& doc, const std::string& spec, const MaterialRegistry& materials) {
+    std::optional<walk::Material> m;
     try {
-        m = walk::parse_material(spec);
+        m = materials.make(spec);
     } catch (const input_error& e) {
         doc.fail("material", e.what());
     }
-    const double albedo = std::visit(
-        [](const auto& f) {
-            if constexpr (requires { f.albedo; }) return f.albedo;
-            else return -1.0;
-        },
-        m);
-    if (albedo < 0.0)
+    const NdfSpec parts = parse_spec(m->spec(), "material spec");
+    const auto albedo = std::find_if(parts.params.begin(), parts.params.end(),
+                                     [](const auto& p) { return p.first == "albedo"; });
+    if (!m->has_diffuse() && (albedo == parts.params.end() || albedo->second != 0.0))
         doc.fail("material", "must be lambert or fresnel-diffuse facets (a diffuse material), got '" + spec + "'");
-    if (albedo != 1.0)
+    if (albedo == parts.params.end() || albedo->second != 1.0)
         doc.fail("material",
                  "is traced at albedo 1 (every albedo comes from that one trace: set albedos), got '" + spec + "'");
 }
@@ -281,13 +280,13 @@ FitScene::Compensation read_compensation(StrictTable& doc, FitScene::Compensatio
     c.conductors = t->texts("conductors", {});
     std::vector<std::pair<double, double>> conductors;  // (eta, k): one conductor however it is spelled
     for (const std::string& m : c.conductors) {
-        walk::Material material;
+        std::optional<walk::Material> material;
         try {
-            material = walk::parse_material(m);
+            material = MaterialRegistry().make(m);  // the built-in materials: only a conductor will do
         } catch (const input_error& e) {
             t->fail("conductors", e.what());
         }
-        const auto* conductor = std::get_if<walk::Conductor>(&material);
+        const auto* conductor = material->get_if<walk::Conductor>();
         if (!conductor) t->fail("conductors", "must name conductor(eta=, k=) facets, got '" + m + "'");
         conductors.emplace_back(conductor->eta, conductor->k);
     }
@@ -334,7 +333,7 @@ FitScene parse_fit_scene(const std::string& text, const std::string& source, con
     FitScene s;
     s.title = doc.text("title", s.title);
     s.material = doc.text("material", s.material);
-    check_material(doc, s.material);
+    check_material(doc, s.material, registry.materials());
     // Below 1e-100 a point's variance (albedo^2 times its variance at albedo 1) nears underflow: no fit could weigh it.
     if (doc.has("albedos")) s.albedos = read_bounded(doc, "albedos", 1e-100, 1.0, false, false, "[1e-100, 1]");
     read_models(doc, s);

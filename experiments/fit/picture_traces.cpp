@@ -134,11 +134,11 @@ struct Progress {
     }
 };
 
-void run(Trace& t, std::uint64_t seed, unsigned threads, Progress& progress) {
+void run(Trace& t, const MaterialRegistry& materials, std::uint64_t seed, unsigned threads, Progress& progress) {
     std::fprintf(stderr, "fit: pictures: %s\n", t.what.c_str());
     const std::int64_t before = progress.done;
     t.moments =
-        trace_points(t.ndf, walk::parse_material(t.material), t.points, t.estimator, seed, t.walks, threads,
+        trace_points(t.ndf, materials.make(t.material), t.points, t.estimator, seed, t.walks, threads,
                      [&](std::uint64_t k) { progress.report(before + static_cast<std::int64_t>(k) * t.walks); });
     progress.done += static_cast<std::int64_t>(t.points.size()) * t.walks;
     write_cache(t.file, *t.moments);
@@ -162,7 +162,7 @@ std::vector<PictureData> trace_pictures(const PictureSpec& s, const std::vector<
     if (cached) std::fprintf(stderr, "fit: pictures: %zu of %zu traces read from the cache\n", cached, traces.size());
     const auto t0 = std::chrono::steady_clock::now();
     for (Trace& t : traces) {
-        if (!t.moments) run(t, s.seed, threads, progress);
+        if (!t.moments) run(t, registry.materials(), s.seed, threads, progress);
         *t.into = std::move(*t.moments);
     }
     if (progress.total)

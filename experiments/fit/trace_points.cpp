@@ -35,7 +35,7 @@ std::vector<fit::SplitMoments> trace_points(const AnyNdf& ndf, const walk::Mater
     if (capped > 0)
         std::fprintf(stderr, "fit: warning: %s (%s, %s): their energy is missing from the values drawn\n",
                      trace::capped_text(capped, walks * static_cast<std::int64_t>(points.size())).c_str(),
-                     ndf.spec().c_str(), walk::format_material(material).c_str());
+                     ndf.spec().c_str(), material.spec().c_str());
     return traced;
 }
 

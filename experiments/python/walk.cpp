@@ -18,7 +18,7 @@
 #include "smithlab/csv.hpp"
 #include "smithlab/surface.hpp"
 #include "smithlab/util/parallel.hpp"
-#include "smithlab/walk/material_catalogue.hpp"
+#include "smithlab/material_registry.hpp"
 #include "smithlab/walk/trace.hpp"
 #include "trace/capped_walks.hpp"
 #include "trace/incidence.hpp"
@@ -122,10 +122,16 @@ py::dict albedo_arrays(const walk::AlbedoTally& a) {
     return out;
 }
 
+// The module's facet materials: the built-in ones (material_registry.hpp).
+const MaterialRegistry& materials() {
+    static const MaterialRegistry registry;
+    return registry;
+}
+
 py::dict trace_one_cell(const AnyNdf& ndf, const std::string& material, double theta_i, double phi_i, long long walks,
                         const py::object& seed, int threads, int max_order, const std::string& downward,
                         const std::string& hit_normal, double max_walks) {
-    TraceRequest t{walk::parse_material(material), {}, walk_options(downward, hit_normal)};
+    TraceRequest t{materials().make(material), {}, walk_options(downward, hit_normal)};
     require_walks_threads(walks, static_cast<double>(walks), max_walks, threads);
     require(max_order >= 0, "max_order", ">= 0 (0: no limit)", max_order);
     t.cell.wi = trace::incident_direction(theta_i, phi_i, "theta_i", "phi_i", t.material);
@@ -185,8 +191,8 @@ struct BrdfNumbers {
 // finite on accepted input is an internal error (RuntimeError), never returned.
 BrdfNumbers eval_pair(EvalSetup& s, const Vec3& wi, const Vec3& wo, bool single) {
     s.request.wi = wi, s.request.wo = wo;
-    if (walk::dirac_at(s.material, wi, wo))
-        throw input_error("brdf: '" + walk::format_material(s.material) +
+    if (s.material.dirac_at(wi, wo))
+        throw input_error("brdf: '" + s.material.spec() +
                           "' facets are index-matched (eta = 1): the BSDF is a Dirac delta at wo = -wi, which has no "
                           "finite density to estimate (every other wo gives 0)");
     const walk::EvalTally t = s.surface->eval_cell(s.material, s.request);
@@ -256,7 +262,7 @@ py::dict brdf_result(const Broadcast<4>& a, const BrdfArrays& out) {
 py::dict brdf_pairs(const AnyNdf& ndf, const std::string& material, const py::object& theta_i, const py::object& phi_i,
                     const py::object& theta_o, const py::object& phi_o, long long walks, const py::object& seed,
                     int threads, const std::string& downward, double max_walks) {
-    EvalSetup s{ndf, walk::parse_material(material), nullptr, {}};
+    EvalSetup s{ndf, materials().make(material), nullptr, {}};
     const walk::MicrosurfaceOptions options = walk_options(downward, "visible");
     s.request.seed = seed_of(seed), s.request.walks = walks, s.request.threads = static_cast<unsigned>(threads);
     const Broadcast<4> a({theta_i, phi_i, theta_o, phi_o});
@@ -289,8 +295,8 @@ void bind_walk(py::module_& m) {
         "materials",
         [] {
             std::vector<std::pair<std::string, std::string>> out;
-            for (const walk::MaterialInfo& m : walk::material_catalogue)
-                out.emplace_back(m.name, std::string(m.spec) + ": " + std::string(m.description));
+            for (const walk::MaterialInfo* m : materials().list())
+                out.emplace_back(m->name, m->spec() + ": " + m->description);
             return out;
         },
         "The facet materials of the walk (as `smithlab trace --help` lists them): (name, description) pairs; the "

@@ -46,7 +46,7 @@ std::string family_label(const WalkCell& c) {
 }
 
 std::string cell_name(const WalkCell& c) {
-    return "walk cell " + std::to_string(c.index) + " (" + c.ndf.spec() + ", " + walk::format_material(c.material) +
+    return "walk cell " + std::to_string(c.index) + " (" + c.ndf.spec() + ", " + c.material.spec() +
         ", theta_i " + format_shortest(c.theta_i) + ")";
 }
 
@@ -77,7 +77,7 @@ void answer_capped(const std::vector<WalkResult>& results, std::int64_t walks) {
 
 std::vector<WalkCell> walk_cells(const WalkScene& w, const NdfRegistry& registry) {
     std::vector<walk::Material> materials;
-    for (const std::string& m : w.materials) materials.push_back(walk::parse_material(m));  // checked by the scene
+    for (const std::string& m : w.materials) materials.push_back(registry.materials().make(m));  // checked by the scene
     std::vector<WalkCell> cells;
     for (const NdfEntry& e : w.ndfs)
         for (const ParamPoint& p : e.points()) {
@@ -151,7 +151,7 @@ void write_walk_csv(const std::vector<WalkResult>& results, const WalkScene& w, 
                                           c.family,
                                           c.ndf.has_param("gamma") ? format_g17(c.ndf.param("gamma")) : "",
                                           format_g17(c.alpha),
-                                          walk::format_material(c.material),
+                                          c.material.spec(),
                                           format_shortest(c.theta_i),
                                           walk_orders[o],
                                           format_g17(r.albedo[o].value),
@@ -189,7 +189,7 @@ void write_walk_markdown(const std::vector<WalkResult>& results, const WalkScene
        << "| ndf | material | alpha | theta_i | order 1 | order 2 | order 3 | order 4+ | lost (2+) | all |\n"
        << "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const WalkResult& r : results) {
-        md << "| " << family_label(r.cell) << " | " << walk::format_material(r.cell.material) << " | "
+        md << "| " << family_label(r.cell) << " | " << r.cell.material.spec() << " | "
            << format_shortest(r.cell.alpha) << " | " << format_shortest(r.cell.theta_i);
         for (const walk::Estimate& e : r.albedo) md << format_printf(" | %.5f +- %.5f", e.value, e.stderr_);
         md << " |\n";

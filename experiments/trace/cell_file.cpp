@@ -24,7 +24,7 @@ fs::path cell_path(const fs::path& out, std::uint64_t index) {
 
 std::string cell_key(const CellSettings& w, const TraceCell& c, const AnyNdf& ndf, const walk::Material& m) {
     std::ostringstream k;
-    k << "smithlab " << SMITHLAB_VERSION << "|ndf=" << ndf.key() << "|material=" << walk::format_material(m)
+    k << "smithlab " << SMITHLAB_VERSION << "|ndf=" << ndf.key() << "|material=" << m.spec()
       << "|theta_i=" << format_g17(c.theta_i) << "|phi_i=" << format_g17(c.phi_i) << "|walks=" << w.walks
       << "|seed=" << w.seed << "|cell=" << c.index << "|max_order=" << w.max_order << "|downward=" << w.downward
       << "|hit_normal=" << w.hit_normal << "|brdf=" << w.brdf.n_theta << "x" << w.brdf.n_phi;

@@ -13,7 +13,7 @@ namespace smithlab::trace {
 
 inline Vec3 incident_direction(double theta, double phi, const char* theta_name, const char* phi_name,
                                const walk::Material& m) {
-    if (walk::transmits(m))
+    if (m.transmits())
         require(theta >= 0.0 && theta <= 180.0 && theta != 90.0, theta_name, "in [0, 180] degrees, not 90 (grazing)",
                 theta);
     else

@@ -50,9 +50,10 @@ std::map<std::string, AnyNdf> checked_ndfs(const std::vector<SceneNdf>& scene_nd
     return ndfs;
 }
 
-std::map<std::string, walk::Material> parsed_materials(const std::vector<std::string>& specs) {
+std::map<std::string, walk::Material> parsed_materials(const std::vector<std::string>& specs,
+                                                      const MaterialRegistry& registry) {
     std::map<std::string, walk::Material> materials;
-    for (const std::string& spec : specs) materials.emplace(spec, walk::parse_material(spec));
+    for (const std::string& spec : specs) materials.emplace(spec, registry.make(spec));
     return materials;
 }
 
@@ -65,9 +66,9 @@ std::vector<Prepared> prepare_cells(const std::vector<TraceCell>& cells, const s
     for (const TraceCell& c : cells) {
         const AnyNdf& ndf = ndfs.at(c.ndf);
         const walk::Material& m = materials.at(c.material);
-        if (c.theta_i > 90.0 && !walk::transmits(m))
+        if (c.theta_i > 90.0 && !m.transmits())
             throw input_error(source + ": theta_i = " + format_shortest(c.theta_i) +
-                              " is light from below the surface, which '" + walk::format_material(m) +
+                              " is light from below the surface, which '" + m.spec() +
                               "' facets never see (only a dielectric takes it; theta_i < 90 for the others)");
         prepared.push_back({c, ndf, m, cell_key(w, c, ndf, m)});
     }
@@ -84,13 +85,13 @@ walk::CellRequest request_for(const CellSettings& w, const Prepared& p) {
     r.brdf = w.brdf;
     r.wi = direction_from_deg(p.cell.theta_i, p.cell.phi_i);
     r.cell = p.cell.index;
-    r.brdf.transmission = walk::transmits(p.material);
+    r.brdf.transmission = p.material.transmits();
     return r;
 }
 
 // "cell 12 (ggx(alpha=0.3), mirror, theta_i 45, phi_i 0)": a cell in messages.
 std::string cell_name(const Prepared& p) {
-    return "cell " + std::to_string(p.cell.index) + " (" + p.ndf.spec() + ", " + walk::format_material(p.material) +
+    return "cell " + std::to_string(p.cell.index) + " (" + p.ndf.spec() + ", " + p.material.spec() +
         ", theta_i " + format_shortest(p.cell.theta_i) + ", phi_i " + format_shortest(p.cell.phi_i) + ")";
 }
 
@@ -110,7 +111,7 @@ std::vector<std::optional<CellRows>> reuse_cells(const fs::path& out, const std:
     for (std::size_t i = 0; i < prepared.size(); ++i) {
         const Prepared& p = prepared[i];
         done[i] = read_cell(cell_path(out, p.cell.index), p.key, albedo_row_count(),
-                            brdf_row_count(bins, walk::transmits(p.material)));
+                            brdf_row_count(bins, p.material.transmits()));
         jobs[i].needed = !done[i];
         reused += done[i].has_value();
     }
@@ -189,7 +190,7 @@ RunMeta write_outputs(const fs::path& dir, const std::vector<Prepared>& prepared
         const Prepared& p = prepared[i];
         const CellRows& r = rows.emplace_back(std::move(*done[i]));
         ndfs.push_back(p.ndf);
-        meta.cells.push_back({p.cell.index, p.ndf.spec(), walk::format_material(p.material), p.cell.theta_i,
+        meta.cells.push_back({p.cell.index, p.ndf.spec(), p.material.spec(), p.cell.theta_i,
                               p.cell.phi_i, r.bounces, r.capped});
         sum.bounces += r.bounces;
         sum.total.push_back(r.total);
@@ -207,7 +208,7 @@ RunSummary run_scene(const TraceScene& s, const std::string& source, const NdfRe
     const walk::MicrosurfaceOptions opts = parse_walk_options(s.downward, s.hit_normal, source + ": walks.");
     const CellSettings settings = cell_settings(s);
     const std::vector<Prepared> prepared =
-        prepare_cells(cells(s), checked_ndfs(s.ndfs, registry, opts), parsed_materials(s.materials), settings, source);
+        prepare_cells(cells(s), checked_ndfs(s.ndfs, registry, opts), parsed_materials(s.materials, registry.materials()), settings, source);
     std::vector<CellJob> jobs = cell_jobs(prepared, settings);
 
     // Under MPI with more than one rank, every rank has checked the scene alike; from here rank 0 alone owns OUT and

@@ -17,11 +17,11 @@ namespace smithlab::report {
 
 namespace {
 
-void read_materials(StrictTable& w, WalkScene& walk) {
+void read_materials(StrictTable& w, WalkScene& walk, const MaterialRegistry& materials) {
     walk.materials = w.texts("materials", walk.materials);
     if (walk.materials.empty()) w.fail("materials", "is an empty list");
     for (const std::string& m : walk.materials) try {
-            walk::parse_material(m);
+            materials.make(m);
         } catch (const input_error& e) {
             w.fail("materials", "holds \"" + m + "\": " + e.what());
         }
@@ -49,7 +49,7 @@ public:
             n.done();
         }
         if (scene_.ndfs.empty()) w->fail("ndf", "is missing: no [[walk.ndf]] table names an NDF family");
-        read_materials(*w, scene_);
+        read_materials(*w, scene_, registry.materials());
         read_axes(*w, scene_);
         scene_.walks = scaled_count(w->integer("walks", 100, 1'000'000'000, scene_.walks), settings.scale, 100);
         scene_.seed = static_cast<unsigned long long>(w->integer("seed", 0, INT64_MAX, 1));

@@ -19,9 +19,10 @@
 #include <numbers>
 
 #include "smithlab/errors.hpp"
-#include "smithlab/registry.hpp"
 
 namespace smithlab {
+
+class NdfRegistry;  // registry.hpp
 
 namespace detail {
 
@@ -160,20 +161,8 @@ inline double abc_b_from_alpha(double alpha, double c) {
     return 2.0 / (c * alpha * alpha);
 }
 
-// Its registration, one call in the list of built-ins (registry.cpp): abc(b, c) for every command; a roughness alpha
-// (the fitter's, a scene's grid.alpha) sets b = 2 / (c alpha^2) at the entry's c.
-inline void register_abc(NdfRegistry& r) {
-    r.add(
-        {.name = "abc",
-         .parameters = {"b", "c"},
-         .description = "ABC (Low et al. 2012), D = A / (1 + b (1 - cos))^c, b in [1e-8, 1e16], c in (0, 1e4]: a sharp "
-                        "peak on a wide base, fitted to measured BRDFs; Lambda by quadrature",
-         .examples = {"abc(b=1e-8, c=1)", "abc(b=20, c=1.5)", "abc(b=400, c=3)", "abc(b=1e8, c=0.3)",
-                      "abc(b=2e4, c=50)"},
-         .roughness =
-             NdfInfo::Roughness{"b",
-                                [](double alpha, const NdfParams& p) { return abc_b_from_alpha(alpha, p.at("c")); }}},
-        [](const NdfParams& p) { return abc(p.at("b"), p.at("c")); });
-}
+// Its registration (abc.cpp), one call in the list of built-ins (registry.cpp): abc(b, c) for every command; a
+// roughness alpha (the fitter's, a scene's grid.alpha) sets b = 2 / (c alpha^2) at the entry's c.
+void register_abc(NdfRegistry& r);
 
 }  // namespace smithlab

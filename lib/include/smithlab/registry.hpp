@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "smithlab/any_ndf.hpp"
+#include "smithlab/material_registry.hpp"
 #include "smithlab/spec.hpp"
 #include "smithlab/surface.hpp"
 
@@ -104,9 +105,15 @@ public:
     const NdfInfo* find(std::string_view name) const;
     std::vector<const NdfInfo*> list() const;  // in registration order
 
+    // The facet materials a front end with this registry reads by name (material_registry.hpp): the built-in ones,
+    // and those added to it.
+    MaterialRegistry& materials() { return materials_; }
+    const MaterialRegistry& materials() const { return materials_; }
+
 private:
     void add_erased(NdfInfo info, Factory make);
     std::vector<std::pair<NdfInfo, Factory>> entries_;
+    MaterialRegistry materials_;
 };
 
 // ggx, beckmann, blinn, student, abc.

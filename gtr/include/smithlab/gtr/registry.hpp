@@ -1,6 +1,8 @@
 // smithlab/gtr/registry.hpp -- registering GTR, and the registry of every built-in NDF.
 #pragma once
 
+#include "smithlab/gtr/gtr.hpp"
+#include "smithlab/ndf_types.hpp"
 #include "smithlab/registry.hpp"
 #include "smithlab/variants.hpp"
 
@@ -8,6 +10,10 @@ namespace smithlab {
 
 // gtr(alpha, gamma).
 void register_gtr_ndfs(NdfRegistry& registry);
+
+// The types every built-in NDF factory returns: a registered material lists them to walk each as its own type
+// (material_registry.hpp), e.g. registry.materials().add<TintedMirror>(builtin_ndf_types{}).
+using builtin_ndf_types = decltype(core_ndf_types{} + NdfTypes<Gtr>{});
 
 // ggx, beckmann, blinn, gtr: what the CLI and the tests start from.
 NdfRegistry builtin_registry();

@@ -1,4 +1,5 @@
-// smithlab/walk/facets.hpp -- what a single facet does with light: the facet materials of the microsurface walk.
+// smithlab/walk/facets.hpp -- what a single facet does with light: the interface of the facet materials of the
+// microsurface walk, and what they share.
 //
 // Each material, in the frame of the macrosurface, with wi pointing away from the facet toward where the light came
 // from and m the facet's normal (wi.m > 0):
@@ -12,14 +13,13 @@
 // A two-sided material (TwoSided: the dielectric) lets rays through to the other side of the microsurface. It works,
 // as every material does, in the frame of the side the ray is on (walk.hpp: below the surface, every vector and
 // height negated, where the microsurface looks as it does from above), and is told which side that is.
-// The closed set of materials is a std::variant (Material), visited once per block of walks, never per bounce.
+// The built-in materials have a file each (mirror.hpp, conductor.hpp, lambert.hpp, fresnel_diffuse.hpp,
+// dielectric.hpp); any type with these members is a material (docs/extending.md), registered by name in a
+// MaterialRegistry (material_registry.hpp) and held as a walk::Material (material.hpp).
 #pragma once
 
 #include <cmath>
 #include <numbers>
-#include <string>
-#include <string_view>
-#include <variant>
 
 #include "smithlab/fresnel.hpp"
 #include "smithlab/geometry.hpp"
@@ -67,113 +67,6 @@ Vec3 about(const Vec3& m, double c, G& g) {
 double hammon_lobe_cos(double u);
 }  // namespace detail
 
-// F = 1: every facet a perfect mirror.
-struct Mirror {
-    static constexpr bool reciprocal = true;  // f(wi, wo) = f(wo, wi) facet by facet
-    template <class G>
-    Scatter sample(const Vec3& wi, const Vec3& m, G&) const {
-        return {reflect(wi, m), 1.0, false};
-    }
-    template <class Microsurface, class G>
-    Phase phase(const Microsurface& ms, const Vec3& wi, const Vec3& wo, G&) const {
-        return {detail::mirror_phase(ms, wi, wo, [](double) { return 1.0; }), 0.0};
-    }
-};
-
-// Mirror facets of a conductor, complex index eta + i k, with the exact Fresnel reflectance (fresnel.hpp).
-struct Conductor {
-    double eta, k;
-    static constexpr bool reciprocal = true;  // f(wi, wo) = f(wo, wi) facet by facet
-    template <class G>
-    Scatter sample(const Vec3& wi, const Vec3& m, G&) const {
-        return {reflect(wi, m), fresnel_conductor(wi.dot(m), eta, k), false};
-    }
-    template <class Microsurface, class G>
-    Phase phase(const Microsurface& ms, const Vec3& wi, const Vec3& wo, G&) const {
-        return {detail::mirror_phase(ms, wi, wo, [this](double c) { return fresnel_conductor(c, eta, k); }), 0.0};
-    }
-};
-
-// Lambertian facets (Heitz et al. 2016, sec. 5.3, the diffuse microsurface): each reflects albedo / pi about m.
-struct Lambert {
-    double albedo;
-    static constexpr bool reciprocal = true;  // f(wi, wo) = f(wo, wi) facet by facet
-    template <class G>
-    Scatter sample(const Vec3&, const Vec3& m, G& g) const {
-        if (albedo == 0.0) return {m, 0.0, true};
-        return {detail::about(m, std::sqrt(uniform01(g)), g), albedo, true};  // Malley: cos = sqrt(u)
-    }
-    template <class Microsurface, class G>
-    Phase phase(const Microsurface& ms, const Vec3& wi, const Vec3& wo, G& g) const {
-        if (albedo == 0.0) return {};
-        const Vec3 m = ms.visible_normal(wi, g);
-        return {0.0, albedo / std::numbers::pi * std::max(0.0, wo.dot(m))};
-    }
-};
-
-// Hammon 2017's facets ("Reflection/Transmission", "Transmission Direction"): Schlick F reflects specularly; the
-// rest enters, is tinted by albedo, and leaves through the facet again into the lobe k (1 - (1 - cos)^5) cos about m,
-// k = 21 / (20 pi): facet BRDF F spec + (1 - F(wi.m)) albedo k (1 - (1 - wo.m)^5), symmetric in wi and wo.
-// The branch is chosen with probability F (Russian roulette between the two, unbiased), so weights stay in [0, 1].
-struct FresnelDiffuse {
-    double f0, albedo;
-    static constexpr bool reciprocal = true;  // f(wi, wo) = f(wo, wi) facet by facet
-    static constexpr double k = 21.0 / (20.0 * std::numbers::pi);
-
-    template <class G>
-    Scatter sample(const Vec3& wi, const Vec3& m, G& g) const {
-        if (uniform01(g) < fresnel_schlick(f0, wi.dot(m))) return {reflect(wi, m), 1.0, false};
-        if (albedo == 0.0) return {m, 0.0, true};
-        return {detail::about(m, detail::hammon_lobe_cos(uniform01(g)), g), albedo, true};
-    }
-    template <class Microsurface, class G>
-    Phase phase(const Microsurface& ms, const Vec3& wi, const Vec3& wo, G& g) const {
-        Phase p{detail::mirror_phase(ms, wi, wo, [this](double c) { return fresnel_schlick(f0, c); }), 0.0};
-        if (albedo == 0.0) return p;
-        const Vec3 m = ms.visible_normal(wi, g);
-        const double c = wo.dot(m);
-        if (c > 0.0) {
-            const double t = 1.0 - c, t5 = t * t * t * t * t;
-            p.diffuse = (1.0 - fresnel_schlick(f0, wi.dot(m))) * albedo * k * (1.0 - t5) * c;
-        }
-        return p;
-    }
-};
-
-// A smooth dielectric interface on every facet, index eta below the surface over that above (Heitz et al. 2016,
-// sec. 6.2, the dielectric microsurface): the exact Fresnel reflectance F (fresnel.hpp) reflects, 1 - F refracts
-// (Snell), chosen with probability F (weights stay 1). On the side below, the relative index is 1 / eta and past the
-// critical angle everything reflects. The phase function toward wo, the part of it that leaves along wo from this
-// side: reflection when wo.z > 0 (F D(h) / (4 A(wi)), as for mirrors), refraction when wo.z < 0,
-//     (1 - F(wi.h)) <wi.h> D(h) / A(wi) |d omega_h / d omega_o|,  h = -(wi + eta' wo) / |.| turned up,
-// the Jacobian Walter 2007 eq. 17 (geometry.hpp, dm_dwo_refraction), eta' the relative index on this side.
-struct Dielectric {
-    double eta;
-    static constexpr bool two_sided = true;
-
-    template <class G>
-    Scatter sample(const Vec3& wi, const Vec3& m, G& g, bool above) const {
-        const double e = above ? eta : 1.0 / eta;
-        Vec3 t;
-        if (uniform01(g) < fresnel_dielectric(wi.dot(m), e) || !refract(wi, m, e, t))
-            return {reflect(wi, m), 1.0, false};
-        return {t, 1.0, false, true};
-    }
-    template <class Microsurface, class G>
-    Phase phase(const Microsurface& ms, const Vec3& wi, const Vec3& wo, G&, bool above) const {
-        const double e = above ? eta : 1.0 / eta;
-        if (wo.z() > 0.0)
-            return {detail::mirror_phase(ms, wi, wo, [e](double c) { return fresnel_dielectric(c, e); }), 0.0};
-        Vec3 h = half_vector_transmission(wi, wo, e);
-        if (h.z() < 0.0) h = -h;
-        const double ci = wi.dot(h);
-        if (!(ci > 0.0 && wo.dot(h) < 0.0) || !(h.z() > 0.0)) return {};
-        return {(1.0 - fresnel_dielectric(ci, e)) * ci * ms.normals().D(h) / ms.normals().projected_area(wi) *
-                    dm_dwo_refraction(wi, wo, h, e),
-                0.0};
-    }
-};
-
 template <class M>
 concept TwoSided = requires {
     requires M::two_sided;
@@ -187,21 +80,5 @@ template <class M>
 concept Reciprocal = !TwoSided<M> && requires {
     requires M::reciprocal;
 };
-
-using Material = std::variant<Mirror, Conductor, Lambert, FresnelDiffuse, Dielectric>;
-
-// "mirror", "conductor(eta=, k=)", "lambert(albedo=1)", "fresnel-diffuse(f0=0.02, albedo=1)", "dielectric(eta=1.5)";
-// input_error naming an unknown material (with the known ones), an unknown or missing parameter, or a value out of
-// its range.
-Material parse_material(std::string_view spec);
-std::string format_material(const Material& material);
-// Whether any event of the material is diffuse (the tallies of the diffuse component exist only then).
-bool has_diffuse(const Material& material);
-// Whether light goes through it (the transmission tallies exist only then).
-bool transmits(const Material& material);
-// Whether the material's BSDF holds a Dirac delta at (wi, wo), where it has no finite density for the eval estimator
-// to return: a dielectric of eta = 1 (index-matched) neither reflects nor bends light, so every ray leaves along -wi
-// (wo = -wi, within 1e-9 of a unit vector: the rounding of directions given in degrees), and nowhere else.
-bool dirac_at(const Material& material, const Vec3& wi, const Vec3& wo);
 
 }  // namespace smithlab::walk
