@@ -8,6 +8,9 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
+#include <type_traits>
+#include <variant>
 #include <smithlab/single_scattering.hpp>
 #include <smithlab/smithlab.hpp>
 #include <smithlab/walk/trace.hpp>
@@ -64,6 +67,19 @@ struct WrongLambda {
     double Lambda(double mu) const { return 1.3 * ggx.Lambda(mu); }
 };
 
+// f on the concrete type of a built-in material (the walk templates take it directly).
+template <class F>
+auto visit_builtin(const walk::Material& material, F f) {
+    return std::visit(
+        [&](const auto& m) -> decltype(f(walk::Mirror{})) {
+            if constexpr (std::is_same_v<std::decay_t<decltype(m)>, walk::RegisteredMaterial>)
+                throw std::logic_error("visit_builtin: " + material.spec() + " is not a built-in material");
+            else
+                return f(m);
+        },
+        material.kind());
+}
+
 }  // namespace
 
 TEST_CASE("white furnace, sample estimator: every walk leaves with all its energy", "[walk][slow]") {
@@ -77,7 +93,7 @@ TEST_CASE("white furnace, sample estimator: every walk leaves with all its energ
                 r.wi = dir(theta, 0.0);
                 r.walks = 20'000;
                 const walk::CellResult c =
-                    std::visit([&](const auto& m) { return walk::trace_cell(ms, m, r); }, material);
+                    visit_builtin(material, [&](const auto& m) { return walk::trace_cell(ms, m, r); });
                 INFO("alpha " << alpha << " " << material.spec() << " theta_i " << theta);
                 CHECK(c.albedo.capped == 0);
                 const walk::Estimate all =
@@ -97,7 +113,7 @@ TEST_CASE("white furnace, eval estimator: the hemisphere integral of f cos is 1"
     const Vec3 wi = dir(60.0, 0.0);
     auto check = [&](const auto& ms, const walk::Material& material, const std::string& what) {
         const walk::Estimate e =
-            std::visit([&](const auto& m) { return eval_albedo(ms, m, wi, 40'000, 5, 99).all; }, material);
+            visit_builtin(material, [&](const auto& m) { return eval_albedo(ms, m, wi, 40'000, 5, 99).all; });
         INFO(what << " " << material.spec() << ": " << e.value << " +- " << e.stderr_);
         CHECK(std::abs(e.value - 1.0) < 4.0 * e.stderr_ + 1e-3);
         CHECK(e.stderr_ < 0.02);
@@ -156,7 +172,7 @@ TEST_CASE("reciprocity: f(wi, wo) = f(wo, wi) over 20 pairs, grazing ones includ
             auto f = [&](const Vec3& wi, const Vec3& wo, std::uint64_t cell) {
                 walk::EvalRequest r{.wi = wi, .wo = wo, .cell = cell, .walks = 40'000};
                 const walk::EvalTally t =
-                    std::visit([&](const auto& m) { return walk::eval_cell(ms, m, r); }, material);
+                    visit_builtin(material, [&](const auto& m) { return walk::eval_cell(ms, m, r); });
                 const walk::Estimate e = t.value();
                 return walk::Estimate{e.value / wo.z(), e.stderr_ / wo.z()};
             };
