@@ -74,7 +74,7 @@ walk::Material make_material(M m, Ndfs = {}) {
     if constexpr (walk::builtin_material<M>) {
         return walk::Material(std::move(m));
     } else {
-        std::string spec = format_spec(m.spec());
+        std::string spec = walk::material_spec_text(m.spec());
         const bool diffuse = walk::material_has_diffuse(m);
         return walk::Material(walk::RegisteredMaterial{std::make_shared<const MaterialKernelsOf<M, Ndfs>>(std::move(m))},
                               std::move(spec), diffuse, walk::TwoSided<M>);

@@ -51,6 +51,11 @@ bool material_dirac_at(const M& m, const Vec3& wi, const Vec3& wo) {
     else return false;
 }
 
+// A material's spec as text: "conductor(eta=0.2, k=3)", the bare name where it has no parameters ("mirror").
+inline std::string material_spec_text(const NdfSpec& spec) {
+    return spec.params.empty() && spec.texts.empty() ? spec.name : format_spec(spec);
+}
+
 class Material {
 public:
     using Kind = std::variant<Mirror, Conductor, Lambert, FresnelDiffuse, Dielectric, RegisteredMaterial>;
@@ -59,7 +64,7 @@ public:
     template <class M>
         requires builtin_material<M>
     Material(M m)
-        : spec_(format_spec(m.spec())), has_diffuse_(material_has_diffuse(m)), transmits_(TwoSided<M>),
+        : spec_(material_spec_text(m.spec())), has_diffuse_(material_has_diffuse(m)), transmits_(TwoSided<M>),
           kind_(std::move(m)) {}
     // A registered material: its kernels, its canonical spec, and what it does (material_kernels.hpp fills these in
     // from its type).
