@@ -6,7 +6,9 @@
 // The block/ rows time what a command runs, a block of 4096 walks: the D-only GGX on its own type (walk::trace_block),
 // the same D registered as a plug-in and run through the surface its registration records (smithlab/surface.hpp: one
 // virtual call a block), and through AnyNdf itself (a virtual D and Lambda a call: what an unregistered NDF gets);
-// and GGX's D as a measured table (tabulated.hpp: 100 rows to 89 degrees), registered as `tabulated` is.
+// and GGX's D as a measured table (tabulated.hpp: 100 rows to 89 degrees), registered as `tabulated` is; GGX with
+// mirror facets built in, as a registered material walked as its own type (material_kernels.hpp: one virtual call
+// a block), and as one registered without GGX's type listed (the NDF erased).
 // The ndf/ rows: every built-in family at roughness alpha = 0.1, 0.5, 1 (GTR at gamma 1, 1.5, 3; Student at gamma 4;
 // ABC at c = 2; Blinn by its roughness mapping) and GGX's D as a 100-row table, with mirror and lambert facets, as a
 // command runs them (blocks of 4096 through the registered surface); items_per_second = walks/s, so ns a walk is its
@@ -108,12 +110,31 @@ void add_block_of(const std::string& name, const N& ndf) {
     });
 }
 
-void add_block_of(const std::string& name, const smithlab::AnyNdf& ndf) {
+void add_block_of(const std::string& name, const smithlab::AnyNdf& ndf, const walk::Material& material = walk::Mirror{}) {
     const std::shared_ptr<const smithlab::AnySurface> surface = smithlab::make_surface(ndf);
-    const walk::Material mirror = walk::Mirror{};
-    add_block(name, [surface, mirror](const walk::CellRequest& r, std::uint64_t b) {
-        return surface->trace_block(mirror, r, b);
+    add_block(name, [surface, material](const walk::CellRequest& r, std::uint64_t b) {
+        return surface->trace_block(material, r, b);
     });
+}
+
+// Mirror facets as a plug-in material: walk::Mirror's members, registered under its own name.
+struct PlugInMirror : walk::Mirror {
+    static walk::MaterialInfo info() { return {"plugin-mirror", {}, "walk::Mirror, registered"}; }
+    static PlugInMirror make(const walk::MaterialParams&) { return {}; }
+    smithlab::NdfSpec spec() const { return {"plugin-mirror", {}}; }
+};
+
+// The same walk through the surface of a registered GGX with the material built in, registered with the NDF types
+// listed (its own compiled walk), and registered with none listed (the NDF erased).
+void add_registered_materials() {
+    const smithlab::NdfRegistry builtin = smithlab::builtin_registry();
+    const smithlab::AnyNdf ggx = builtin.make("ggx(alpha=0.5)");
+    smithlab::MaterialRegistry listed, erased;
+    listed.add<PlugInMirror>(smithlab::builtin_ndf_types{});
+    erased.add<PlugInMirror>(smithlab::NdfTypes<>{});
+    add_block_of("ggx(alpha=0.5)/mirror, built in", ggx);
+    add_block_of("ggx(alpha=0.5)/plug-in mirror, registered", ggx, listed.make("plugin-mirror"));
+    add_block_of("ggx(alpha=0.5)/plug-in mirror, NDF erased", ggx, erased.make("plugin-mirror"));
 }
 
 // GGX's D at roughness alpha as a table of 100 rows to 89 degrees (CSV text).
@@ -196,6 +217,7 @@ const bool registered = [] {
         return smithlab::tabulated_ndf_from_csv(ggx_table(0.5), "ggx.csv");
     });
     add_block_of("tabulated ggx(alpha=0.5), 100 rows, registered/mirror", tabulated.make("ggx_table"));
+    add_registered_materials();
     add_family_matrix();
     return true;
 }();
