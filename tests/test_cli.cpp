@@ -11,6 +11,7 @@
 #include <map>
 #include <regex>
 #include <smithlab/csv.hpp>
+#include <smithlab/material_registry.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -194,6 +195,21 @@ TEST_CASE("CSV: every bad row is reported by line, and no output file is written
 
     write(d / "nohead.csv", "spec,mu\nggx,1\n");
     CHECK(run("eval --input '" + (d / "nohead.csv").string() + "'").rc == 2);
+}
+
+TEST_CASE("every registered material is listed where a user looks: list, trace --help, the default trace scene",
+          "[cli]") {
+    const Run list = run("list"), help = run("trace --help"), scene = run("trace --print-scene");
+    REQUIRE(list.rc == 0);
+    REQUIRE(help.rc == 0);
+    REQUIRE(scene.rc == 0);
+    const smithlab::MaterialRegistry materials;
+    for (const smithlab::walk::MaterialInfo* m : materials.list()) {
+        INFO(m->spec());
+        CHECK_THAT(list.out, Catch::Contains(m->spec() + "\n    " + m->description));
+        CHECK_THAT(help.out, Catch::Contains(m->spec()));
+        CHECK_THAT(scene.out, Catch::Contains(m->parameters.empty() ? m->name : m->name + "("));
+    }
 }
 
 TEST_CASE("check prints a table and passes for a healthy NDF, and --help explains", "[cli]") {
