@@ -183,20 +183,23 @@ inline void add_next_event(EvalSample& out, std::int64_t order, int diffuse, dou
 }
 }  // namespace detail
 
+namespace detail {
+
+// The chance to escape toward wo from height h, for next-event estimation. From this side, wo up (local) is reached
+// by reflection and escapes this side; wo down only through the surface, escaping on the other side (where it and the
+// height are negated); one-sided phases are 0 there. At the first hit of expected_first, its closed-form average
+// over the hit's height.
+template <class M, class Microsurface>
+double next_event_escape(const Microsurface& ms, bool first_expected, const Vec3& w, const Vec3& wo_local, double h) {
+    if (wo_local.z() > 0.0) return first_expected ? expected_first_escape(ms, w, wo_local, h) : ms.escape(wo_local, h);
+    if constexpr (TwoSided<M>) return ms.escape(-wo_local, ms.other_side(h));
+    else return 0.0;
+}
+
+// eval_walk by next_event or expected_first (shared).
 template <class Microsurface, class M, class G>
-EvalSample eval_walk(const Microsurface& ms, const M& material, const Vec3& wi, const Vec3& wo, G& g,
-                     const WalkLimits& limits = {}, EvalEstimator estimator = EvalEstimator::next_event) {
-    if (estimator == EvalEstimator::reciprocal) {
-        if constexpr (Reciprocal<M>) {
-            if (wo.z() > 0.0 && wo.z() < wi.z() && wo.z() < reciprocal_cos &&
-                ms.options().downward == Downward::smith) {
-                EvalSample s = eval_walk(ms, material, wo, wi, g, limits, EvalEstimator::expected_first);
-                detail::scale(s, wo.z() / wi.z());
-                return s;
-            }
-        }
-        estimator = EvalEstimator::expected_first;
-    }
+EvalSample eval_walk_by(const Microsurface& ms, const M& material, const Vec3& wi, const Vec3& wo, G& g,
+                        const WalkLimits& limits, EvalEstimator estimator) {
     EvalSample out;
     // The phase functions are densities over visible normals: a microsurface whose hits draw another law
     // (require_eval_normals, which the caller runs before any walk) gives no estimate, every walk capped.
@@ -224,26 +227,19 @@ EvalSample eval_walk(const Microsurface& ms, const M& material, const Vec3& wi, 
             out.capped = true;
             break;
         }
-        // Next-event estimation: the phase function toward wo times the chance to escape along it from here. From
-        // this side, wo up (local) is reached by reflection and escapes this side; wo down only through the surface,
-        // escaping on the other side (where it and the height are negated); one-sided phases are 0 there.
+        // Next-event estimation: the phase function toward wo times the chance to escape along it from here.
         const Vec3 wo_local = above ? wo : -wo;
-        const double e = shared && order == 1 && wo_local.z() > 0.0 ? detail::expected_first_escape(ms, w, wo_local, h)
-            : wo_local.z() > 0.0                                    ? ms.escape(wo_local, h)
-            : TwoSided<M>                                           ? ms.escape(-wo_local, ms.other_side(h))
-                                                                    : 0.0;
-        if (e > 0.0) {
-            const Phase p = shared
-                ? detail::phase(detail::DrawnNormal<Microsurface>{ms, m_shared}, material, v, wo_local, g, above)
-                : detail::phase(ms, material, v, wo_local, g, above);
-            detail::add_next_event(out, order, diffuse, weight * e, p);
+        if (const double e = next_event_escape<M>(ms, shared && order == 1, w, wo_local, h); e > 0.0) {
+            const Phase p = shared ? phase(DrawnNormal<Microsurface>{ms, m_shared}, material, v, wo_local, g, above)
+                                   : phase(ms, material, v, wo_local, g, above);
+            add_next_event(out, order, diffuse, weight * e, p);
         }
         const Vec3 m = shared ? m_shared : ms.hit_normal(v, g);
         if (std::isnan(m.z())) {
             out.capped = true;
             break;
         }
-        const Scatter s = detail::scatter(material, v, m, g, above);
+        const Scatter s = scatter(material, v, m, g, above);
         weight *= s.weight;
         diffuse += s.diffuse;
         if (weight == 0.0) break;
@@ -255,6 +251,25 @@ EvalSample eval_walk(const Microsurface& ms, const M& material, const Vec3& wi, 
         }
     }
     return out;
+}
+
+}  // namespace detail
+
+template <class Microsurface, class M, class G>
+EvalSample eval_walk(const Microsurface& ms, const M& material, const Vec3& wi, const Vec3& wo, G& g,
+                     const WalkLimits& limits = {}, EvalEstimator estimator = EvalEstimator::next_event) {
+    if (estimator == EvalEstimator::reciprocal) {
+        if constexpr (Reciprocal<M>) {
+            if (wo.z() > 0.0 && wo.z() < wi.z() && wo.z() < reciprocal_cos &&
+                ms.options().downward == Downward::smith) {
+                EvalSample s = detail::eval_walk_by(ms, material, wo, wi, g, limits, EvalEstimator::expected_first);
+                detail::scale(s, wo.z() / wi.z());
+                return s;
+            }
+        }
+        estimator = EvalEstimator::expected_first;
+    }
+    return detail::eval_walk_by(ms, material, wi, wo, g, limits, estimator);
 }
 
 }  // namespace smithlab::walk
