@@ -1,7 +1,7 @@
 // The Python module's cost per call and per point: G1 through `import smithlab` (an interpreter embedded here, the
 // package from the build tree) for 1 and 1e6 points, beside the same computation as a C++ loop over the module's own
-// route (cli::lambda_g1, what Ndf.G1 runs per element) and, for the GTR family, the stream. items_per_second counts
-// points: at 1e6 points the Python row approaches the C++ loop's rate, at 1 point it is the call's overhead.
+// route (evaluation::lambda_g1, what Ndf.G1 runs per element) and, for the GTR family, the stream. items_per_second
+// counts points: at 1e6 points the Python row approaches the C++ loop's rate, at 1 point it is the call's overhead.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -10,7 +10,7 @@
 #include <pybind11/embed.h>
 #include <pybind11/numpy.h>
 
-#include "cli/eval_route.hpp"
+#include "evaluation/route.hpp"
 #include "smithlab/gtr/family_stream.hpp"
 #include "smithlab/gtr/registry.hpp"
 
@@ -39,14 +39,13 @@ void python_G1(benchmark::State& state, const std::string& spec, const std::stri
 void cpp_G1(benchmark::State& state, const std::string& spec, const std::string& method) {
     const auto n = static_cast<std::size_t>(state.range(0));
     const smithlab::NdfRegistry registry = smithlab::builtin_registry();
-    smithlab::cli::EvalArgs args;
-    args.method = method;
-    const smithlab::cli::Prepared p =
-        smithlab::cli::prepare(registry.make(spec), smithlab::cli::route(args, smithlab::builtin_variants()));
+    namespace evaluation = smithlab::evaluation;
+    const evaluation::Prepared p =
+        evaluation::prepare(registry.make(spec), evaluation::route({.method = method}, smithlab::builtin_variants()));
     const std::vector<double> mu = mus(n);
     std::vector<double> out(n);
     for (auto _ : state) {
-        for (std::size_t i = 0; i < n; ++i) out[i] = smithlab::cli::lambda_g1(p, mu[i], smithlab::Downward::smith).g1;
+        for (std::size_t i = 0; i < n; ++i) out[i] = evaluation::lambda_g1(p, mu[i], smithlab::Downward::smith).g1;
         benchmark::DoNotOptimize(out.data());
     }
     state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(n));

@@ -1,4 +1,4 @@
-// Every row `smithlab eval` (and the Python module, through the same cli::lambda_g1) prints agrees with itself:
+// Every row `smithlab eval` (and the Python module, through the same evaluation::lambda_g1) prints agrees with itself:
 // G1 = 1 / (1 + Lambda(|mu|)) to rounding, for every registered NDF at its example points, by every method and
 // variant of `eval --list-methods` that applies to it, at mu from the largest double down to the smallest
 // subnormal (the quadratures on fewer points, below). Where Lambda is +inf, G1 is 0 or so small that 1 / G1 - 1
@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "cli/eval_route.hpp"
+#include "evaluation/route.hpp"
 #include "smithlab/errors.hpp"
 #include "smithlab/gtr/registry.hpp"
 
@@ -30,13 +30,6 @@ std::vector<std::string> all_examples(const NdfRegistry& registry) {
     return specs;
 }
 
-std::vector<std::string> all_methods(const VariantRegistry& variants) {
-    std::vector<std::string> names;
-    for (const Named<Method>& m : method_names) names.emplace_back(m.name);
-    for (const LambdaVariant& v : variants.list()) names.push_back(v.name);
-    return names;
-}
-
 // mu from the largest double to the smallest subnormal, 0 and inf with them.
 const std::vector<double> mu_grid = {0.0,   5e-324, 1e-310, 1e-300, 1e-200, 1e-100, 1e-30, 1e-14,   1e-12,
                                      1e-10, 1e-8,   1e-6,   1e-4,   1e-3,   0.01,   0.1,   0.5,     1.0,
@@ -47,7 +40,7 @@ const std::vector<double> mu_grid = {0.0,   5e-324, 1e-310, 1e-300, 1e-200, 1e-1
 const std::vector<double> mu_grid_quadrature = {0.0, 5e-324, 1e-310, 1e-300, 1e-13, 1e-12,   0.01,
                                                 1.0, 1e3,    1e12,   1e13,   1e300, DBL_MAX, INFINITY};
 enum class Cost { cheap, quadrature, nested };
-Cost cost_of(const cli::Route& route, const AnyNdf& ndf) {
+Cost cost_of(const evaluation::Route& route, const AnyNdf& ndf) {
     if (route.variant) {
         const LambdaRoute r = route_on(*route.variant, ndf);
         return r == LambdaRoute::q2d_boost || r == LambdaRoute::q2d_gsl ? Cost::nested
@@ -86,7 +79,7 @@ struct Sweep {
 Sweep sweep(const std::vector<Cost>& costs) {
     const NdfRegistry registry = builtin_registry();
     const VariantRegistry variants = builtin_variants();
-    const std::vector<std::string> methods = all_methods(variants);
+    const std::vector<std::pair<std::string, std::string>> methods = evaluation::method_list(variants);
     const std::vector<std::string> specs = all_examples(registry);
     Sweep out;
     for (std::size_t i = 0; i < specs.size(); ++i) {
@@ -95,28 +88,26 @@ Sweep sweep(const std::vector<Cost>& costs) {
         const bool family_end = i == 0 || i + 1 == specs.size() ||
             registry.make(specs[i - 1]).family() != ndf.family() ||
             registry.make(specs[i + 1]).family() != ndf.family();
-        for (const std::string& method : methods) {
-            cli::EvalArgs args;
-            args.method = method;
-            const cli::Route route = cli::route(args, variants);
+        for (const auto& [method, description] : methods) {
+            const evaluation::Route route = evaluation::route({.method = method}, variants);
             if (route.variant && !route.variant->applies(ndf)) continue;
             const Cost cost = cost_of(route, ndf);
             if (std::find(costs.begin(), costs.end(), cost) == costs.end()) continue;
             // The nested routes at each family's ends; not on the table, whose C1 interpolant (a kink of D'' at every
             // row) takes the nested tanh-sinh minutes a point inside the quadrature's domain.
             if (cost == Cost::nested && (!family_end || ndf.family() == "tabulated")) continue;
-            std::optional<cli::Prepared> p;
+            std::optional<evaluation::Prepared> p;
             try {
-                p.emplace(cli::prepare(ndf, route));
+                p.emplace(evaluation::prepare(ndf, route));
             } catch (const input_error&) {
                 continue;  // a core method the NDF lacks (closed, spline): refused by name, no row
             }
             ++out.applied;
             for (double mu : cost == Cost::cheap ? mu_grid : mu_grid_quadrature) {
-                cli::LambdaG1 up{}, down{};
+                evaluation::LambdaG1 up{}, down{};
                 try {
-                    up = cli::lambda_g1(*p, mu, Downward::smith);
-                    down = cli::lambda_g1(*p, -mu, Downward::smith);
+                    up = evaluation::lambda_g1(*p, mu, Downward::smith);
+                    down = evaluation::lambda_g1(*p, -mu, Downward::smith);
                 } catch (const input_error&) {
                     continue;  // mu in the band below the quadrature the NDF refuses (docs/accuracy-and-limits.md)
                 }

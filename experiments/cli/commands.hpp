@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "evaluation/route.hpp"
 #include "scene/limits.hpp"
 #include "smithlab/registry.hpp"
 #include "smithlab/smith.hpp"
@@ -17,11 +18,11 @@ namespace smithlab::cli {
 constexpr int exit_ok = 0, exit_failed = 1, exit_bad_input = 2, exit_internal = 3;
 
 struct EvalArgs {
-    std::string ndf, input, output, method = "auto", backend = "boost", downward = "smith";
+    std::string ndf, input, output;
     // The points, as text so that "inf" and "nan" reach our own validation: one of mu, theta (degrees), a range of
     // either (eval_points.hpp), or the input file above.
     std::string mu, theta, mu_range, theta_range;
-    double tolerance = 1e-12;
+    evaluation::RouteOptions route;  // --method, --backend, --tolerance, --downward
     bool list_methods = false;
 };
 void add_eval(CLI::App& app, EvalArgs& args);
@@ -50,7 +51,7 @@ struct SampleArgs {
     std::string ndf, sampler, output;
     double theta_i = 0.0;
     long long n = 1000;
-    std::string seed = "1";  // text, parsed strictly (parse_seed): no sign, no wrap-around
+    std::string seed = "1";  // text, parsed strictly (evaluation::parse_seed): no sign, no wrap-around
     bool list_samplers = false;
 };
 void add_sample(CLI::App& app, SampleArgs& args);
@@ -103,8 +104,6 @@ CLI::Validator strict_integer();
 // The text of a scene file (at most report::max_scene_bytes: a larger file, /dev/zero or an endless pipe is refused); a
 // directory, a missing or unreadable file is an input error naming it.
 std::string read_scene_file(const std::string& path);
-// Parses a seed: decimal digits only, 0 .. 2^64 - 1; anything else is an input error naming `what`.
-unsigned long long parse_seed(const std::string& text, const std::string& what);
 // The options several subcommands share, spelled and described once.
 // --backend, its accepted names and its help from backend_names (quadrature.hpp).
 void add_backend_option(CLI::App& command, std::string& backend);
@@ -113,7 +112,7 @@ CLI::Option* add_output_option(CLI::App& command, std::string& output, const std
 // --threads N (0: all cores); run_* checks it with require_threads.
 CLI::Option* add_threads_option(CLI::App& command, int& threads);
 void require_threads(int threads);
-// --seed, an integer in [0, 2^64) as text (parse_seed reads it).
+// --seed, an integer in [0, 2^64) as text (evaluation::parse_seed reads it).
 CLI::Option* add_seed_option(CLI::App& command, std::string& seed);
 // --downward, from downward_names (smith.hpp).
 CLI::Option* add_downward_option(CLI::App& command, std::string& downward);

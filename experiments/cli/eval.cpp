@@ -5,8 +5,8 @@
 
 #include "cli/commands.hpp"
 #include "cli/eval_points.hpp"
-#include "cli/eval_route.hpp"
 #include "cli/eval_tables.hpp"
+#include "evaluation/route.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
 
@@ -39,25 +39,30 @@ void add_point_options(CLI::App& c, EvalArgs& a) {
 }
 
 int list_methods(const VariantRegistry& variants) {
-    for (const Named<Method>& m : method_names)
-        std::printf("%-28s %s\n", std::string(m.name).c_str(), std::string(m.description).c_str());
-    for (const LambdaVariant& v : variants.list()) std::printf("%-28s %s\n", v.name.c_str(), v.description.c_str());
+    for (const auto& [name, description] : evaluation::method_list(variants))
+        std::printf("%-28s %s\n", name.c_str(), description.c_str());
     return exit_ok;
 }
 
 // One point, as lines "key  value".
-int eval_one(const EvalArgs& a, const EvalPoint& x, const NdfRegistry& registry, const Route& route) {
-    const Prepared p = prepare(a.ndf, registry, route);
-    const LambdaG1 v = lambda_g1(p, x.mu, route.options.downward);
+int eval_one(const EvalArgs& a, const EvalPoint& x, const NdfRegistry& registry, const evaluation::Route& route) {
+    const evaluation::Prepared p = prepare(a.ndf, registry, route);
+    const evaluation::LambdaG1 v = evaluation::lambda_g1(p, x.mu, route.options.downward);
     std::cout << "ndf     " << p.ndf.spec() << "\n";
     if (x.theta) std::cout << "theta   " << format_g17(*x.theta) << "\n";
     std::cout << "mu      " << format_g17(x.mu) << "\n"
-              << "method  " << describe(route, a, p.ndf, x.mu) << "\n"
+              << "method  " << evaluation::describe(route, a.route, p.ndf, x.mu) << "\n"
               << "lambda  " << format_g17(v.lambda) << "\ng1      " << format_g17(v.g1) << "\n";
     return exit_ok;
 }
 
 }  // namespace
+
+evaluation::Prepared prepare(const std::string& spec, const NdfRegistry& registry, const evaluation::Route& route) {
+    AnyNdf ndf = registry.make(spec);
+    if (!ndf.note().empty()) std::fprintf(stderr, "smithlab: note: %s\n", ndf.note().c_str());
+    return evaluation::prepare(std::move(ndf), route);
+}
 
 std::optional<output::OutputTarget> csv_target(const std::string& output, const std::vector<std::string>& inputs) {
     if (output.empty() || output == "-") return std::nullopt;
@@ -92,20 +97,21 @@ void add_eval(CLI::App& app, EvalArgs& a) {
         described_lines(method_names) +
         "  and every variant of `smithlab eval --list-methods` (fixed tolerances, interpolants, approximations).");
     add_point_options(*c, a);
-    c->add_option("--method", a.method, join_names(method_names, " | ", " | ") + ", or a variant from --list-methods")
+    c->add_option("--method", a.route.method,
+                  join_names(method_names, " | ", " | ") + ", or a variant from --list-methods")
         ->capture_default_str();
     c->add_flag("--list-methods", a.list_methods, "list every method and variant with a one-line description");
-    add_backend_option(*c, a.backend);
-    c->add_option("--tolerance", a.tolerance, "relative tolerance of the quadrature methods")
+    add_backend_option(*c, a.route.backend);
+    c->add_option("--tolerance", a.route.tolerance, "relative tolerance of the quadrature methods")
         ->capture_default_str()
         ->check(strict_real())
-        ->check(CLI::Range(1e-15, 0.1));
-    add_downward_option(*c, a.downward);
+        ->check(CLI::Range(evaluation::min_tolerance, evaluation::max_tolerance));
+    add_downward_option(*c, a.route.downward);
 }
 
 int run_eval(const EvalArgs& a, const NdfRegistry& registry, const VariantRegistry& variants) {
     if (a.list_methods) return list_methods(variants);
-    const Route route = cli::route(a, variants);
+    const evaluation::Route route = evaluation::route(a.route, variants);
     if (!a.input.empty()) return eval_csv(a, registry, route);
     const bool range = !a.mu_range.empty() || !a.theta_range.empty();
     if (a.ndf.empty() || (a.mu.empty() && a.theta.empty() && !range))

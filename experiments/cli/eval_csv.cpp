@@ -58,19 +58,20 @@ Columns find_columns(const Input& in) {
 struct Row {
     const std::vector<std::string>* fields;
     const AnyNdf* ndf;
-    LambdaG1 values;
+    evaluation::LambdaG1 values;
 };
 
 // Every row evaluated, each NDF prepared on the first row that names its spec (rows usually repeat a handful).
 // A bad row is reported on stderr with its line; the count of them is returned in `bad`.
 struct Evaluated {
-    std::map<std::string, Prepared> cache;
+    std::map<std::string, evaluation::Prepared> cache;
     std::vector<AnyNdf> ndfs;  // in order of first appearance: the parameter columns' order
     std::vector<Row> rows;
     int bad = 0;
 };
 
-void evaluate_rows(const Input& in, Columns col, const NdfRegistry& registry, const Route& route, Evaluated& e) {
+void evaluate_rows(const Input& in, Columns col, const NdfRegistry& registry, const evaluation::Route& route,
+                   Evaluated& e) {
     const std::size_t width = in.records.front().fields.size(), n = in.records.size() - 1;
     for (std::size_t i = 1; i < in.records.size(); ++i) {
         const CsvRecord& rec = in.records[i];
@@ -86,7 +87,8 @@ void evaluate_rows(const Input& in, Columns col, const NdfRegistry& registry, co
                 e.ndfs.push_back(it->second.ndf);
             }
             const double mu = parse_number(rec.fields[col.mu], "mu");
-            e.rows.push_back({&rec.fields, &it->second.ndf, lambda_g1(it->second, mu, route.options.downward)});
+            e.rows.push_back(
+                {&rec.fields, &it->second.ndf, evaluation::lambda_g1(it->second, mu, route.options.downward)});
         } catch (const std::exception& x) {  // bad input, or a numeric failure on this row's values
             std::cerr << in.source << ":" << rec.line << ": " << x.what() << "\n";
             ++e.bad;
@@ -117,7 +119,7 @@ std::string table(const std::vector<std::string>& head, const Evaluated& e) {
 
 }  // namespace
 
-int eval_csv(const EvalArgs& a, const NdfRegistry& registry, const Route& route) {
+int eval_csv(const EvalArgs& a, const NdfRegistry& registry, const evaluation::Route& route) {
     const std::optional<output::OutputTarget> target = csv_target(a.output, {a.input});
     const Input in = read_input(a.input);
     const Columns col = find_columns(in);

@@ -9,9 +9,9 @@
 namespace smithlab::cli {
 
 int eval_sweep(const EvalArgs& a, const std::vector<EvalPoint>& points, const NdfRegistry& registry,
-               const Route& route) {
+               const evaluation::Route& route) {
     const std::optional<output::OutputTarget> target = csv_target(a.output, {});
-    const Prepared p = prepare(a.ndf, registry, route);
+    const evaluation::Prepared p = prepare(a.ndf, registry, route);
     const bool by_angle = !a.theta_range.empty();
     const output::NdfColumns params = output::ndf_columns({&p.ndf, 1});
     std::vector<std::string> header = {"ndf"};
@@ -25,9 +25,9 @@ int eval_sweep(const EvalArgs& a, const std::vector<EvalPoint>& points, const Nd
     row.insert(row.end(), cells.begin(), cells.end());
     const std::size_t fixed = row.size();
     for (const EvalPoint& x : points) {  // an input_error on any point, naming it, leaves nothing written
-        LambdaG1 v;
+        evaluation::LambdaG1 v;
         try {
-            v = lambda_g1(p, x.mu, route.options.downward);
+            v = evaluation::lambda_g1(p, x.mu, route.options.downward);
         } catch (const input_error& e) {
             throw input_error(std::string(e.what()) + " (at mu = " + format_g17(x.mu) + ")");
         }

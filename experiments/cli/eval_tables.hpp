@@ -8,15 +8,20 @@
 #include <string>
 #include <vector>
 
+#include "cli/commands.hpp"
 #include "cli/eval_points.hpp"
-#include "cli/eval_route.hpp"
+#include "evaluation/route.hpp"
 #include "output/output_file.hpp"
 
 namespace smithlab::cli {
 
-int eval_csv(const EvalArgs& args, const NdfRegistry& registry, const Route& route);
+int eval_csv(const EvalArgs& args, const NdfRegistry& registry, const evaluation::Route& route);
 int eval_sweep(const EvalArgs& args, const std::vector<EvalPoint>& points, const NdfRegistry& registry,
-               const Route& route);
+               const evaluation::Route& route);
+
+// The NDF `spec` names, from the registry, prepared for the route; its note (how it was built, where a user should
+// know) on stderr.
+evaluation::Prepared prepare(const std::string& spec, const NdfRegistry& registry, const evaluation::Route& route);
 
 // The file -o names, checked before any work (a path that cannot be written, or is one of the inputs, is refused
 // now); none for stdout ("" or "-").

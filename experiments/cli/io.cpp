@@ -3,7 +3,6 @@
 #include <cerrno>
 #include <charconv>
 #include <cmath>
-#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -64,15 +63,6 @@ std::string read_scene_file(const std::string& path) {
         throw input_error("scene file '" + path + "' is larger than " + std::to_string(report::max_scene_bytes) +
                           " bytes (1 MiB), the most a scene file may hold");
     return text;
-}
-
-unsigned long long parse_seed(const std::string& text, const std::string& what) {
-    errno = 0;
-    const bool digits = !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
-    const unsigned long long v = digits ? std::strtoull(text.c_str(), nullptr, 10) : 0;
-    if (!digits || errno == ERANGE)
-        throw input_error(what + " must be an integer in [0, 18446744073709551615], got '" + text + "'");
-    return v;
 }
 
 void add_backend_option(CLI::App& command, std::string& backend) {

@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "cli/commands.hpp"
+#include "evaluation/seed.hpp"
 #include "output/output_file.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
@@ -46,7 +47,7 @@ int run_sample(const SampleArgs& a, const NdfRegistry& registry) {
     if (a.ndf.empty() || a.sampler.empty())
         throw input_error("sample needs --ndf SPEC and --sampler NAME (see smithlab sample --help)");
     require(a.theta_i >= 0.0 && a.theta_i < 180.0, "--theta-i", "in [0, 180) degrees", a.theta_i);  // NaN too
-    const unsigned long long seed = parse_seed(a.seed, "--seed");
+    const unsigned long long seed = evaluation::parse_seed(a.seed, "--seed");
     std::optional<output::OutputTarget> target;  // checked before any work
     if (!a.output.empty() && a.output != "-") target = output::resolve_output(a.output);
     const AnyNdf ndf = registry.make(a.ndf);

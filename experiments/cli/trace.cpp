@@ -11,6 +11,7 @@
 
 #include "cli/commands.hpp"
 #include "cluster/mpi_world.hpp"
+#include "evaluation/seed.hpp"
 #include "scene/walk_options.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
@@ -71,7 +72,7 @@ trace::TraceScene cell_scene(const TraceArgs& a, const MaterialRegistry& materia
     s.theta_i = {a.theta_i};
     s.phi_i = {a.phi_i};
     s.walks = a.walks;
-    s.seed = parse_seed(a.seed, "--seed");
+    s.seed = evaluation::parse_seed(a.seed, "--seed");
     s.max_order = a.max_order;
     s.downward = a.downward;
     s.hit_normal = a.hit_normal;
@@ -228,7 +229,7 @@ void add_brdf(CLI::App& app, BrdfArgs& a) {
 }
 
 int run_brdf(const BrdfArgs& a, const NdfRegistry& registry) {
-    const unsigned long long seed = parse_seed(a.seed, "--seed");
+    const unsigned long long seed = evaluation::parse_seed(a.seed, "--seed");
     require(a.walks > 0, "--walks", "> 0", static_cast<double>(a.walks));
     require_threads(a.threads);
     const AnyNdf ndf = registry.make(a.ndf);

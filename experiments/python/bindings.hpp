@@ -1,11 +1,12 @@
-// What the Python module's two extensions share: bad input as ValueError, and the one way an elementwise function of
-// NumPy arrays runs (broadcast, float64, the GIL released while C++ loops).
+// What the Python module's two extensions share: bad input as ValueError, a seed argument, and the one way an
+// elementwise function of NumPy arrays runs (broadcast, float64, the GIL released while C++ loops).
 #pragma once
 
 #include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstddef>
+#include <cstdint>
 #include <exception>
 #include <string>
 #include <thread>
@@ -15,6 +16,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include "evaluation/seed.hpp"
 #include "smithlab/errors.hpp"
 
 namespace smithlab::python {
@@ -31,6 +33,11 @@ inline void translate_errors() {
             PyErr_SetString(PyExc_ValueError, e.what());
         }
     });
+}
+
+// A seed as the command line reads its --seed (an integer in [0, 2^64)), from a Python int or its text.
+inline std::uint64_t seed_of(const py::object& seed) {
+    return evaluation::parse_seed(py::str(seed).cast<std::string>(), "seed");
 }
 
 using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;

@@ -1,6 +1,6 @@
 // The NDF side of `import smithlab` (extension smithlab._ndf): NDFs by spec or by parameters, their D, P22, P2,
-// Lambda, G1 and G2 over NumPy arrays by every method `smithlab eval` has (the same code: cli/eval_route.hpp, so the
-// same bits), the GTR family's stream, a measured D as an NDF, and the samplers.
+// Lambda, G1 and G2 over NumPy arrays by every method `smithlab eval` has (the same code: evaluation/route.hpp, so
+// the same bits), the GTR family's stream, a measured D as an NDF, and the samplers.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -13,8 +13,7 @@
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
-#include "cli/commands.hpp"
-#include "cli/eval_route.hpp"
+#include "evaluation/route.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/gtr/family_stream.hpp"
 #include "smithlab/gtr/registry.hpp"
@@ -38,16 +37,15 @@ Catalogue& catalogue() {
 }
 
 void require_tolerance(double tolerance) {
-    require(tolerance >= 1e-15 && tolerance <= 0.1, "tolerance", "in [1e-15, 0.1]", tolerance);
+    using evaluation::min_tolerance, evaluation::max_tolerance;
+    require(tolerance >= min_tolerance && tolerance <= max_tolerance, "tolerance",
+            "in [" + format_shortest(min_tolerance) + ", " + format_shortest(max_tolerance) + "]", tolerance);
 }
 
 // A method's route, as `smithlab eval --method M --backend B --tolerance T --downward D` takes it.
-cli::Prepared prepared(const AnyNdf& ndf, const std::string& method, const std::string& backend, double tolerance,
-                       const std::string& downward) {
-    require_tolerance(tolerance);
-    cli::EvalArgs args;
-    args.method = method, args.backend = backend, args.tolerance = tolerance, args.downward = downward;
-    return cli::prepare(ndf, cli::route(args, catalogue().variants));
+evaluation::Prepared prepared(const AnyNdf& ndf, const evaluation::RouteOptions& options) {
+    require_tolerance(options.tolerance);
+    return evaluation::prepare(ndf, evaluation::route(options, catalogue().variants));
 }
 
 AnyNdf make_ndf(const std::string& spec, const py::kwargs& params) {
@@ -126,6 +124,89 @@ AnyNdf tabulated(const std::string& name, const py::object& cos_theta, const py:
     return catalogue().registry.make(name, {});
 }
 
+// Ndf.Lambda, G1 and G2: their values at every element of the broadcast arguments, by the route of their method (the
+// downward convention Lambda's argument; smith for G1 and G2, which take |mu|).
+py::object ndf_Lambda(const AnyNdf& n, const py::object& mu, const std::string& method, const std::string& backend,
+                      double tolerance, const std::string& downward) {
+    const evaluation::Prepared p = prepared(n, {method, backend, downward, tolerance});
+    const Downward d = parse_downward(downward);
+    return elementwise<1>([&](double x) { return evaluation::lambda_g1(p, x, d).lambda; }, {mu});
+}
+
+py::object ndf_G1(const AnyNdf& n, const py::object& mu, const std::string& method, const std::string& backend,
+                  double tolerance) {
+    const evaluation::Prepared p = prepared(n, {method, backend, "smith", tolerance});
+    return elementwise<1>([&](double x) { return evaluation::lambda_g1(p, x, Downward::smith).g1; }, {mu});
+}
+
+py::object ndf_G2(const AnyNdf& n, const py::object& mu_i, const py::object& mu_o, const std::string& form,
+                  const std::string& method, const std::string& backend, double tolerance) {
+    G2Form f;
+    if (form == "height-correlated") f = G2Form::height_correlated;
+    else if (form == "uncorrelated") f = G2Form::uncorrelated;
+    else throw input_error("G2: form must be 'height-correlated' or 'uncorrelated', got '" + form + "'");
+    const evaluation::Prepared p = prepared(n, {method, backend, "smith", tolerance});
+    return elementwise<2>(
+        [&](double a, double b) {
+            require_mu_number(a);
+            require_mu_number(b);
+            return G2_from_Lambdas(Lambda_of_abs(a, p.Lambda_up), Lambda_of_abs(b, p.Lambda_up),
+                                   (a >= 0.0) == (b >= 0.0), f);
+        },
+        {mu_i, mu_o});
+}
+
+// The registered NDFs as dicts, for smithlab.list().
+py::list ndf_list() {
+    py::list out;
+    for (const NdfInfo* i : catalogue().registry.list()) {
+        py::dict d;
+        d["name"] = i->name, d["parameters"] = i->parameters, d["description"] = i->description,
+        d["examples"] = i->examples;
+        out.append(d);
+    }
+    return out;
+}
+
+// The GTR family's stream over broadcast arrays, a part of its inputs at a time without the GIL.
+py::object family_G1(const py::object& alpha, const py::object& gamma, const py::object& mu) {
+    Broadcast<3> b(std::array<py::object, 3>{alpha, gamma, mu});
+    {
+        py::gil_scoped_release free;
+        constexpr std::size_t part = 4096;  // the stream's inputs a part at a time: a scalar is never spread
+        std::array<std::array<double, part>, 3> buffer;
+        for (std::size_t first = 0; first < b.size(); first += part) {
+            const std::size_t n = std::min(part, b.size() - first);
+            auto in = [&](std::size_t k) { return std::span(b.part(k, first, n, buffer[k].data()), n); };
+            G1_gtr_family(in(0), in(1), in(2), std::span(b.output() + first, n), first);
+        }
+    }
+    return b.result();
+}
+
+// n normals by the named sampler, for smithlab.sample(): (normals (n, 3), pdf (n,)).
+py::tuple sample_normals(const AnyNdf& n, const std::string& sampler, long long count, double theta_i,
+                         const py::object& seed) {
+    require(count >= 0, "n", ">= 0", static_cast<double>(count));
+    require(theta_i >= 0.0 && theta_i < 180.0, "theta_i", "in [0, 180) degrees", theta_i);
+    const std::uint64_t s = seed_of(seed);
+    const std::vector<SamplerInfo> all = builtin_samplers();
+    const BoundSampler b = prepare(find_sampler(all, sampler), n, direction_from_theta_deg(theta_i));
+    py::array_t<double> normals({static_cast<py::ssize_t>(count), py::ssize_t{3}});
+    py::array_t<double> pdf(static_cast<py::ssize_t>(count));
+    double* x = normals.mutable_data();
+    double* p = pdf.mutable_data();
+    {
+        py::gil_scoped_release free;
+        Rng rng = make_rng(s);
+        for (long long i = 0; i < count; ++i) {
+            const NormalSample d = b.sample(rng);
+            x[3 * i] = d.m.x(), x[3 * i + 1] = d.m.y(), x[3 * i + 2] = d.m.z(), p[i] = d.pdf;
+        }
+    }
+    return py::make_tuple(normals, pdf);
+}
+
 const char* const lambda_doc = R"(Smith's Lambda at mu = cot(theta_v) (NumPy array or scalar, broadcast).
 
 mu = 0 is grazing (Lambda = inf), mu = inf the normal (0), mu < 0 a direction below the surface (downward:
@@ -134,11 +215,10 @@ has one, else the fixed rule), 'closed', 'spline', 'quadrature', 'quadrature2d',
 smithlab.methods(); backend ('boost' or 'gsl') and tolerance (relative, in [1e-15, 0.1]) set the quadratures.
 The same code and bits as `smithlab eval`. NaN in mu raises ValueError.)";
 
-}  // namespace
-
-void bind_ndfs(py::module_& m) {
-    py::class_<AnyNdf>(m, "Ndf", "An isotropic NDF: smithlab.ndf('gtr(alpha=0.3, gamma=1.5)').")
-        .def_property_readonly("spec", &AnyNdf::spec, "the canonical spec, e.g. 'gtr(alpha=0.3, gamma=1.5)'")
+// The class Ndf: what an NDF is (its spec, family, parameters) and its densities D, P22 and P2.
+py::class_<AnyNdf> bind_ndf_class(py::module_& m) {
+    py::class_<AnyNdf> ndf(m, "Ndf", "An isotropic NDF: smithlab.ndf('gtr(alpha=0.3, gamma=1.5)').");
+    ndf.def_property_readonly("spec", &AnyNdf::spec, "the canonical spec, e.g. 'gtr(alpha=0.3, gamma=1.5)'")
         .def_property_readonly("family", &AnyNdf::family, "the family's name, e.g. 'gtr'")
         .def_property_readonly("note", &AnyNdf::note, "how the NDF was built, where a user should know ('' mostly)")
         .def_property_readonly(
@@ -183,75 +263,34 @@ void bind_ndfs(py::module_& m) {
                 return elementwise<1>([&](double x) { return P2_at(n, x, o); }, {q});
             },
             py::arg("q"), py::arg("backend") = "boost", py::arg("tolerance") = 1e-12,
-            "The marginal slope density P2(q), the integral of P22(p, q) over p (Walter 2007 eq. 43), by quadrature.")
-        .def(
-            "Lambda",
-            [](const AnyNdf& n, const py::object& mu, const std::string& method, const std::string& backend,
-               double tolerance, const std::string& downward) {
-                const cli::Prepared p = prepared(n, method, backend, tolerance, downward);
-                const Downward d = parse_downward(downward);
-                return elementwise<1>([&](double x) { return cli::lambda_g1(p, x, d).lambda; }, {mu});
-            },
-            py::arg("mu"), py::arg("method") = "auto", py::arg("backend") = "boost", py::arg("tolerance") = 1e-12,
-            py::arg("downward") = "smith", lambda_doc)
-        .def(
-            "G1",
-            [](const AnyNdf& n, const py::object& mu, const std::string& method, const std::string& backend,
-               double tolerance) {
-                const cli::Prepared p = prepared(n, method, backend, tolerance, "smith");
-                return elementwise<1>([&](double x) { return cli::lambda_g1(p, x, Downward::smith).g1; }, {mu});
-            },
-            py::arg("mu"), py::arg("method") = "auto", py::arg("backend") = "boost", py::arg("tolerance") = 1e-12,
+            "The marginal slope density P2(q), the integral of P22(p, q) over p (Walter 2007 eq. 43), by quadrature.");
+    return ndf;
+}
+
+// Ndf.Lambda, G1 and G2, by every route `smithlab eval --method` takes.
+void bind_smith_functions(py::class_<AnyNdf>& ndf) {
+    ndf.def("Lambda", &ndf_Lambda, py::arg("mu"), py::arg("method") = "auto", py::arg("backend") = "boost",
+            py::arg("tolerance") = 1e-12, py::arg("downward") = "smith", lambda_doc);
+    ndf.def("G1", &ndf_G1, py::arg("mu"), py::arg("method") = "auto", py::arg("backend") = "boost",
+            py::arg("tolerance") = 1e-12,
             "Smith's G1 = 1 / (1 + Lambda(|mu|)) (Walter 2007 eq. 44), mu = cot(theta_v); the methods as Lambda's. "
-            "Where Lambda overflows (mu > 0 tiny) G1 comes from the grazing law, never 0/0.")
-        .def(
-            "G2",
-            [](const AnyNdf& n, const py::object& mu_i, const py::object& mu_o, const std::string& form,
-               const std::string& method, const std::string& backend, double tolerance) {
-                G2Form f;
-                if (form == "height-correlated") f = G2Form::height_correlated;
-                else if (form == "uncorrelated") f = G2Form::uncorrelated;
-                else throw input_error("G2: form must be 'height-correlated' or 'uncorrelated', got '" + form + "'");
-                const cli::Prepared p = prepared(n, method, backend, tolerance, "smith");
-                return elementwise<2>(
-                    [&](double a, double b) {
-                        require_mu_number(a);
-                        require_mu_number(b);
-                        return G2_from_Lambdas(Lambda_of_abs(a, p.Lambda_up), Lambda_of_abs(b, p.Lambda_up),
-                                               (a >= 0.0) == (b >= 0.0), f);
-                    },
-                    {mu_i, mu_o});
-            },
-            py::arg("mu_i"), py::arg("mu_o"), py::arg("form") = "height-correlated", py::arg("method") = "auto",
-            py::arg("backend") = "boost", py::arg("tolerance") = 1e-12,
+            "Where Lambda overflows (mu > 0 tiny) G1 comes from the grazing law, never 0/0.");
+    ndf.def("G2", &ndf_G2, py::arg("mu_i"), py::arg("mu_o"), py::arg("form") = "height-correlated",
+            py::arg("method") = "auto", py::arg("backend") = "boost", py::arg("tolerance") = 1e-12,
             "Smith's G2 of two directions mu_i, mu_o = cot(theta) (negative: below): 'height-correlated' "
             "1 / (1 + Lambda_i + Lambda_o) on one side, Beta(1 + Lambda_i, 1 + Lambda_o) across it (Heitz 2014), or "
             "'uncorrelated' G1 G1 (Walter 2007 eq. 23).");
+}
 
+// smithlab.ndf, list, methods and tabulated: the NDFs by name, and a measured one added.
+void bind_catalogue(py::module_& m) {
     m.def("ndf", &make_ndf, py::arg("spec"),
           "An NDF by spec, ndf('gtr(alpha=0.3, gamma=1.5)'), or by family and parameters, ndf('gtr', alpha=0.3, "
           "gamma=1.5). ValueError names an unknown NDF or parameter and a value out of its domain.");
+    m.def("list", &ndf_list,
+          "The registered NDFs (as `smithlab list`): dicts of name, parameters, description, examples.");
     m.def(
-        "list",
-        [] {
-            py::list out;
-            for (const NdfInfo* i : catalogue().registry.list()) {
-                py::dict d;
-                d["name"] = i->name, d["parameters"] = i->parameters, d["description"] = i->description,
-                d["examples"] = i->examples;
-                out.append(d);
-            }
-            return out;
-        },
-        "The registered NDFs (as `smithlab list`): dicts of name, parameters, description, examples.");
-    m.def(
-        "methods",
-        [] {
-            std::vector<std::pair<std::string, std::string>> out;
-            for (const auto& n : method_names) out.emplace_back(n.name, n.description);
-            for (const LambdaVariant& v : catalogue().variants.list()) out.emplace_back(v.name, v.description);
-            return out;
-        },
+        "methods", [] { return evaluation::method_list(catalogue().variants); },
         "Every method Lambda, G1 and G2 take (as `smithlab eval --list-methods`): (name, description) pairs.");
     m.def("tabulated", &tabulated, py::arg("name"), py::kw_only(), py::arg("cos_theta") = py::none(),
           py::arg("theta_deg") = py::none(), py::arg("D"), py::arg("normalize") = false,
@@ -259,27 +298,14 @@ void bind_ndfs(py::module_& m) {
           "theta_deg (increasing, [0, 90)), D per steradian normalized to projected area 1 (normalize=True divides "
           "by the area instead of refusing one off by more than 1e-2). Interpolated as tabulated.hpp says; every "
           "derived quantity then runs in C++.");
-    m.def(
-        "family_G1",
-        [](const py::object& alpha, const py::object& gamma, const py::object& mu) {
-            Broadcast<3> b(std::array<py::object, 3>{alpha, gamma, mu});
-            {
-                py::gil_scoped_release free;
-                constexpr std::size_t part = 4096;  // the stream's inputs a part at a time: a scalar is never spread
-                std::array<std::array<double, part>, 3> buffer;
-                for (std::size_t first = 0; first < b.size(); first += part) {
-                    const std::size_t n = std::min(part, b.size() - first);
-                    auto in = [&](std::size_t k) { return std::span(b.part(k, first, n, buffer[k].data()), n); };
-                    G1_gtr_family(in(0), in(1), in(2), std::span(b.output() + first, n), first);
-                }
-            }
-            return b.result();
-        },
-        py::arg("alpha"), py::arg("gamma"), py::arg("mu"),
-        "G1 of GTR(alpha, gamma) at mu = cot(theta), over arrays (broadcast): the family evaluator's stream "
-        "(alpha in [1e-4, 1], gamma in [0, 20]; |dG1| within its stated bound, 9.5e-7), AVX2 or AVX-512 where the CPU "
-        "has them. ValueError names the first offending item.");
+}
 
+// smithlab.family_G1, samplers and sample.
+void bind_family_and_samplers(py::module_& m) {
+    m.def("family_G1", &family_G1, py::arg("alpha"), py::arg("gamma"), py::arg("mu"),
+          "G1 of GTR(alpha, gamma) at mu = cot(theta), over arrays (broadcast): the family evaluator's stream "
+          "(alpha in [1e-4, 1], gamma in [0, 20]; |dG1| within its stated bound, 9.5e-7), AVX2 or AVX-512 where the "
+          "CPU has them. ValueError names the first offending item.");
     m.def(
         "samplers",
         [] {
@@ -288,31 +314,19 @@ void bind_ndfs(py::module_& m) {
             return out;
         },
         "The samplers of microfacet normals (as `smithlab sample --list-samplers`): (name, description) pairs.");
-    m.def(
-        "sample",
-        [](const AnyNdf& n, const std::string& sampler, long long count, double theta_i, const py::object& seed) {
-            require(count >= 0, "n", ">= 0", static_cast<double>(count));
-            require(theta_i >= 0.0 && theta_i < 180.0, "theta_i", "in [0, 180) degrees", theta_i);
-            const unsigned long long s = cli::parse_seed(py::str(seed).cast<std::string>(), "seed");
-            const std::vector<SamplerInfo> all = builtin_samplers();
-            const BoundSampler b = prepare(find_sampler(all, sampler), n, direction_from_theta_deg(theta_i));
-            py::array_t<double> normals({static_cast<py::ssize_t>(count), py::ssize_t{3}});
-            py::array_t<double> pdf(static_cast<py::ssize_t>(count));
-            double* x = normals.mutable_data();
-            double* p = pdf.mutable_data();
-            {
-                py::gil_scoped_release free;
-                Rng rng = make_rng(s);
-                for (long long i = 0; i < count; ++i) {
-                    const NormalSample d = b.sample(rng);
-                    x[3 * i] = d.m.x(), x[3 * i + 1] = d.m.y(), x[3 * i + 2] = d.m.z(), p[i] = d.pdf;
-                }
-            }
-            return py::make_tuple(normals, pdf);
-        },
-        py::arg("ndf"), py::arg("sampler"), py::arg("n") = 1000, py::arg("theta_i") = 0.0, py::arg("seed") = 1,
-        "n microfacet normals by a named sampler for the incident direction at theta_i degrees (phi 0): (normals "
-        "(n, 3), pdf (n,)), the pdf per steradian of m. The numbers of `smithlab sample` for the same seed.");
+    m.def("sample", &sample_normals, py::arg("ndf"), py::arg("sampler"), py::arg("n") = 1000, py::arg("theta_i") = 0.0,
+          py::arg("seed") = 1,
+          "n microfacet normals by a named sampler for the incident direction at theta_i degrees (phi 0): (normals "
+          "(n, 3), pdf (n,)), the pdf per steradian of m. The numbers of `smithlab sample` for the same seed.");
+}
+
+}  // namespace
+
+void bind_ndfs(py::module_& m) {
+    py::class_<AnyNdf> ndf = bind_ndf_class(m);
+    bind_smith_functions(ndf);
+    bind_catalogue(m);
+    bind_family_and_samplers(m);
 }
 
 }  // namespace smithlab::python

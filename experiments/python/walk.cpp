@@ -13,7 +13,7 @@
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
-#include "cli/commands.hpp"
+#include "scene/limits.hpp"
 #include "scene/walk_options.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/surface.hpp"
@@ -48,9 +48,6 @@ walk::MicrosurfaceOptions walk_options(const std::string& downward, const std::s
                           hit_normal + "'");
     return trace::parse_walk_options(downward, hit_normal, "");
 }
-
-// The seed as the command line reads it (an integer in [0, 2^64)), from a Python int or its text.
-std::uint64_t seed_of(const py::object& seed) { return cli::parse_seed(py::str(seed).cast<std::string>(), "seed"); }
 
 // walks in all (walks x pairs for brdf) at most max_walks, as the command line's --max-walks bounds a scene.
 void require_walks_threads(long long walks, double all, double max_walks, int threads) {

@@ -1,15 +1,35 @@
-// What `smithlab eval` computes at a point: the route --method names, an NDF prepared for it, Lambda and G1.
+// The route a method name picks for Lambda and G1, an NDF prepared for it, and its values at a point: what
+// `smithlab eval --method` computes and what the Python module's Ndf.Lambda, G1 and G2 compute, one code for both.
 #pragma once
 
 #include <cmath>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
-#include "cli/commands.hpp"
+#include "smithlab/any_ndf.hpp"
+#include "smithlab/grazing.hpp"
+#include "smithlab/smith.hpp"
+#include "smithlab/variants.hpp"
 
-namespace smithlab::cli {
+namespace smithlab::evaluation {
 
-// The route --method names: one of the core methods (method_names, with --backend and --tolerance), or a
+// The route as a front end names it: the command line from --method, --backend, --tolerance and --downward, the
+// Python module from the keyword arguments of the same names. The defaults are both front ends' defaults.
+struct RouteOptions {
+    std::string method = "auto", backend = "boost", downward = "smith";
+    double tolerance = 1e-12;  // relative, for the quadratures
+};
+
+// The bounds of the quadratures' relative tolerance that both front ends accept.
+inline constexpr double min_tolerance = 1e-15, max_tolerance = 0.1;
+
+// Every name a method may take, with its one-line description: the core methods (method_names), then the registered
+// variants.
+std::vector<std::pair<std::string, std::string>> method_list(const VariantRegistry& variants);
+
+// The route a method name picks: one of the core methods (method_names, with the backend and tolerance), or a
 // registered variant.
 struct Route {
     LambdaOptions options;
@@ -18,16 +38,17 @@ struct Route {
     // a core method below its quadrature domain by the grazing law, computed once in `law`.
     LambdaOfMu prepare(const AnyNdf& ndf, const std::shared_ptr<GrazingLawOnce>& law) const;
 };
-Route route(const EvalArgs& args, const VariantRegistry& variants);
+// An unknown method, backend or downward convention is an input_error naming it.
+Route route(const RouteOptions& options, const VariantRegistry& variants);
 
 // What the route computes for `ndf` at mu, as eval's method line says it: the method's name, and for the quadratures
 // their backend and tolerance ("auto (fixed rule, relative tolerance 1e-12; boost where its error estimate misses
 // it)", "auto (closed form)"), or the grazing law below their domain ("quadrature (grazing law c/mu - 1/2 + P2(0)
 // mu/2, grazing.hpp)").
-std::string describe(const Route& route, const EvalArgs& args, const AnyNdf& ndf, double mu = NAN);
+std::string describe(const Route& route, const RouteOptions& options, const AnyNdf& ndf, double mu = NAN);
 
-// An NDF of the input and its Lambda by the route, made once per spec; its grazing law (computed on first use) for
-// the route's quadratures below their domain and for G1 wherever Lambda overflows (mu > 0 tiny).
+// An NDF and its Lambda by the route, made once per NDF; its grazing law (computed on first use) for the route's
+// quadratures below their domain and for G1 wherever Lambda overflows (mu > 0 tiny).
 struct Prepared {
     AnyNdf ndf;
     LambdaOfMu Lambda_up;
@@ -37,8 +58,7 @@ struct Prepared {
     // G1 comes from the grazing law; an approximation's +inf (an interpolated G1 clamped to 0) keeps G1 = 0.
     bool exact = true;
 };
-Prepared prepare(const std::string& spec, const NdfRegistry& registry, const Route& route);
-// The same for an NDF already made (the Python module's NDF objects).
+// A route the NDF refuses (a core method it lacks, a variant that does not apply) is an input_error naming the NDF.
 Prepared prepare(AnyNdf ndf, const Route& route);
 
 struct LambdaG1 {
@@ -51,4 +71,4 @@ struct LambdaG1 {
 // overflows and G1 then below 1 / DBL_MAX. An input_error names the NDF.
 LambdaG1 lambda_g1(const Prepared& p, double mu, Downward downward);
 
-}  // namespace smithlab::cli
+}  // namespace smithlab::evaluation

@@ -1,56 +1,56 @@
-#include "cli/eval_route.hpp"
+#include "evaluation/route.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <sstream>
 
 #include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
 
-namespace smithlab::cli {
+namespace smithlab::evaluation {
+
+std::vector<std::pair<std::string, std::string>> method_list(const VariantRegistry& variants) {
+    std::vector<std::pair<std::string, std::string>> out;
+    for (const Named<Method>& m : method_names) out.emplace_back(m.name, m.description);
+    for (const LambdaVariant& v : variants.list()) out.emplace_back(v.name, v.description);
+    return out;
+}
 
 LambdaOfMu Route::prepare(const AnyNdf& ndf, const std::shared_ptr<GrazingLawOnce>& law) const {
     if (variant) return smithlab::prepare(*variant, ndf);
     return [ndf, o = options, law](double mu) { return detail::Lambda_by_method(ndf, mu, o, law.get()); };
 }
 
-Route route(const EvalArgs& a, const VariantRegistry& variants) {
+Route route(const RouteOptions& o, const VariantRegistry& variants) {
     Route r;
-    r.options.backend = parse_backend(a.backend);
-    r.options.tolerance = a.tolerance;
-    r.options.downward = parse_downward(a.downward);
-    if (const Named<Method>* m = find_named(method_names, a.method)) r.options.method = m->value;
-    else r.variant = &variants.at(a.method);
+    r.options.backend = parse_backend(o.backend);
+    r.options.tolerance = o.tolerance;
+    r.options.downward = parse_downward(o.downward);
+    if (const Named<Method>* m = find_named(method_names, o.method)) r.options.method = m->value;
+    else r.variant = &variants.at(o.method);
     return r;
 }
 
-std::string describe(const Route& r, const EvalArgs& a, const AnyNdf& ndf, double mu) {
+std::string describe(const Route& r, const RouteOptions& o, const AnyNdf& ndf, double mu) {
     std::ostringstream out;
-    out << a.method;
+    out << o.method;
     if (r.variant) return out.str();
     const double abs_mu = std::abs(mu);
     if (abs_mu > 0.0 && abs_mu < INFINITY && detail::answers_by_grazing_law(ndf, abs_mu, r.options)) {
-        out << " (grazing law c/mu - 1/2 + P2(0) mu/2 below the quadrature domain, c = E[q+] by " << a.backend
-            << " quadrature, relative tolerance " << a.tolerance << ")";
+        out << " (grazing law c/mu - 1/2 + P2(0) mu/2 below the quadrature domain, c = E[q+] by " << o.backend
+            << " quadrature, relative tolerance " << o.tolerance << ")";
         return out.str();
     }
     const Method m = r.options.method;
     const bool closed = m == Method::automatic && ndf.has_closed_Lambda();
     // Lambda_by_method (smith.hpp): auto is the closed form where the NDF has one, else the fixed rule, which
-    // answers by the adaptive route (--backend) where its error estimate misses the tolerance.
+    // answers by the adaptive route (the backend) where its error estimate misses the tolerance.
     if (closed) out << " (closed form)";
     if (m == Method::fixed || (m == Method::automatic && !closed))
-        out << " (fixed rule, relative tolerance " << a.tolerance << "; " << a.backend
+        out << " (fixed rule, relative tolerance " << o.tolerance << "; " << o.backend
             << " where its error estimate misses it)";
     if (m == Method::quadrature || m == Method::quadrature2d)
-        out << " (" << a.backend << ", relative tolerance " << a.tolerance << ")";
+        out << " (" << o.backend << ", relative tolerance " << o.tolerance << ")";
     return out.str();
-}
-
-Prepared prepare(const std::string& spec, const NdfRegistry& registry, const Route& r) {
-    AnyNdf ndf = registry.make(spec);
-    if (!ndf.note().empty()) std::fprintf(stderr, "smithlab: note: %s\n", ndf.note().c_str());
-    return prepare(std::move(ndf), r);
 }
 
 Prepared prepare(AnyNdf ndf, const Route& r) {
@@ -81,4 +81,4 @@ LambdaG1 lambda_g1(const Prepared& p, double mu, Downward downward) {
     }
 }
 
-}  // namespace smithlab::cli
+}  // namespace smithlab::evaluation
