@@ -1,4 +1,4 @@
-// smithlab list: the registered NDFs, their parameters, descriptions and example specs.
+// smithlab list: the registered NDFs, their parameters, descriptions and example specs; the diffuse models' names.
 #include <iostream>
 
 #include "cli/commands.hpp"
@@ -6,10 +6,11 @@
 namespace smithlab::cli {
 
 CLI::App* add_list(CLI::App& app) {
-    return app.add_subcommand("list", "List the registered NDFs, their parameters and example specs");
+    return app.add_subcommand(
+        "list", "List the registered NDFs, their parameters and example specs, and the diffuse models' names");
 }
 
-int run_list(const NdfRegistry& registry) {
+int run_list(const NdfRegistry& registry, const fit::DiffuseRegistry& models) {
     for (const NdfInfo* info : registry.list()) {
         std::cout << info->name << "(";
         for (std::size_t i = 0; i < info->parameters.size(); ++i) std::cout << (i ? ", " : "") << info->parameters[i];
@@ -21,6 +22,10 @@ int run_list(const NdfRegistry& registry) {
         for (const auto& ex : info->examples) std::cout << "  " << ex;
         std::cout << "\n";
     }
+    std::cout << "diffuse models (smithlab fit --list-models): ";
+    for (const fit::DiffuseModel& m : models.list())
+        std::cout << (&m == &models.list().front() ? "" : ", ") << m.name << (m.glsl.get() ? "" : " (no GLSL)");
+    std::cout << "\n";
     return exit_ok;
 }
 
