@@ -11,6 +11,24 @@
 
 namespace smithlab::cli {
 
+namespace {
+
+// "Models (...): a, b, ...", wrapped before 115 columns as the rest of the footer.
+std::string model_names(const fit::DiffuseRegistry& models) {
+    std::string out = "Models (--list-models shows their sources and constants):";
+    std::size_t column = out.size();
+    for (const fit::DiffuseModel& m : models.list()) {
+        const std::string word = std::string(m.name) + (&m == &models.list().back() ? "." : ",");
+        const bool wrap = column + 1 + word.size() > 115;
+        out += wrap ? "\n" : " ";
+        column = (wrap ? 0 : column + 1) + word.size();
+        out += word;
+    }
+    return out;
+}
+
+}  // namespace
+
 void add_fit(CLI::App& app, FitArgs& a, const fit::DiffuseRegistry& models) {
     CLI::App* c = app.add_subcommand("fit", "Fit diffuse BRDF models to the path-traced Smith microsurface");
     c->footer(
@@ -38,9 +56,8 @@ void add_fit(CLI::App& app, FitArgs& a, const fit::DiffuseRegistry& models) {
         "[pictures] pictures/ (PNG and CSV); report.md; meta.json; all only\n"
         "when complete. Traced points are cached in DIR/cache/ as they finish: a killed run resumes, and refitting "
         "the\n"
-        "same data (other models, albedos, floor) traces nothing.\n"
-        "Models (--list-models shows their sources and constants): " +
-        models.names() + ".");
+        "same data (other models, albedos, floor) traces nothing.\n" +
+        model_names(models));
     add_scene_options(*c, a.scene, a.print_scene, a.limits.scale, "the embedded default");
     add_output_option(*c, a.output, "output directory")->capture_default_str();
     add_threads_option(*c, a.threads);

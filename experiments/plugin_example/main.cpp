@@ -3,10 +3,13 @@
 //     plugin_example trace --ndf 'myggx(alpha=0.3)' --material mirror
 //     plugin_example fit SCENE.toml            ([[ndf]] family = "myggx": swept over the training set's alpha)
 // Here GGX by hand (Walter 2007 eq. 33), D alone: smithlab derives its Lambda (quadrature, then a table for the walk),
-// its samplers and its checks, and walks it as its own type (no virtual call per bounce).
+// its samplers and its checks, and walks it as its own type (no virtual call per bounce). And a diffuse model of its
+// own, Minnaert's (minnaert.hpp): `plugin_example fit` fits it beside the built-in ones and exports its GLSL.
 #include <numbers>
 #include <smithlab/cli.hpp>
 #include <smithlab/smithlab.hpp>
+
+#include "minnaert.hpp"
 
 struct MyGgx {
     double alpha;
@@ -29,5 +32,7 @@ int main(int argc, char** argv) {
                      smithlab::require(alpha >= 0.01 && alpha <= 1.0, "myggx: alpha", "in [0.01, 1]", alpha);
                      return MyGgx{alpha};
                  });
-    return smithlab::run_cli(argc, argv, registry);
+    smithlab::fit::DiffuseRegistry models = smithlab::fit::builtin_diffuse_registry();
+    models.add(minnaert_model());
+    return smithlab::run_cli(argc, argv, registry, models);
 }
