@@ -1,6 +1,7 @@
 # Install smithlab into a fresh prefix, build experiments/plugin_example (a full command line with one NDF of its own,
-# written as D alone, and one facet material) against it, run check, trace and fit on that NDF, and, where MPI is built (MPIEXEC given), its
-# trace on two ranks, byte for byte the one-process run; and run the installed CLI and Python module.
+# written as D alone, one facet material and one diffuse model of its own) against it, run check, trace and fit on
+# them (the model listed, fitted and exported as GLSL), and, where MPI is built (MPIEXEC given), its trace on two
+# ranks, byte for byte the one-process run; and run the installed CLI and Python module.
 file(REMOVE_RECURSE ${WORK_DIR})
 set(prefix ${WORK_DIR}/prefix)
 function(run)
@@ -42,12 +43,17 @@ run(${CMAKE_COMMAND} -S ${SOURCE_DIR}/experiments/plugin_example -B ${WORK_DIR}/
 run(${CMAKE_COMMAND} --build ${WORK_DIR}/build)
 set(exe ${WORK_DIR}/build/plugin_example)
 run(${exe} list)
-if(NOT last_output MATCHES "myggx\\(alpha\\)" OR NOT last_output MATCHES "coated-lambert\\(r=0.04, albedo=1\\)")
-  message(FATAL_ERROR "plugin_example list does not show myggx and coated-lambert:\n${last_output}")
+if(NOT last_output MATCHES "myggx\\(alpha\\)" OR NOT last_output MATCHES "coated-lambert\\(r=0.04, albedo=1\\)"
+   OR NOT last_output MATCHES "diffuse models[^\n]*, minnaert\n")
+  message(FATAL_ERROR "plugin_example list does not show myggx, coated-lambert and the diffuse model minnaert:\n${last_output}")
 endif()
 run(${exe} trace --help)
 if(NOT last_output MATCHES "coated-lambert")
   message(FATAL_ERROR "plugin_example trace --help does not list coated-lambert:\n${last_output}")
+endif()
+run(${exe} fit --list-models)
+if(NOT last_output MATCHES "\nminnaert\n    Minnaert 1941")
+  message(FATAL_ERROR "plugin_example fit --list-models does not show minnaert:\n${last_output}")
 endif()
 run(${exe} check --ndf "myggx(alpha=0.3)" --ndf "myggx(alpha=0.05)" --no-2d)
 run(${exe} trace ${SOURCE_DIR}/tests/plugin/trace.toml --output ${WORK_DIR}/trace --threads 2)
@@ -61,8 +67,13 @@ endif()
 run(${exe} fit ${SOURCE_DIR}/tests/plugin/fit.toml --output ${WORK_DIR}/fit --threads 2)
 file(READ ${WORK_DIR}/fit/constants.csv constants)
 file(READ ${WORK_DIR}/fit/meta.json fit_meta)
-if(NOT constants MATCHES "myggx" OR NOT fit_meta MATCHES "coated-lambert")
-  message(FATAL_ERROR "the fit's constants.csv names no myggx fit, or its meta.json no coated-lambert:\n${constants}")
+if(NOT constants MATCHES "myggx" OR NOT constants MATCHES "minnaert-fitted,myggx,k_scale,"
+   OR NOT fit_meta MATCHES "coated-lambert")
+  message(FATAL_ERROR "the fit's constants.csv names no myggx fit or no minnaert fit on it, or its meta.json no coated-lambert:\n${constants}")
+endif()
+file(READ ${WORK_DIR}/fit/models.glsl glsl)
+if(NOT glsl MATCHES "float minnaert_brdf\\(" OR NOT glsl MATCHES "float smithlab_minnaert_fitted_myggx\\(")
+  message(FATAL_ERROR "the fit's models.glsl has no minnaert function on myggx:\n${glsl}")
 endif()
 if(MPIEXEC)
   include(${CMAKE_CURRENT_LIST_DIR}/mpi_launcher.cmake)

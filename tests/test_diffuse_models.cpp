@@ -1,6 +1,7 @@
 // The diffuse models (fit/diffuse_models.hpp), each against something independent of its code: the
 // symmetry every BRDF owes, limits derived by hand (Lambert at zero roughness), values derived by hand from the
 // papers' formulas at convenient angles, and hemisphere integrals by a 2D Gauss-Legendre rule written here.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <chrono>
 #include <cmath>
@@ -11,6 +12,7 @@
 #include <limits>
 #include <numbers>
 #include <regex>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -152,6 +154,73 @@ TEST_CASE("diffuse_models: smithlab-2026 at its starting constants is hammon-201
                 const Vec3 wi = direction_from_deg(ti, 0.0), wo = direction_from_deg(60.0, phi);
                 CHECK(s.f(wi, wo, alpha, 0.7, s.published.data()) == h.f(wi, wo, alpha, 0.7, h.published.data()));
             }
+}
+
+namespace {
+
+// A model of one constant for the registry's refusals: Lambert scaled by k, with its GLSL.
+constexpr std::string_view scaled_lambert_glsl = R"(float smithlab_scaled_lambert(float k, float albedo)
+{
+    return k * albedo * smithlab_inv_pi;
+}
+)";
+DiffuseModel scaled_lambert() {
+    return {
+        .name = "scaled-lambert",
+        .parameters = {"k"},
+        .published = {1.0},
+        .source = "a test model: k albedo/pi",
+        .f = [](const Vec3&, const Vec3&, double, double albedo, const double* c) { return c[0] * lambert(albedo); },
+        .glsl = Glsl{{scaled_lambert_glsl}, "smithlab_scaled_lambert({0}, albedo)"}};
+}
+
+// The message of the input_error registering m into a registry of the built-in models throws, empty where none.
+std::string refusal(const DiffuseModel& m) {
+    DiffuseRegistry r = builtin_diffuse_registry();
+    try {
+        r.add(m);
+    } catch (const input_error& e) {
+        return e.what();
+    }
+    CHECK(&r.at(m.name) == &r.list().back());
+    return {};
+}
+
+}  // namespace
+
+TEST_CASE("diffuse registry: a program's model is added after the built-in ones, and refused by name when wrong",
+          "[diffuse]") {
+    CHECK(refusal(scaled_lambert()).empty());
+    using Catch::Matchers::Contains;
+    auto with = [](auto&& change) {
+        DiffuseModel m = scaled_lambert();
+        change(m);
+        return refusal(m);
+    };
+    CHECK_THAT(with([](DiffuseModel& m) { m.name = "lambert"; }), Contains("'lambert' is already registered"));
+    CHECK_THAT(with([](DiffuseModel& m) { m.name = "Scaled"; }), Contains("cannot register diffuse model 'Scaled'"));
+    CHECK_THAT(with([](DiffuseModel& m) { m.name = "scaled-fitted"; }), Contains("not ending in -fitted"));
+    CHECK_THAT(with([](DiffuseModel& m) { m.name = "lambert-"; }), Contains("has the GLSL name of 'lambert'"));
+    CHECK_THAT(with([](DiffuseModel& m) { m.source = {}; }), Contains("'scaled-lambert': no source"));
+    CHECK_THAT(with([](DiffuseModel& m) { m.f = nullptr; }), Contains("'scaled-lambert': no f"));
+    CHECK_THAT(with([](DiffuseModel& m) { m.published = {1.0, 2.0}; }), Contains("2 published values for 1 constants"));
+    CHECK_THAT(with([](DiffuseModel& m) { m.ranges = {{}, {}}; }), Contains("2 ranges for 1 constants"));
+    CHECK_THAT(with([](DiffuseModel& m) { m.parameters = {""}; }), Contains("constant 0 has no name"));
+    CHECK_THAT(with([](DiffuseModel& m) {
+                   m.parameters = {"k", "k"}, m.published = {1.0, 1.0};
+               }),
+               Contains("constant 'k' named twice"));
+    // The GLSL call: of a function its functions or the common helpers define, with every constant and no other.
+    auto call = [&](std::string_view c) {
+        return with([&](DiffuseModel& m) { m.glsl = Glsl{{scaled_lambert_glsl}, c}; });
+    };
+    CHECK(call("smithlab_pow5({0}) * albedo").empty());
+    CHECK_THAT(call("smithlab_lambert({0} * albedo)"),
+               Contains("'scaled-lambert': its GLSL calls smithlab_lambert, which neither its functions nor"));
+    CHECK_THAT(call("smithlab_scaled_lambert({1}, albedo)"), Contains("names {1}, not one of its constants"));
+    CHECK_THAT(call("smithlab_scaled_lambert(1.0, albedo)"), Contains("leaves out constant {0} (k)"));
+    CHECK_THAT(call("smithlab_scaled_lambert({k}, albedo)"), Contains("opens no {i}"));
+    CHECK_THAT(call("2.0 * smithlab_scaled_lambert({0}, albedo)"), Contains("does not start with a function's name"));
 }
 
 TEST_CASE("diffuse_models: an unknown name is an input_error naming it and the known ones", "[diffuse]") {
@@ -457,19 +526,110 @@ TEST_CASE("glsl: names, literals and refusals", "[diffuse][glsl]") {
     CHECK(f.find(std::string(hammon.source)) != std::string::npos);
     const std::vector<double> four{0.9, 0.4, 0.5, 1.05};
     CHECK_THROWS_AS(glsl_function({"hammon-2017", "ggx", &hammon, four, {}}), input_error);
-    const DiffuseModel unknown{"unknown-model", {}, {}, "nowhere", nullptr};
+    const DiffuseModel unknown{.name = "unknown-model", .source = "nowhere", .glsl = no_glsl};
     try {
         (void)glsl_function({"unknown-model", "ggx", &unknown, {}, {}});
         FAIL("no exception");
     } catch (const input_error& ex) {
         CHECK(std::string(ex.what()).find("unknown-model") != std::string::npos);
     }
-    const std::string brdf = brdf_explorer_file(m);
+    const std::string brdf = brdf_explorer_file(m, glsl_helpers({&m, 1}));
     CHECK(brdf.rfind("analytic\n", 0) == 0);
     CHECK(brdf.find("::begin parameters\nfloat albedo 0 1 0.75\nfloat alpha 0.001 1 0.25\n::end parameters\n") !=
           std::string::npos);
     CHECK(brdf.find("::begin shader\n") < brdf.find("vec3 BRDF( vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y )"));
     CHECK(brdf.find("vec3 BRDF( vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y )") < brdf.find("::end shader"));
+}
+
+namespace {
+
+// The models the fit cannot export as GLSL, by name: those that have none (no_glsl), and those whose transcription
+// glsl_transcription_problem refuses.
+std::vector<std::string> models_without_glsl(const std::vector<DiffuseModel>& models) {
+    std::vector<std::string> out;
+    for (const DiffuseModel& m : models)
+        if (!m.glsl.get() || !glsl_transcription_problem(m).empty()) out.emplace_back(m.name);
+    return out;
+}
+
+// Whether a DiffuseModel can be written without naming its GLSL, or with no_glsl.
+template <class M>
+concept builds_without_glsl = requires {
+    M{.name = "m", .source = "s", .f = nullptr};
+};
+template <class M>
+concept builds_with_no_glsl = requires {
+    M{.name = "m", .source = "s", .f = nullptr, .glsl = no_glsl};
+};
+
+}  // namespace
+
+// What the fit exports: every registered model has GLSL; the library defines one function per model and NDF, each
+// returning a call of a function defined above it, and every function once (glslangValidator compiles it below).
+TEST_CASE("glsl: every registered model has its GLSL, and the library a function per model calling what it defines",
+          "[diffuse][glsl]") {
+    CHECK(models_without_glsl(diffuse_models()).empty());
+    const ShaderSet s = shader_set();
+    const std::string library = glsl_library(s.models);
+    for (const ShaderModel& m : s.models) {
+        INFO(m.name << " on " << m.ndf);
+        const std::string head =
+            "\nfloat " + glsl_function_name(m) + "(vec3 L, vec3 V, vec3 N, float alpha, float albedo)\n{\n    return ";
+        const std::size_t at = library.find(head);
+        REQUIRE(at != std::string::npos);
+        CHECK(library.find(head, at + 1) == std::string::npos);
+        const std::size_t call = at + head.size();
+        const std::string callee = library.substr(call, library.find('(', call) - call);
+        CHECK_THAT(callee, Catch::Matchers::StartsWith("smithlab_"));
+        CHECK(library.find("\nfloat " + callee + "(") < at);
+    }
+    // Every function once: one per exported model, the common helpers', and each distinct function the models name.
+    const std::regex definition("\nfloat (\\w+)\\(");
+    auto definitions = [&](const std::string& text) {
+        std::vector<std::string> out;
+        for (auto it = std::sregex_iterator(text.begin(), text.end(), definition); it != std::sregex_iterator(); ++it)
+            out.push_back((*it)[1]);
+        return out;
+    };
+    std::string common_text(1, '\n');
+    common_text += common::glsl_functions;
+    const std::vector<std::string> common_names = definitions(common_text);
+    CHECK(common_names.size() == 5);  // pow5, tangential_dot, s_over_t, eon_g, eon_rho_ms
+    std::vector<std::string_view> named;
+    for (const DiffuseModel& m : diffuse_models())
+        if (const Glsl* glsl = m.glsl.get())
+            for (std::string_view f : glsl->functions)
+                if (std::find(named.begin(), named.end(), f) == named.end()) named.push_back(f);
+    std::vector<std::string> defined = definitions(library);
+    CHECK(defined.size() == s.models.size() + common_names.size() + named.size());
+    std::sort(defined.begin(), defined.end());
+    CHECK(std::adjacent_find(defined.begin(), defined.end()) == defined.end());
+}
+
+// A model without GLSL does not compile unless it says so (no_glsl); one that says so is listed by the check above,
+// named in the library as having none, and refused by glsl_function.
+TEST_CASE("glsl: a model without GLSL says so, and the check above finds it", "[diffuse][glsl]") {
+    static_assert(!builds_without_glsl<DiffuseModel>);
+    static_assert(builds_with_no_glsl<DiffuseModel>);
+    DiffuseRegistry r = builtin_diffuse_registry();
+    r.add({.name = "untranscribed",
+           .source = "a test model: Lambert without GLSL",
+           .f = [](const Vec3&, const Vec3&, double, double albedo, const double*) { return lambert(albedo); },
+           .glsl = no_glsl});
+    CHECK(models_without_glsl(r.list()) == std::vector<std::string>{"untranscribed"});
+    CHECK(glsl_transcription_problem(r.at("untranscribed")).empty());  // nothing to refuse: there is none
+    const ShaderModel models[] = {{"lambert", "ggx", &r.at("lambert"), {}, {}},
+                                  {"untranscribed", "ggx", &r.at("untranscribed"), {}, {}}};
+    const std::string library = glsl_library(models);
+    CHECK_THAT(library,
+               Catch::Matchers::Contains("\n// untranscribed on ggx: no GLSL transcription (the model has none)\n"));
+    CHECK_THAT(library, !Catch::Matchers::Contains("smithlab_untranscribed_ggx"));
+    CHECK_THAT(library, Catch::Matchers::Contains("float smithlab_lambert_ggx("));
+    CHECK_THROWS_WITH(glsl_function(models[1]), Catch::Matchers::Contains("'untranscribed' has no GLSL transcription"));
+    // The helpers are the common ones and those the exported models name: Lambert's here, none of the others'.
+    CHECK_THAT(library, Catch::Matchers::Contains("float smithlab_lambert(float albedo)"));
+    CHECK_THAT(library, !Catch::Matchers::Contains("float smithlab_chan_2018("));
+    CHECK_THAT(library, Catch::Matchers::Contains("float smithlab_eon_rho_ms("));
 }
 
 // Every model's GLSL through the reference compiler: models.glsl in a fragment shader (#version 330 core), and each
@@ -501,7 +661,7 @@ TEST_CASE("glsl: every model compiles with glslangValidator", "[diffuse][glsl]")
                                "uniform float brightness;\nuniform float gamma;\nuniform float exposure;\n"
                                "uniform float useNDotL;\nin vec4 worldSpaceVert;\nout vec4 fragColor;\n"
                                "uniform float albedo;\nuniform float alpha;\n"
-                            << brdf_shader(brdf_explorer_file(s.models[i]))
+                            << brdf_shader(brdf_explorer_file(s.models[i], glsl_helpers(s.models)))
                             << "void main(void)\n{\n    vec3 n = normalize(worldSpaceVert.xyz);\n"
                                "    vec3 t = normalize(cross(vec3(0, 1, 0), n)), b = normalize(cross(n, t));\n"
                                "    fragColor = vec4(BRDF(incidentVector, vec3(0, 0, 1), n, t, b), 1.0);\n}\n";

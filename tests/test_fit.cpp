@@ -12,6 +12,7 @@
 #include "smithlab/csv.hpp"
 #include "smithlab/fit/compensation.hpp"
 #include "smithlab/fit/dataset.hpp"
+#include "smithlab/fit/diffuse_models.hpp"
 #include "smithlab/fit/fit_model.hpp"
 #include "smithlab/fit/least_squares.hpp"
 #include "smithlab/ndfs.hpp"

@@ -9,6 +9,7 @@
 
 #include "evaluation/route.hpp"
 #include "scene/limits.hpp"
+#include "smithlab/fit/diffuse_registry.hpp"
 #include "smithlab/registry.hpp"
 #include "smithlab/smith.hpp"
 #include "smithlab/variants.hpp"
@@ -88,11 +89,11 @@ struct FitArgs {
     bool print_scene = false, list_models = false;
     report::SizeLimits limits;  // --max-cells, --max-walks, --scale
 };
-void add_fit(CLI::App& app, FitArgs& args);
-int run_fit(const FitArgs& args, const NdfRegistry& registry);
+void add_fit(CLI::App& app, FitArgs& args, const fit::DiffuseRegistry& models);
+int run_fit(const FitArgs& args, const NdfRegistry& registry, const fit::DiffuseRegistry& models);
 
 CLI::App* add_list(CLI::App& app);
-int run_list(const NdfRegistry& registry);
+int run_list(const NdfRegistry& registry, const fit::DiffuseRegistry& models);
 
 // Parses a double, accepting "inf"; NaN and trailing junk are input errors naming `what`.
 double parse_number(const std::string& text, const std::string& what);

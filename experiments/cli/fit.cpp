@@ -7,11 +7,29 @@
 #include "fit/fit_run.hpp"
 #include "fit/fit_scene.hpp"
 #include "smithlab/errors.hpp"
-#include "smithlab/fit/diffuse_models.hpp"
+#include "smithlab/fit/diffuse_registry.hpp"
 
 namespace smithlab::cli {
 
-void add_fit(CLI::App& app, FitArgs& a) {
+namespace {
+
+// "Models (...): a, b, ...", wrapped before 115 columns as the rest of the footer.
+std::string model_names(const fit::DiffuseRegistry& models) {
+    std::string out = "Models (--list-models shows their sources and constants):";
+    std::size_t column = out.size();
+    for (const fit::DiffuseModel& m : models.list()) {
+        const std::string word = std::string(m.name) + (&m == &models.list().back() ? "." : ",");
+        const bool wrap = column + 1 + word.size() > 115;
+        out += wrap ? "\n" : " ";
+        column = (wrap ? 0 : column + 1) + word.size();
+        out += word;
+    }
+    return out;
+}
+
+}  // namespace
+
+void add_fit(CLI::App& app, FitArgs& a, const fit::DiffuseRegistry& models) {
     CLI::App* c = app.add_subcommand("fit", "Fit diffuse BRDF models to the path-traced Smith microsurface");
     c->footer(
         "Traces f(wi, wo) |cos theta_o| of a diffuse microsurface (Hammon 2017's fresnel-diffuse facets by default)\n"
@@ -38,7 +56,8 @@ void add_fit(CLI::App& app, FitArgs& a) {
         "[pictures] pictures/ (PNG and CSV); report.md; meta.json; all only\n"
         "when complete. Traced points are cached in DIR/cache/ as they finish: a killed run resumes, and refitting "
         "the\n"
-        "same data (other models, albedos, floor) traces nothing.");
+        "same data (other models, albedos, floor) traces nothing.\n" +
+        model_names(models));
     add_scene_options(*c, a.scene, a.print_scene, a.limits.scale, "the embedded default");
     add_output_option(*c, a.output, "output directory")->capture_default_str();
     add_threads_option(*c, a.threads);
@@ -46,18 +65,18 @@ void add_fit(CLI::App& app, FitArgs& a) {
     c->add_flag("--list-models", a.list_models, "list the diffuse models, their constants and sources, and exit");
 }
 
-int run_fit(const FitArgs& a, const NdfRegistry& registry) {
+int run_fit(const FitArgs& a, const NdfRegistry& registry, const fit::DiffuseRegistry& models) {
     if (a.print_scene) {
         std::cout << fitrun::default_fit_scene_text();
         return exit_ok;
     }
     if (a.list_models) {
-        for (const fit::DiffuseModel& m : fit::diffuse_models()) {
+        for (const fit::DiffuseModel& m : models.list()) {
             std::cout << m.name << "\n    " << m.source << "\n    constants:";
             if (m.parameters.empty()) std::cout << " none (a fixed baseline)";
             for (std::size_t i = 0; i < m.parameters.size(); ++i)
                 std::cout << " " << m.parameters[i] << " = " << m.published[i];
-            std::cout << "\n";
+            std::cout << (m.glsl.get() ? "\n" : "\n    GLSL: has none\n");
         }
         return exit_ok;
     }
@@ -65,7 +84,7 @@ int run_fit(const FitArgs& a, const NdfRegistry& registry) {
     require_scale(a.limits.scale);
     const std::string source = a.scene.empty() ? "<default scene>" : a.scene;
     const std::string text = a.scene.empty() ? fitrun::default_fit_scene_text() : read_scene_file(a.scene);
-    const fitrun::FitScene scene = fitrun::parse_fit_scene(text, source, registry, a.limits);
+    const fitrun::FitScene scene = fitrun::parse_fit_scene(text, source, registry, models, a.limits);
     const fitrun::FitSummary sum =
         fitrun::run_fit(scene, source, text, registry, a.output, static_cast<unsigned>(a.threads));
     if (mpi::rank() != 0) return exit_ok;  // a rank of a run under mpirun: rank 0 reports

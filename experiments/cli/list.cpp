@@ -1,4 +1,5 @@
-// smithlab list: the registered NDFs, their parameters, descriptions and example specs; the facet materials.
+// smithlab list: the registered NDFs, their parameters, descriptions and example specs; the facet materials; the
+// diffuse models' names.
 #include <iostream>
 
 #include "cli/commands.hpp"
@@ -6,10 +7,12 @@
 namespace smithlab::cli {
 
 CLI::App* add_list(CLI::App& app) {
-    return app.add_subcommand("list", "List the registered NDFs, their parameters and example specs, and the facet materials");
+    return app.add_subcommand(
+        "list", "List the registered NDFs, their parameters and example specs, the facet materials, and the diffuse "
+                "models' names");
 }
 
-int run_list(const NdfRegistry& registry) {
+int run_list(const NdfRegistry& registry, const fit::DiffuseRegistry& models) {
     for (const NdfInfo* info : registry.list()) {
         std::cout << info->name << "(";
         for (std::size_t i = 0; i < info->parameters.size(); ++i) std::cout << (i ? ", " : "") << info->parameters[i];
@@ -21,6 +24,10 @@ int run_list(const NdfRegistry& registry) {
         for (const auto& ex : info->examples) std::cout << "  " << ex;
         std::cout << "\n";
     }
+    std::cout << "diffuse models (smithlab fit --list-models): ";
+    for (const fit::DiffuseModel& m : models.list())
+        std::cout << (&m == &models.list().front() ? "" : ", ") << m.name << (m.glsl.get() ? "" : " (no GLSL)");
+    std::cout << "\n";
     std::cout << "\nFacet materials (--material, a scene's material):\n";
     for (const walk::MaterialInfo* info : registry.materials().list())
         std::cout << info->spec() << "\n    " << info->description << "\n";

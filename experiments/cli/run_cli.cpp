@@ -11,6 +11,7 @@
 #include "output/standard_output.hpp"
 #include "smithlab/cli.hpp"
 #include "smithlab/errors.hpp"
+#include "smithlab/fit/diffuse_models.hpp"
 #include "smithlab/gtr/registry.hpp"
 
 namespace smithlab::cli {
@@ -44,7 +45,7 @@ std::string description(const NdfRegistry& registry) {
         "it writes.";
 }
 
-void add_commands(CLI::App& app, Commands& c, const NdfRegistry& registry) {
+void add_commands(CLI::App& app, Commands& c, const NdfRegistry& registry, const fit::DiffuseRegistry& models) {
     app.set_version_flag("--version", std::string("smithlab ") + SMITHLAB_VERSION, "print the version and exit");
     app.require_subcommand(1);
     add_eval(app, c.eval);
@@ -53,7 +54,7 @@ void add_commands(CLI::App& app, Commands& c, const NdfRegistry& registry) {
     add_sample(app, c.sample);
     add_trace(app, c.trace, registry.materials());
     add_brdf(app, c.brdf);
-    add_fit(app, c.fit);
+    add_fit(app, c.fit, models);
     c.list = add_list(app);
 }
 
@@ -86,7 +87,8 @@ std::optional<int> parse(CLI::App& app, int argc, char** argv) {
     return std::nullopt;
 }
 
-int dispatch(CLI::App& app, const Commands& c, const NdfRegistry& registry, const VariantRegistry& variants) {
+int dispatch(CLI::App& app, const Commands& c, const NdfRegistry& registry, const fit::DiffuseRegistry& models,
+             const VariantRegistry& variants) {
     if (mpi::size() > 1 && !app.got_subcommand("trace") && !app.got_subcommand("fit") && !app.got_subcommand("report"))
         throw input_error(
             "only trace, fit and report run on several MPI ranks (they trace); run the others without mpirun");
@@ -96,8 +98,8 @@ int dispatch(CLI::App& app, const Commands& c, const NdfRegistry& registry, cons
     if (app.got_subcommand("sample")) return run_sample(c.sample, registry);
     if (app.got_subcommand("trace")) return run_trace(c.trace, registry);
     if (app.got_subcommand("brdf")) return run_brdf(c.brdf, registry);
-    if (app.got_subcommand("fit")) return run_fit(c.fit, registry);
-    if (c.list->parsed()) return run_list(registry);
+    if (app.got_subcommand("fit")) return run_fit(c.fit, registry, models);
+    if (c.list->parsed()) return run_list(registry, models);
     return exit_ok;
 }
 
@@ -120,6 +122,10 @@ int fail(const char* what, const std::exception& e, int code) {
 namespace smithlab {
 
 int run_cli(int argc, char** argv, const NdfRegistry& registry) {
+    return run_cli(argc, argv, registry, fit::builtin_diffuse_registry());
+}
+
+int run_cli(int argc, char** argv, const NdfRegistry& registry, const fit::DiffuseRegistry& models) {
     output::install_signal_cleanup();  // before any thread: outputs a signal interrupts leave no temporary
     // Under mpirun (and only there: a plain start never touches MPI), MPI_Init now and MPI_Finalize on the way out.
     mpi::init(argc, argv);
@@ -130,10 +136,10 @@ int run_cli(int argc, char** argv, const NdfRegistry& registry) {
     const VariantRegistry variants = builtin_variants();
     CLI::App app{cli::description(registry), "smithlab"};
     cli::Commands commands;
-    cli::add_commands(app, commands, registry);
+    cli::add_commands(app, commands, registry, models);
     try {
         const std::optional<int> done = cli::parse(app, argc, argv);
-        const int code = done ? *done : cli::dispatch(app, commands, registry, variants);
+        const int code = done ? *done : cli::dispatch(app, commands, registry, models, variants);
         output::check_standard_output();  // what is still buffered, and what printf wrote
         return code;
     } catch (const input_error& e) {

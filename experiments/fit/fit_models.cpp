@@ -32,15 +32,6 @@ Measured fit(const NdfData& d, const fit::DiffuseModel& m, const FitSettings& s)
 
 }  // namespace
 
-std::vector<const fit::DiffuseModel*> selected_models(const std::vector<std::string>& names) {
-    std::vector<const fit::DiffuseModel*> out;
-    if (names.empty())
-        for (const fit::DiffuseModel& m : fit::diffuse_models()) out.push_back(&m);
-    else
-        for (const std::string& name : names) out.push_back(&fit::find_diffuse_model(name));
-    return out;
-}
-
 void FitProgress::starting(const std::string& ndf, std::size_t k, std::size_t n, const std::string& model) const {
     std::fprintf(stderr, "fit: %s: fitting and measuring model %zu of %zu (%s), %.0f s elapsed\n", ndf.c_str(), k + 1,
                  n, model.c_str(), std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count());

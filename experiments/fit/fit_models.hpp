@@ -9,12 +9,9 @@
 #include "fit/fit_data.hpp"
 #include "fit/fit_flags.hpp"
 #include "fit/fit_results.hpp"
-#include "smithlab/fit/diffuse_models.hpp"
+#include "smithlab/fit/diffuse_model.hpp"
 
 namespace smithlab::fitrun {
-
-// The models a scene names (empty: every one), in the order given.
-std::vector<const fit::DiffuseModel*> selected_models(const std::vector<std::string>& names);
 
 // What the fits and their measures take from the scene.
 struct FitSettings {

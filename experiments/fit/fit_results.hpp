@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "fit/fit_data.hpp"
-#include "smithlab/fit/diffuse_models.hpp"
+#include "smithlab/fit/diffuse_model.hpp"
 #include "smithlab/fit/fit_model.hpp"
 
 namespace smithlab::fitrun {

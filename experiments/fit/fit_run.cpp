@@ -34,12 +34,11 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 // Every model fitted to and measured on every NDF's data: r.fits, the rows of errors.csv, and the flags.
 std::vector<Flag> fit_all(const FitScene& s, Results& r, std::vector<ErrorRow>& errors) {
-    const std::vector<const fit::DiffuseModel*> models = selected_models(s.models);
     const FitSettings settings{s.albedos, s.floor, s.training.alpha, s.energy_bound};
     const FitProgress progress{};
     std::vector<Flag> flags;
     for (const NdfData& d : r.data) {
-        NdfFits f = fit_and_measure(d, models, settings, progress);
+        NdfFits f = fit_and_measure(d, s.models, settings, progress);
         r.fits.push_back(std::move(f.models));
         errors.insert(errors.end(), f.errors.begin(), f.errors.end());
         flags.insert(flags.end(), f.flags.begin(), f.flags.end());

@@ -10,7 +10,6 @@
 #include "scene/spaced.hpp"
 #include "scene/strict_table.hpp"
 #include "smithlab/csv.hpp"
-#include "smithlab/fit/diffuse_models.hpp"
 #include "smithlab/spec.hpp"
 #include "smithlab/material_registry.hpp"
 
@@ -68,16 +67,18 @@ std::string family_label(const FitFamily& f) {
 
 namespace {
 
-void read_models(StrictTable& doc, FitScene& s) {
-    s.models = doc.texts("models", {});
-    refuse_repeats(doc, "models", s.models, [](const std::string& m) { return "'" + m + "'"; });
-    for (const std::string& m : s.models) {
+void read_models(StrictTable& doc, FitScene& s, const fit::DiffuseRegistry& models) {
+    const std::vector<std::string> names = doc.texts("models", {});
+    refuse_repeats(doc, "models", names, [](const std::string& m) { return "'" + m + "'"; });
+    for (const std::string& m : names) {
         try {
-            fit::find_diffuse_model(m);
+            s.models.push_back(&models.at(m));
         } catch (const input_error& e) {
             doc.fail("models", e.what());
         }
     }
+    if (names.empty())
+        for (const fit::DiffuseModel& m : models.list()) s.models.push_back(&m);
 }
 
 // The points and walks one fitted NDF traces (fit/data_sets.cpp): the training directions at every training alpha,
@@ -325,7 +326,7 @@ FitScene::Pictures read_pictures(StrictTable& doc, FitScene::Pictures p, double 
 }  // namespace
 
 FitScene parse_fit_scene(const std::string& text, const std::string& source, const NdfRegistry& registry,
-                         const report::SizeLimits& limits) {
+                         const fit::DiffuseRegistry& models, const report::SizeLimits& limits) {
     const toml::value data = report::parse_toml(text, source);
     StrictTable doc(data, source, "",
                     {"title", "material", "albedos", "models", "floor", "energy_bound", "seed", "ndf", "training",
@@ -336,7 +337,7 @@ FitScene parse_fit_scene(const std::string& text, const std::string& source, con
     check_material(doc, s.material, registry.materials());
     // Below 1e-100 a point's variance (albedo^2 times its variance at albedo 1) nears underflow: no fit could weigh it.
     if (doc.has("albedos")) s.albedos = read_bounded(doc, "albedos", 1e-100, 1.0, false, false, "[1e-100, 1]");
-    read_models(doc, s);
+    read_models(doc, s, models);
     s.floor = doc.real("floor", s.floor);
     if (!(s.floor >= 0.0 && s.floor < 1.0)) doc.fail("floor", "must be in [0, 1), got " + format_shortest(s.floor));
     s.energy_bound = doc.flag("energy_bound", s.energy_bound);

@@ -10,6 +10,7 @@
 
 #include "scene/limits.hpp"
 #include "scene/scene_ndf.hpp"
+#include "smithlab/fit/diffuse_registry.hpp"
 #include "smithlab/registry.hpp"
 #include "smithlab/smith.hpp"
 
@@ -26,7 +27,8 @@ struct FitScene {
     std::string title = "smithlab fit";
     std::string material = "fresnel-diffuse(f0=0.04, albedo=1)";
     std::vector<double> albedos{0.25, 0.5, 0.75, 1.0};
-    std::vector<std::string> models;  // empty: every model
+    // The models fitted, in the scene's order, or every registered one where it names none: the parse's registry's.
+    std::vector<const fit::DiffuseModel*> models;
     double floor = 0.02;
     bool energy_bound = true;  // fitted models held to a directional albedo <= 1 (fit_model.hpp)
     std::uint64_t seed = 1;
@@ -77,7 +79,7 @@ struct FitScene {
 };
 
 // Refuses (input_error "SOURCE:LINE: key ...") an unknown key or section, a value of the wrong type, a material that
-// is not lambert or fresnel-diffuse at albedo 1, an albedo outside [1e-100, 1], a model that is not known, a floor
+// is not lambert or fresnel-diffuse at albedo 1, an albedo outside [1e-100, 1], a model `models` does not hold, a floor
 // outside [0, 1), alpha outside (0, 1], theta outside [0, 90), an integer out of its bounds (validation.points in
 // [1, 65534]), more than 65535 training direction pairs per alpha (each point's random stream holds its index in 16
 // bits), an [[ndf]] whose family is not registered, a parameter the family does not have, or an axis for its
@@ -88,7 +90,7 @@ struct FitScene {
 // [compensation] whose tables (each value of E counted as the walks of its time, fit_scene.cpp) and furnace walks,
 // with the fit's, pass limits.max_walks.
 FitScene parse_fit_scene(const std::string& text, const std::string& source, const NdfRegistry& registry,
-                         const report::SizeLimits& limits = {});
+                         const fit::DiffuseRegistry& models, const report::SizeLimits& limits = {});
 
 const std::string& default_fit_scene_text();
 

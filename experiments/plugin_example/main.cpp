@@ -5,10 +5,13 @@
 //     plugin_example fit SCENE.toml            ([[ndf]] family = "myggx": swept over the training set's alpha)
 // Here GGX by hand (Walter 2007 eq. 33), D alone: smithlab derives its Lambda (quadrature, then a table for the walk),
 // its samplers and its checks, and walks it as its own type (no virtual call per bounce). The material: Lambertian
-// facets under a clear coat of constant reflectance r.
+// facets under a clear coat of constant reflectance r. And a diffuse model of its own, Minnaert's (minnaert.hpp):
+// `plugin_example fit` fits it beside the built-in ones and exports its GLSL.
 #include <numbers>
 #include <smithlab/cli.hpp>
 #include <smithlab/smithlab.hpp>
+
+#include "minnaert.hpp"
 
 struct MyGgx {
     double alpha;
@@ -60,5 +63,7 @@ int main(int argc, char** argv) {
                  });
     // Walked as its own type on every built-in NDF and on myggx.
     registry.materials().add<CoatedLambert>(smithlab::builtin_ndf_types{} + smithlab::NdfTypes<MyGgx>{});
-    return smithlab::run_cli(argc, argv, registry);
+    smithlab::fit::DiffuseRegistry models = smithlab::fit::builtin_diffuse_registry();
+    models.add(minnaert_model());
+    return smithlab::run_cli(argc, argv, registry, models);
 }

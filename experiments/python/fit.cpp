@@ -32,6 +32,7 @@ py::list models() {
         d["name"] = std::string(m.name), d["description"] = std::string(m.source);
         d["constants"] = std::vector<std::string>(m.parameters.begin(), m.parameters.end());
         d["published"] = m.published;
+        d["glsl"] = m.glsl.get() != nullptr;
         out.append(d);
     }
     return out;
@@ -240,8 +241,9 @@ tolerance 1e-8); ~0.2 ms a cosine. Runs without the GIL.)";
 void bind_fit(py::module_& m) {
     m.def("diffuse_models", &models,
           "The diffuse models the fitter fits (as `smithlab fit --list-models`): dicts of name, description (the "
-          "source), constants (the names of the free constants, empty for a fixed baseline) and published (their "
-          "published or starting values).");
+          "source), constants (the names of the free constants, empty for a fixed baseline), published (their "
+          "published or starting values) and glsl (whether the fit exports it as GLSL: False for a model that has "
+          "none).");
     m.def("diffuse_f", &diffuse_f, py::arg("model"), py::arg("theta_i"), py::arg("theta_o"), py::arg("phi"),
           py::arg("alpha"), py::arg("albedo"), py::arg("constants") = py::none(), diffuse_f_doc);
     m.def("read_fit", &read_fit, py::arg("directory"), py::kw_only(), py::arg("stderr") = false, read_fit_doc);

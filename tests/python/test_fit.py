@@ -87,6 +87,7 @@ def test_diffuse_models_are_the_fitters_list(cli):
     listed = cli("fit", "--list-models").splitlines()
     models = smithlab.diffuse_models()
     assert [m["name"] for m in models] == listed[0::3]
+    assert all(m["glsl"] for m in models)  # no "GLSL: has none" line: three lines a model
     for m, source, constants in zip(models, listed[1::3], listed[2::3]):
         assert m["description"] == source.strip()
         assert len(m["constants"]) == len(m["published"])

@@ -1,4 +1,4 @@
-// smithlab/fit/fit_model.hpp -- a diffuse model (diffuse_models.hpp) against traced data (dataset.hpp): its fit, and
+// smithlab/fit/fit_model.hpp -- a diffuse model (diffuse_model.hpp) against traced data (dataset.hpp): its fit, and
 // its errors on data it never saw.
 //
 // The data are the diffuse part (k >= 1 diffuse events) of f(wi, wo) |cos theta_o| at each albedo of a list, all
@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "smithlab/fit/dataset.hpp"
-#include "smithlab/fit/diffuse_models.hpp"
+#include "smithlab/fit/diffuse_model.hpp"
 #include "smithlab/fit/least_squares.hpp"
 
 namespace smithlab::fit {
