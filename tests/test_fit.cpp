@@ -9,8 +9,8 @@
 #include <sstream>
 
 #include "cli_run.hpp"
+#include "smithlab/compensation/compensation.hpp"
 #include "smithlab/csv.hpp"
-#include "smithlab/fit/compensation.hpp"
 #include "smithlab/fit/dataset.hpp"
 #include "smithlab/fit/fit_model.hpp"
 #include "smithlab/fit/least_squares.hpp"
@@ -467,7 +467,7 @@ TEST_CASE("fit: [compensation] writes every table, its errors, its renderer form
     REQUIRE(node.size() == 5);
     const double cot = 1.0 / std::sqrt(1.6 * 1.6 - 1.0), c = 6.0 * cot / std::sqrt(1.0 + cot * cot);
     CHECK(std::stod(node[3]) == Approx(c * 0.36 / (1.0 + c - 0.36)).epsilon(1e-12));
-    const fit::SingleScatteringAlbedo<smithlab::Ggx> exact(smithlab::ggx(1.0), {.tolerance = 1e-8});
+    const compensation::SingleScatteringAlbedo<smithlab::Ggx> exact(smithlab::ggx(1.0), {.tolerance = 1e-8});
     CHECK(std::stod(node[4]) == Approx(exact(std::stod(node[3]))).epsilon(1e-9));
     const std::vector<std::string> dielectric = lines(slurp(o / "compensation_dielectric.csv"));
     REQUIRE(dielectric.size() == 1 + 2 * 3 * 2 * 8);

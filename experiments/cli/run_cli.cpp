@@ -26,6 +26,7 @@ struct Commands {
     TraceArgs trace;
     BrdfArgs brdf;
     FitArgs fit;
+    TablesArgs tables;
     CLI::App* list = nullptr;
 };
 
@@ -54,6 +55,7 @@ void add_commands(CLI::App& app, Commands& c) {
     add_trace(app, c.trace);
     add_brdf(app, c.brdf);
     add_fit(app, c.fit);
+    add_tables(app, c.tables);
     c.list = add_list(app);
 }
 
@@ -97,6 +99,7 @@ int dispatch(CLI::App& app, const Commands& c, const NdfRegistry& registry, cons
     if (app.got_subcommand("trace")) return run_trace(c.trace, registry);
     if (app.got_subcommand("brdf")) return run_brdf(c.brdf, registry);
     if (app.got_subcommand("fit")) return run_fit(c.fit, registry);
+    if (app.got_subcommand("tables")) return run_tables(c.tables, registry);
     if (c.list->parsed()) return run_list(registry);
     return exit_ok;
 }
