@@ -8,10 +8,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <smithlab/fit/compensation.hpp>
+#include <smithlab/compensation/compensation.hpp>
+#include <smithlab/compensation/scattering_orders.hpp>
 #include <smithlab/fit/dataset.hpp>
 #include <smithlab/fit/fit_model.hpp>
-#include <smithlab/fit/scattering_orders.hpp>
 #include <smithlab/smithlab.hpp>
 #include <smithlab/walk/trace.hpp>
 #include <string>
@@ -21,6 +21,7 @@
 namespace {
 
 using smithlab::Vec3;
+namespace compensation = smithlab::compensation;
 namespace fit = smithlab::fit;
 namespace walk = smithlab::walk;
 
@@ -121,26 +122,27 @@ void hammon_fit(benchmark::State& state) {
 }
 BENCHMARK(hammon_fit)->Unit(benchmark::kMillisecond);
 
-// One alpha's row of the fit's compensation table (tolerance fit::table_tolerance): E at its 48 warped cosines, and
-// 1 - E_avg by its own quadrature. A table of n_alpha rows measured on its 10x finer check grid costs ~100 n_alpha
-// such rows of E.
+// One alpha's row of the fit's compensation table (tolerance compensation::table_tolerance): E at its 48 warped
+// cosines, and 1 - E_avg by its own quadrature. A table of n_alpha rows measured on its 10x finer check grid costs ~100
+// n_alpha such rows of E.
 void compensation(benchmark::State& state, double alpha) {
-    fit::AlbedoOptions opts;
-    opts.tolerance = fit::table_tolerance;
+    compensation::AlbedoOptions opts;
+    opts.tolerance = compensation::table_tolerance;
     for (auto _ : state) {
-        const fit::SingleScatteringAlbedo<smithlab::Ggx> E(smithlab::ggx(alpha), opts);
+        const compensation::SingleScatteringAlbedo<smithlab::Ggx> E(smithlab::ggx(alpha), opts);
         const double c = E.warp_scale();
         double sum = E.missing();
-        for (int j = 0; j < 48; ++j) sum += E(fit::unwarp_cosine(c, j / 47.0));
+        for (int j = 0; j < 48; ++j) sum += E(compensation::unwarp_cosine(c, j / 47.0));
         benchmark::DoNotOptimize(sum);
     }
 }
 
-// The dielectric albedos {E_R, E_T} at 21 cosines j / 20 (tolerance fit::table_tolerance); items_per_second: values.
+// The dielectric albedos {E_R, E_T} at 21 cosines j / 20 (tolerance compensation::table_tolerance); items_per_second:
+// values.
 void compensation_dielectric(benchmark::State& state, double alpha, double eta) {
-    fit::AlbedoOptions opts;
-    opts.tolerance = fit::table_tolerance;
-    const fit::SingleScatteringAlbedo<smithlab::Ggx> E(smithlab::ggx(alpha), opts);
+    compensation::AlbedoOptions opts;
+    opts.tolerance = compensation::table_tolerance;
+    const compensation::SingleScatteringAlbedo<smithlab::Ggx> E(smithlab::ggx(alpha), opts);
     for (auto _ : state)
         for (int j = 0; j <= 20; ++j) benchmark::DoNotOptimize(E.dielectric(j / 20.0, eta).T);
     state.SetItemsProcessed(state.iterations() * 21);
@@ -150,15 +152,16 @@ void compensation_dielectric(benchmark::State& state, double alpha, double eta) 
 // mirror facets (48 cosines, the warp), or ln(E_R + E_T) from inside eta 1.5 (96 cosines, the warp and the critical
 // angle's cluster, then exp); 1024 points spread over alpha and mu a pass; items_per_second: lookups.
 void compensation_lookup(benchmark::State& state, bool dielectric) {
-    fit::AlbedoGrid grid{{}, {}, 48, {}};
+    compensation::AlbedoGrid grid{{}, {}, 48, {}};
     for (int i = 0; i < 64; ++i) {
         const double s = std::cbrt(1e-4) + (1.0 - std::cbrt(1e-4)) * i / 63.0;
         grid.alphas.push_back(std::min(s * s * s, 1.0));
         grid.scales.push_back(
-            fit::SingleScatteringAlbedo<smithlab::Ggx>(smithlab::ggx(grid.alphas.back())).warp_scale());
+            compensation::SingleScatteringAlbedo<smithlab::Ggx>(smithlab::ggx(grid.alphas.back())).warp_scale());
     }
-    fit::AlbedoTable t{dielectric ? fit::dielectric_grid(grid, 96, 1.0 / 1.5) : grid, {}, fit::Stored::value};
-    if (dielectric) t.stored = fit::Stored::log;
+    compensation::AlbedoTable t{
+        dielectric ? compensation::dielectric_grid(grid, 96, 1.0 / 1.5) : grid, {}, compensation::Stored::value};
+    if (dielectric) t.stored = compensation::Stored::log;
     t.values.assign(t.grid.alphas.size() * static_cast<std::size_t>(t.grid.n_x), -0.1);
     std::vector<std::pair<double, double>> points;
     for (int k = 0; k < 1024; ++k) points.emplace_back(std::pow(10.0, -4.0 * ((k * 37) % 1024) / 1024.0), k / 1023.0);
@@ -167,8 +170,9 @@ void compensation_lookup(benchmark::State& state, bool dielectric) {
     state.SetItemsProcessed(state.iterations() * 1024);
 }
 
-// One node of the scattering orders' tables (fit/scattering_orders.hpp): 10 000 mirror-facet walks from 60 degrees on
-// GGX, counted; items_per_second: walks. The fit's default, 16 x 16 nodes of 100 000 walks, is 2.56e7 walks a family.
+// One node of the scattering orders' tables (compensation/scattering_orders.hpp): 10 000 mirror-facet walks from 60
+// degrees on GGX, counted; items_per_second: walks. The fit's default, 16 x 16 nodes of 100 000 walks, is 2.56e7 walks
+// a family.
 void order_node(benchmark::State& state, double alpha) {
     const walk::Microsurface ms(smithlab::ggx(alpha));
     walk::CellRequest r;
@@ -177,7 +181,8 @@ void order_node(benchmark::State& state, double alpha) {
     r.threads = 1;
     for (auto _ : state) {
         ++r.cell;
-        benchmark::DoNotOptimize(fit::scattering_orders(walk::trace_cell(ms, walk::Mirror{}, r).albedo).orders.q2);
+        benchmark::DoNotOptimize(
+            compensation::scattering_orders(walk::trace_cell(ms, walk::Mirror{}, r).albedo).orders.q2);
     }
     state.SetItemsProcessed(state.iterations() * r.walks);
 }
@@ -186,21 +191,21 @@ void order_node(benchmark::State& state, double alpha) {
 // cube-root spaced from 0.01 to 1 x 16 warped cosines, GGX's scales) and multiple_scattering_albedo; 1024 points a
 // pass; items_per_second: albedos.
 void order_lookup(benchmark::State& state) {
-    fit::AlbedoGrid grid{{}, {}, 16, {}};
+    compensation::AlbedoGrid grid{{}, {}, 16, {}};
     for (int i = 0; i < 16; ++i) {
         const double s = std::cbrt(0.01) + (1.0 - std::cbrt(0.01)) * i / 15.0;
         grid.alphas.push_back(std::min(s * s * s, 1.0));
         grid.scales.push_back(
-            fit::SingleScatteringAlbedo<smithlab::Ggx>(smithlab::ggx(grid.alphas.back())).warp_scale());
+            compensation::SingleScatteringAlbedo<smithlab::Ggx>(smithlab::ggx(grid.alphas.back())).warp_scale());
     }
-    fit::OrderTables t;
+    compensation::OrderTables t;
     for (auto [table, v] : {std::pair{&t.q2, 0.5}, std::pair{&t.q3, 0.2}, std::pair{&t.p, 0.7}})
-        *table = fit::AlbedoTable{grid, std::vector<double>(16 * 16, v), fit::Stored::value};
+        *table = compensation::AlbedoTable{grid, std::vector<double>(16 * 16, v), compensation::Stored::value};
     std::vector<std::pair<double, double>> points;
     for (int k = 0; k < 1024; ++k) points.emplace_back(std::pow(10.0, -2.0 * ((k * 37) % 1024) / 1024.0), k / 1023.0);
     for (auto _ : state)
         for (const auto& [alpha, mu] : points)
-            benchmark::DoNotOptimize(fit::multiple_scattering_albedo(0.8, t.lookup(alpha, mu), 0.9));
+            benchmark::DoNotOptimize(compensation::multiple_scattering_albedo(0.8, t.lookup(alpha, mu), 0.9));
     state.SetItemsProcessed(state.iterations() * 1024);
 }
 

@@ -584,6 +584,78 @@ TEST_CASE("trace: the default sweep, and a malformed scene exits 2 naming the ke
     CHECK(run("trace '" + (d / "missing.toml").string() + "' --output '" + (d / "never").string() + "'").rc == 2);
 }
 
+TEST_CASE("tables: --help and the default scene, and bad input refused naming the item, with nothing written",
+          "[cli][tables][scene]") {
+    const fs::path d = scratch() / "tables_bad";
+    fs::remove_all(d);
+    fs::create_directories(d);
+    const Run help = run("tables --help");
+    CHECK(help.rc == 0);
+    CHECK_THAT(help.out,
+               Catch::Contains("-o,--output") && Catch::Contains("--print-scene") && Catch::Contains("--scale") &&
+                   Catch::Contains("--max-walks") && Catch::Contains("compensation/") &&
+                   Catch::Contains("smithlab fit"));
+    const Run def = run("tables --print-scene");
+    CHECK(def.rc == 0);
+    CHECK_THAT(def.out, Catch::Contains("[[ndf]]") && Catch::Contains("[compensation]"));
+
+    const fs::path never = d / "never";
+    auto tables = [&](const std::string& scene, const std::string& options) {
+        return run("tables '" + scene + "' --output '" + never.string() + "' " + options);
+    };
+    struct Bad {
+        std::string text, named;
+    };
+    const std::string ndf = "[[ndf]]\nfamily = \"ggx\"\n";
+    const std::string small = "[compensation]\nalpha = [0.5, 1.0]\ncosines = 4\nrefine = 2\n";
+    for (const Bad& b :
+         {Bad{"titel = \"x\"\n" + ndf + small, "bad.toml:1: unknown key 'titel' (did you mean 'title'?)"},
+          Bad{ndf, "compensation is missing: a tables scene tabulates what its [compensation] table asks for"},
+          Bad{small, "ndf is missing"}, Bad{"[[ndf]]\nfamily = \"ggz\"\n" + small, "ggz"},
+          Bad{"[[ndf]]\nfamily = \"ggx\"\nalpha = [0.5]\n" + small,
+              "'ggx' is given its roughness here: the tables sweep alpha over compensation.alpha"},
+          Bad{ndf + "[compensation]\nalpha = [0.5]\n", "compensation.alpha needs 2 values"},
+          Bad{ndf + small + "g2 = [\"smith\"]\n", "compensation.g2 must name height-correlated or separable"},
+          Bad{ndf + small + "conductors = [\"mirror\"]\n", "compensation.conductors must name conductor"},
+          Bad{ndf + small + "[training]\nwalks = 400\n", "unknown section 'training'"},
+          Bad{"seed = -1\n" + ndf + small, "bad.toml:1: seed"},
+          Bad{ndf + "[compensation]\ncosines = 4096\nrefine = 100\n",
+              "compensation.refine with alpha, cosines, dielectric_cosines, g2 and eta makes the tables"},
+          Bad{ndf + "[compensation\n", "malformed"}}) {
+        write(d / "bad.toml", b.text);
+        const Run bad = tables((d / "bad.toml").string(), "");
+        INFO(b.text << "\n-> " << bad.err);
+        CHECK(bad.rc == 2);
+        CHECK_THAT(bad.err, Catch::StartsWith("smithlab: error: ") && Catch::Contains(b.named));
+        CHECK_FALSE(fs::exists(never));
+    }
+    // The tables' size without a fit's walks beside them, against --max-walks: 3 x 7 values a table at 1000 walks a
+    // value, two G2 forms (42 000), and the furnace's default 5 x 5 cells of mirror facets at 200 000 walks (5e6).
+    write(d / "small.toml", ndf + small);
+    const Run over = tables((d / "small.toml").string(), "--max-walks 5041999");
+    CHECK(over.rc == 2);
+    CHECK_THAT(over.err,
+               Catch::Contains("the work of 42000 walks; with the furnace's 5e+06 and the scattering "
+                               "orders' 0, more than --max-walks 5041999"));
+    CHECK_FALSE(fs::exists(never));
+    // Options and paths: each refused naming it, before any work.
+    write(d / "a_file", "x");
+    for (const Run& r :
+         {tables((d / "small.toml").string(), "--threads -1"), tables((d / "small.toml").string(), "--scale 0"),
+          tables((d / "small.toml").string(), "--max-walks x"), tables((d / "small.toml").string(), "--max-cells 10"),
+          tables((d / "missing.toml").string(), ""),
+          run("tables '" + (d / "small.toml").string() + "' -o '" + (d / "a_file").string() + "'")}) {
+        INFO(r.err);
+        CHECK(r.rc == 2);
+        CHECK_THAT(r.err, Catch::StartsWith("smithlab: error: "));
+        CHECK_FALSE(fs::exists(never));
+    }
+    CHECK_THAT(tables((d / "missing.toml").string(), "").err, Catch::Contains("missing.toml"));
+    CHECK_THAT(run("tables '" + (d / "small.toml").string() + "' -o '" + (d / "a_file").string() + "'").err,
+               Catch::Contains("a_file' exists and is not a directory"));
+    CHECK(slurp(d / "a_file") == "x");
+}
+
 // ---- the command line's conventions, its self-description, eval by angle and by range -----------------------------
 
 namespace {
@@ -766,11 +838,11 @@ TEST_CASE("one convention: COMMAND [SCENE] -o PATH, shared options checked alike
     fs::remove(d / "s.csv");
     REQUIRE(run("sample --ndf 'ggx(alpha=0.3)' --sampler vndf --n 3 -o '" + (d / "s.csv").string() + "'").rc == 0);
     CHECK(csv_rows(slurp(d / "s.csv")).size() == 4);
-    for (const char* command : {"eval", "sample", "trace", "fit", "report"}) {
+    for (const char* command : {"eval", "sample", "trace", "fit", "tables", "report"}) {
         INFO(command);
         CHECK_THAT(run(std::string(command) + " --help").out, Catch::Contains("-o,--output"));
     }
-    for (const char* command : {"trace", "fit", "report"}) {
+    for (const char* command : {"trace", "fit", "tables", "report"}) {
         INFO(command);
         const std::string help = run(std::string(command) + " --help").out;
         CHECK_THAT(help, Catch::Contains("scene") && Catch::Contains("--print-scene"));
@@ -810,6 +882,7 @@ TEST_CASE("scale: the same scene at a fraction of its walks, and a scale outside
     CHECK_THAT(over.err, Catch::Contains("makes the scene 2000 walks"));
     for (const std::string& bad : {trace + " --scale 0", trace + " --scale nan", trace + " --scale 1001",
                                    "fit --scale -1 -o '" + (d / "never_dir").string() + "'",
+                                   "tables --scale -1 -o '" + (d / "never_dir").string() + "'",
                                    "report --scale 0 -o '" + (d / "never_dir").string() + "'"}) {
         const Run r = run(bad);
         INFO(bad << "\nstderr: " << r.err);

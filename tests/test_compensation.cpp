@@ -1,6 +1,6 @@
-// Energy compensation (lib/include/smithlab/fit/compensation.hpp): E(mu) against an exact value, a second quadrature
-// route over wo, the D-only route through a Lambda table, and the tracer's order-1 albedo; E_avg, the lobe, Fresnel
-// and Turquin factors; the CSV and C header writers (the header compiled as C and its lookups run). The tracer
+// Energy compensation (lib/include/smithlab/compensation/compensation.hpp): E(mu) against an exact value, a second
+// quadrature route over wo, the D-only route through a Lambda table, and the tracer's order-1 albedo; E_avg, the lobe,
+// Fresnel and Turquin factors; the CSV and C header writers (the header compiled as C and its lookups run). The tracer
 // cases are [slow] (left out of the sanitized run) and print what they measure.
 #include <catch2/catch.hpp>
 
@@ -26,13 +26,13 @@
 #include <tuple>
 #include <vector>
 
-#include "smithlab/fit/albedo_grid.hpp"
-#include "smithlab/fit/compensation.hpp"
-#include "smithlab/fit/furnace.hpp"
+#include "smithlab/compensation/albedo_grid.hpp"
+#include "smithlab/compensation/compensation.hpp"
+#include "smithlab/compensation/furnace.hpp"
 
 namespace {
 
-namespace fit = smithlab::fit;
+namespace compensation = smithlab::compensation;
 namespace walk = smithlab::walk;
 using smithlab::Vec3;
 constexpr double pi = std::numbers::pi;
@@ -97,13 +97,13 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
 
 // A table's grid over `alphas` x n_x warped cosines, with the warp's scale of the NDF make(alpha) at each alpha.
 template <class Make>
-fit::AlbedoGrid warped_grid(const Make& make, const std::vector<double>& alphas, int n_x) {
-    fit::AlbedoGrid g{alphas, {}, n_x, {}};
-    for (double a : alphas) g.scales.push_back(fit::SingleScatteringAlbedo(make(a)).warp_scale());
+compensation::AlbedoGrid warped_grid(const Make& make, const std::vector<double>& alphas, int n_x) {
+    compensation::AlbedoGrid g{alphas, {}, n_x, {}};
+    for (double a : alphas) g.scales.push_back(compensation::SingleScatteringAlbedo(make(a)).warp_scale());
     return g;
 }
 
-fit::AlbedoGrid ggx_grid(const std::vector<double>& alphas, int n_x) {
+compensation::AlbedoGrid ggx_grid(const std::vector<double>& alphas, int n_x) {
     return warped_grid([](double a) { return smithlab::ggx(a); }, alphas, n_x);
 }
 
@@ -113,7 +113,7 @@ TEST_CASE("E at normal incidence on GGX alpha = 1 is 1 - ln 2", "[compensation]"
     // alpha = 1: D = 1/pi, Lambda_o = (sec theta_o - 1)/2, Lambda_i = 0, theta_o = 2 theta_m, so
     // E = 2 int_0^{pi/4} cos sin 2 cos 2t / (1 + cos 2t) dt = 2 int_0^{pi/4} tan t cos 2t dt = 2 [sin^2 t + ln cos t] =
     // 1 - ln 2.
-    const double E = fit::directional_albedo(smithlab::ggx(1.0), 1.0);
+    const double E = compensation::directional_albedo(smithlab::ggx(1.0), 1.0);
     CHECK(std::abs(E - (1.0 - std::numbers::ln2)) < 1e-13);
 }
 
@@ -122,7 +122,7 @@ TEST_CASE("E against a second route: the integral over wo of the single-scatteri
     double worst = 0.0;
     for (const char* spec : {"ggx(alpha=0.3)", "ggx(alpha=0.8)", "beckmann(alpha=0.5)", "gtr(alpha=0.6, gamma=3)"}) {
         const smithlab::AnyNdf ndf = registry.make(spec);
-        const fit::SingleScatteringAlbedo<smithlab::AnyNdf> E(ndf);
+        const compensation::SingleScatteringAlbedo<smithlab::AnyNdf> E(ndf);
         for (double mu : {0.2, 0.55, 0.95}) {
             const double got = E(mu), want = albedo_over_wo(ndf, mu);
             INFO(spec << " mu " << mu << ": " << got << " against " << want);
@@ -136,9 +136,10 @@ TEST_CASE("E against a second route: the integral over wo of the single-scatteri
 TEST_CASE("E is the same through AnyNdf, and through D alone (a Lambda table), to its tolerance", "[compensation]") {
     const smithlab::NdfRegistry registry = smithlab::builtin_registry();
     const smithlab::Ggx ggx = smithlab::ggx(0.5);
-    const fit::SingleScatteringAlbedo<smithlab::Ggx> closed(ggx);
-    const fit::SingleScatteringAlbedo<smithlab::AnyNdf> any(registry.make("ggx(alpha=0.5)"));
-    const fit::SingleScatteringAlbedo<smithlab::DOnly<smithlab::Ggx>> d_only(smithlab::DOnly<smithlab::Ggx>{ggx});
+    const compensation::SingleScatteringAlbedo<smithlab::Ggx> closed(ggx);
+    const compensation::SingleScatteringAlbedo<smithlab::AnyNdf> any(registry.make("ggx(alpha=0.5)"));
+    const compensation::SingleScatteringAlbedo<smithlab::DOnly<smithlab::Ggx>> d_only(
+        smithlab::DOnly<smithlab::Ggx>{ggx});
     double worst = 0.0;
     for (double mu : {0.0, 0.01, 0.3, 0.7, 1.0}) {
         CHECK(any(mu) == closed(mu));
@@ -149,7 +150,7 @@ TEST_CASE("E is the same through AnyNdf, and through D alone (a Lambda table), t
 }
 
 TEST_CASE("E: the grazing limit is 1, Fresnel facets, the domain", "[compensation]") {
-    const fit::SingleScatteringAlbedo E(smithlab::ggx(0.6));
+    const compensation::SingleScatteringAlbedo E(smithlab::ggx(0.6));
     CHECK(E(0.0) == 1.0);
     CHECK(E(1e-7) < 1.0);
     CHECK(E(1e-7) > 1.0 - 1e-5);
@@ -171,11 +172,11 @@ TEST_CASE("E: the grazing limit is 1, Fresnel facets, the domain", "[compensatio
 TEST_CASE("E_avg and F_avg: averages by their own quadrature", "[compensation]") {
     // Schlick: F_avg = F0 + (1 - F0) 2 int_0^1 (1 - mu)^5 mu dmu = F0 + (1 - F0) / 21 (Kulla and Conty 2017).
     for (double f0 : {0.04, 0.5, 0.95}) {
-        const double got = fit::average_fresnel([&](double c) { return smithlab::fresnel_schlick(f0, c); });
+        const double got = compensation::average_fresnel([&](double c) { return smithlab::fresnel_schlick(f0, c); });
         CHECK(std::abs(got - (f0 + (1.0 - f0) / 21.0)) < 1e-12);
     }
     // E_avg against another rule in mu (the library's is tanh-sinh in mu).
-    const fit::SingleScatteringAlbedo E(smithlab::beckmann(0.7));
+    const compensation::SingleScatteringAlbedo E(smithlab::beckmann(0.7));
     const double avg = E.average();
     double gl = 0.0;
     {
@@ -194,77 +195,83 @@ TEST_CASE("E_avg and F_avg: averages by their own quadrature", "[compensation]")
 TEST_CASE("the lobe from the (alpha, mu) table: symmetric, its albedo 1 - E(mu_i), the Fresnel and Turquin factors",
           "[compensation]") {
     // GGX's E on 4 alphas (evenly spaced in sqrt(alpha), 0.49 to 1) x 32 warped cosines, at the tables' tolerance.
-    const fit::AlbedoOptions o{.tolerance = fit::table_tolerance};
-    const fit::AlbedoRow row = [&](double a) -> std::function<double(double)> {
-        auto e = std::make_shared<fit::SingleScatteringAlbedo<smithlab::Ggx>>(smithlab::ggx(a), o);
+    const compensation::AlbedoOptions o{.tolerance = compensation::table_tolerance};
+    const compensation::AlbedoRow row = [&](double a) -> std::function<double(double)> {
+        auto e = std::make_shared<compensation::SingleScatteringAlbedo<smithlab::Ggx>>(smithlab::ggx(a), o);
         return [e](double mu) { return (*e)(mu); };
     };
     const auto t0 = std::chrono::steady_clock::now();
-    const fit::CheckedTable checked = fit::tabulate(ggx_grid({0.49, 0.64, 0.81, 1.0}, 32), 1, row, 2);
+    const compensation::CheckedTable checked = compensation::tabulate(ggx_grid({0.49, 0.64, 0.81, 1.0}, 32), 1, row, 2);
     const double build_ms = ms_since(t0);
-    const fit::AlbedoTable& t = checked.table;
-    const std::vector<double> missing = fit::table_missing(t);
+    const compensation::AlbedoTable& t = checked.table;
+    const std::vector<double> missing = compensation::table_missing(t);
     const double alpha = 0.64;
-    const fit::SingleScatteringAlbedo E(smithlab::ggx(alpha), o);
+    const compensation::SingleScatteringAlbedo E(smithlab::ggx(alpha), o);
     for (int j = 0; j < t.grid.n_x; j += 7) CHECK(t.at(1, j) == E(t.grid.mu(1, j)));
     CHECK(t.at(1, 0) == 1.0);  // the grazing limit
 
     // The lobe: symmetric, and its albedo 2 pi integral f_ms mu_o dmu_o (Gauss-Kronrod in mu_o, split at the table's
     // cosines, where the lookup has kinks) is what the table's single scattering misses, 1 - E(alpha, mu_i), at its
     // alphas with its own 1 - E_avg; against the exact E, to the table's interpolation.
-    CHECK(fit::compensation_lobe(t, missing, alpha, 0.3, 0.8) == fit::compensation_lobe(t, missing, alpha, 0.8, 0.3));
+    CHECK(compensation::compensation_lobe(t, missing, alpha, 0.3, 0.8) ==
+          compensation::compensation_lobe(t, missing, alpha, 0.8, 0.3));
     std::vector<double> cuts;
     for (int j = 1; j + 1 < t.grid.n_x; ++j) cuts.push_back(t.grid.mu(1, j));
     for (double mu_i : {0.1, 0.5, 1.0}) {
-        const double lobe_albedo = 2.0 * pi *
-            split_integral([&](double mu_o) { return fit::compensation_lobe(t, missing, alpha, mu_i, mu_o) * mu_o; },
-                           0.0, 1.0, cuts);
+        const double lobe_albedo =
+            2.0 * pi *
+            split_integral(
+                [&](double mu_o) { return compensation::compensation_lobe(t, missing, alpha, mu_i, mu_o) * mu_o; }, 0.0,
+                1.0, cuts);
         INFO("mu_i " << mu_i << ": E " << E(mu_i) << " + lobe " << lobe_albedo);
         CHECK(std::abs(t.lookup(alpha, mu_i) + lobe_albedo - 1.0) < 1e-10);
-        CHECK(std::abs(fit::kulla_conty_albedo(t, missing, alpha, mu_i) - lobe_albedo) < 1e-10);
+        CHECK(std::abs(compensation::kulla_conty_albedo(t, missing, alpha, mu_i) - lobe_albedo) < 1e-10);
         CHECK(std::abs(E(mu_i) + lobe_albedo - 1.0) < 2e-3);
     }
     // Fresnel: white facets keep the lobe as it is; F_ms is the geometric series of bounces 2, 3, ...
-    const double E_avg = 1.0 - fit::lookup_missing(t.grid.alphas, missing, alpha);
-    CHECK(std::abs(fit::fresnel_ms(1.0, E_avg) - 1.0) < 1e-15);
+    const double E_avg = 1.0 - compensation::lookup_missing(t.grid.alphas, missing, alpha);
+    CHECK(std::abs(compensation::fresnel_ms(1.0, E_avg) - 1.0) < 1e-15);
     {
         const double Fa = 0.8, Ea = E_avg;
         double series = 0.0;
         for (int k = 2; k < 400; ++k) series += std::pow(Fa, k) * Ea * std::pow(1.0 - Ea, k - 1);
-        CHECK(std::abs(fit::fresnel_ms(Fa, Ea) * (1.0 - Ea) - series) < 1e-14);
+        CHECK(std::abs(compensation::fresnel_ms(Fa, Ea) * (1.0 - Ea) - series) < 1e-14);
         // Coloured facets: F_ms times the lobe's albedo integrated over wo (the route above, not the library's).
-        const double lobe_albedo = 2.0 * pi *
-            split_integral([&](double mu_o) { return fit::compensation_lobe(t, missing, alpha, 0.5, mu_o) * mu_o; },
-                           0.0, 1.0, cuts);
-        CHECK(std::abs(fit::kulla_conty_albedo(t, missing, alpha, 0.5, Fa) - fit::fresnel_ms(Fa, Ea) * lobe_albedo) <
-              1e-10);
+        const double lobe_albedo =
+            2.0 * pi *
+            split_integral(
+                [&](double mu_o) { return compensation::compensation_lobe(t, missing, alpha, 0.5, mu_o) * mu_o; }, 0.0,
+                1.0, cuts);
+        CHECK(std::abs(compensation::kulla_conty_albedo(t, missing, alpha, 0.5, Fa) -
+                       compensation::fresnel_ms(Fa, Ea) * lobe_albedo) < 1e-10);
         // Fdez-Aguera's albedo is the series E_F sum_k (F_avg (1 - E))^k; E_F alone without Fresnel or without loss.
         const double EF = 0.6, Emu = 0.7;
         double fa = 0.0;
         for (int k = 0; k < 400; ++k) fa += EF * std::pow(Fa * (1.0 - Emu), k);
-        CHECK(std::abs(fit::fdez_aguera_albedo(EF, Emu, Fa) - fa) < 1e-14);
-        CHECK(fit::fdez_aguera_albedo(EF, Emu, 0.0) == EF);
-        CHECK(fit::fdez_aguera_albedo(EF, 1.0, Fa) == EF);
-        CHECK_THROWS_AS(fit::fdez_aguera_albedo(EF, 0.0, Fa), smithlab::input_error);
-        CHECK_THROWS_AS(fit::fdez_aguera_albedo(EF, Emu, 1.5), smithlab::input_error);
+        CHECK(std::abs(compensation::fdez_aguera_albedo(EF, Emu, Fa) - fa) < 1e-14);
+        CHECK(compensation::fdez_aguera_albedo(EF, Emu, 0.0) == EF);
+        CHECK(compensation::fdez_aguera_albedo(EF, 1.0, Fa) == EF);
+        CHECK_THROWS_AS(compensation::fdez_aguera_albedo(EF, 0.0, Fa), smithlab::input_error);
+        CHECK_THROWS_AS(compensation::fdez_aguera_albedo(EF, Emu, 1.5), smithlab::input_error);
     }
     // Metalness: F_ms is convex in F_avg, so compensating a blended F0 once puts back less than blending the metal's
     // and the dielectric's compensated lobes. GGX alpha = 1 at normal incidence (1 - E = ln 2, Heitz 2014's closed
     // form of E(1)), Schlick's F_avg = F0 + (1 - F0) / 21, F0 0.04 and 0.9, metalness 0.5: 0.15 of the albedo.
     {
-        const double Ea = fit::SingleScatteringAlbedo(smithlab::ggx(1.0)).average();
+        const double Ea = compensation::SingleScatteringAlbedo(smithlab::ggx(1.0)).average();
         auto F_avg = [](double F0) { return F0 + (1.0 - F0) / 21.0; };
-        const double after = 0.5 * (fit::fresnel_ms(F_avg(0.04), Ea) + fit::fresnel_ms(F_avg(0.9), Ea));
-        const double before = fit::fresnel_ms(0.5 * (F_avg(0.04) + F_avg(0.9)), Ea);
+        const double after =
+            0.5 * (compensation::fresnel_ms(F_avg(0.04), Ea) + compensation::fresnel_ms(F_avg(0.9), Ea));
+        const double before = compensation::fresnel_ms(0.5 * (F_avg(0.04) + F_avg(0.9)), Ea);
         const double lost = std::log(2.0) * (after - before);
         std::printf("compensation: metalness 0.5 blended before Kulla-Conty's F_ms loses %.3f of the albedo\n", lost);
         CHECK(lost > 0.14);
         CHECK(lost < 0.16);
     }
     // Turquin: with F0 = 1 the scaled single scattering is a white furnace at the direction held fixed.
-    for (double mu : {0.2, 0.9}) CHECK(std::abs(E(mu) * fit::turquin_scale(E(mu), 1.0) - 1.0) < 1e-15);
-    CHECK(fit::turquin_scale(t.lookup(alpha, 1.0), 0.0) == 1.0);
-    CHECK_THROWS_AS(fit::compensation_lobe(t, missing, alpha, 0.5, 1.01), smithlab::input_error);
+    for (double mu : {0.2, 0.9}) CHECK(std::abs(E(mu) * compensation::turquin_scale(E(mu), 1.0) - 1.0) < 1e-15);
+    CHECK(compensation::turquin_scale(t.lookup(alpha, 1.0), 0.0) == 1.0);
+    CHECK_THROWS_AS(compensation::compensation_lobe(t, missing, alpha, 0.5, 1.01), smithlab::input_error);
     std::printf("compensation: one 4 x 32 table (GGX 0.49 to 1): %.1f ms\n", build_ms);
 }
 
@@ -276,7 +283,7 @@ TEST_CASE("E against the tracer's order-1 albedo of mirror facets", "[compensati
     std::uint64_t cell = 0;
     auto run = [&cell](const auto& ndf, const char* name, double alpha, double& worst_sigma) {
         const walk::Microsurface ms(ndf);
-        const fit::SingleScatteringAlbedo E(ndf);
+        const compensation::SingleScatteringAlbedo E(ndf);
         for (double theta : {30.0, 75.0}) {
             walk::CellRequest r;
             r.wi = dir(theta);
@@ -324,12 +331,12 @@ TEST_CASE("conductor compensation in three forms against the traced total albedo
     const char* forms[] = {"kulla-conty", "turquin", "fdez-aguera"};
     auto run = [&](const auto& ndf, const char* name, double alpha) {
         const walk::Microsurface ms(ndf);
-        const fit::SingleScatteringAlbedo E(ndf);
+        const compensation::SingleScatteringAlbedo E(ndf);
         const double E_avg = E.average();
         double worst[3] = {0.0, 0.0, 0.0}, worst_z[3] = {0.0, 0.0, 0.0};
         for (const Metal& metal : metals) {
             auto F = [&](double c) { return smithlab::fresnel_conductor(c, metal.eta, metal.k); };
-            const double F_avg = fit::average_fresnel(F), F_ms = fit::fresnel_ms(F_avg, E_avg);
+            const double F_avg = compensation::average_fresnel(F), F_ms = compensation::fresnel_ms(F_avg, E_avg);
             for (double theta : {0.0, 45.0, 75.0}) {
                 walk::CellRequest r;
                 r.wi = dir(theta);
@@ -341,8 +348,8 @@ TEST_CASE("conductor compensation in three forms against the traced total albedo
                 const walk::Estimate total =
                     t.albedo(walk::Hemisphere::reflection, walk::all_orders, walk::Component::all);
                 const double mu = r.wi.z(), Ess = E(mu), EF = E(mu, F);
-                const double compensated[3] = {EF + F_ms * (1.0 - Ess), EF * fit::turquin_scale(Ess, F(1.0)),
-                                               fit::fdez_aguera_albedo(EF, Ess, F_avg)};
+                const double compensated[3] = {EF + F_ms * (1.0 - Ess), EF * compensation::turquin_scale(Ess, F(1.0)),
+                                               compensation::fdez_aguera_albedo(EF, Ess, F_avg)};
                 INFO(name << " alpha " << alpha << " " << metal.name << " theta_i " << theta);
                 CHECK(std::abs(order1.value - EF) < 4.0 * order1.stderr_);
                 for (int f = 0; f < 3; ++f) {
@@ -379,12 +386,12 @@ TEST_CASE("the compensation lobe's shape against the traced multiple-scattering 
     const smithlab::Ggx ggx = smithlab::ggx(1.0);
     const walk::Microsurface ms(ggx);
     // E at 0.81 and 1 (the table needs two alphas) x 129 warped cosines, and the table's own 1 - E_avg.
-    const fit::AlbedoRow row = [](double a) -> std::function<double(double)> {
-        auto e = std::make_shared<fit::SingleScatteringAlbedo<smithlab::Ggx>>(smithlab::ggx(a));
+    const compensation::AlbedoRow row = [](double a) -> std::function<double(double)> {
+        auto e = std::make_shared<compensation::SingleScatteringAlbedo<smithlab::Ggx>>(smithlab::ggx(a));
         return [e](double mu) { return (*e)(mu); };
     };
-    const fit::AlbedoTable table = fit::tabulate(ggx_grid({0.81, 1.0}, 129), 1, row, 2).table;
-    const std::vector<double> table_missing = fit::table_missing(table);
+    const compensation::AlbedoTable table = compensation::tabulate(ggx_grid({0.81, 1.0}, 129), 1, row, 2).table;
+    const std::vector<double> table_missing = compensation::table_missing(table);
     for (double theta : {0.0, 60.0}) {
         walk::CellRequest r;
         r.wi = dir(theta);
@@ -398,11 +405,12 @@ TEST_CASE("the compensation lobe's shape against the traced multiple-scattering 
         for (int t = 0; t < r.brdf.n_theta; ++t) {
             const double c_lo = 1.0 - (t + 1.0) / r.brdf.n_theta, c_hi = 1.0 - static_cast<double>(t) / r.brdf.n_theta;
             // The lobe's f cos averaged over the band (it does not depend on phi_o).
-            const double lobe = boost::math::quadrature::gauss_kronrod<double, 15>::integrate(
-                                    [&](double mu_o) {
-                                        return fit::compensation_lobe(table, table_missing, 1.0, r.wi.z(), mu_o) * mu_o;
-                                    },
-                                    c_lo, c_hi) /
+            const double lobe =
+                boost::math::quadrature::gauss_kronrod<double, 15>::integrate(
+                    [&](double mu_o) {
+                        return compensation::compensation_lobe(table, table_missing, 1.0, r.wi.z(), mu_o) * mu_o;
+                    },
+                    c_lo, c_hi) /
                 (c_hi - c_lo);
             // A Lambertian lobe of the same energy, (1 - E(mu_i)) mu_o / pi: the shape without Kulla-Conty's 1 -
             // E(mu_o).
@@ -445,13 +453,13 @@ TEST_CASE("the cost of a 32 x 32 (alpha x mu) family table", "[compensation][slo
     // 1 - E_avg by its own quadrature, and GTR(gamma = 1.5)'s on two alphas, whose Lambda is a table built per alpha.
     auto cpu_ms = [](std::clock_t c0) { return 1000.0 * static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC; };
     auto family_table = [](auto make, const std::vector<double>& alphas) {
-        const fit::AlbedoRow row = [&](double a) -> std::function<double(double)> {
-            auto e = std::make_shared<const fit::SingleScatteringAlbedo<decltype(make(a))>>(make(a));
+        const compensation::AlbedoRow row = [&](double a) -> std::function<double(double)> {
+            auto e = std::make_shared<const compensation::SingleScatteringAlbedo<decltype(make(a))>>(make(a));
             return [e](double mu) { return (*e)(mu); };
         };
         double sum = 0.0;
-        for (double v : fit::tabulate(warped_grid(make, alphas, 32), 1, row, 1).table.values) sum += v;
-        for (double a : alphas) sum += fit::SingleScatteringAlbedo(make(a)).missing();
+        for (double v : compensation::tabulate(warped_grid(make, alphas, 32), 1, row, 1).table.values) sum += v;
+        for (double a : alphas) sum += compensation::SingleScatteringAlbedo(make(a)).missing();
         return sum;
     };
     std::vector<double> ggx_alphas;
@@ -498,7 +506,7 @@ TEST_CASE("dielectric albedo: reflection and transmission against the integrals 
     int n = 0;
     for (double alpha : {0.1, 0.5}) {
         const smithlab::Ggx ndf = smithlab::ggx(alpha);
-        const fit::SingleScatteringAlbedo<smithlab::Ggx> E(ndf);
+        const compensation::SingleScatteringAlbedo<smithlab::Ggx> E(ndf);
         for (double eta : {1.5, 1.0 / 1.5, 1.1, 1.0 / 2.5}) {
             auto F = [eta](double c) { return smithlab::fresnel_dielectric(c, eta); };
             for (double mu : {0.3, 0.8}) {
@@ -528,12 +536,12 @@ TEST_CASE("dielectric albedo: reflection and transmission against the integrals 
         "%.0f ms in all\n",
         worst_R, worst_T, ms / n, ms_since(t0));
     const smithlab::Ggx ggx = smithlab::ggx(0.5);
-    const fit::SingleScatteringAlbedo<smithlab::Ggx> E(ggx);
+    const compensation::SingleScatteringAlbedo<smithlab::Ggx> E(ggx);
     // In reflection the separable G1 G1 = 1 / ((1 + L_i)(1 + L_o)) <= 1 / (1 + L_i + L_o); across the surface
     // G1 G1 >= B(1 + L_i, 1 + L_o), the height-correlated one (Heitz 2014, eq. 101).
-    fit::AlbedoOptions sep;
+    compensation::AlbedoOptions sep;
     sep.g2 = smithlab::G2Form::uncorrelated;
-    const fit::SingleScatteringAlbedo<smithlab::Ggx> Es(ggx, sep);
+    const compensation::SingleScatteringAlbedo<smithlab::Ggx> Es(ggx, sep);
     CHECK(Es(0.5) < E(0.5));
     CHECK(E.dielectric(0.5, 1.5).T < Es.dielectric(0.5, 1.5).T);
     CHECK_THROWS_AS(E.dielectric(0.5, -1.0), smithlab::input_error);
@@ -550,27 +558,28 @@ std::vector<double> cbrt_alphas() {
 }
 
 TEST_CASE("the warp: its inverse, its scale against GGX's closed form, the power-law lookup", "[compensation]") {
-    CHECK(std::abs(fit::unwarp_cosine(0.01, fit::warp_cosine(0.01, 0.37)) - 0.37) < 1e-14);
+    CHECK(std::abs(compensation::unwarp_cosine(0.01, compensation::warp_cosine(0.01, 0.37)) - 0.37) < 1e-14);
     // GGX: Lambda = (sqrt(1 + 1 / a^2) - 1) / 2 (Heitz 2014 eq. 72), a = cot(theta) / alpha, is 0.3 at
     // a = 1 / sqrt(1.6^2 - 1); the scale is 6 cos(theta) there.
     for (double alpha : {1e-4, 0.05, 0.5, 1.0}) {
         const double cot = alpha / std::sqrt(1.6 * 1.6 - 1.0);
         const double want = 6.0 * cot / std::sqrt(1.0 + cot * cot);
-        CHECK(fit::SingleScatteringAlbedo(smithlab::ggx(alpha)).warp_scale() == Approx(want).epsilon(1e-10));
+        CHECK(compensation::SingleScatteringAlbedo(smithlab::ggx(alpha)).warp_scale() == Approx(want).epsilon(1e-10));
     }
     // Through D alone (a Lambda table of relative tolerance 1e-8): the same scale to ~1e-8.
     const smithlab::Ggx ggx = smithlab::ggx(0.3);
-    const double closed = fit::SingleScatteringAlbedo(ggx).warp_scale();
-    CHECK(fit::SingleScatteringAlbedo(smithlab::DOnly<smithlab::Ggx>{ggx}).warp_scale() ==
+    const double closed = compensation::SingleScatteringAlbedo(ggx).warp_scale();
+    CHECK(compensation::SingleScatteringAlbedo(smithlab::DOnly<smithlab::Ggx>{ggx}).warp_scale() ==
           Approx(closed).epsilon(1e-7));
     const std::vector<double> alphas{1e-3, 1e-2, 1e-1};
     const std::vector<double> v{2e-3, 2e-2, 3e-1};
-    CHECK(fit::lookup_power_law(alphas, v, 1e-2, "v") == Approx(2e-2).epsilon(1e-14));
-    CHECK(fit::lookup_power_law(alphas, v, 1e-4, "v") == Approx(2e-4).epsilon(1e-12));  // the first power continued
-    CHECK(fit::lookup_power_law(alphas, v, 2.0, "v") == Approx(0.3).epsilon(1e-15));    // the last value
-    CHECK(fit::lookup_power_law(alphas, v, std::sqrt(1e-3 * 1e-2), "v") == Approx(std::sqrt(2e-3 * 2e-2)));
-    CHECK_THROWS_AS(fit::lookup_power_law(alphas, {2e-3, 0.0, 0.3}, 1e-2, "v"), smithlab::input_error);
-    fit::AlbedoGrid bad{{0.1, 0.2}, {0.1}, 4, {}};
+    CHECK(compensation::lookup_power_law(alphas, v, 1e-2, "v") == Approx(2e-2).epsilon(1e-14));
+    CHECK(compensation::lookup_power_law(alphas, v, 1e-4, "v") ==
+          Approx(2e-4).epsilon(1e-12));  // the first power continued
+    CHECK(compensation::lookup_power_law(alphas, v, 2.0, "v") == Approx(0.3).epsilon(1e-15));  // the last value
+    CHECK(compensation::lookup_power_law(alphas, v, std::sqrt(1e-3 * 1e-2), "v") == Approx(std::sqrt(2e-3 * 2e-2)));
+    CHECK_THROWS_AS(compensation::lookup_power_law(alphas, {2e-3, 0.0, 0.3}, 1e-2, "v"), smithlab::input_error);
+    compensation::AlbedoGrid bad{{0.1, 0.2}, {0.1}, 4, {}};
     CHECK_THROWS_AS(bad.check(), smithlab::input_error);
 }
 
@@ -578,16 +587,16 @@ TEST_CASE("the warp: its inverse, its scale against GGX's closed form, the power
 TEST_CASE("the warped table: its error measure against a dense direct check, and GGX's E within 1e-3",
           "[compensation][slow]") {
     // A function with a feature at mu ~ alpha: the measured error equals the largest one found directly.
-    const fit::AlbedoGrid g{{0.01, 0.09, 0.25, 1.0}, {0.01, 0.09, 0.25, 1.0}, 9, {}};
-    const fit::AlbedoRow row = [](double a) -> std::function<double(double)> {
+    const compensation::AlbedoGrid g{{0.01, 0.09, 0.25, 1.0}, {0.01, 0.09, 0.25, 1.0}, 9, {}};
+    const compensation::AlbedoRow row = [](double a) -> std::function<double(double)> {
         return [a](double mu) { return std::exp(-mu / a) * mu / (mu + a); };
     };
-    const fit::CheckedTable t = fit::tabulate(g, 10, row, 2);
+    const compensation::CheckedTable t = compensation::tabulate(g, 10, row, 2);
     double direct = 0.0, grazing = 0.0;  // at mu >= grazing_mu, and below
     for (double a : t.fine.grid.alphas)
         for (int j = 0; j <= 80; ++j) {
-            const double mu = fit::unwarp_cosine(g.scale(a), j / 80.0);
-            double& worst = mu < fit::grazing_mu ? grazing : direct;
+            const double mu = compensation::unwarp_cosine(g.scale(a), j / 80.0);
+            double& worst = mu < compensation::grazing_mu ? grazing : direct;
             worst = std::max(worst, std::abs(t.table.lookup(a, mu) - row(a)(mu)));
         }
     CHECK(t.error.max == direct);
@@ -596,15 +605,15 @@ TEST_CASE("the warped table: its error measure against a dense direct check, and
     CHECK(t.table.at(2, 3) == row(0.25)(g.mu(2, 3)));
     // GGX's E on 48 alphas (cbrt-spaced, 1e-4 to 1) x 48 warped cosines: within 1e-3 on the 10x finer grid, and below
     // the grid down to alpha 1e-6.
-    const fit::AlbedoGrid grid = ggx_grid(cbrt_alphas(), 48);
-    fit::AlbedoOptions o;
+    const compensation::AlbedoGrid grid = ggx_grid(cbrt_alphas(), 48);
+    compensation::AlbedoOptions o;
     o.tolerance = 1e-8;
-    const fit::AlbedoRow E = [&](double a) -> std::function<double(double)> {
-        auto e = std::make_shared<fit::SingleScatteringAlbedo<smithlab::Ggx>>(smithlab::ggx(a), o);
+    const compensation::AlbedoRow E = [&](double a) -> std::function<double(double)> {
+        auto e = std::make_shared<compensation::SingleScatteringAlbedo<smithlab::Ggx>>(smithlab::ggx(a), o);
         return [e](double mu) { return (*e)(mu); };
     };
-    const fit::CheckedTable ggx = fit::tabulate(grid, 10, E, 2);
-    const fit::InterpolationError below = fit::below_grid_error(ggx, E, {0.5, 0.1, 0.01}, 2);
+    const compensation::CheckedTable ggx = compensation::tabulate(grid, 10, E, 2);
+    const compensation::InterpolationError below = compensation::below_grid_error(ggx, E, {0.5, 0.1, 0.01}, 2);
     std::printf(
         "compensation: GGX 48 x 48 warped table: interpolation error %.2e (alpha %.3g, mu %.3g), below the "
         "grid %.2e (alpha %.3g)\n",
@@ -614,17 +623,18 @@ TEST_CASE("the warped table: its error measure against a dense direct check, and
     CHECK_THROWS_AS(ggx.table.lookup(0.0, 0.5), smithlab::input_error);
     CHECK_THROWS_AS(ggx.table.lookup(0.5, 1.5), smithlab::input_error);
 
-    // The white furnace by the tables (fit/furnace.hpp): the exact single scattering (the check grid's values) plus
-    // Kulla and Conty's lobe from the table and its own 1 - E_avg, against 1, at every alpha of the check grid and
+    // The white furnace by the tables (compensation/furnace.hpp): the exact single scattering (the check grid's values)
+    // plus Kulla and Conty's lobe from the table and its own 1 - E_avg, against 1, at every alpha of the check grid and
     // theta_i <= 85 degrees.
-    const std::vector<double> missing = fit::table_missing(ggx.table);
-    const fit::InterpolationError furnace =
-        fit::worst_of(fit::kulla_conty_furnace(ggx, missing, std::cos(85.0 * std::numbers::pi / 180.0)));
+    const std::vector<double> missing = compensation::table_missing(ggx.table);
+    const compensation::InterpolationError furnace = compensation::worst_of(
+        compensation::kulla_conty_furnace(ggx, missing, std::cos(85.0 * std::numbers::pi / 180.0)));
     // The table's own 1 - E_avg against the exact one (its own quadrature of 1 - E) at two of its alphas (alpha 0.09
     // and 1: their difference is the table's error in E, integrated, over 1 - E_avg).
     double worst_missing = 0.0;
     for (std::size_t i : {std::size_t{20}, std::size_t{47}}) {
-        const double exact = fit::SingleScatteringAlbedo<smithlab::Ggx>(smithlab::ggx(grid.alphas[i]), o).missing();
+        const double exact =
+            compensation::SingleScatteringAlbedo<smithlab::Ggx>(smithlab::ggx(grid.alphas[i]), o).missing();
         worst_missing = std::max(worst_missing, std::abs(missing[i] / exact - 1.0));
     }
     std::printf(
@@ -638,15 +648,15 @@ TEST_CASE("the warped table: its error measure against a dense direct check, and
 // [slow]: 2 x 35 000 values of E (~20 s of two cores in Release).
 TEST_CASE("the warped table of a heavy tail (GTR gamma = 1: its dip near mu 0.1 at alpha 1e-4) and of Beckmann",
           "[compensation][slow]") {
-    fit::AlbedoOptions o;
+    compensation::AlbedoOptions o;
     o.tolerance = 1e-8;
     auto check = [&](const char* name, auto make) {
-        const fit::AlbedoGrid grid = warped_grid(make, cbrt_alphas(), 48);
-        const fit::AlbedoRow E = [&](double a) -> std::function<double(double)> {
-            auto e = std::make_shared<fit::SingleScatteringAlbedo<decltype(make(a))>>(make(a), o);
+        const compensation::AlbedoGrid grid = warped_grid(make, cbrt_alphas(), 48);
+        const compensation::AlbedoRow E = [&](double a) -> std::function<double(double)> {
+            auto e = std::make_shared<compensation::SingleScatteringAlbedo<decltype(make(a))>>(make(a), o);
             return [e](double mu) { return (*e)(mu); };
         };
-        const fit::CheckedTable t = fit::tabulate(grid, 4, E, 2);
+        const compensation::CheckedTable t = compensation::tabulate(grid, 4, E, 2);
         std::printf("compensation: %s 48 x 48 warped table: interpolation error %.2e (alpha %.3g, mu %.3g)\n", name,
                     t.error.max, t.error.alpha, t.error.mu);
         CHECK(t.error.max < 1e-3);
@@ -656,7 +666,7 @@ TEST_CASE("the warped table of a heavy tail (GTR gamma = 1: its dip near mu 0.1 
 }
 
 TEST_CASE("a node cluster: the axis and its inverse, tables of ln E, bad clusters", "[compensation]") {
-    fit::AlbedoGrid g{{0.01, 0.1, 1.0}, {0.05, 0.5, 3.0}, 33, {0.6, 0.02, 0.3}};
+    compensation::AlbedoGrid g{{0.01, 0.1, 1.0}, {0.05, 0.5, 3.0}, 33, {0.6, 0.02, 0.3}};
     REQUIRE_NOTHROW(g.check());
     for (double c : g.scales) {
         CHECK(g.x_of(c, 0.0) == 0.0);
@@ -673,32 +683,34 @@ TEST_CASE("a node cluster: the axis and its inverse, tables of ln E, bad cluster
     // less than 1 between mu 0.55 and 0.65; with the cluster more than 4 (0.3 (asinh(2.5) - asinh(-2.5)) /
     // (asinh(30) + asinh(20)) of the axis).
     const double c = g.scales[0];
-    CHECK((fit::warp_cosine(c, 0.65) - fit::warp_cosine(c, 0.55)) * 32 < 1.0);
+    CHECK((compensation::warp_cosine(c, 0.65) - compensation::warp_cosine(c, 0.55)) * 32 < 1.0);
     CHECK((g.x_of(c, 0.65) - g.x_of(c, 0.55)) * 32 > 4.0);
     // Without a cluster the axis is the warp.
-    fit::AlbedoGrid w = g;
+    compensation::AlbedoGrid w = g;
     w.cluster = {};
-    CHECK(w.x_of(0.5, 0.3) == fit::warp_cosine(0.5, 0.3));
-    CHECK(w.mu_of(0.5, 0.4) == fit::unwarp_cosine(0.5, 0.4));
-    for (const fit::NodeCluster bad : {fit::NodeCluster{1.5, 0.02, 0.3}, fit::NodeCluster{0.5, 0.0, 0.3},
-                                       fit::NodeCluster{0.5, 0.02, 1.0}, fit::NodeCluster{0.5, 0.02, -0.1}}) {
+    CHECK(w.x_of(0.5, 0.3) == compensation::warp_cosine(0.5, 0.3));
+    CHECK(w.mu_of(0.5, 0.4) == compensation::unwarp_cosine(0.5, 0.4));
+    for (const compensation::NodeCluster bad :
+         {compensation::NodeCluster{1.5, 0.02, 0.3}, compensation::NodeCluster{0.5, 0.0, 0.3},
+          compensation::NodeCluster{0.5, 0.02, 1.0}, compensation::NodeCluster{0.5, 0.02, -0.1}}) {
         g.cluster = bad;
         CHECK_THROWS_AS(g.check(), smithlab::input_error);
     }
     // A dielectric's cluster: none from outside, and refused with an alpha or eta that is not > 0.
-    CHECK(fit::dielectric_cluster(1.5, 1e-4).weight == 0.0);
-    CHECK_THROWS_WITH(fit::dielectric_cluster(0.5, 0.0), Catch::Contains("first alpha"));
-    CHECK_THROWS_WITH(fit::dielectric_cluster(0.5, std::nan("")), Catch::Contains("first alpha"));
-    CHECK_THROWS_WITH(fit::dielectric_cluster(-0.5, 1e-4), Catch::Contains("eta"));
+    CHECK(compensation::dielectric_cluster(1.5, 1e-4).weight == 0.0);
+    CHECK_THROWS_WITH(compensation::dielectric_cluster(0.5, 0.0), Catch::Contains("first alpha"));
+    CHECK_THROWS_WITH(compensation::dielectric_cluster(0.5, std::nan("")), Catch::Contains("first alpha"));
+    CHECK_THROWS_WITH(compensation::dielectric_cluster(-0.5, 1e-4), Catch::Contains("eta"));
     // A table of ln E: E at the nodes exactly, exp of the bilinear ln E between them, its error measured in E; and a
     // value <= 0 refused.
     g.cluster = {0.6, 0.02, 0.3};
-    const fit::AlbedoRows rows = [](double a) -> std::function<void(double, double*)> {
+    const compensation::AlbedoRows rows = [](double a) -> std::function<void(double, double*)> {
         return [a](double mu, double* v) { v[0] = v[1] = 0.05 + 0.9 * mu * mu / (mu + a); };
     };
-    const std::vector<fit::CheckedTable> t = fit::tabulate(g, 4, {fit::Stored::value, fit::Stored::log}, rows, 2);
+    const std::vector<compensation::CheckedTable> t =
+        compensation::tabulate(g, 4, {compensation::Stored::value, compensation::Stored::log}, rows, 2);
     REQUIRE(t.size() == 2);
-    CHECK(t[1].table.stored == fit::Stored::log);
+    CHECK(t[1].table.stored == compensation::Stored::log);
     CHECK(t[1].table.at(1, 5) == std::log(t[0].table.at(1, 5)));
     CHECK(std::abs(t[1].table.lookup(0.1, g.mu(1, 5)) / t[0].table.at(1, 5) - 1.0) < 1e-15);
     // Between two nodes of the row alpha = 0.1: ln E linear in x.
@@ -708,10 +720,11 @@ TEST_CASE("a node cluster: the axis and its inverse, tables of ln E, bad cluster
     CHECK(std::abs(t[1].table.lookup(0.1, mu) / std::exp(ln) - 1.0) < 1e-14);
     CHECK(t[1].error.max > 0.0);
     CHECK(t[1].error.max != t[0].error.max);
-    const fit::AlbedoRows zero = [](double) -> std::function<void(double, double*)> {
+    const compensation::AlbedoRows zero = [](double) -> std::function<void(double, double*)> {
         return [](double mu, double* v) { *v = mu; };  // 0 at mu = 0
     };
-    CHECK_THROWS_WITH(fit::tabulate(g, 1, {fit::Stored::log}, zero, 1), Catch::Contains("finite and > 0"));
+    CHECK_THROWS_WITH(compensation::tabulate(g, 1, {compensation::Stored::log}, zero, 1),
+                      Catch::Contains("finite and > 0"));
 }
 
 // [slow]: 2 x 6 500 + 20 000 GGX and 2 x 1 900 GTR dielectric values (~60 s of one core in Release).
@@ -730,11 +743,11 @@ TEST_CASE("dielectric tables: the critical angle's cluster from inside, ln(E_R +
             if ((i + 1 < alphas.size() && alphas[i + 1] > lo) && (i == 0 || alphas[i - 1] < hi)) a.push_back(alphas[i]);
         return a;
     };
-    fit::AlbedoOptions o;
-    o.tolerance = fit::table_tolerance;
-    auto rows_of = [&o](auto make, double eta) -> fit::AlbedoRows {
+    compensation::AlbedoOptions o;
+    o.tolerance = compensation::table_tolerance;
+    auto rows_of = [&o](auto make, double eta) -> compensation::AlbedoRows {
         return [&o, make, eta](double a) -> std::function<void(double, double*)> {
-            auto E = std::make_shared<fit::SingleScatteringAlbedo<decltype(make(a))>>(make(a), o);
+            auto E = std::make_shared<compensation::SingleScatteringAlbedo<decltype(make(a))>>(make(a), o);
             return [E, eta](double mu, double* v) {
                 const auto d = E->dielectric(mu, eta);
                 v[0] = v[1] = d.R + d.T;
@@ -742,14 +755,14 @@ TEST_CASE("dielectric tables: the critical angle's cluster from inside, ln(E_R +
         };
     };
     auto rows = [&](double eta) { return rows_of([](double a) { return smithlab::ggx(a); }, eta); };
-    using fit::Stored;
+    using compensation::Stored;
     SECTION("inside eta 1.1: E_T rises like sqrt(mu - mu_c) smoothed over ~alpha; the cluster resolves it") {
         const double eta = 1.0 / 1.1;
-        const fit::AlbedoGrid plain = fit::dielectric_grid(ggx_grid(cells(0.01, 0.025), 48), 96, 1.0);
-        const fit::AlbedoGrid kink = fit::dielectric_grid(plain, 96, eta);
+        const compensation::AlbedoGrid plain = compensation::dielectric_grid(ggx_grid(cells(0.01, 0.025), 48), 96, 1.0);
+        const compensation::AlbedoGrid kink = compensation::dielectric_grid(plain, 96, eta);
         CHECK(kink.cluster.mu == Approx(std::sqrt(1.0 - eta * eta)).epsilon(1e-15));
-        const fit::CheckedTable p = fit::tabulate(plain, 4, {Stored::log}, rows(eta), 2)[0];
-        const fit::CheckedTable k = fit::tabulate(kink, 4, {Stored::log}, rows(eta), 2)[0];
+        const compensation::CheckedTable p = compensation::tabulate(plain, 4, {Stored::log}, rows(eta), 2)[0];
+        const compensation::CheckedTable k = compensation::tabulate(kink, 4, {Stored::log}, rows(eta), 2)[0];
         std::printf(
             "compensation: GGX inside eta 1.1, alpha %.3g to %.3g, 96 cosines: ln(E_R + E_T) within %.2e (alpha "
             "%.3g, mu %.4g) on the warp alone, %.2e with the cluster about mu_c = %.4f\n",
@@ -758,19 +771,20 @@ TEST_CASE("dielectric tables: the critical angle's cluster from inside, ln(E_R +
         CHECK(p.error.max > 1e-3);
         CHECK(std::abs(p.error.mu - kink.cluster.mu) < 0.02);  // the kink
         CHECK(k.error.max < 5e-4);
-        CHECK(fit::worst_of(fit::turquin_furnace(k, std::cos(85.0 * std::numbers::pi / 180.0))).max < 1e-3);
+        CHECK(compensation::worst_of(compensation::turquin_furnace(k, std::cos(85.0 * std::numbers::pi / 180.0))).max <
+              1e-3);
     }
     SECTION("inside eta 1.5, GTR gamma 1 at the grid's first alpha: a heavy tail keeps the kink as narrow as alpha") {
         const double eta = 1.0 / 1.5;
         const std::vector<double> first = cells(1e-4, 2e-4);
-        const fit::AlbedoGrid kink =
-            fit::dielectric_grid(warped_grid([](double a) { return smithlab::gtr(a, 1.0); }, first, 48), 96, eta);
+        const compensation::AlbedoGrid kink = compensation::dielectric_grid(
+            warped_grid([](double a) { return smithlab::gtr(a, 1.0); }, first, 48), 96, eta);
         CHECK(kink.cluster.width == Approx(2.0 * first.front() * eta).epsilon(1e-15));
-        fit::AlbedoGrid wide = kink;
+        compensation::AlbedoGrid wide = kink;
         wide.cluster.width = 0.02;
-        const fit::AlbedoRows r = rows_of([](double a) { return smithlab::gtr(a, 1.0); }, eta);
-        const fit::CheckedTable w = fit::tabulate(wide, 4, {Stored::log}, r, 2)[0];
-        const fit::CheckedTable k = fit::tabulate(kink, 4, {Stored::log}, r, 2)[0];
+        const compensation::AlbedoRows r = rows_of([](double a) { return smithlab::gtr(a, 1.0); }, eta);
+        const compensation::CheckedTable w = compensation::tabulate(wide, 4, {Stored::log}, r, 2)[0];
+        const compensation::CheckedTable k = compensation::tabulate(kink, 4, {Stored::log}, r, 2)[0];
         std::printf(
             "compensation: GTR gamma 1 inside eta 1.5, alpha %.3g to %.3g, 96 cosines: ln(E_R + E_T) within %.2e "
             "(alpha %.3g, mu %.4g) with a cluster of width 0.02, %.2e with width %.2g\n",
@@ -780,12 +794,15 @@ TEST_CASE("dielectric tables: the critical angle's cluster from inside, ln(E_R +
         CHECK(k.error.max < 1e-3);
     }
     SECTION("outside eta 1.1 at alpha ~ 1: single scattering keeps little, and a table of E_R + E_T misses it") {
-        const fit::AlbedoGrid g = fit::dielectric_grid(ggx_grid(cells(0.9, 1.0), 48), 96, 1.1);
+        const compensation::AlbedoGrid g = compensation::dielectric_grid(ggx_grid(cells(0.9, 1.0), 48), 96, 1.1);
         CHECK(g.cluster.weight == 0.0);
-        const std::vector<fit::CheckedTable> t = fit::tabulate(g, 10, {Stored::value, Stored::log}, rows(1.1), 2);
+        const std::vector<compensation::CheckedTable> t =
+            compensation::tabulate(g, 10, {Stored::value, Stored::log}, rows(1.1), 2);
         const double mu_min = std::cos(85.0 * std::numbers::pi / 180.0);
-        const fit::InterpolationError value = fit::worst_of(fit::turquin_furnace(t[0], mu_min)),
-                                      log = fit::worst_of(fit::turquin_furnace(t[1], mu_min));
+        const compensation::InterpolationError value =
+                                                   compensation::worst_of(compensation::turquin_furnace(t[0], mu_min)),
+                                               log =
+                                                   compensation::worst_of(compensation::turquin_furnace(t[1], mu_min));
         std::printf(
             "compensation: GGX outside eta 1.1, alpha %.3g to 1, 96 cosines: Turquin's furnace %.2e (alpha %.3g, mu "
             "%.3g) by a table of E_R + E_T, %.2e of ln(E_R + E_T); interpolation %.2e / %.2e, grazing %.2e / "
@@ -802,11 +819,11 @@ TEST_CASE("a light tail at small alpha: Beckmann's E at normal incidence, and 1 
     // Beckmann's slopes, exp(-r^2 / alpha^2), are 0 to the last bit at every node of one Gauss-Kronrod panel over
     // [0, 1] at alpha 5e-5 (E(1) came out 0); the panels scaled by the masking slope see them. As alpha -> 0, E is a
     // function of mu / alpha and 1 - E_avg = alpha^2 times a constant (the light tail makes the limit exact).
-    fit::AlbedoOptions o;
-    o.tolerance = fit::table_tolerance;
-    const double m4 = fit::SingleScatteringAlbedo(smithlab::beckmann(1e-4), o).missing();
+    compensation::AlbedoOptions o;
+    o.tolerance = compensation::table_tolerance;
+    const double m4 = compensation::SingleScatteringAlbedo(smithlab::beckmann(1e-4), o).missing();
     for (double alpha : {5e-5, 1e-5, 1e-6}) {
-        const fit::SingleScatteringAlbedo E(smithlab::beckmann(alpha), o);
+        const compensation::SingleScatteringAlbedo E(smithlab::beckmann(alpha), o);
         INFO("alpha " << alpha);
         CHECK(E(1.0) > 1.0 - 1e-9);
         CHECK(E(0.5) > 1.0 - 1e-9);
@@ -815,21 +832,21 @@ TEST_CASE("a light tail at small alpha: Beckmann's E at normal incidence, and 1 
 }
 
 TEST_CASE("1 - E_avg: its own quadrature against 1 - E_avg's, and lookup_missing's rule", "[compensation]") {
-    fit::AlbedoOptions o;
+    compensation::AlbedoOptions o;
     o.tolerance = 1e-10;
     for (double a : {0.3, 1.0}) {
-        const fit::SingleScatteringAlbedo<smithlab::Ggx> E(smithlab::ggx(a), o);
+        const compensation::SingleScatteringAlbedo<smithlab::Ggx> E(smithlab::ggx(a), o);
         CHECK(std::abs(E.missing() - (1.0 - E.average())) < 1e-8 * E.missing() + 1e-9);
     }
     // ln m linear in ln alpha: a power law is exact between the nodes, below the first (continued) and the last value
     // above.
     const std::vector<double> alphas{1e-4, 1e-2, 0.5, 1.0}, m{2e-8, 2e-4, 0.5, 0.6};
-    CHECK(fit::lookup_missing(alphas, m, 1e-3) == Approx(2e-6).epsilon(1e-12));
-    CHECK(fit::lookup_missing(alphas, m, 1e-6) == Approx(2e-12).epsilon(1e-12));
-    CHECK(fit::lookup_missing(alphas, m, 2.0) == 0.6);
-    CHECK(fit::lookup_missing(alphas, m, 0.5) == Approx(0.5).epsilon(1e-15));
-    CHECK_THROWS_AS(fit::lookup_missing(alphas, {2e-8, 0.0, 0.5, 0.6}, 0.1), smithlab::input_error);
-    CHECK_THROWS_AS(fit::lookup_missing(alphas, m, 0.0), smithlab::input_error);
+    CHECK(compensation::lookup_missing(alphas, m, 1e-3) == Approx(2e-6).epsilon(1e-12));
+    CHECK(compensation::lookup_missing(alphas, m, 1e-6) == Approx(2e-12).epsilon(1e-12));
+    CHECK(compensation::lookup_missing(alphas, m, 2.0) == 0.6);
+    CHECK(compensation::lookup_missing(alphas, m, 0.5) == Approx(0.5).epsilon(1e-15));
+    CHECK_THROWS_AS(compensation::lookup_missing(alphas, {2e-8, 0.0, 0.5, 0.6}, 0.1), smithlab::input_error);
+    CHECK_THROWS_AS(compensation::lookup_missing(alphas, m, 0.0), smithlab::input_error);
 }
 
 TEST_CASE("the separable grazing limit of a narrow NDF: finite, and tending to its alpha -> 0 limit",
@@ -837,10 +854,10 @@ TEST_CASE("the separable grazing limit of a narrow NDF: finite, and tending to i
     // At mu = 0 with G1 G1, E(0) = integral of P22 p G1(wo) over the visible normals / their projected area: a function
     // of the slopes over alpha alone as alpha -> 0, approached linearly in alpha (7.4e-5 from alpha 1e-2 to 1e-4 for
     // GGX, 2.1e-6 for Beckmann). Beckmann's slopes at alpha 1e-4 lie below theta_m ~ 1e-3.
-    fit::AlbedoOptions o;
+    compensation::AlbedoOptions o;
     o.tolerance = 1e-8;
     o.g2 = smithlab::G2Form::uncorrelated;
-    auto at = [&](auto make, double alpha) { return fit::SingleScatteringAlbedo(make(alpha), o)(0.0); };
+    auto at = [&](auto make, double alpha) { return compensation::SingleScatteringAlbedo(make(alpha), o)(0.0); };
     auto beckmann = [](double a) { return smithlab::beckmann(a); };
     auto ggx = [](double a) { return smithlab::ggx(a); };
     for (const auto& [name, e4, e3, e2] :

@@ -1,8 +1,8 @@
-// The renderer formats of a compensation table (fit/compensation_formats.hpp): the C header compiled as C and run, the
-// GLSL and HLSL through glslangValidator and, rewritten into C where they differ from it, run; every lookup against
-// AlbedoTable::lookup and lookup_missing. The 16-bit PNG read back with libpng, its axes parsed with nlohmann-json; bad
-// input refused, naming the item, nothing left behind. The scattering orders' tables the same way, their lookups and
-// A_ms against OrderTables::lookup and multiple_scattering_albedo.
+// The renderer formats of a compensation table (compensation/compensation_formats.hpp): the C header compiled as C and
+// run, the GLSL and HLSL through glslangValidator and, rewritten into C where they differ from it, run; every lookup
+// against AlbedoTable::lookup and lookup_missing. The 16-bit PNG read back with libpng, its axes parsed with
+// nlohmann-json; bad input refused, naming the item, nothing left behind. The scattering orders' tables the same way,
+// their lookups and A_ms against OrderTables::lookup and multiple_scattering_albedo.
 #include <png.h>
 
 #include <algorithm>
@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <regex>
@@ -20,14 +21,14 @@
 #include <string>
 #include <vector>
 
+#include "smithlab/compensation/albedo_grid.hpp"
+#include "smithlab/compensation/compensation_formats.hpp"
+#include "smithlab/compensation/scattering_orders.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
-#include "smithlab/fit/albedo_grid.hpp"
-#include "smithlab/fit/compensation_formats.hpp"
-#include "smithlab/fit/scattering_orders.hpp"
 
 using namespace smithlab;
-using namespace smithlab::fit;
+using namespace smithlab::compensation;
 
 namespace {
 
@@ -68,6 +69,25 @@ std::string text_of(void (*write)(std::ostream&, const Export&), const Export& e
     std::ostringstream s;
     write(s, e);
     return s.str();
+}
+
+// An export in `language` (write_source).
+template <class Export>
+std::string source_of(const Export& e, Language language) {
+    std::ostringstream s;
+    write_source(s, e, language);
+    return s.str();
+}
+
+// Every text writer of an export: its source in each language, then `json`, its axes' JSON.
+template <class Export>
+std::vector<std::function<void(std::ostream&, const Export&)>> text_writers(void (*json)(std::ostream&,
+                                                                                         const Export&)) {
+    std::vector<std::function<void(std::ostream&, const Export&)>> writers;
+    for (const SourceFormat& f : source_formats)
+        writers.push_back([language = f.language](std::ostream& o, const Export& e) { write_source(o, e, language); });
+    writers.push_back(json);
+    return writers;
 }
 
 int run(const std::string& command, const std::filesystem::path& log) {
@@ -256,7 +276,7 @@ TEST_CASE("compensation formats: the C header compiles as C and looks up as Albe
           "[compensation][formats]") {
     const AlbedoTable t = small_table();
     const CompensationExport e = export_of(t);
-    const std::string h = text_of(write_c_header, e);
+    const std::string h = source_of(e, Language::c);
     CHECK(h.find("#ifndef SMITHLAB_GGX_HC_COMPENSATION_H") != std::string::npos);
     CHECK(h.find("height-correlated Smith G2") != std::string::npos);
     CHECK(h.find("below the first alpha: the first row") != std::string::npos);
@@ -290,7 +310,7 @@ TEST_CASE("compensation formats: GLSL and HLSL compile with glslangValidator and
     REQUIRE(has_glslang());  // glslang-tools, a CI dependency (.ci/deps)
     const AlbedoTable t = small_table();
     const CompensationExport e = export_of(t);
-    const std::string glsl = text_of(write_glsl, e), hlsl = text_of(write_hlsl, e);
+    const std::string glsl = source_of(e, Language::glsl), hlsl = source_of(e, Language::hlsl);
     CHECK(glsl.find("\n#version") == std::string::npos);  // the includer's
     const std::filesystem::path dir = scratch_dir("shaders");
     check_glsl_compiles(dir, glsl, E_calls("smithlab_ggx_hc", true));
@@ -325,15 +345,15 @@ TEST_CASE("compensation formats: a tiny 1 - E_avg keeps its relative precision i
     for (const double a : {0.05, 0.06, 0.1, 0.03, 0.5}) p.push_back({static_cast<float>(a), 0.5f});
     const std::filesystem::path dir = scratch_dir("tiny");
     SECTION("C") {
-        std::ofstream(dir / "table.h") << text_of(write_c_header, e);
+        std::ofstream(dir / "table.h") << source_of(e, Language::c);
         check_lookups(dir, lookup_program("table.h", "smithlab_ggx_hc", p, true), t, e.missing, p);
     }
     SECTION("GLSL, its constructors as C casts") {
-        std::ofstream(dir / "table_glsl.c") << glsl_as_c(text_of(write_glsl, e));
+        std::ofstream(dir / "table_glsl.c") << glsl_as_c(source_of(e, Language::glsl));
         check_lookups(dir, lookup_program("table_glsl.c", "smithlab_ggx_hc", p, true), t, e.missing, p);
     }
     SECTION("HLSL, which is C here") {
-        std::ofstream(dir / "table_hlsl.c") << text_of(write_hlsl, e);
+        std::ofstream(dir / "table_hlsl.c") << source_of(e, Language::hlsl);
         check_lookups(dir, lookup_program("table_hlsl.c", "smithlab_ggx_hc", p, true), t, e.missing, p);
     }
     std::filesystem::remove_all(dir);
@@ -346,7 +366,8 @@ TEST_CASE("compensation formats: without E_avg, and with labels that are not ide
         "gtr(gamma=1.5) /*/ \"x\"", "separable", "E_R+E_T outside eta=1.5", &t, {}, 0.0, 0.0, 0.0};
     const std::string id = "smithlab_gtr_gamma_1_5_x_sep_E_R_E_T_outside_eta_1_5";
     REQUIRE(compensation_identifier(e) == id);
-    const std::string h = text_of(write_c_header, e), glsl = text_of(write_glsl, e), hlsl = text_of(write_hlsl, e);
+    const std::string h = source_of(e, Language::c), glsl = source_of(e, Language::glsl),
+                      hlsl = source_of(e, Language::hlsl);
     for (const std::string* s : {&h, &glsl, &hlsl}) {
         CHECK(s->find("_E_avg") == std::string::npos);
         CHECK(s->find("_missing") == std::string::npos);
@@ -376,7 +397,8 @@ TEST_CASE("compensation formats: a table of ln E with a node cluster, in every f
     CHECK(std::abs(t.grid.x_of(t.grid.scales[2], t.grid.mu(2, 4)) - t.grid.x(4)) < 1e-15);
     const CompensationExport e{"ggx", "height-correlated", "E_R+E_T eta=1.5 inside", &t, {}, 2.5e-4, 1e-3, 5e-4};
     const std::string id = "smithlab_ggx_hc_E_R_E_T_eta_1_5_inside";
-    const std::string h = text_of(write_c_header, e), glsl = text_of(write_glsl, e), hlsl = text_of(write_hlsl, e);
+    const std::string h = source_of(e, Language::c), glsl = source_of(e, Language::glsl),
+                      hlsl = source_of(e, Language::hlsl);
     for (const std::string* s : {&h, &glsl, &hlsl}) {
         CHECK(s->find(id + "_log_E_table[45]") != std::string::npos);
         CHECK(s->find(id + "_E_table") == std::string::npos);
@@ -498,7 +520,7 @@ TEST_CASE("compensation formats: bad input is refused, naming the item, and leav
     SECTION("a NaN in the table") {
         t.values[2 * 9 + 4] = std::nan("");
         const CompensationExport e = export_of(t);
-        for (auto write : {write_c_header, write_glsl, write_hlsl, write_axes_json}) {
+        for (const auto& write : text_writers(write_axes_json)) {
             CHECK_THROWS_AS(write(sink, e), input_error);
             CHECK_THROWS_WITH(write(sink, e), Catch::Contains("E at alpha 0.3, x_4 = 0.5"));
         }
@@ -508,7 +530,7 @@ TEST_CASE("compensation formats: bad input is refused, naming the item, and leav
     SECTION("1 - E_avg of another size") {
         CompensationExport e = export_of(t);
         e.missing.pop_back();
-        CHECK_THROWS_WITH(write_c_header(sink, e), Catch::Contains("4 values of 1 - E_avg for 5 alphas"));
+        CHECK_THROWS_WITH(write_source(sink, e, Language::c), Catch::Contains("4 values of 1 - E_avg for 5 alphas"));
         CHECK_THROWS_AS(write_png16(png, e), input_error);
         nothing_written();
     }
@@ -517,7 +539,7 @@ TEST_CASE("compensation formats: bad input is refused, naming the item, and leav
             CompensationExport e = export_of(t);
             e.missing[3] = bad;
             INFO("1 - E_avg " << bad);
-            for (auto write : {write_c_header, write_glsl, write_hlsl, write_axes_json}) {
+            for (const auto& write : text_writers(write_axes_json)) {
                 CHECK_THROWS_AS(write(sink, e), input_error);
                 CHECK_THROWS_WITH(write(sink, e), Catch::Contains("1 - E_avg at alpha 0.6"));
             }
@@ -526,12 +548,12 @@ TEST_CASE("compensation formats: bad input is refused, naming the item, and leav
         }
         CompensationExport e = export_of(t);
         e.missing[3] = 1.0;  // E_avg = 0: allowed
-        CHECK_NOTHROW(write_c_header(sink, e));
+        CHECK_NOTHROW(write_source(sink, e, Language::c));
     }
     SECTION("a value outside [0, 1] in the PNG") {
         t.values[7] = 1.5;
         const CompensationExport e = export_of(t);
-        CHECK_NOTHROW(write_c_header(sink, e));
+        CHECK_NOTHROW(write_source(sink, e, Language::c));
         CHECK_THROWS_WITH(write_png16(png, e), Catch::Contains("x_7") && Catch::Contains("outside [0, 1]"));
         nothing_written();
         // A rounding past 1 (an albedo at its limit 1, computed to a tolerance) is the end value, not an error.
@@ -541,21 +563,21 @@ TEST_CASE("compensation formats: bad input is refused, naming the item, and leav
     SECTION("no table, a table of the wrong size, alphas out of order") {
         CompensationExport e = export_of(t);
         e.E = nullptr;
-        CHECK_THROWS_WITH(write_glsl(sink, e), Catch::Contains("no table"));
+        CHECK_THROWS_WITH(write_source(sink, e, Language::glsl), Catch::Contains("no table"));
         e.E = &t;
         t.values.pop_back();
-        CHECK_THROWS_WITH(write_hlsl(sink, e), Catch::Contains("44 values for 5 alphas x 9 cosines"));
+        CHECK_THROWS_WITH(write_source(sink, e, Language::hlsl), Catch::Contains("44 values for 5 alphas x 9 cosines"));
         t = small_table();
         std::swap(t.grid.alphas[1], t.grid.alphas[2]);
         CHECK_THROWS_WITH(write_axes_json(sink, e), Catch::Contains("alphas must ascend"));
         t = small_table();
         t.grid.scales[2] = 1e-40;  // a subnormal float: its logarithm in float is not the double's
-        CHECK_THROWS_WITH(write_glsl(sink, e), Catch::Contains("the warp's scale at alpha 0.3"));
+        CHECK_THROWS_WITH(write_source(sink, e, Language::glsl), Catch::Contains("the warp's scale at alpha 0.3"));
         t.grid.scales.pop_back();
-        CHECK_THROWS_WITH(write_c_header(sink, e), Catch::Contains("4 warp scales for 5 alphas"));
+        CHECK_THROWS_WITH(write_source(sink, e, Language::c), Catch::Contains("4 warp scales for 5 alphas"));
         t = small_table();
         e.max_interp_error = std::nan("");
-        CHECK_THROWS_WITH(write_c_header(sink, e), Catch::Contains("max interpolation error"));
+        CHECK_THROWS_WITH(write_source(sink, e, Language::c), Catch::Contains("max interpolation error"));
     }
 }
 
@@ -653,7 +675,7 @@ TEST_CASE(
     for (const bool separable : {false, true}) {
         const OrderTables o = small_orders(separable);
         const OrderExport e = order_export_of(o);
-        const std::string id = order_identifier(e), h = text_of(write_orders_c_header, e);
+        const std::string id = order_identifier(e), h = source_of(e, Language::c);
         INFO(id);
         // The comment's lines joined: its phrases may break across them.
         const std::string joined = std::regex_replace(h, std::regex("\n \\*   "), " ");
@@ -693,7 +715,7 @@ TEST_CASE("compensation formats: the orders' GLSL and HLSL compile with glslangV
         const OrderTables o = small_orders(separable);
         const OrderExport e = order_export_of(o);
         const std::string id = order_identifier(e);
-        const std::string glsl = text_of(write_orders_glsl, e), hlsl = text_of(write_orders_hlsl, e);
+        const std::string glsl = source_of(e, Language::glsl), hlsl = source_of(e, Language::hlsl);
         INFO(id);
         CHECK(glsl.find("\n#version") == std::string::npos);
         const std::filesystem::path dir = scratch_dir("orders_shaders");
@@ -739,14 +761,14 @@ TEST_CASE("compensation formats: bad orders are refused, naming the item, and no
     OrderExport e = order_export_of(o);
     // Each writer throws input_error with `item` in its message, and writes nothing.
     auto refused = [&](const std::string& item) {
-        for (auto write : {write_orders_c_header, write_orders_glsl, write_orders_hlsl, write_orders_axes_json}) {
+        for (const auto& write : text_writers(write_orders_axes_json)) {
             std::ostringstream sink;
             CHECK_THROWS_AS(write(sink, e), input_error);
             CHECK_THROWS_WITH(write(sink, e), Catch::Contains(item));
             CHECK(sink.str().empty());
         }
     };
-    CHECK_NOTHROW(text_of(write_orders_c_header, e));
+    CHECK_NOTHROW(source_of(e, Language::c));
     SECTION("no tables") {
         e.orders = nullptr;
         refused("no tables");
@@ -806,7 +828,7 @@ TEST_CASE("compensation formats: bad orders are refused, naming the item, and no
         o.p.values[10] = 1.0;  // no walk hits a fourth time: allowed
         o.q2.values[0] = 0.0;
         o.q1.values[0] = 1.0;
-        CHECK_NOTHROW(text_of(write_orders_c_header, e));
+        CHECK_NOTHROW(source_of(e, Language::c));
     }
     SECTION("the worst standard error") {
         e.max_stderr = std::nan("");

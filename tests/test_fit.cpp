@@ -9,8 +9,8 @@
 #include <sstream>
 
 #include "cli_run.hpp"
+#include "smithlab/compensation/compensation.hpp"
 #include "smithlab/csv.hpp"
-#include "smithlab/fit/compensation.hpp"
 #include "smithlab/fit/dataset.hpp"
 #include "smithlab/fit/diffuse_models.hpp"
 #include "smithlab/fit/fit_model.hpp"
@@ -468,7 +468,7 @@ TEST_CASE("fit: [compensation] writes every table, its errors, its renderer form
     REQUIRE(node.size() == 5);
     const double cot = 1.0 / std::sqrt(1.6 * 1.6 - 1.0), c = 6.0 * cot / std::sqrt(1.0 + cot * cot);
     CHECK(std::stod(node[3]) == Approx(c * 0.36 / (1.0 + c - 0.36)).epsilon(1e-12));
-    const fit::SingleScatteringAlbedo<smithlab::Ggx> exact(smithlab::ggx(1.0), {.tolerance = 1e-8});
+    const compensation::SingleScatteringAlbedo<smithlab::Ggx> exact(smithlab::ggx(1.0), {.tolerance = 1e-8});
     CHECK(std::stod(node[4]) == Approx(exact(std::stod(node[3]))).epsilon(1e-9));
     const std::vector<std::string> dielectric = lines(slurp(o / "compensation_dielectric.csv"));
     REQUIRE(dielectric.size() == 1 + 2 * 3 * 2 * 8);
@@ -564,6 +564,47 @@ TEST_CASE("fit: [compensation] writes every table, its errors, its renderer form
     CHECK_THAT(slurp(o / "report.md"),
                Contains("## Energy compensation") && Contains("| ggx | separable | E |") &&
                    Contains("Conductors (form walk-orders)") && Contains("| walk-orders |"));
+    fs::remove_all(d);
+}
+
+TEST_CASE("tables: the compensation stage alone writes the files fit writes beside its fit, the same bytes",
+          "[fit][cli][tables]") {
+    using namespace smithlab_test;
+    const fs::path d = fresh_directory("tables");
+    const std::string compensation =
+        "[compensation]\nalpha = [0.3, 1.0]\ncosines = 5\nrefine = 2\ndielectric_cosines = 5\neta = [1.5]\n"
+        "conductors = [\"conductor(eta=0.2, k=3)\"]\nfurnace_alpha = [0.5]\nfurnace_theta = [0.0, 60.0]\n"
+        "furnace_walks = 1000\norder_walks = 1000\norder_alpha = [0.5, 1.0]\norder_cosines = 3\n";
+    const Run fit = run_fit(d, tiny_scene + compensation);
+    INFO(fit.err);
+    REQUIRE(fit.rc == 0);
+    write(d / "t.toml", "title = \"tiny tables\"\n[[ndf]]\nfamily = \"ggx\"\n" + compensation);
+    const Run tables =
+        run("tables '" + (d / "t.toml").string() + "' --output '" + (d / "tables").string() + "' --threads 1");
+    INFO(tables.err);
+    REQUIRE(tables.rc == 0);
+    CHECK_THAT(tables.err, Contains("tables: compensation tables: ggx, separable G2, dielectric eta 1.5 from inside"));
+    CHECK_THAT(tables.out, Contains("\nggx              separable          E_R+E_T eta=1.5 inside   "));
+    // Every file but the report and meta.json is one the fit wrote, byte for byte (on other threads: the bits do not
+    // depend on them); the fit's own outputs are not there.
+    std::size_t files = 0;
+    for (const auto& e : fs::recursive_directory_iterator(d / "tables")) {
+        if (!e.is_regular_file()) continue;
+        const fs::path name = fs::relative(e.path(), d / "tables");
+        if (name == "report.md" || name == "meta.json") continue;
+        INFO(name);
+        ++files;
+        REQUIRE(fs::exists(d / "out" / name));
+        CHECK(slurp(e.path()) == slurp(d / "out" / name));
+    }
+    // 3 CSVs of tables, the orders', the errors, 2 of the furnace; per G2 form E and 2 dielectric sums in 5 formats
+    // and the orders in 4; furnace.png where matplotlib is.
+    CHECK(files >= 7 + 2 * (3 * 5 + 4));
+    CHECK_FALSE(fs::exists(d / "tables" / "constants.csv"));
+    const std::string report = slurp(d / "tables" / "report.md");
+    CHECK(report.rfind("# tiny tables\n\n## Energy compensation (Kulla and Conty 2017, Turquin 2019)\n", 0) == 0);
+    CHECK_THAT(slurp(d / "out" / "report.md"), Contains(report.substr(report.find("\n## Energy compensation"))));
+    CHECK_THAT(slurp(d / "tables" / "meta.json"), Contains("\"title\": \"tiny tables\"") && Contains("\"seed\": 1"));
     fs::remove_all(d);
 }
 

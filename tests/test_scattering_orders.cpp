@@ -1,6 +1,6 @@
-// The conductor compensation from the walk's scattering orders (smithlab/fit/scattering_orders.hpp): the orders of a
-// tally counted by hand, the form against its series summed term by term, and the compensated albedo of conductor
-// facets against the walk of those facets (a second walk, on other random streams than the tables').
+// The conductor compensation from the walk's scattering orders (smithlab/compensation/scattering_orders.hpp): the
+// orders of a tally counted by hand, the form against its series summed term by term, and the compensated albedo of
+// conductor facets against the walk of those facets (a second walk, on other random streams than the tables').
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -10,8 +10,8 @@
 #include <smithlab/walk/trace.hpp>
 #include <vector>
 
-#include "smithlab/fit/compensation.hpp"
-#include "smithlab/fit/scattering_orders.hpp"
+#include "smithlab/compensation/compensation.hpp"
+#include "smithlab/compensation/scattering_orders.hpp"
 
 using namespace smithlab;
 
@@ -29,7 +29,7 @@ walk::AlbedoTally tally_of(const std::vector<int>& orders) {
 TEST_CASE("scattering orders: counted from a tally", "[orders]") {
     // Hits 1 x 5, 2 x 3, 3 x 1, 5 and 7: six walks hit twice or more; q_2 = 3 / 6, q_3 = 1 / 6; the two walks of 4+
     // hit (5 - 3) + (7 - 3) = 6 times past their third, p = 2 / 6.
-    const fit::OrderEstimate e = fit::scattering_orders(tally_of({1, 1, 1, 1, 1, 2, 2, 2, 3, 5, 7}));
+    const compensation::OrderEstimate e = compensation::scattering_orders(tally_of({1, 1, 1, 1, 1, 2, 2, 2, 3, 5, 7}));
     CHECK(e.multiple == 6);
     CHECK(e.orders.q2 == Approx(0.5).epsilon(1e-15));
     CHECK(e.orders.q3 == Approx(1.0 / 6.0).epsilon(1e-15));
@@ -37,31 +37,31 @@ TEST_CASE("scattering orders: counted from a tally", "[orders]") {
     CHECK(e.orders.q1 == 0.0);
     CHECK(e.q2_stderr == Approx(std::sqrt(0.25 / 6.0)).epsilon(1e-15));
     // Only orders 2 and 3: no tail, p = 1 (its series is empty either way).
-    const fit::OrderEstimate short_walks = fit::scattering_orders(tally_of({1, 2, 3, 3}));
+    const compensation::OrderEstimate short_walks = compensation::scattering_orders(tally_of({1, 2, 3, 3}));
     CHECK(short_walks.orders.q2 == Approx(1.0 / 3.0).epsilon(1e-15));
     CHECK(short_walks.orders.p == 1.0);
     // None hit twice: all of the (vanishing) rest is order 2.
-    const fit::OrderEstimate single = fit::scattering_orders(tally_of({1, 1, 1}));
+    const compensation::OrderEstimate single = compensation::scattering_orders(tally_of({1, 1, 1}));
     CHECK(single.multiple == 0);
     CHECK(single.orders.q2 == 1.0);
     CHECK(single.orders.q3 == 0.0);
 }
 
 TEST_CASE("scattering orders: bad tallies are refused", "[orders]") {
-    CHECK_THROWS_WITH(fit::scattering_orders(walk::AlbedoTally{}), Catch::Contains("walks"));
+    CHECK_THROWS_WITH(compensation::scattering_orders(walk::AlbedoTally{}), Catch::Contains("walks"));
     walk::AlbedoTally coloured;
     coloured.add({Vec3{0.0, 0.0, 1.0}, 0.5, 2, 0, true, false});
-    CHECK_THROWS_WITH(fit::scattering_orders(coloured), Catch::Contains("mirror facets"));
+    CHECK_THROWS_WITH(compensation::scattering_orders(coloured), Catch::Contains("mirror facets"));
     walk::AlbedoTally absorbed = tally_of({1, 2});
     absorbed.add({Vec3{0.0, 0.0, 1.0}, 0.0, 3, 0, false, false});
-    CHECK_THROWS_WITH(fit::scattering_orders(absorbed), Catch::Contains("did not leave"));
+    CHECK_THROWS_WITH(compensation::scattering_orders(absorbed), Catch::Contains("did not leave"));
     walk::AlbedoTally capped = tally_of({1, 2});
     capped.add({Vec3{0.0, 0.0, 1.0}, 0.0, 1'000'000, 0, false, true});
-    CHECK_THROWS_WITH(fit::scattering_orders(capped), Catch::Contains("capped"));
+    CHECK_THROWS_WITH(compensation::scattering_orders(capped), Catch::Contains("capped"));
 }
 
 TEST_CASE("the multiple-scattering albedo: its series term by term, the white furnace, bad input", "[orders]") {
-    const fit::ScatteringOrders q{0.45, 0.25, 0.7, 0.2};
+    const compensation::ScatteringOrders q{0.45, 0.25, 0.7, 0.2};
     for (double E : {0.3, 0.8, 1.0})
         for (double F : {0.0, 0.3, 0.8, 0.999}) {
             // (1 - E) (q_1 F + (1 - q_1) sum_k q_k F^k), q_k = q_4+ p (1 - p)^(k - 4) for k >= 4, summed to k = 2000.
@@ -69,18 +69,21 @@ TEST_CASE("the multiple-scattering albedo: its series term by term, the white fu
             for (int k = 4; k < 2000; ++k, qk *= 1.0 - q.p, Fk *= F) series += qk * Fk;
             const double expected = (1.0 - E) * (q.q1 * F + (1.0 - q.q1) * series);
             INFO("E " << E << " F_avg " << F);
-            CHECK(fit::multiple_scattering_albedo(E, q, F) == Approx(expected).epsilon(1e-13).margin(1e-300));
+            CHECK(compensation::multiple_scattering_albedo(E, q, F) == Approx(expected).epsilon(1e-13).margin(1e-300));
         }
     // At F_avg = 1 every share is kept: 1 - E, whatever the orders.
-    for (const fit::ScatteringOrders& o : {q, fit::ScatteringOrders{}, fit::ScatteringOrders{0.1, 0.1, 0.05, 0.0}})
-        CHECK(fit::multiple_scattering_albedo(0.6, o, 1.0) == Approx(0.4).epsilon(1e-15));
-    CHECK(fit::multiple_scattering_albedo(1.0 + 1e-15, q, 0.5) == 0.0);
-    CHECK_THROWS_WITH(fit::multiple_scattering_albedo(1.1, q, 0.5), Catch::Contains("E(mu)"));
-    CHECK_THROWS_WITH(fit::multiple_scattering_albedo(0.5, q, NAN), Catch::Contains("F_avg"));
-    CHECK_THROWS_WITH(fit::multiple_scattering_albedo(0.5, fit::ScatteringOrders{0.5, 0.2, 0.0, 0.0}, 0.5),
-                      Catch::Contains("escape chance"));
-    CHECK_THROWS_WITH(fit::multiple_scattering_albedo(0.5, fit::ScatteringOrders{0.5, 0.2, 0.5, 1.5}, 0.5),
-                      Catch::Contains("q_1"));
+    for (const compensation::ScatteringOrders& o :
+         {q, compensation::ScatteringOrders{}, compensation::ScatteringOrders{0.1, 0.1, 0.05, 0.0}})
+        CHECK(compensation::multiple_scattering_albedo(0.6, o, 1.0) == Approx(0.4).epsilon(1e-15));
+    CHECK(compensation::multiple_scattering_albedo(1.0 + 1e-15, q, 0.5) == 0.0);
+    CHECK_THROWS_WITH(compensation::multiple_scattering_albedo(1.1, q, 0.5), Catch::Contains("E(mu)"));
+    CHECK_THROWS_WITH(compensation::multiple_scattering_albedo(0.5, q, NAN), Catch::Contains("F_avg"));
+    CHECK_THROWS_WITH(
+        compensation::multiple_scattering_albedo(0.5, compensation::ScatteringOrders{0.5, 0.2, 0.0, 0.0}, 0.5),
+        Catch::Contains("escape chance"));
+    CHECK_THROWS_WITH(
+        compensation::multiple_scattering_albedo(0.5, compensation::ScatteringOrders{0.5, 0.2, 0.5, 1.5}, 0.5),
+        Catch::Contains("q_1"));
 }
 
 TEST_CASE("conductor compensation from the walk's orders against the walk of conductor facets (GGX)",
@@ -89,12 +92,12 @@ TEST_CASE("conductor compensation from the walk's orders against the walk of con
     // form, against the total albedo of a second walk on conductor facets (seed 9). Measured: within 4e-3 at alpha 1
     // and 6e-3 at alpha 0.6 (docs/compensation.md), where Kulla and Conty's form misses by up to 0.044 and 0.017;
     // asserted at 8e-3 + 4 standard errors, and at alpha 1 at less than half Kulla and Conty's worst miss.
-    const fit::AlbedoGrid grid{{0.6, 1.0},
-                               {fit::SingleScatteringAlbedo(smithlab::ggx(0.6)).warp_scale(),
-                                fit::SingleScatteringAlbedo(smithlab::ggx(1.0)).warp_scale()},
-                               9,
-                               {}};
-    const fit::OrderCell trace = [&](std::size_t node, double alpha, double mu) {
+    const compensation::AlbedoGrid grid{{0.6, 1.0},
+                                        {compensation::SingleScatteringAlbedo(smithlab::ggx(0.6)).warp_scale(),
+                                         compensation::SingleScatteringAlbedo(smithlab::ggx(1.0)).warp_scale()},
+                                        9,
+                                        {}};
+    const compensation::OrderCell trace = [&](std::size_t node, double alpha, double mu) {
         const walk::Microsurface ms(smithlab::ggx(alpha));
         walk::CellRequest r;
         r.wi = {std::sqrt((1.0 - mu) * (1.0 + mu)), 0.0, mu};
@@ -104,7 +107,7 @@ TEST_CASE("conductor compensation from the walk's orders against the walk of con
         r.threads = 1;
         return walk::trace_cell(ms, walk::Mirror{}, r).albedo;
     };
-    const fit::OrderTables tables = fit::tabulate_orders(grid, trace);
+    const compensation::OrderTables tables = compensation::tabulate_orders(grid, trace);
     struct Metal {
         const char* name;
         double eta, k;
@@ -113,12 +116,12 @@ TEST_CASE("conductor compensation from the walk's orders against the walk of con
     for (std::size_t i = 0; i < 2; ++i) {
         const double alpha = grid.alphas[i];
         const walk::Microsurface ms(smithlab::ggx(alpha));
-        const fit::SingleScatteringAlbedo E(smithlab::ggx(alpha));
+        const compensation::SingleScatteringAlbedo E(smithlab::ggx(alpha));
         const double E_avg = E.average();
         double worst = 0.0, worst_kc = 0.0;
         for (const Metal& metal : metals) {
             auto F = [&](double c) { return smithlab::fresnel_conductor(c, metal.eta, metal.k); };
-            const double F_avg = fit::average_fresnel(F);
+            const double F_avg = compensation::average_fresnel(F);
             for (int j : {2, 5, 8}) {  // mu ~0.05, ~0.3 and 1
                 const double mu = grid.mu(i, j);
                 walk::CellRequest r;
@@ -130,8 +133,9 @@ TEST_CASE("conductor compensation from the walk's orders against the walk of con
                     walk::trace_cell(ms, walk::Conductor{metal.eta, metal.k}, r)
                         .albedo.albedo(walk::Hemisphere::all, walk::all_orders, walk::Component::all);
                 const double Ess = E(mu), EF = E(mu, F);
-                const double orders = EF + fit::multiple_scattering_albedo(Ess, tables.lookup(alpha, mu), F_avg);
-                const double kc = EF + fit::fresnel_ms(F_avg, E_avg) * (1.0 - Ess);
+                const double orders =
+                    EF + compensation::multiple_scattering_albedo(Ess, tables.lookup(alpha, mu), F_avg);
+                const double kc = EF + compensation::fresnel_ms(F_avg, E_avg) * (1.0 - Ess);
                 std::printf(
                     "orders: ggx alpha %.1f %s mu %.3f: walk-orders %.5f, kulla-conty %.5f, traced %.5f +- %.5f\n",
                     alpha, metal.name, mu, orders, kc, total.value, total.stderr_);

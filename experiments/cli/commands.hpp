@@ -92,6 +92,16 @@ struct FitArgs {
 void add_fit(CLI::App& app, FitArgs& args, const fit::DiffuseRegistry& models);
 int run_fit(const FitArgs& args, const NdfRegistry& registry, const fit::DiffuseRegistry& models);
 
+struct TablesArgs {
+    std::string scene;  // a scene file; empty: the embedded default (GGX)
+    std::string output = "tables";
+    int threads = 0;
+    bool print_scene = false;
+    report::SizeLimits limits;  // --max-walks, --scale
+};
+void add_tables(CLI::App& app, TablesArgs& args);
+int run_tables(const TablesArgs& args, const NdfRegistry& registry);
+
 CLI::App* add_list(CLI::App& app);
 int run_list(const NdfRegistry& registry, const fit::DiffuseRegistry& models);
 
@@ -119,6 +129,8 @@ CLI::Option* add_seed_option(CLI::App& command, std::string& seed);
 CLI::Option* add_downward_option(CLI::App& command, std::string& downward);
 // --max-cells N and --max-walks N: the size a scene may ask for (scene/limits.hpp), inf for no limit.
 void add_limit_options(CLI::App& command, report::SizeLimits& limits);
+// --max-walks N alone, for a command whose scene has no cells (tables).
+void add_max_walks_option(CLI::App& command, report::SizeLimits& limits);
 // The optional positional SCENE (a TOML file), --print-scene and --scale F (SizeLimits::scale), of report, trace
 // and fit; run_* checks the scale with require_scale.
 void add_scene_options(CLI::App& command, std::string& scene, bool& print_scene, double& scale,

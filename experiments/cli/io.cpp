@@ -100,6 +100,10 @@ void add_limit_options(CLI::App& command, report::SizeLimits& limits) {
                     "the most cells a scene may hold, [brdf] bins counted (inf: no limit)")
         ->capture_default_str()
         ->check(strict_real());
+    add_max_walks_option(command, limits);
+}
+
+void add_max_walks_option(CLI::App& command, report::SizeLimits& limits) {
     command.add_option("--max-walks", limits.max_walks, "the most walks a scene may trace in all (inf: no limit)")
         ->capture_default_str()
         ->check(strict_real());

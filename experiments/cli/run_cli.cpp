@@ -27,6 +27,7 @@ struct Commands {
     TraceArgs trace;
     BrdfArgs brdf;
     FitArgs fit;
+    TablesArgs tables;
     CLI::App* list = nullptr;
 };
 
@@ -55,6 +56,7 @@ void add_commands(CLI::App& app, Commands& c, const NdfRegistry& registry, const
     add_trace(app, c.trace, registry.materials());
     add_brdf(app, c.brdf);
     add_fit(app, c.fit, models);
+    add_tables(app, c.tables);
     c.list = add_list(app);
 }
 
@@ -99,6 +101,7 @@ int dispatch(CLI::App& app, const Commands& c, const NdfRegistry& registry, cons
     if (app.got_subcommand("trace")) return run_trace(c.trace, registry);
     if (app.got_subcommand("brdf")) return run_brdf(c.brdf, registry);
     if (app.got_subcommand("fit")) return run_fit(c.fit, registry, models);
+    if (app.got_subcommand("tables")) return run_tables(c.tables, registry);
     if (c.list->parsed()) return run_list(registry, models);
     return exit_ok;
 }

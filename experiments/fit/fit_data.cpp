@@ -105,10 +105,6 @@ std::vector<NdfData> assemble(std::vector<Plan>& plans, const std::vector<Place>
 
 DataSpec data_spec(const FitScene& s) { return {s.material, s.ndfs, s.training, s.validation, s.seed}; }
 
-AnyNdf make_ndf(const NdfRegistry& registry, const FitFamily& f, double alpha) {
-    return report::make_entry_ndf(f.entry, registry, f.params, alpha);
-}
-
 std::vector<NdfData> gather(const DataSpec& s, const NdfRegistry& registry, const fs::path& cache, unsigned threads,
                             const ProgressFn& progress, const std::function<void()>& checked,
                             cluster::Traffic* traffic) {

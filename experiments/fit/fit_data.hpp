@@ -50,7 +50,4 @@ std::vector<NdfData> gather(const DataSpec& spec, const NdfRegistry& registry, c
                             unsigned threads, const ProgressFn& progress, const std::function<void()>& checked = {},
                             cluster::Traffic* traffic = nullptr);
 
-// The NDF of a family at one alpha (alpha itself, or the parameter its registered roughness sets from alpha).
-AnyNdf make_ndf(const NdfRegistry& registry, const FitFamily& family, double alpha);
-
 }  // namespace smithlab::fitrun

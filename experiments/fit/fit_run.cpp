@@ -7,7 +7,7 @@
 
 #include "cluster/mpi_world.hpp"
 #include "cluster/traffic_json.hpp"
-#include "fit/fit_compensation.hpp"
+#include "compensation/stage.hpp"
 #include "fit/fit_data.hpp"
 #include "fit/fit_flags.hpp"
 #include "fit/fit_models.hpp"
@@ -81,7 +81,8 @@ void write_outputs(const fs::path& dir, const FitScene& s, const Results& r, con
     write_values(dir / "training.csv", r, ValueSet::training, s.albedos, columns);
     write_values(dir / "validation.csv", r, ValueSet::validation, s.albedos, columns);
     write_shaders(dir, r);
-    const std::string compensation = write_compensation(dir, s.ndfs, s.compensation, registry, s.seed, threads);
+    const std::string compensation =
+        comprun::run_compensation(dir, s.ndfs, s.compensation, registry, {"fit", s.seed, threads}).markdown;
     const std::string pictures =
         write_pictures(dir, cache, {s.pictures, s.material, s.seed}, r, columns, registry, threads);
     const std::string trends = write_parameter_trends(dir, r);

@@ -5,7 +5,7 @@
 // failed or killed run leaves the previous ones whole.
 //
 // The pieces: fit/fit_data.hpp (the traced data), fit/fit_models.hpp (fitting and measuring), fit/fit_flags.hpp,
-// fit/fit_tables.hpp (the CSV and JSON tables), fit/fit_shaders.hpp, fit/fit_compensation.hpp, fit/fit_trends.hpp,
+// fit/fit_tables.hpp (the CSV and JSON tables), fit/fit_shaders.hpp, compensation/stage.hpp, fit/fit_trends.hpp,
 // fit/fit_pictures.hpp, fit/fit_report.hpp (report.md).
 #pragma once
 

@@ -8,20 +8,17 @@
 #include <string>
 #include <vector>
 
+#include "compensation/settings.hpp"
+#include "scene/alpha_family.hpp"
 #include "scene/limits.hpp"
-#include "scene/scene_ndf.hpp"
 #include "smithlab/fit/diffuse_registry.hpp"
 #include "smithlab/registry.hpp"
 #include "smithlab/smith.hpp"
 
 namespace smithlab::fitrun {
 
-// One fitted NDF: a family at fixed parameters, swept over the training set's alpha (registry.hpp, make_at_alpha).
-struct FitFamily {
-    report::NdfEntry entry;     // the [[ndf]] it comes from
-    report::ParamPoint params;  // its parameters but the roughness: one fit per point of the entry's axes
-    const std::string& family() const { return entry.family; }
-};
+// One fitted NDF: a family at fixed parameters, swept over the training set's alpha (scene/alpha_family.hpp).
+using FitFamily = report::AlphaFamily;
 
 struct FitScene {
     std::string title = "smithlab fit";
@@ -43,30 +40,9 @@ struct FitScene {
         std::vector<double> albedo_theta{0.0, 30.0, 50.0, 65.0, 80.0};
         std::int64_t albedo_walks = 100000;
     } validation;
-    // The energy-compensation tables (fit_compensation.hpp): absent (enabled = false) unless the scene has
+    // The energy-compensation tables (compensation/stage.hpp): absent (enabled = false) unless the scene has
     // [compensation].
-    struct Compensation {
-        bool enabled = false;
-        std::vector<double> alpha = default_alphas();  // the tables' alphas, ascending
-        std::int64_t cosines = 48;                     // warped cosines a row of E (fit/albedo_grid.hpp)
-        std::int64_t dielectric_cosines = 96;          // a row of the dielectric tables
-        std::int64_t refine = 10;                      // the check grid: refine x finer in sqrt(alpha) and the cosine
-        std::vector<G2Form> g2{G2Form::height_correlated, G2Form::uncorrelated};
-        std::vector<double> eta;              // dielectric tables, each eta from outside and from inside
-        std::vector<std::string> conductors;  // conductor facets of the furnace (walk/facets.hpp specs)
-        std::vector<double> furnace_alpha{0.01, 0.1, 0.3, 0.6, 1.0};
-        std::vector<double> furnace_theta{0.0, 30.0, 60.0, 75.0, 85.0};
-        std::int64_t furnace_walks = 200000;
-        // The walk's scattering orders of mirror facets for conductors (fit/scattering_orders.hpp): mirror walks a
-        // node (0: none), over order_alpha x order_cosines warped cosines.
-        std::int64_t order_walks = 0;
-        std::vector<double> order_alpha = default_order_alphas();
-        std::int64_t order_cosines = 16;
-        // 16 alphas evenly spaced in cbrt(alpha) from 0.01 to 1 (below, the first row's: GGX's 1 - E_avg < 5e-4).
-        static std::vector<double> default_order_alphas();
-        // 64 alphas evenly spaced in cbrt(alpha) from 1e-4 to 1.
-        static std::vector<double> default_alphas();
-    } compensation;
+    comprun::Settings compensation;
     // The pictures (fit_pictures.hpp): absent (enabled = false) unless the scene has [pictures].
     struct Pictures {
         bool enabled = false;
@@ -93,8 +69,5 @@ FitScene parse_fit_scene(const std::string& text, const std::string& source, con
                          const fit::DiffuseRegistry& models, const report::SizeLimits& limits = {});
 
 const std::string& default_fit_scene_text();
-
-// An NDF of the scene as text: "ggx", "gtr(gamma=1.5)", "tabulated(file=ndf.csv)" (its parameters but alpha).
-std::string family_label(const FitFamily& f);
 
 }  // namespace smithlab::fitrun

@@ -2,13 +2,10 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cstdio>
-#include <fstream>
 #include <sstream>
 
-#include "output/output_file.hpp"
+#include "output/sealed_file.hpp"
 #include "smithlab/csv.hpp"
-#include "smithlab/util/checksum.hpp"
 
 namespace smithlab::fitrun {
 
@@ -24,17 +21,9 @@ std::string cache_key(const AnyNdf& ndf, const std::string& material, const std:
 }
 
 std::optional<std::vector<fit::SplitMoments>> read_cache(const CacheFile& file) {
-    std::ifstream whole(file.path, std::ios::binary);
-    if (!whole) return std::nullopt;
-    std::ostringstream bytes;
-    bytes << whole.rdbuf();
-    const std::string text = bytes.str();
-    const std::optional<std::string_view> body = util::unseal(text);
-    if (!body) {
-        std::fprintf(stderr, "fit: cache %s: checksum mismatch, traced again\n", file.path.string().c_str());
-        return std::nullopt;
-    }
-    std::istringstream in{std::string(*body)};
+    const std::optional<std::string> body = output::read_sealed(file.path, "fit: cache " + file.path.string());
+    if (!body) return std::nullopt;
+    std::istringstream in{*body};
     std::vector<CsvRecord> rows;
     try {
         rows = read_csv(in);
@@ -66,10 +55,8 @@ void write_cache(const CacheFile& file, const std::vector<fit::SplitMoments>& mo
         for (std::string& x : fit::moment_fields(moments[j])) f.push_back(std::move(x));
         write_csv_record(body, f);
     }
-    const std::string text = body.str();
     fs::create_directories(file.path.parent_path());
-    output::write_output(output::resolve_output(file.path.string()),
-                         [&](std::ostream& out) { out << text << util::checksum_line(text); });
+    output::write_sealed(file.path, body.str());
 }
 
 std::string cache_directory_name(const std::string& label) {

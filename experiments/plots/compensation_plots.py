@@ -2,7 +2,7 @@
 """Draws the furnace of `smithlab fit`'s energy-compensation tables from the CSV files it wrote into DIR:
 compensation_plots.py DIR.
 
-Needs Debian's python3-matplotlib (installed by .ci/deps). experiments/fit/fit_compensation.cpp writes the data:
+Needs Debian's python3-matplotlib (installed by .ci/deps). experiments/compensation/table_files.cpp writes the data:
   furnace_tables.csv   ndf,g2,table,alpha,furnace_error,cos_theta: per alpha of a table's check grid, the worst
                        |compensated albedo - 1| by the tables over theta_i <= 85 degrees
   furnace.csv          ndf,g2,material,part,form,alpha,theta_i,compensated,traced,traced_stderr: against the walk

@@ -1,6 +1,6 @@
 // The fitter's pieces in `import smithlab` (extension smithlab._walk): the diffuse models (fit/diffuse_models.hpp)
 // over NumPy arrays, the constants a `smithlab fit` run wrote (its constants.csv), and the Kulla-Conty compensation
-// table of any NDF (fit/compensation.hpp, the fit's [compensation] route: the same bits).
+// table of any NDF (compensation/compensation.hpp, the fit's [compensation] route: the same bits).
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -14,8 +14,8 @@
 
 #include "bindings.hpp"
 #include "smithlab/any_ndf.hpp"
+#include "smithlab/compensation/compensation.hpp"
 #include "smithlab/csv.hpp"
-#include "smithlab/fit/compensation.hpp"
 #include "smithlab/fit/diffuse_models.hpp"
 
 namespace smithlab::python {
@@ -201,19 +201,19 @@ py::dict compensation(const AnyNdf& ndf, int cosines, const std::string& g2) {
     require(cosines >= 2 && cosines <= 4096, "cosines", "in [2, 4096] (as the fit's [compensation] cosines)", cosines);
     if (g2 != "height-correlated" && g2 != "separable")
         throw input_error("g2 must be 'height-correlated' or 'separable', got '" + g2 + "'");
-    fit::AlbedoOptions opts;
-    opts.tolerance = fit::table_tolerance;  // as the fit's tables
+    compensation::AlbedoOptions opts;
+    opts.tolerance = compensation::table_tolerance;  // as the fit's tables
     opts.g2 = g2 == "separable" ? G2Form::uncorrelated : G2Form::height_correlated;
     std::vector<double> mus, E;
     double missing = 0.0, scale = 0.0;
     {
         const SignalPoll poll;
         py::gil_scoped_release free;
-        const fit::SingleScatteringAlbedo<AnyNdf> albedo(ndf, opts);
+        const compensation::SingleScatteringAlbedo<AnyNdf> albedo(ndf, opts);
         scale = albedo.warp_scale();
         for (int j = 0; j < cosines; ++j) {
             poll();
-            mus.push_back(fit::unwarp_cosine(scale, static_cast<double>(j) / (cosines - 1)));
+            mus.push_back(compensation::unwarp_cosine(scale, static_cast<double>(j) / (cosines - 1)));
             E.push_back(albedo(mus.back()));
         }
         missing = albedo.missing();
@@ -229,11 +229,11 @@ py::dict compensation(const AnyNdf& ndf, int cosines, const std::string& g2) {
 
 const char* const compensation_doc = R"(One alpha's row of the energy-compensation table of the NDF (Kulla and Conty
 2017): E, the directional albedo of single scattering off mirror facets (dimensionless), at the table's warped
-cosines cos_theta = c x^2 / (1 + c - x^2), x = j / (cosines - 1) (0 grazing, 1 normal; fit/albedo_grid.hpp), c the
+cosines cos_theta = c x^2 / (1 + c - x^2), x = j / (cosines - 1) (0 grazing, 1 normal; compensation/albedo_grid.hpp), c the
 NDF's warp scale (6 cos(theta) where its Lambda = 0.3), and 1 - E_avg = 2 integral of (1 - E(mu)) mu dmu by its own
 quadrature; g2 'height-correlated' (E(0) = 1, the limit) or 'separable' (G1 G1). A dict: 'cos_theta' and 'E'
 (float64 arrays of `cosines`), 'E_avg', 'one_minus_E_avg' and 'warp_scale' (floats). The same bits as the fit's
-compensation.csv and compensation_avg.csv rows of that NDF and G2. By quadrature (fit/compensation.hpp, relative
+compensation.csv and compensation_avg.csv rows of that NDF and G2. By quadrature (compensation/compensation.hpp, relative
 tolerance 1e-8); ~0.2 ms a cosine. Runs without the GIL.)";
 
 }  // namespace

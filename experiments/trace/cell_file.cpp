@@ -3,16 +3,13 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
 #include <sstream>
 #include <string_view>
 
-#include "output/output_file.hpp"
+#include "output/sealed_file.hpp"
 #include "smithlab/csv.hpp"
-#include "smithlab/util/checksum.hpp"
 
 namespace smithlab::trace {
 
@@ -39,9 +36,7 @@ void write_cell(const fs::path& path, const std::string& key, const CellRows& ro
          << "total," << format_g17(rows.total.value) << "," << format_g17(rows.total.stderr_) << "\n";
     for (const std::string& a : rows.albedo) body << "a," << a << "\n";
     for (const std::string& b : rows.brdf) body << "b," << b << "\n";
-    const std::string text = body.str();
-    output::write_output(output::resolve_output(path.string()),
-                         [&](std::ostream& out) { out << text << util::checksum_line(text); });
+    output::write_sealed(path, body.str());
 }
 
 namespace {
@@ -105,17 +100,9 @@ std::string cell_name(const fs::path& path) {
 
 std::optional<CellRows> read_cell(const fs::path& path, const std::string& key, std::size_t albedo_rows,
                                   std::size_t brdf_rows) {
-    std::ifstream file(path, std::ios::binary);
-    if (!file) return std::nullopt;
-    std::ostringstream whole;
-    whole << file.rdbuf();
-    const std::string text = whole.str();
-    const std::optional<std::string_view> body = util::unseal(text);
-    if (!body) {
-        std::fprintf(stderr, "trace: %s: checksum mismatch, traced again\n", cell_name(path).c_str());
-        return std::nullopt;
-    }
-    std::istringstream in{std::string(*body)};
+    const std::optional<std::string> body = output::read_sealed(path, "trace: " + cell_name(path));
+    if (!body) return std::nullopt;
+    std::istringstream in{*body};
     std::string line;
     if (!std::getline(in, line) || line != "key," + csv_field(key)) return std::nullopt;
     CellRows rows;

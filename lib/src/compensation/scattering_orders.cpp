@@ -1,4 +1,4 @@
-#include "smithlab/fit/scattering_orders.hpp"
+#include "smithlab/compensation/scattering_orders.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include "smithlab/errors.hpp"
 #include "smithlab/util/parallel.hpp"
 
-namespace smithlab::fit {
+namespace smithlab::compensation {
 
 OrderEstimate scattering_orders(const walk::AlbedoTally& mirror) {
     require(mirror.walks > 0, "the order tally's walks", "> 0", static_cast<double>(mirror.walks));
@@ -83,4 +83,4 @@ OrderTables tabulate_orders(const AlbedoGrid& grid, const OrderCell& trace, unsi
     return t;
 }
 
-}  // namespace smithlab::fit
+}  // namespace smithlab::compensation

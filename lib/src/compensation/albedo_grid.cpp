@@ -1,4 +1,4 @@
-#include "smithlab/fit/albedo_grid.hpp"
+#include "smithlab/compensation/albedo_grid.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 #include "smithlab/errors.hpp"
 #include "smithlab/util/parallel.hpp"
 
-namespace smithlab::fit {
+namespace smithlab::compensation {
 
 namespace {
 // The warp's scale in lookup_power_law's messages.
@@ -256,4 +256,4 @@ InterpolationError below_grid_error(const CheckedTable& t, const AlbedoRow& row,
     return worst;
 }
 
-}  // namespace smithlab::fit
+}  // namespace smithlab::compensation

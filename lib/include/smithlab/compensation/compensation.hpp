@@ -1,4 +1,4 @@
-// smithlab/fit/compensation.hpp -- energy compensation of specular multiple scattering, for any NDF.
+// smithlab/compensation/compensation.hpp -- energy compensation of specular multiple scattering, for any NDF.
 //
 // E(mu), the directional albedo of single scattering off mirror facets (F = 1), with the height-correlated G2
 // (Walter, Marschner, Li, Torrance 2007, eq. 20; smith.hpp, G2_from_Lambdas):
@@ -51,16 +51,16 @@
 #include <utility>
 #include <vector>
 
+#include "smithlab/compensation/albedo_grid.hpp"
 #include "smithlab/errors.hpp"
 #include "smithlab/fast_lambda.hpp"
-#include "smithlab/fit/albedo_grid.hpp"
 #include "smithlab/fresnel.hpp"
 #include "smithlab/lambda_table.hpp"
 #include "smithlab/ndf.hpp"
 #include "smithlab/quadrature.hpp"
 #include "smithlab/smith.hpp"
 
-namespace smithlab::fit {
+namespace smithlab::compensation {
 
 // The tables' quadrature tolerance: values to ~1e-8 relative, far below their interpolation error ~5e-4 (albedo_grid).
 inline constexpr double table_tolerance = 1e-8;
@@ -98,7 +98,7 @@ public:
         : ndf_(ndf),
           Lambda_(ndf_, opts.lambda_table),
           opts_(opts),
-          masking_cot_(fit::masking_cot([this](double m) { return Lambda_(m); })) {}
+          masking_cot_(compensation::masking_cot([this](double m) { return Lambda_(m); })) {}
 
     // E(mu), mu = cos theta_i in [0, 1] (input_error outside), mirror facets.
     double operator()(double mu) const { return albedo(mu, nullptr); }
@@ -136,7 +136,7 @@ public:
     }
 
     // The scale of a table's warped cosine axis for this NDF (albedo_grid.hpp: warp_scale of its masking_cot).
-    double warp_scale() const { return fit::warp_scale(masking_cot_); }
+    double warp_scale() const { return compensation::warp_scale(masking_cot_); }
 
 private:
     double albedo(double mu, const FunctionRef* F) const { return albedo(mu, F, opts_.tolerance); }
@@ -201,9 +201,10 @@ double kulla_conty_albedo(const AlbedoTable& E, const std::vector<double>& missi
 double kulla_conty_ratio(const AlbedoTable& E, const std::vector<double>& missing, double alpha);
 // The table's own 1 - E_avg at alpha: 2 integral_0^1 (1 - E(alpha, mu)) mu dmu of the lookup; and at each of its
 // alphas. Given to a renderer as its 1 - E_avg, it makes Kulla and Conty's lobe put back exactly 1 - E(alpha, mu_i)
-// of the table at its alphas (and, with lookup_missing between them, within the furnace measured by fit/furnace.hpp):
-// the exact 1 - E_avg (SingleScatteringAlbedo::missing) would leave the table's error in E, integrated, divided by
-// 1 - E_avg, which is ~alpha^2 at small alpha (4e-3 in the furnace of GGX's 32 x 48 table at alpha 0.03).
+// of the table at its alphas (and, with lookup_missing between them, within the furnace measured by
+// compensation/furnace.hpp): the exact 1 - E_avg (SingleScatteringAlbedo::missing) would leave the table's error in E,
+// integrated, divided by 1 - E_avg, which is ~alpha^2 at small alpha (4e-3 in the furnace of GGX's 32 x 48 table at
+// alpha 0.03).
 double table_missing(const AlbedoTable& E, double alpha);
 std::vector<double> table_missing(const AlbedoTable& E);
 
@@ -212,4 +213,4 @@ std::vector<double> table_missing(const AlbedoTable& E);
 // (compensation_formats.hpp).
 std::string compensation_header_name(std::string_view family_name);
 
-}  // namespace smithlab::fit
+}  // namespace smithlab::compensation

@@ -5,10 +5,10 @@
 //   each conductor, three published forms and the walk's own orders:
 //     "kulla-conty": E_F + F_ms times their lobe (Kulla and Conty 2017, compensation.hpp);
 //     "turquin":     E_F (1 + F0 (1 - E) / E), F0 = F(1) (Turquin 2019);
-//     "fdez-aguera": E_F / (1 - F_avg (1 - E)) (Fdez-Aguera 2019, fit::fdez_aguera_albedo; F_avg the exact
+//     "fdez-aguera": E_F / (1 - F_avg (1 - E)) (Fdez-Aguera 2019, compensation::fdez_aguera_albedo; F_avg the exact
 //                    2 int F mu dmu, not its Schlick fit);
 //     "walk-orders": E_F + (1 - E) sum_k q_k F_avg^k, the walk's scattering orders of mirror facets
-//                    (fit/scattering_orders.hpp), with order_walks;
+//                    (compensation/scattering_orders.hpp), with order_walks;
 //   a dielectric: its single scattering divided by the table of E_R + E_T (form "turquin", Turquin 2019), the total
 //   and its reflected and transmitted parts.
 #pragma once
@@ -17,9 +17,10 @@
 #include <string>
 #include <vector>
 
-#include "fit/fit_compensation.hpp"
+#include "compensation/settings.hpp"
+#include "compensation/tables.hpp"
 
-namespace smithlab::fitrun {
+namespace smithlab::comprun {
 
 struct FurnaceRow {
     std::string ndf, g2, material, part;  // part: "total", "R" or "T"
@@ -28,8 +29,8 @@ struct FurnaceRow {
 };
 
 // One cell of furnace_walks walks per family, furnace alpha, theta and material; each G2 form's tables read against
-// it. Cell k's walks draw from (seed, k).
-std::vector<FurnaceRow> trace_furnace(const std::vector<FamilyTables>& tables, const FitScene::Compensation& c,
-                                      const NdfRegistry& registry, std::uint64_t seed, unsigned threads);
+// it. Cell k's walks draw from (run.seed, k).
+std::vector<FurnaceRow> trace_furnace(const std::vector<FamilyTables>& tables, const Settings& c,
+                                      const NdfRegistry& registry, const StageRun& run);
 
-}  // namespace smithlab::fitrun
+}  // namespace smithlab::comprun

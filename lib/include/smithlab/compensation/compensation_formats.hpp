@@ -1,7 +1,7 @@
-// smithlab/fit/compensation_formats.hpp -- an energy-compensation table (fit/albedo_grid.hpp's AlbedoTable over
-// (alpha, warped cosine x), with 1 - E_avg over alpha) written out for renderers: a C header, GLSL, HLSL, and a
-// 16-bit grey PNG with its axes in JSON; and the scattering orders' tables of conductor compensation
-// (fit/scattering_orders.hpp) on such a grid: a C header, GLSL, HLSL and JSON.
+// smithlab/compensation/compensation_formats.hpp -- an energy-compensation table (compensation/albedo_grid.hpp's
+// AlbedoTable over (alpha, warped cosine x), with 1 - E_avg over alpha) written out for renderers: a C header, GLSL,
+// HLSL, and a 16-bit grey PNG with its axes in JSON; and the scattering orders' tables of conductor compensation
+// (compensation/scattering_orders.hpp) on such a grid: a C header, GLSL, HLSL and JSON.
 //
 // Every lookup written computes AlbedoTable::lookup's rule in float: x = sqrt((1 + c) mu / (mu + c)), c the warp's
 // scale at the asked alpha (with a node cluster's share, albedo_grid.hpp, where the grid has one), cell j =
@@ -13,18 +13,19 @@
 // files carry ln c and ln(1 - E_avg), not E_avg, so that Kulla and
 // Conty's lobe, divided by 1 - E_avg, keeps its relative precision where E_avg rounds to 1 as a float. Each file's top
 // comment says so, with the grid, the G2, the NDF family, the measured errors, and the formulas of Kulla and Conty 2017
-// and Turquin 2019 that use the table (fit/compensation.hpp).
+// and Turquin 2019 that use the table (compensation/compensation.hpp).
 //
 // Numbers are the floats nearest the table's doubles, written with 9 significant digits (a float's round trip).
 #pragma once
 
+#include <array>
 #include <ostream>
 #include <string>
 #include <vector>
 
-#include "smithlab/fit/albedo_grid.hpp"
+#include "smithlab/compensation/albedo_grid.hpp"
 
-namespace smithlab::fit {
+namespace smithlab::compensation {
 
 // What is written: a table over (alpha, x), the labels its comment gives, and the errors measured for it.
 struct CompensationExport {
@@ -53,17 +54,24 @@ std::string compensation_identifier(const CompensationExport& e);
 // missing empty or one value per alpha, each finite, > 0 and <= 1 and a normal float, the measured errors finite and
 // >= 0.
 
-// C99 (or C++), self-contained: static const float arrays NAME_sqrt_alpha, NAME_log_scale (ln c at each alpha),
-// NAME_E_table[n_alpha * n_x] (row i = alphas[i]; NAME_log_E_table of ln E for a table of Stored::log) and
-// NAME_log_missing_table (ln(1 - E_avg) at each alpha), and
-// static inline float NAME_E(alpha, mu),
-// NAME_missing(alpha) = 1 - E_avg(alpha) and NAME_E_avg(alpha) = 1 - NAME_missing(alpha).
-void write_c_header(std::ostream& out, const CompensationExport& e);
-// GLSL 3.30 (no #version line: it goes after the includer's): const float arrays and float NAME_E(float alpha,
-// float mu), float NAME_missing(float alpha), float NAME_E_avg(float alpha), the same names as the C header's.
-void write_glsl(std::ostream& out, const CompensationExport& e);
-// HLSL: static const float arrays and the same functions.
-void write_hlsl(std::ostream& out, const CompensationExport& e);
+// The languages of the text formats, each a file of its own extension, one set of arrays and lookups in each:
+//   c:    C99 (or C++), self-contained, in an include guard: static const float arrays, static inline functions;
+//   glsl: GLSL 3.30 (no #version line: it goes after the includer's): const float arrays and functions;
+//   hlsl: HLSL: static const float arrays and the same functions.
+enum class Language { c, glsl, hlsl };
+struct SourceFormat {
+    Language language;
+    const char* extension;  // of its file: ".h", ".glsl", ".hlsl"
+};
+inline constexpr std::array<SourceFormat, 3> source_formats{
+    {{Language::c, ".h"}, {Language::glsl, ".glsl"}, {Language::hlsl, ".hlsl"}}};
+
+// The table in `language`: the arrays NAME_sqrt_alpha, NAME_log_scale (ln c at each alpha), NAME_E_table[n_alpha *
+// n_x] (row i = alphas[i]; NAME_log_E_table of ln E for a table of Stored::log) and NAME_log_missing_table (ln(1 -
+// E_avg) at each alpha), and the functions float NAME_E(float alpha, float mu), NAME_missing(alpha) = 1 - E_avg(alpha)
+// and NAME_E_avg(alpha) = 1 - NAME_missing(alpha), the same names in every language (the C header's guard:
+// NAME_COMPENSATION_H).
+void write_source(std::ostream& out, const CompensationExport& e, Language language);
 // A grey 16-bit PNG (libpng), width n_x, height n_alpha, row i (from the top) = alphas[i], column j = x_j, pixel
 // round(E * 65535), or round(-ln(E) / K * 65535) for a table of ln E, K the largest -ln E (the JSON's log_scale), so
 // that a texture unit's bilinear filter interpolates ln E; input_error unless every E is in [0, 1], and then nothing
@@ -74,9 +82,9 @@ void write_png16(std::ostream& out, const CompensationExport& e);
 // and its lookup rule (when given), the measured errors.
 void write_axes_json(std::ostream& out, const CompensationExport& e);
 
-struct OrderTables;  // fit/scattering_orders.hpp (its walk headers are not needed here)
+struct OrderTables;  // compensation/scattering_orders.hpp (its walk headers are not needed here)
 
-// What is written of the scattering orders (fit/scattering_orders.hpp): the tables q_2, q_3, p and, for the
+// What is written of the scattering orders (compensation/scattering_orders.hpp): the tables q_2, q_3, p and, for the
 // separable G2, q_1, with the labels and the worst standard error their comment gives.
 struct OrderExport {
     std::string family;         // NDF family label, as CompensationExport's
@@ -94,18 +102,14 @@ std::string order_identifier(const OrderExport& e);
 // (alphas, scales, n_x and node cluster alike) that the E table's checks accept, n_alpha x n_x values each that fit a
 // float, q_2, q_3 and q_1 in [0, 1], p in (0, 1] as a normal float, max_stderr finite and >= 0.
 //
-// The arrays NAME_sqrt_alpha and NAME_log_scale as the E table's, NAME_q2_table, NAME_q3_table, NAME_p_table and
-// (separable G2) NAME_q1_table[n_alpha * n_x]; the lookups NAME_q2(alpha, mu), NAME_q3, NAME_p and NAME_q1 by
-// AlbedoTable::lookup's rule in float, and NAME_ms(alpha, mu, E, F_avg) = multiple_scattering_albedo(E, orders at
-// (alpha, mu), F_avg) in float. The top comment states the formula, the NDF family, the G2, the grid and the worst
-// standard error. C99 (or C++), self-contained:
-void write_orders_c_header(std::ostream& out, const OrderExport& e);
-// GLSL 3.30, no #version line:
-void write_orders_glsl(std::ostream& out, const OrderExport& e);
-// HLSL:
-void write_orders_hlsl(std::ostream& out, const OrderExport& e);
+// The tables in `language` (as the E table's; the C header's guard: NAME_H): the arrays NAME_sqrt_alpha and
+// NAME_log_scale as the E table's, NAME_q2_table, NAME_q3_table, NAME_p_table and (separable G2)
+// NAME_q1_table[n_alpha * n_x]; the lookups NAME_q2(alpha, mu), NAME_q3, NAME_p and NAME_q1 by AlbedoTable::lookup's
+// rule in float, and NAME_ms(alpha, mu, E, F_avg) = multiple_scattering_albedo(E, orders at (alpha, mu), F_avg) in
+// float. The top comment states the formula, the NDF family, the G2, the grid and the worst standard error.
+void write_source(std::ostream& out, const OrderExport& e, Language language);
 // The tables in JSON (row-major, as the arrays; no PNG: libpng's simplified API premultiplies 16-bit colour by the
 // alpha channel, which a fourth table would be) with their grid, lookup rules, formula and worst standard error.
 void write_orders_axes_json(std::ostream& out, const OrderExport& e);
 
-}  // namespace smithlab::fit
+}  // namespace smithlab::compensation

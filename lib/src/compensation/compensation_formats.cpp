@@ -1,4 +1,4 @@
-#include "smithlab/fit/compensation_formats.hpp"
+#include "smithlab/compensation/compensation_formats.hpp"
 
 #include <png.h>
 
@@ -11,12 +11,12 @@
 #include <string_view>
 #include <vector>
 
+#include "smithlab/compensation/compensation.hpp"
+#include "smithlab/compensation/scattering_orders.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
-#include "smithlab/fit/compensation.hpp"
-#include "smithlab/fit/scattering_orders.hpp"
 
-namespace smithlab::fit {
+namespace smithlab::compensation {
 
 namespace {
 
@@ -487,7 +487,7 @@ std::string listed(const std::vector<std::string>& items) {
     return s;
 }
 
-// A_ms by the orders: multiple_scattering_albedo's formula (fit/scattering_orders.hpp).
+// A_ms by the orders: multiple_scattering_albedo's formula (compensation/scattering_orders.hpp).
 constexpr std::string_view ms_formula =
     "A_ms(mu) = (1 - E(mu)) (q_1 F_avg + (1 - q_1) (q_2 F_avg^2 + q_3 F_avg^3 + (1 - q_2 - q_3) F_avg^4 p / (1 - F_avg "
     "(1 - p))))";
@@ -582,6 +582,21 @@ std::string c_header(const Export& e, const std::string& id, std::string guard) 
         "\n\n#include <math.h>\n" + arrays_and_lookups(e, id, c_dialect) + "\n#endif /* " + guard + " */\n";
 }
 
+// Each export's identifier and its C header's include guard (compensation_formats.hpp).
+std::string identifier_of(const CompensationExport& e) { return compensation_identifier(e); }
+std::string identifier_of(const OrderExport& e) { return order_identifier(e); }
+std::string guard_of(const CompensationExport&, const std::string& id) { return id + "_compensation_h"; }
+std::string guard_of(const OrderExport&, const std::string& id) { return id + "_h"; }
+
+// An export in `language`, after its checks: a C header, or the GLSL or HLSL text.
+template <class Export>
+void write_source_of(std::ostream& out, const Export& e, Language language) {
+    check(e);
+    const std::string id = identifier_of(e);
+    if (language == Language::c) out << c_header(e, id, guard_of(e, id));
+    else out << text_in(e, id, language == Language::glsl ? glsl_dialect : hlsl_dialect);
+}
+
 // A JSON string: quotes, backslashes and control characters escaped (RFC 8259, section 7).
 std::string json_string(std::string_view text) {
     std::string s = "\"";
@@ -633,20 +648,8 @@ std::string compensation_identifier(const CompensationExport& e) {
     return id + "_" + quantity;
 }
 
-void write_c_header(std::ostream& out, const CompensationExport& e) {
-    check(e);
-    const std::string id = compensation_identifier(e);
-    out << c_header(e, id, id + "_compensation_h");
-}
-
-void write_glsl(std::ostream& out, const CompensationExport& e) {
-    check(e);
-    out << text_in(e, compensation_identifier(e), glsl_dialect);
-}
-
-void write_hlsl(std::ostream& out, const CompensationExport& e) {
-    check(e);
-    out << text_in(e, compensation_identifier(e), hlsl_dialect);
+void write_source(std::ostream& out, const CompensationExport& e, Language language) {
+    write_source_of(out, e, language);
 }
 
 void write_png16(std::ostream& out, const CompensationExport& e) {
@@ -709,21 +712,7 @@ std::string order_identifier(const OrderExport& e) {
     return family_identifier(e.family, e.g2, "order export") + "_orders";
 }
 
-void write_orders_c_header(std::ostream& out, const OrderExport& e) {
-    check(e);
-    const std::string id = order_identifier(e);
-    out << c_header(e, id, id + "_h");
-}
-
-void write_orders_glsl(std::ostream& out, const OrderExport& e) {
-    check(e);
-    out << text_in(e, order_identifier(e), glsl_dialect);
-}
-
-void write_orders_hlsl(std::ostream& out, const OrderExport& e) {
-    check(e);
-    out << text_in(e, order_identifier(e), hlsl_dialect);
-}
+void write_source(std::ostream& out, const OrderExport& e, Language language) { write_source_of(out, e, language); }
 
 void write_orders_axes_json(std::ostream& out, const OrderExport& e) {
     check(e);
@@ -739,4 +728,4 @@ void write_orders_axes_json(std::ostream& out, const OrderExport& e) {
         << "  \"max_standard_error_q2_q3\": " << format_shortest(e.max_stderr) << "\n}\n";
 }
 
-}  // namespace smithlab::fit
+}  // namespace smithlab::compensation

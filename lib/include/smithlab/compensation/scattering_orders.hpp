@@ -1,4 +1,5 @@
-// smithlab/fit/scattering_orders.hpp -- the compensation of conductor facets from the walk's scattering orders.
+// smithlab/compensation/scattering_orders.hpp -- the compensation of conductor facets from the walk's scattering
+// orders.
 //
 // Light that leaves a microsurface of conductor facets after k hits keeps the product of the k facets' Fresnel
 // reflectances. Single scattering (k = 1) is E_F(mu), exact by quadrature (compensation.hpp). For mirror facets the
@@ -27,10 +28,10 @@
 #include <functional>
 #include <vector>
 
-#include "smithlab/fit/albedo_grid.hpp"
+#include "smithlab/compensation/albedo_grid.hpp"
 #include "smithlab/walk/tally.hpp"
 
-namespace smithlab::fit {
+namespace smithlab::compensation {
 
 // The shares of the light single scattering misses by order: q_1 (the separable G2's), then of the rest q_2, q_3,
 // and p, the escape chance of each hit past the third.
@@ -68,4 +69,4 @@ struct OrderTables {
 using OrderCell = std::function<walk::AlbedoTally(std::size_t node, double alpha, double mu)>;
 OrderTables tabulate_orders(const AlbedoGrid& grid, const OrderCell& trace, unsigned threads = 0);
 
-}  // namespace smithlab::fit
+}  // namespace smithlab::compensation

@@ -1,4 +1,4 @@
-#include "smithlab/fit/compensation.hpp"
+#include "smithlab/compensation/compensation.hpp"
 
 #include <algorithm>
 #include <array>
@@ -17,7 +17,7 @@
 #include "smithlab/quadrature.hpp"
 #include "smithlab/smith.hpp"
 
-namespace smithlab::fit {
+namespace smithlab::compensation {
 
 namespace {
 
@@ -272,7 +272,8 @@ double G2_across(double Lambda_i, double Lambda_o, G2Form form) {
     return boost::math::beta(1.0 + Lambda_i, 1.0 + Lambda_o, policy<promote_double<false>>());
 }
 
-// E_R and E_T at mu in (0, 1], light above an interface of relative index eta (below over above).
+// E_R and E_T at mu in (0, 1], light above an interface of relative index eta (below over above): the functions below,
+// down to dielectric_albedos_at.
 //
 // The inner integral, at t: c runs over [c0 - s, c0 + s], c0 = cos_i cos t, s = sin_i sin t, phi = acos((c - c0) /
 // s). Its break points are the values of c where the integrand has a kink:
@@ -298,138 +299,193 @@ double G2_across(double Lambda_i, double Lambda_o, G2Form form) {
 // meets the critical angle, c_t = c_crit = cos_i / cos t) and cos t = cos_i / (2 c_crit) (the reflected one does),
 // where that falls inside [0, pi]. The first piece is in r = tan t = r0 sinh y (the slope law's core at any
 // roughness), y = Y u (2 - u) flat at its upper end; the others in t = smoothstep, S(u) = u^2 (3 - 2u), flat at both.
-Albedos dielectric_albedos_at(FunctionRef P22, FunctionRef Lambda, double mu, double tolerance, double eta,
-                              G2Form form) {
+
+// The incidence (mu = cos_i in (0, 1]) and the interface of relative index eta (below over above) that every (t, c)
+// of dielectric_albedos_at shares.
+struct DielectricSetting {
+    FunctionRef Lambda;
+    G2Form form;
+    double eta, ci, si, ti, Li;
+    bool tir;  // eta < 1: total internal reflection below the critical angle c_crit = sqrt(1 - eta^2)
+    double c_crit, eta2m1, r0;
+    bool core;  // the core slope scale r0 = 1 / sqrt(pi P22(0)) finite and > 0; else the first piece in t, no layers
+};
+
+DielectricSetting dielectric_setting(FunctionRef P22, FunctionRef Lambda, double mu, double eta, G2Form form) {
     const double ci = mu, si = std::sqrt((1.0 - mu) * (1.0 + mu)), ti = std::acos(mu);
     const double Li = si > 0.0 ? Lambda(ci / si) : 0.0;
     const bool tir = eta < 1.0;
     const double c_crit = tir ? std::sqrt((1.0 - eta) * (1.0 + eta)) : 0.0;
     const double eta2m1 = (eta - 1.0) * (eta + 1.0);
     const double r0 = 1.0 / std::sqrt(pi * P22(0.0));
-    const bool core = r0 > 0.0 && r0 < INFINITY;  // else no core scale: the first piece in t, no layers
-    // The integrand at (t, c) without the measure: (c / cos t) {F G2_R above wr's horizon, (1 - F) G2_T below wt's}.
-    auto facet = [&](double mz, double c) -> Albedos {
-        if (!(c > 0.0)) return {};
-        Albedos v;
-        const double a = c / mz, wrz = 2.0 * c * mz - ci, g2 = eta2m1 + c * c;
-        if (!(g2 > 0.0)) {  // total internal reflection
-            if (wrz > 0.0) v.R = a * G2_from_Lambdas(Li, Lambda_of_z(Lambda, wrz), true, form);
-            return v;
-        }
-        // Walter eq. 22 (fresnel_dielectric's), with g = eta cos theta_t shared with wt (eq. 40).
-        const double g = std::sqrt(g2), A = (g - c) / (g + c), B = (c * (g + c) - 1.0) / (c * (g - c) + 1.0);
-        const double F = 0.5 * A * A * (1.0 + B * B);
-        if (wrz > 0.0) v.R = a * F * G2_from_Lambdas(Li, Lambda_of_z(Lambda, wrz), true, form);
-        const double wtz = ((c - g) * mz - ci) / eta;
-        if (wtz < 0.0 && F < 1.0) v.T = a * (1.0 - F) * G2_across(Li, Lambda_of_z(Lambda, wtz), form);
+    return {Lambda, form, eta, ci, si, ti, Li, tir, c_crit, eta2m1, r0, r0 > 0.0 && r0 < INFINITY};
+}
+
+// The integrand at (t, c) without the measure: (c / cos t) {F G2_R above wr's horizon, (1 - F) G2_T below wt's},
+// mz = cos t.
+Albedos dielectric_facet(const DielectricSetting& d, double mz, double c) {
+    if (!(c > 0.0)) return {};
+    Albedos v;
+    const double a = c / mz, wrz = 2.0 * c * mz - d.ci, g2 = d.eta2m1 + c * c;
+    if (!(g2 > 0.0)) {  // total internal reflection
+        if (wrz > 0.0) v.R = a * G2_from_Lambdas(d.Li, Lambda_of_z(d.Lambda, wrz), true, d.form);
         return v;
+    }
+    // Walter eq. 22 (fresnel_dielectric's), with g = eta cos theta_t shared with wt (eq. 40).
+    const double g = std::sqrt(g2), A = (g - c) / (g + c), B = (c * (g + c) - 1.0) / (c * (g - c) + 1.0);
+    const double F = 0.5 * A * A * (1.0 + B * B);
+    if (wrz > 0.0) v.R = a * F * G2_from_Lambdas(d.Li, Lambda_of_z(d.Lambda, wrz), true, d.form);
+    const double wtz = ((c - g) * mz - d.ci) / d.eta;
+    if (wtz < 0.0 && F < 1.0) v.T = a * (1.0 - F) * G2_across(d.Li, Lambda_of_z(d.Lambda, wtz), d.form);
+    return v;
+}
+
+// The normals at one inclination t (mz = cos t): c = wi.m over [c_min, c_max] = [c0 - s, c0 + s]; the w axis's D =
+// c_max - c_crit, its square root and the w of c_min (0 unless c_min is above the critical angle).
+struct NormalRing {
+    double mz, s, c0, c_max, c_min, D, sD, w_min;
+};
+
+NormalRing normal_ring(const DielectricSetting& d, double mz, double st) {
+    const double s = d.si * st, c0 = d.ci * mz, c_max = c0 + s, c_min = c0 - s;
+    const double D = c_max - d.c_crit, sD = std::sqrt(std::max(D, 0.0));
+    const double w_min = d.tir && c_min > d.c_crit ? std::asin(std::sqrt((c_min - d.c_crit) / D)) : 0.0;
+    return {mz, s, c0, c_max, c_min, D, sD, w_min};
+}
+
+enum class BreakKind { end, reflected, critical, refracted, other };
+struct RingBreak {
+    double c;
+    BreakKind kind;
+};
+// A ring's break points in c, descending from c_max to c_min, and the least c where the integrand lives.
+struct RingBreaks {
+    std::array<RingBreak, 12> at;
+    int n = 0;
+    double support = 0.0;
+};
+
+// The break points in c listed above, at one ring.
+RingBreaks ring_breaks(const DielectricSetting& d, const NormalRing& g) {
+    RingBreaks b;
+    b.at[b.n++] = {g.c_max, BreakKind::end};
+    auto add = [&](double c, BreakKind kind) {
+        if (c > g.c_min && c < g.c_max) b.at[b.n++] = {c, kind};
     };
-    struct Piece {
-        bool in_w;       // w (c = c_crit + D sin^2 w, u = 0 at the lower c), else phi (u = 0 at phi's lower end)
-        int flat;        // 1: flat at u = 0, 2: at u = 1, 3: both
-        double lo, len;  // of w or phi
-        bool to_min;     // a w piece down to c0 - s (phi = pi)
-    };
-    enum Kind { end, reflected, critical, refracted, other };
-    struct Break {
-        double c;
-        Kind kind;
-    };
-    const double inner_tol = 0.1 * tolerance;
-    auto inner = [&](double t) -> Albedos {
-        if (!(t < pi / 2)) return {};
-        const double mz = std::cos(t), st = std::sin(t), r = st / mz;
-        const double measure = r * P22(r * r) / (mz * mz);
-        if (!(measure > 0.0)) return {};
-        const double s = si * st, c0 = ci * mz, c_max = c0 + s, c_min = c0 - s;
-        if (!(s > 0.0)) {
-            const Albedos y = facet(mz, c0);
-            return {measure * pi * y.R, measure * pi * y.T};
-        }
-        std::array<Break, 12> cb;
-        int n = 0;
-        cb[n++] = {c_max, end};
-        auto add = [&](double c, Kind kind) {
-            if (c > c_min && c < c_max) cb[n++] = {c, kind};
-        };
-        const double c_refl = ci / (2.0 * mz);
-        add(c_refl, reflected);
-        const double wrz_top = 2.0 * c_max * mz - ci;
-        for (double k : {1.0, 4.0, 16.0})
-            if (core && k * r0 < 0.2 && k * r0 < 0.25 * wrz_top) add((ci + k * r0) / (2.0 * mz), other);
-        double support = c_refl;  // no integrand below
-        if (tir) {
-            add(c_crit, critical);
-            support = std::min(support, c_crit);
-            const double c_t = (ci * ci + mz * mz * (1.0 - eta) * (1.0 + eta)) / (2.0 * mz * ci);
-            if (c_t * mz >= ci && c_t >= c_crit && c_t < c_max) {
-                add(c_t, refracted);
-                const double wtz_bottom = -((c_max - std::sqrt(eta2m1 + c_max * c_max)) * mz - ci) / eta;
-                for (double k : {1.0, 4.0, 16.0}) {
-                    // wt.z = -z: c - g = A = (cos_i - eta z) / cos t, c = (A^2 + c_crit^2) / (2 A)
-                    const double z = k * r0, A = (ci - eta * z) / mz;
-                    if (core && z < 0.2 && z < 0.25 * wtz_bottom && A > 0.0)
-                        add((A * A + c_crit * c_crit) / (2.0 * A), other);
-                }
+    const double mz = g.mz, ci = d.ci, r0 = d.r0, c_refl = ci / (2.0 * mz);
+    add(c_refl, BreakKind::reflected);
+    const double wrz_top = 2.0 * g.c_max * mz - ci;
+    for (double k : {1.0, 4.0, 16.0})
+        if (d.core && k * r0 < 0.2 && k * r0 < 0.25 * wrz_top) add((ci + k * r0) / (2.0 * mz), BreakKind::other);
+    b.support = c_refl;  // no integrand below
+    if (d.tir) {
+        add(d.c_crit, BreakKind::critical);
+        b.support = std::min(b.support, d.c_crit);
+        const double c_t = (ci * ci + mz * mz * (1.0 - d.eta) * (1.0 + d.eta)) / (2.0 * mz * ci);
+        if (c_t * mz >= ci && c_t >= d.c_crit && c_t < g.c_max) {
+            add(c_t, BreakKind::refracted);
+            const double wtz_bottom = -((g.c_max - std::sqrt(d.eta2m1 + g.c_max * g.c_max)) * mz - ci) / d.eta;
+            for (double k : {1.0, 4.0, 16.0}) {
+                // wt.z = -z: c - g = A = (cos_i - eta z) / cos t, c = (A^2 + c_crit^2) / (2 A)
+                const double z = k * r0, A = (ci - d.eta * z) / mz;
+                if (d.core && z < 0.2 && z < 0.25 * wtz_bottom && A > 0.0)
+                    add((A * A + d.c_crit * d.c_crit) / (2.0 * A), BreakKind::other);
             }
+        }
+    } else {
+        add(0.0, BreakKind::other);
+        b.support = 0.0;
+    }
+    b.at[b.n++] = {g.c_min, BreakKind::end};
+    std::sort(b.at.begin(), b.at.begin() + b.n, [](const RingBreak& x, const RingBreak& y) { return x.c > y.c; });
+    return b;
+}
+
+// One piece of a ring's inner integral between two break points.
+struct RingPiece {
+    bool in_w;       // w (c = c_crit + D sin^2 w, u = 0 at the lower c), else phi (u = 0 at phi's lower end)
+    int flat;        // 1: flat at u = 0, 2: at u = 1, 3: both
+    double lo, len;  // of w or phi
+    bool to_min;     // a w piece down to c0 - s (phi = pi)
+};
+struct RingPieces {
+    std::array<RingPiece, 11> at;
+    int n = 0;
+};
+
+// The pieces between the ring's break points where the integrand lives: in w above the critical angle, else in phi.
+RingPieces ring_pieces(const DielectricSetting& d, const NormalRing& g, const RingBreaks& b) {
+    auto w_of = [&](double c) { return std::asin(std::min(1.0, std::sqrt((c - d.c_crit) / g.D))); };
+    RingPieces p;
+    for (int i = 0; i + 1 < b.n; ++i) {
+        const RingBreak &hi = b.at[i], &lo = b.at[i + 1];
+        if (!(hi.c > lo.c) || !(hi.c > b.support)) continue;
+        if (d.tir && lo.c >= d.c_crit) {
+            const double wa = lo.kind == BreakKind::end ? g.w_min : lo.kind == BreakKind::critical ? 0.0 : w_of(lo.c);
+            const double wb = hi.kind == BreakKind::end ? pi / 2 : w_of(hi.c);
+            const int flat = (lo.kind == BreakKind::end || lo.kind == BreakKind::refracted ? 1 : 0) +
+                (hi.kind == BreakKind::refracted ? 2 : 0);
+            p.at[p.n++] = {true, flat, wa, wb - wa, lo.kind == BreakKind::end};
         } else {
-            add(0.0, other);
-            support = 0.0;
+            const double pa = hi.kind == BreakKind::end ? 0.0 : std::acos(std::clamp((hi.c - g.c0) / g.s, -1.0, 1.0));
+            const double pb = lo.kind == BreakKind::end ? pi : std::acos(std::clamp((lo.c - g.c0) / g.s, -1.0, 1.0));
+            const int flat = (hi.kind == BreakKind::refracted ? 1 : 0) + (lo.kind == BreakKind::refracted ? 2 : 0);
+            p.at[p.n++] = {false, flat, pa, pb - pa, false};
         }
-        cb[n++] = {c_min, end};
-        std::sort(cb.begin(), cb.begin() + n, [](const Break& x, const Break& y) { return x.c > y.c; });
-        const double D = c_max - c_crit, sD = std::sqrt(std::max(D, 0.0));
-        const double w_min = tir && c_min > c_crit ? std::asin(std::sqrt((c_min - c_crit) / D)) : 0.0;
-        auto w_of = [&](double c) { return std::asin(std::min(1.0, std::sqrt((c - c_crit) / D))); };
-        std::array<Piece, 11> pc;
-        int m = 0;
-        for (int i = 0; i + 1 < n; ++i) {
-            const Break &hi = cb[i], &lo = cb[i + 1];
-            if (!(hi.c > lo.c) || !(hi.c > support)) continue;
-            if (tir && lo.c >= c_crit) {
-                const double wa = lo.kind == end ? w_min : lo.kind == critical ? 0.0 : w_of(lo.c);
-                const double wb = hi.kind == end ? pi / 2 : w_of(hi.c);
-                const int flat = (lo.kind == end || lo.kind == refracted ? 1 : 0) + (hi.kind == refracted ? 2 : 0);
-                pc[m++] = {true, flat, wa, wb - wa, lo.kind == end};
-            } else {
-                const double pa = hi.kind == end ? 0.0 : std::acos(std::clamp((hi.c - c0) / s, -1.0, 1.0));
-                const double pb = lo.kind == end ? pi : std::acos(std::clamp((lo.c - c0) / s, -1.0, 1.0));
-                const int flat = (hi.kind == refracted ? 1 : 0) + (lo.kind == refracted ? 2 : 0);
-                pc[m++] = {false, flat, pa, pb - pa, false};
-            }
-        }
-        if (m == 0) return {};
-        const Albedos sum = adapt(
-            [&](double x) -> Albedos {
-                const int i = std::min(static_cast<int>(x), m - 1);
-                const Piece& p = pc[i];
-                const double u = x - i, q = 1.0 - u;
-                double S = u, dS = 1.0;  // the map [0, 1] -> [0, 1] and its derivative
-                if (p.flat == 1) S = u * u, dS = 2.0 * u;
-                if (p.flat == 2) S = u * (1.0 + q), dS = 2.0 * q;
-                if (p.flat == 3) S = u * u * (3.0 - 2.0 * u), dS = 6.0 * u * q;
-                if (!p.in_w) {
-                    const Albedos y = facet(mz, c0 + s * std::cos(p.lo + p.len * S));
-                    return {y.R * dS * p.len, y.T * dS * p.len};
-                }
-                const double w = p.lo + p.len * S, sw = std::sin(w), c = c_crit + D * sw * sw;
-                // c - (c0 - s) = D (sin^2 w - sin^2 w_min) without cancellation at w_min
-                const double above_min = p.to_min ? D * std::sin(p.len * S) * std::sin(w + w_min) : c - c_min;
-                if (!(above_min > 0.0)) return {};
-                const Albedos y = facet(mz, c);
-                const double j = dS * p.len * 2.0 * sD * sw / std::sqrt(above_min);
-                return {y.R * j, y.T * j};
-            },
-            m, inner_tol, 200);
-        return {measure * sum.R, measure * sum.T};
-    };
+    }
+    return p;
+}
+
+// The inner integrand at x in [0, n): piece i = int(x) at u = x - i, through its map and Jacobian.
+Albedos piece_albedos(const DielectricSetting& d, const NormalRing& g, const RingPieces& pieces, double x) {
+    const int i = std::min(static_cast<int>(x), pieces.n - 1);
+    const RingPiece& p = pieces.at[i];
+    const double u = x - i, q = 1.0 - u;
+    double S = u, dS = 1.0;  // the map [0, 1] -> [0, 1] and its derivative
+    if (p.flat == 1) S = u * u, dS = 2.0 * u;
+    if (p.flat == 2) S = u * (1.0 + q), dS = 2.0 * q;
+    if (p.flat == 3) S = u * u * (3.0 - 2.0 * u), dS = 6.0 * u * q;
+    if (!p.in_w) {
+        const Albedos y = dielectric_facet(d, g.mz, g.c0 + g.s * std::cos(p.lo + p.len * S));
+        return {y.R * dS * p.len, y.T * dS * p.len};
+    }
+    const double w = p.lo + p.len * S, sw = std::sin(w), c = d.c_crit + g.D * sw * sw;
+    // c - (c0 - s) = D (sin^2 w - sin^2 w_min) without cancellation at w_min
+    const double above_min = p.to_min ? g.D * std::sin(p.len * S) * std::sin(w + g.w_min) : c - g.c_min;
+    if (!(above_min > 0.0)) return {};
+    const Albedos y = dielectric_facet(d, g.mz, c);
+    const double j = dS * p.len * 2.0 * g.sD * sw / std::sqrt(above_min);
+    return {y.R * j, y.T * j};
+}
+
+// The inner integral at inclination t, times its measure P22 tan t / cos^2 t.
+Albedos ring_albedos(const DielectricSetting& d, FunctionRef P22, double t, double inner_tol) {
+    if (!(t < pi / 2)) return {};
+    const double mz = std::cos(t), st = std::sin(t), r = st / mz;
+    const double measure = r * P22(r * r) / (mz * mz);
+    if (!(measure > 0.0)) return {};
+    const NormalRing g = normal_ring(d, mz, st);
+    if (!(g.s > 0.0)) {
+        const Albedos y = dielectric_facet(d, mz, g.c0);
+        return {measure * pi * y.R, measure * pi * y.T};
+    }
+    const RingPieces pieces = ring_pieces(d, g, ring_breaks(d, g));
+    if (pieces.n == 0) return {};
+    const Albedos sum =
+        adapt([&](double x) -> Albedos { return piece_albedos(d, g, pieces, x); }, pieces.n, inner_tol, 200);
+    return {measure * sum.R, measure * sum.T};
+}
+
+// The outer integral's break points in t listed above, ascending from 0 to pi/2.
+std::vector<double> inclination_breaks(const DielectricSetting& d) {
+    const double ci = d.ci, si = d.si, ti = d.ti, eta = d.eta, c_crit = d.c_crit;
     std::vector<double> tb{0.0, pi / 2};
     auto add_t = [&](double t) {
         if (t > 0.0 && t < pi / 2) tb.push_back(t);
     };
     add_t(pi / 4 - ti / 2);
     add_t(pi / 4 + ti / 2);
-    if (tir) {
+    if (d.tir) {
         const double tc = std::acos(c_crit);
         add_t(ti + tc);
         add_t(std::abs(tc - ti));
@@ -449,25 +505,33 @@ Albedos dielectric_albedos_at(FunctionRef P22, FunctionRef Lambda, double mu, do
     }
     std::sort(tb.begin(), tb.end());
     tb.erase(std::unique(tb.begin(), tb.end()), tb.end());
+    return tb;
+}
+
+// E_R and E_T: the outer integral over the pieces in t, each the inner integral of its ring.
+Albedos dielectric_albedos_at(FunctionRef P22, FunctionRef Lambda, double mu, double tolerance, double eta,
+                              G2Form form) {
+    const DielectricSetting d = dielectric_setting(P22, Lambda, mu, eta, form);
+    const std::vector<double> tb = inclination_breaks(d);
     const int pieces = static_cast<int>(tb.size()) - 1;
-    const double Y = core ? std::asinh(std::tan(tb[1]) / r0) : 0.0;
+    const double Y = d.core ? std::asinh(std::tan(tb[1]) / d.r0) : 0.0, inner_tol = 0.1 * tolerance;
     const Albedos sum = adapt(
         [&](double x) -> Albedos {
             const int i = std::min(static_cast<int>(x), pieces - 1);
             const double u = x - i;
             double t, dt;
-            if (i == 0 && core) {  // r = r0 sinh y, y = Y u (2 - u)
-                const double y = Y * u * (2.0 - u), r = r0 * std::sinh(y);
-                t = std::atan(r), dt = Y * 2.0 * (1.0 - u) * r0 * std::cosh(y) / (1.0 + r * r);
+            if (i == 0 && d.core) {  // r = r0 sinh y, y = Y u (2 - u)
+                const double y = Y * u * (2.0 - u), r = d.r0 * std::sinh(y);
+                t = std::atan(r), dt = Y * 2.0 * (1.0 - u) * d.r0 * std::cosh(y) / (1.0 + r * r);
             } else {
                 const double L = tb[i + 1] - tb[i];
                 t = tb[i] + L * u * u * (3.0 - 2.0 * u), dt = L * 6.0 * u * (1.0 - u);
             }
-            const Albedos y = inner(t);
+            const Albedos y = ring_albedos(d, P22, t, inner_tol);
             return {y.R * dt, y.T * dt};
         },
         pieces, tolerance, 400);
-    return {2.0 * sum.R / ci, 2.0 * sum.T / ci};
+    return {2.0 * sum.R / d.ci, 2.0 * sum.T / d.ci};
 }
 
 // 2 integral_0^1 g(mu) mu dmu in x, the table's warped cosine at alpha, cell by cell (8-point Gauss-Legendre a cell):
@@ -606,4 +670,4 @@ std::string compensation_header_name(std::string_view family_name) {
     return id;
 }
 
-}  // namespace smithlab::fit
+}  // namespace smithlab::compensation

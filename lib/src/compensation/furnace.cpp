@@ -1,11 +1,11 @@
-#include "smithlab/fit/furnace.hpp"
+#include "smithlab/compensation/furnace.hpp"
 
 #include <cmath>
 
+#include "smithlab/compensation/compensation.hpp"
 #include "smithlab/errors.hpp"
-#include "smithlab/fit/compensation.hpp"
 
-namespace smithlab::fit {
+namespace smithlab::compensation {
 
 namespace {
 
@@ -51,4 +51,4 @@ InterpolationError worst_of(const std::vector<InterpolationError>& per_alpha) {
     return w;
 }
 
-}  // namespace smithlab::fit
+}  // namespace smithlab::compensation

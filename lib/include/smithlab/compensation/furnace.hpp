@@ -1,5 +1,5 @@
-// smithlab/fit/furnace.hpp -- the white furnace of a compensated BSDF by its tables: how far from 1 the albedo comes
-// that a renderer computes from them, at every point of a table's check grid.
+// smithlab/compensation/furnace.hpp -- the white furnace of a compensated BSDF by its tables: how far from 1 the albedo
+// comes that a renderer computes from them, at every point of a table's check grid.
 //
 // Mirror facets (Kulla and Conty 2017, compensation.hpp): a renderer evaluates single scattering exactly and adds their
 // lobe from the tables of E and E_avg, so its albedo at albedo 1 is
@@ -19,9 +19,9 @@
 
 #include <vector>
 
-#include "smithlab/fit/albedo_grid.hpp"
+#include "smithlab/compensation/albedo_grid.hpp"
 
-namespace smithlab::fit {
+namespace smithlab::compensation {
 
 // The worst |albedo - 1| over mu >= mu_min at each alpha of the check grid (t.fine.grid.alphas), and where.
 // missing: 1 - E_avg at E's alphas.
@@ -32,4 +32,4 @@ std::vector<InterpolationError> turquin_furnace(const CheckedTable& sum, double 
 // The worst of a furnace's alphas.
 InterpolationError worst_of(const std::vector<InterpolationError>& per_alpha);
 
-}  // namespace smithlab::fit
+}  // namespace smithlab::compensation

@@ -1,5 +1,5 @@
-// smithlab/fit/albedo_grid.hpp -- a table of a directional albedo over (alpha, mu) that linear interpolation can
-// follow, and the measure of how well it does.
+// smithlab/compensation/albedo_grid.hpp -- a table of a directional albedo over (alpha, mu) that linear interpolation
+// can follow, and the measure of how well it does.
 //
 // E(mu) of a rough surface falls from its grazing limit to a dip and rises to E(1): a feature in the cosine as narrow
 // as the NDF's slopes are small, which a uniform cosine axis misses entirely at small alpha (32 cosines: 0.09 off at
@@ -24,13 +24,14 @@
 // eta 1.1, 1.5 and 2.5, 64 x 96 from alpha 1e-4, ln(E_R + E_T) tabulated, against the exact values 10x finer in
 // both): on the warp alone GGX misses the kink by 1.7e-3 to 1.9e-3; GTR gamma 1, whose heavy tail keeps the kink as
 // narrow as alpha, missed it by 1.7e-2 at alpha < 7e-3 with w = 0.02; with b = 0.35 and w = 2 alpha_min eta
-// (fit::dielectric_cluster) the worst error is 7.9e-4 for GGX and 8.3e-4 for GTR gamma 1 (docs/compensation.md).
+// (compensation::dielectric_cluster) the worst error is 7.9e-4 for GGX and 8.3e-4 for GTR gamma 1
+// (docs/compensation.md).
 //
 // Lookups are bilinear in (sqrt(alpha), x), x_j = j / (n_x - 1) uniform (a renderer finds the cell without a search
 // in x), x taken with the scale at the asked alpha: ln c linear in ln alpha between the nodes (exact for c ~ alpha),
 // the first interval's power continued below the first alpha, the last c above the last (lookup_power_law). A table
 // may store ln of its albedo (Stored::log): the lookup is then exp of the bilinear value, and its error relative,
-// which is what a division by the table (Turquin's, fit/furnace.hpp) needs where the albedo is small.
+// which is what a division by the table (Turquin's, compensation/furnace.hpp) needs where the albedo is small.
 //
 // Outside the alphas: below the first one, that row in the x of the asked alpha (the row the rows tend to; its error
 // there is measured, below_grid_error); above the last one, the last row in the x of the asked alpha. Nothing is
@@ -50,7 +51,7 @@
 
 #include "smithlab/quadrature.hpp"
 
-namespace smithlab::fit {
+namespace smithlab::compensation {
 
 // x = sqrt((1 + c) mu / (mu + c)) and its inverse; c > 0, mu and x in [0, 1].
 double warp_cosine(double c, double mu);
@@ -155,4 +156,4 @@ double lookup_missing(const std::vector<double>& alphas, const std::vector<doubl
 InterpolationError below_grid_error(const CheckedTable& t, const AlbedoRow& row, const std::vector<double>& factors,
                                     unsigned threads = 0);
 
-}  // namespace smithlab::fit
+}  // namespace smithlab::compensation
