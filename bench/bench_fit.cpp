@@ -125,7 +125,7 @@ BENCHMARK(hammon_fit)->Unit(benchmark::kMillisecond);
 // One alpha's row of the fit's compensation table (tolerance compensation::table_tolerance): E at its 48 warped
 // cosines, and 1 - E_avg by its own quadrature. A table of n_alpha rows measured on its 10x finer check grid costs ~100
 // n_alpha such rows of E.
-void compensation(benchmark::State& state, double alpha) {
+void compensation_row(benchmark::State& state, double alpha) {
     compensation::AlbedoOptions opts;
     opts.tolerance = compensation::table_tolerance;
     for (auto _ : state) {
@@ -220,8 +220,8 @@ int main(int argc, char** argv) {
     for (const fit::DiffuseModel& m : fit::diffuse_models())
         benchmark::RegisterBenchmark(("model/" + std::string(m.name)).c_str(), model, &m);
     for (double a : {0.1, 0.5, 1.0})
-        benchmark::RegisterBenchmark(("compensation/ggx(" + std::to_string(a).substr(0, 3) + ")").c_str(), compensation,
-                                     a)
+        benchmark::RegisterBenchmark(("compensation/ggx(" + std::to_string(a).substr(0, 3) + ")").c_str(),
+                                     compensation_row, a)
             ->Unit(benchmark::kMillisecond);
     for (double a : {0.1, 0.5})
         for (const auto& [label, eta] : {std::pair{"1.5", 1.5}, {"1/1.5", 1.0 / 1.5}})
