@@ -220,8 +220,8 @@ int main(int argc, char** argv) {
     for (const fit::DiffuseModel& m : fit::diffuse_models())
         benchmark::RegisterBenchmark(("model/" + std::string(m.name)).c_str(), model, &m);
     for (double a : {0.1, 0.5, 1.0})
-        benchmark::RegisterBenchmark(("compensation/ggx(" + std::to_string(a).substr(0, 3) + ")").c_str(), compensation_row,
-                                     a)
+        benchmark::RegisterBenchmark(("compensation/ggx(" + std::to_string(a).substr(0, 3) + ")").c_str(),
+                                     compensation_row, a)
             ->Unit(benchmark::kMillisecond);
     for (double a : {0.1, 0.5})
         for (const auto& [label, eta] : {std::pair{"1.5", 1.5}, {"1/1.5", 1.0 / 1.5}})

@@ -584,11 +584,29 @@ TEST_CASE("trace: the default sweep, and a malformed scene exits 2 naming the ke
     CHECK(run("trace '" + (d / "missing.toml").string() + "' --output '" + (d / "never").string() + "'").rc == 2);
 }
 
-TEST_CASE("tables: --help and the default scene, and bad input refused naming the item, with nothing written",
+namespace {
+
+// `smithlab tables SCENE --output D/never OPTIONS`, in a fresh directory D of the test's own.
+struct TablesRuns {
+    fs::path d = scratch() / "tables_bad", never = d / "never";
+    TablesRuns() {
+        fs::remove_all(d);
+        fs::create_directories(d);
+    }
+    Run operator()(const std::string& scene, const std::string& options) const {
+        return run("tables '" + scene + "' --output '" + never.string() + "' " + options);
+    }
+};
+const std::string tables_ndf = "[[ndf]]\nfamily = \"ggx\"\n";
+const std::string tables_small = "[compensation]\nalpha = [0.5, 1.0]\ncosines = 4\nrefine = 2\n";
+
+}  // namespace
+
+TEST_CASE("tables: --help and the default scene, and a bad scene refused naming the item, with nothing written",
           "[cli][tables][scene]") {
-    const fs::path d = scratch() / "tables_bad";
-    fs::remove_all(d);
-    fs::create_directories(d);
+    const TablesRuns tables;
+    const fs::path& d = tables.d;
+    const fs::path& never = tables.never;
     const Run help = run("tables --help");
     CHECK(help.rc == 0);
     CHECK_THAT(help.out,
@@ -599,15 +617,11 @@ TEST_CASE("tables: --help and the default scene, and bad input refused naming th
     CHECK(def.rc == 0);
     CHECK_THAT(def.out, Catch::Contains("[[ndf]]") && Catch::Contains("[compensation]"));
 
-    const fs::path never = d / "never";
-    auto tables = [&](const std::string& scene, const std::string& options) {
-        return run("tables '" + scene + "' --output '" + never.string() + "' " + options);
-    };
     struct Bad {
         std::string text, named;
     };
-    const std::string ndf = "[[ndf]]\nfamily = \"ggx\"\n";
-    const std::string small = "[compensation]\nalpha = [0.5, 1.0]\ncosines = 4\nrefine = 2\n";
+    const std::string& ndf = tables_ndf;
+    const std::string& small = tables_small;
     for (const Bad& b :
          {Bad{"titel = \"x\"\n" + ndf + small, "bad.toml:1: unknown key 'titel' (did you mean 'title'?)"},
           Bad{ndf, "compensation is missing: a tables scene tabulates what its [compensation] table asks for"},
@@ -629,6 +643,14 @@ TEST_CASE("tables: --help and the default scene, and bad input refused naming th
         CHECK_THAT(bad.err, Catch::StartsWith("smithlab: error: ") && Catch::Contains(b.named));
         CHECK_FALSE(fs::exists(never));
     }
+}
+
+TEST_CASE("tables: a size past --max-walks, bad options and paths refused, with nothing written", "[cli][tables]") {
+    const TablesRuns tables;
+    const fs::path& d = tables.d;
+    const fs::path& never = tables.never;
+    const std::string& ndf = tables_ndf;
+    const std::string& small = tables_small;
     // The tables' size without a fit's walks beside them, against --max-walks: 3 x 7 values a table at 1000 walks a
     // value, two G2 forms (42 000), and the furnace's default 5 x 5 cells of mirror facets at 200 000 walks (5e6).
     write(d / "small.toml", ndf + small);

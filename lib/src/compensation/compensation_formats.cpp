@@ -244,7 +244,8 @@ std::vector<std::string> lookup_paragraphs(const std::string& lookups, std::stri
 constexpr std::string_view float_values =
     "The values are the floats nearest the computed doubles (9 significant digits).";
 
-// The top comment of the three text formats.
+// The top comment of the three text formats. It names this header fit/compensation_formats.hpp and the orders'
+// fit/scattering_orders.hpp, as the files have always said: their text stays byte for byte what earlier versions wrote.
 std::string top_comment(const CompensationExport& e, const std::string& id, std::string_view language) {
     std::vector<std::string> p = {
         id + ": energy compensation of specular multiple scattering, " + std::string(language) +
@@ -394,10 +395,27 @@ std::string table_lookup(const Dialect& d, const std::string& id, const std::str
         (logs(t) ? ex + "(lo + ta * (hi - lo))" : std::string("lo + ta * (hi - lo)")) + ";\n}\n";
 }
 
+// float NAME_missing(float alpha) and NAME_E_avg(alpha): 1 - E_avg by lookup_power_law of the array
+// NAME_log_missing_table, in float.
+std::string missing_lookup(const Dialect& d, const std::string& id) {
+    const std::string f = std::string(d.function), one = float_literal(1.0, d.suffix);
+    const std::string L = id + "_log_missing_table", ex(d.exp);
+    return "\n/* 1 - E_avg(alpha), alpha > 0: ln(1 - E_avg) linear in ln(alpha) between the nodes; below the first "
+           "node the\n   first interval's power of alpha continued, above the last node the last value. Divide "
+           "Kulla and Conty's\n   lobe by this, not by 1 - " +
+        id + "_E_avg(alpha) (no cancellation). */\n" + f + "float " + id +
+        "_missing(float alpha) {\n    float s = " + std::string(d.sqrt) + "(alpha);\n    int i = " + id +
+        "_alpha_cell(s);\n    float u = " + id + "_log_weight(s, i);\n    return " + ex + "(" + L + "[i] + u * (" + L +
+        "[i + 1] - " + L +
+        "[i]));\n}\n\n"
+        "/* E_avg(alpha) = 1 - " +
+        id + "_missing(alpha), alpha > 0. */\n" + f + "float " + id + "_E_avg(float alpha) { return " + one + " - " +
+        id + "_missing(alpha); }\n";
+}
+
 // The arrays and lookups, after the top comment.
 std::string arrays_and_lookups(const CompensationExport& e, const std::string& id, const Dialect& d) {
     const AlbedoTable& t = *e.E;
-    const std::string f = std::string(d.function), one = float_literal(1.0, d.suffix);
     std::string s = "\n" + grid_arrays(d, id, t.grid) + table_array(d, id + table_name(t), t);
     if (!e.missing.empty()) {
         std::vector<double> log_missing;
@@ -405,21 +423,7 @@ std::string arrays_and_lookups(const CompensationExport& e, const std::string& i
         s += array(d, id + "_log_missing_table", log_missing, 8);
     }
     s += grid_functions(d, id, t.grid) + table_lookup(d, id, id + "_E", "E", id + table_name(t), t);
-    if (!e.missing.empty()) {
-        const std::string L = id + "_log_missing_table", ex(d.exp);
-        s += "\n/* 1 - E_avg(alpha), alpha > 0: ln(1 - E_avg) linear in ln(alpha) between the nodes; below the first "
-             "node the\n   first interval's power of alpha continued, above the last node the last value. Divide "
-             "Kulla and Conty's\n   lobe by this, not by 1 - " +
-            id + "_E_avg(alpha) (no cancellation). */\n" + f + "float " + id +
-            "_missing(float alpha) {\n    float s = " + std::string(d.sqrt) + "(alpha);\n    int i = " + id +
-            "_alpha_cell(s);\n    float u = " + id + "_log_weight(s, i);\n    return " + ex + "(" + L + "[i] + u * (" +
-            L + "[i + 1] - " + L +
-            "[i]));\n}\n\n"
-            "/* E_avg(alpha) = 1 - " +
-            id + "_missing(alpha), alpha > 0. */\n" + f + "float " + id + "_E_avg(float alpha) { return " + one +
-            " - " + id + "_missing(alpha); }\n";
-    }
-    return s;
+    return e.missing.empty() ? s : s + missing_lookup(d, id);
 }
 
 // An order table with its name in the text ("q_2") and in the identifiers ("q2").
