@@ -1,11 +1,12 @@
-// smithlab/surface.hpp -- the Smith microsurface of one NDF with the NDF's type erased once: what a command runs on a
-// cell of walks, a block (or a point) at a time.
-//
-// A command holds NDFs as AnyNdf (registry.hpp); a walk needs the concrete type, so that D, Lambda and the visible
-// normals are direct calls (walk.hpp). The registry records, for the type its factory returns, how to build
-// SurfaceOf<N> (NdfKernels); make_surface builds one per cell, tables included, and each of its calls is one virtual
-// call for a whole block of walks (4096 by default) or a point: none per bounce. Every operation visits the facet
-// material once (facets.hpp's closed std::variant) and runs the templates of walk/trace.hpp and fit/dataset.hpp.
+/// @file
+/// smithlab/surface.hpp -- the Smith microsurface of one NDF with the NDF's type erased once: what a command runs on a
+/// cell of walks, a block (or a point) at a time.
+///
+/// A command holds NDFs as AnyNdf (registry.hpp); a walk needs the concrete type, so that D, Lambda and the visible
+/// normals are direct calls (walk.hpp). The registry records, for the type its factory returns, how to build
+/// SurfaceOf<N> (NdfKernels); make_surface builds one per cell, tables included, and each of its calls is one virtual
+/// call for a whole block of walks (4096 by default) or a point: none per bounce. Every operation visits the facet
+/// material once (facets.hpp's closed std::variant) and runs the templates of walk/trace.hpp and fit/dataset.hpp.
 #pragma once
 
 #include <cstdint>
@@ -23,12 +24,12 @@ namespace smithlab {
 class AnySurface {
 public:
     virtual ~AnySurface() = default;
-    // Block b of a cell (walk::trace_block): the sample estimator's tallies.
+    /// Block b of a cell (walk::trace_block): the sample estimator's tallies.
     virtual walk::CellPartial trace_block(const walk::Material& material, const walk::CellRequest& r,
                                           std::uint64_t b) const = 0;
-    // One direction pair by the eval estimator over r.threads (walk::eval_cell).
+    /// One direction pair by the eval estimator over r.threads (walk::eval_cell).
     virtual walk::EvalTally eval_cell(const walk::Material& material, const walk::EvalRequest& r) const = 0;
-    // The fitter's points, one thread each (fit::trace_eval_point, fit::trace_albedo_point).
+    /// The fitter's points, one thread each (fit::trace_eval_point, fit::trace_albedo_point).
     virtual fit::SplitMoments eval_point(const walk::Material& material, const Vec3& wi, const Vec3& wo,
                                          std::uint64_t seed, std::uint64_t stream, std::int64_t walks) const = 0;
     virtual fit::SplitMoments albedo_point(const walk::Material& material, const Vec3& wi, std::uint64_t seed,
@@ -62,7 +63,7 @@ private:
     walk::Microsurface<N> ms_;
 };
 
-// What the registry attaches to the NDFs it makes (AnyNdf::kernels): the surface of the concrete type N.
+/// What the registry attaches to the NDFs it makes (AnyNdf::kernels): the surface of the concrete type N.
 class NdfKernels {
 public:
     virtual ~NdfKernels() = default;
@@ -81,8 +82,8 @@ private:
     N ndf_;
 };
 
-// The microsurface of `ndf` (its tables built here: they may refuse the NDF, as input_error): through the kernels
-// its registration attached, else (an AnyNdf made outside a registry) on AnyNdf itself, a virtual D and Lambda each.
+/// The microsurface of `ndf` (its tables built here: they may refuse the NDF, as input_error): through the kernels
+/// its registration attached, else (an AnyNdf made outside a registry) on AnyNdf itself, a virtual D and Lambda each.
 std::shared_ptr<const AnySurface> make_surface(const AnyNdf& ndf, const walk::MicrosurfaceOptions& opts = {});
 
 }  // namespace smithlab

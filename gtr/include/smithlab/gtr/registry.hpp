@@ -1,4 +1,5 @@
-// smithlab/gtr/registry.hpp -- registering GTR, and the registry of every built-in NDF.
+/// @file
+/// smithlab/gtr/registry.hpp -- registering GTR, and the registry of every built-in NDF.
 #pragma once
 
 #include "smithlab/registry.hpp"
@@ -6,16 +7,16 @@
 
 namespace smithlab {
 
-// gtr(alpha, gamma).
+/// gtr(alpha, gamma).
 void register_gtr_ndfs(NdfRegistry& registry);
 
-// ggx, beckmann, blinn, gtr: what the CLI and the tests start from.
+/// ggx, beckmann, blinn, gtr: what the CLI and the tests start from.
 NdfRegistry builtin_registry();
 
-// dimov-spline and the interp-* variants across gamma (interpolants.hpp).
+/// dimov-spline and the interp-* variants across gamma (interpolants.hpp).
 void register_gtr_variants(VariantRegistry& registry);
 
-// Every built-in Lambda variant: the core ones and the GTR ones.
+/// Every built-in Lambda variant: the core ones and the GTR ones.
 VariantRegistry builtin_variants();
 
 }  // namespace smithlab

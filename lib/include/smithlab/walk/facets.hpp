@@ -1,18 +1,19 @@
-// smithlab/walk/facets.hpp -- what a single facet does with light: the facet materials of the microsurface walk.
-//
-// Each material, in the frame of the macrosurface, with wi pointing away from the facet toward where the light came
-// from and m the facet's normal (wi.m > 0):
-//   sample(wi, m, g)      the next direction and the weight it carries (0: absorbed), and whether the event
-//                         was diffuse;
-//   phase(ms, wi, wo, g)  the phase function rho(wi -> wo) = integral of D_wi(m) f_m(wi, wo) <wo.m> dm over the
-//                         visible normals D_wi of wi, the density (with its weight) of the next direction, split
-//                         into its specular and diffuse parts: analytic where the facet is a mirror (the half vector
-//                         decides m: F D(h) / (4 A(wi)), Heitz et al. 2016 eq. 20 with Walter 2007 eq. 14),
-//                         one-sample estimates over m ~ D_wi where it is diffuse (Heitz et al. 2016, sec. 5.3).
-// A two-sided material (TwoSided: the dielectric) lets rays through to the other side of the microsurface. It works,
-// as every material does, in the frame of the side the ray is on (walk.hpp: below the surface, every vector and
-// height negated, where the microsurface looks as it does from above), and is told which side that is.
-// The closed set of materials is a std::variant (Material), visited once per block of walks, never per bounce.
+/// @file
+/// smithlab/walk/facets.hpp -- what a single facet does with light: the facet materials of the microsurface walk.
+///
+/// Each material, in the frame of the macrosurface, with wi pointing away from the facet toward where the light came
+/// from and m the facet's normal (wi.m > 0):
+///   sample(wi, m, g)      the next direction and the weight it carries (0: absorbed), and whether the event
+///                         was diffuse;
+///   phase(ms, wi, wo, g)  the phase function rho(wi -> wo) = integral of D_wi(m) f_m(wi, wo) <wo.m> dm over the
+///                         visible normals D_wi of wi, the density (with its weight) of the next direction, split
+///                         into its specular and diffuse parts: analytic where the facet is a mirror (the half vector
+///                         decides m: F D(h) / (4 A(wi)), Heitz et al. 2016 eq. 20 with Walter 2007 eq. 14),
+///                         one-sample estimates over m ~ D_wi where it is diffuse (Heitz et al. 2016, sec. 5.3).
+/// A two-sided material (TwoSided: the dielectric) lets rays through to the other side of the microsurface. It works,
+/// as every material does, in the frame of the side the ray is on (walk.hpp: below the surface, every vector and
+/// height negated, where the microsurface looks as it does from above), and is told which side that is.
+/// The closed set of materials is a std::variant (Material), visited once per block of walks, never per bounce.
 #pragma once
 
 #include <cmath>
@@ -30,9 +31,9 @@ namespace smithlab::walk {
 
 struct Scatter {
     Vec3 wo;
-    double weight;  // 0: absorbed
+    double weight;  ///< 0: absorbed
     bool diffuse;
-    bool transmitted = false;  // through to the other side (two-sided materials only)
+    bool transmitted = false;  ///< through to the other side (two-sided materials only)
 };
 
 struct Phase {
@@ -40,7 +41,7 @@ struct Phase {
 };
 
 namespace detail {
-// The specular part of a phase function, F(wi.h) D(h) / (4 A(wi)), h the half vector of wi and wo.
+/// The specular part of a phase function, F(wi.h) D(h) / (4 A(wi)), h the half vector of wi and wo.
 template <class Microsurface, class Fresnel>
 double mirror_phase(const Microsurface& ms, const Vec3& wi, const Vec3& wo, Fresnel F) {
     Vec3 h = wi + wo;
@@ -52,7 +53,7 @@ double mirror_phase(const Microsurface& ms, const Vec3& wi, const Vec3& wo, Fres
     return F(c) * ms.normals().D(h) / (4.0 * ms.normals().projected_area(wi));
 }
 
-// A direction about m with cos(theta) = c and a uniform azimuth.
+/// A direction about m with cos(theta) = c and a uniform azimuth.
 template <class G>
 Vec3 about(const Vec3& m, double c, G& g) {
     const double s = std::sqrt(std::max(0.0, (1.0 - c) * (1.0 + c)));
@@ -60,16 +61,16 @@ Vec3 about(const Vec3& m, double c, G& g) {
     return Frame(m).to_world(Vec3(s * phi.c, s * phi.s, c));
 }
 
-// Hammon 2017 appendix, "Transmission Direction": cos(theta) about the facet normal drawn from the lobe
-// k (1 - (1 - c)^5) c, k = 21 / (20 pi), whose CDF in c is
-//     Y(c) = 7/2 c^3 - 21/4 c^4 + 21/5 c^5 - 7/4 c^6 + 3/10 c^7,
-// solved for Y = u by Newton's method from Shirley's rational first guess (the slide's), kept in [0, 1] by bisection.
+/// Hammon 2017 appendix, "Transmission Direction": cos(theta) about the facet normal drawn from the lobe
+/// k (1 - (1 - c)^5) c, k = 21 / (20 pi), whose CDF in c is
+///     Y(c) = 7/2 c^3 - 21/4 c^4 + 21/5 c^5 - 7/4 c^6 + 3/10 c^7,
+/// solved for Y = u by Newton's method from Shirley's rational first guess (the slide's), kept in [0, 1] by bisection.
 double hammon_lobe_cos(double u);
 }  // namespace detail
 
-// F = 1: every facet a perfect mirror.
+/// F = 1: every facet a perfect mirror.
 struct Mirror {
-    static constexpr bool reciprocal = true;  // f(wi, wo) = f(wo, wi) facet by facet
+    static constexpr bool reciprocal = true;  ///< f(wi, wo) = f(wo, wi) facet by facet
     template <class G>
     Scatter sample(const Vec3& wi, const Vec3& m, G&) const {
         return {reflect(wi, m), 1.0, false};
@@ -80,10 +81,10 @@ struct Mirror {
     }
 };
 
-// Mirror facets of a conductor, complex index eta + i k, with the exact Fresnel reflectance (fresnel.hpp).
+/// Mirror facets of a conductor, complex index eta + i k, with the exact Fresnel reflectance (fresnel.hpp).
 struct Conductor {
     double eta, k;
-    static constexpr bool reciprocal = true;  // f(wi, wo) = f(wo, wi) facet by facet
+    static constexpr bool reciprocal = true;  ///< f(wi, wo) = f(wo, wi) facet by facet
     template <class G>
     Scatter sample(const Vec3& wi, const Vec3& m, G&) const {
         return {reflect(wi, m), fresnel_conductor(wi.dot(m), eta, k), false};
@@ -94,10 +95,10 @@ struct Conductor {
     }
 };
 
-// Lambertian facets (Heitz et al. 2016, sec. 5.3, the diffuse microsurface): each reflects albedo / pi about m.
+/// Lambertian facets (Heitz et al. 2016, sec. 5.3, the diffuse microsurface): each reflects albedo / pi about m.
 struct Lambert {
     double albedo;
-    static constexpr bool reciprocal = true;  // f(wi, wo) = f(wo, wi) facet by facet
+    static constexpr bool reciprocal = true;  ///< f(wi, wo) = f(wo, wi) facet by facet
     template <class G>
     Scatter sample(const Vec3&, const Vec3& m, G& g) const {
         if (albedo == 0.0) return {m, 0.0, true};
@@ -111,13 +112,13 @@ struct Lambert {
     }
 };
 
-// Hammon 2017's facets ("Reflection/Transmission", "Transmission Direction"): Schlick F reflects specularly; the
-// rest enters, is tinted by albedo, and leaves through the facet again into the lobe k (1 - (1 - cos)^5) cos about m,
-// k = 21 / (20 pi): facet BRDF F spec + (1 - F(wi.m)) albedo k (1 - (1 - wo.m)^5), symmetric in wi and wo.
-// The branch is chosen with probability F (Russian roulette between the two, unbiased), so weights stay in [0, 1].
+/// Hammon 2017's facets ("Reflection/Transmission", "Transmission Direction"): Schlick F reflects specularly; the
+/// rest enters, is tinted by albedo, and leaves through the facet again into the lobe k (1 - (1 - cos)^5) cos about m,
+/// k = 21 / (20 pi): facet BRDF F spec + (1 - F(wi.m)) albedo k (1 - (1 - wo.m)^5), symmetric in wi and wo.
+/// The branch is chosen with probability F (Russian roulette between the two, unbiased), so weights stay in [0, 1].
 struct FresnelDiffuse {
     double f0, albedo;
-    static constexpr bool reciprocal = true;  // f(wi, wo) = f(wo, wi) facet by facet
+    static constexpr bool reciprocal = true;  ///< f(wi, wo) = f(wo, wi) facet by facet
     static constexpr double k = 21.0 / (20.0 * std::numbers::pi);
 
     template <class G>
@@ -140,13 +141,13 @@ struct FresnelDiffuse {
     }
 };
 
-// A smooth dielectric interface on every facet, index eta below the surface over that above (Heitz et al. 2016,
-// sec. 6.2, the dielectric microsurface): the exact Fresnel reflectance F (fresnel.hpp) reflects, 1 - F refracts
-// (Snell), chosen with probability F (weights stay 1). On the side below, the relative index is 1 / eta and past the
-// critical angle everything reflects. The phase function toward wo, the part of it that leaves along wo from this
-// side: reflection when wo.z > 0 (F D(h) / (4 A(wi)), as for mirrors), refraction when wo.z < 0,
-//     (1 - F(wi.h)) <wi.h> D(h) / A(wi) |d omega_h / d omega_o|,  h = -(wi + eta' wo) / |.| turned up,
-// the Jacobian Walter 2007 eq. 17 (geometry.hpp, dm_dwo_refraction), eta' the relative index on this side.
+/// A smooth dielectric interface on every facet, index eta below the surface over that above (Heitz et al. 2016,
+/// sec. 6.2, the dielectric microsurface): the exact Fresnel reflectance F (fresnel.hpp) reflects, 1 - F refracts
+/// (Snell), chosen with probability F (weights stay 1). On the side below, the relative index is 1 / eta and past the
+/// critical angle everything reflects. The phase function toward wo, the part of it that leaves along wo from this
+/// side: reflection when wo.z > 0 (F D(h) / (4 A(wi)), as for mirrors), refraction when wo.z < 0,
+///     (1 - F(wi.h)) <wi.h> D(h) / A(wi) |d omega_h / d omega_o|,  h = -(wi + eta' wo) / |.| turned up,
+/// the Jacobian Walter 2007 eq. 17 (geometry.hpp, dm_dwo_refraction), eta' the relative index on this side.
 struct Dielectric {
     double eta;
     static constexpr bool two_sided = true;
@@ -179,10 +180,10 @@ concept TwoSided = requires {
     requires M::two_sided;
 };
 
-// A one-sided material whose facet BRDF is symmetric in wi and wo: its microsurface's BSDF is then reciprocal under
-// Smith's downward convention, f(wi, wo) = f(wo, wi) (Heitz et al. 2016, sec. 5, the walk's BSDF; test_walk checks
-// it for every material here), and it says so (`static constexpr bool reciprocal = true`);
-// EvalEstimator::reciprocal relies on it (walk.hpp).
+/// A one-sided material whose facet BRDF is symmetric in wi and wo: its microsurface's BSDF is then reciprocal under
+/// Smith's downward convention, f(wi, wo) = f(wo, wi) (Heitz et al. 2016, sec. 5, the walk's BSDF; test_walk checks
+/// it for every material here), and it says so (`static constexpr bool reciprocal = true`);
+/// EvalEstimator::reciprocal relies on it (walk.hpp).
 template <class M>
 concept Reciprocal = !TwoSided<M> && requires {
     requires M::reciprocal;
@@ -190,18 +191,18 @@ concept Reciprocal = !TwoSided<M> && requires {
 
 using Material = std::variant<Mirror, Conductor, Lambert, FresnelDiffuse, Dielectric>;
 
-// "mirror", "conductor(eta=, k=)", "lambert(albedo=1)", "fresnel-diffuse(f0=0.02, albedo=1)", "dielectric(eta=1.5)";
-// input_error naming an unknown material (with the known ones), an unknown or missing parameter, or a value out of
-// its range.
+/// "mirror", "conductor(eta=, k=)", "lambert(albedo=1)", "fresnel-diffuse(f0=0.02, albedo=1)", "dielectric(eta=1.5)";
+/// input_error naming an unknown material (with the known ones), an unknown or missing parameter, or a value out of
+/// its range.
 Material parse_material(std::string_view spec);
 std::string format_material(const Material& material);
-// Whether any event of the material is diffuse (the tallies of the diffuse component exist only then).
+/// Whether any event of the material is diffuse (the tallies of the diffuse component exist only then).
 bool has_diffuse(const Material& material);
-// Whether light goes through it (the transmission tallies exist only then).
+/// Whether light goes through it (the transmission tallies exist only then).
 bool transmits(const Material& material);
-// Whether the material's BSDF holds a Dirac delta at (wi, wo), where it has no finite density for the eval estimator
-// to return: a dielectric of eta = 1 (index-matched) neither reflects nor bends light, so every ray leaves along -wi
-// (wo = -wi, within 1e-9 of a unit vector: the rounding of directions given in degrees), and nowhere else.
+/// Whether the material's BSDF holds a Dirac delta at (wi, wo), where it has no finite density for the eval estimator
+/// to return: a dielectric of eta = 1 (index-matched) neither reflects nor bends light, so every ray leaves along -wi
+/// (wo = -wi, within 1e-9 of a unit vector: the rounding of directions given in degrees), and nowhere else.
 bool dirac_at(const Material& material, const Vec3& wi, const Vec3& wo);
 
 }  // namespace smithlab::walk

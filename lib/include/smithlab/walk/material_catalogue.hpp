@@ -1,6 +1,7 @@
-// smithlab/walk/material_catalogue.hpp -- the facet materials parse_material reads (facets.hpp), each by name, its
-// spec with the parameters' defaults, and what it is: one list for the parser's messages and for front ends that
-// list the materials.
+/// @file
+/// smithlab/walk/material_catalogue.hpp -- the facet materials parse_material reads (facets.hpp), each by name, its
+/// spec with the parameters' defaults, and what it is: one list for the parser's messages and for front ends that
+/// list the materials.
 #pragma once
 
 #include <array>
