@@ -121,12 +121,17 @@ inline double abc_scaled_power(double A, double q, double c, double t = 1.0) {
 /// (1 + b x)^-c is within ~(b c x)^2 / (2 c) of its limit exp(-b c x) across the lobe, and larger c adds nothing a
 /// Gaussian in 1 - cos theta_m does not. Every b, c in the domain keeps A, D and P22 finite (A <= ~2e19 at b = 1e16,
 /// c = 1e4, where alpha = sqrt(2 / (b c)) = 1.4e-10, inside the quadrature routes' domain).
+/// @{
 inline constexpr double abc_min_b = 1e-8;
 inline constexpr double abc_max_b = 1e16;
 inline constexpr double abc_max_c = 1e4;
+/// @}
 
+/// The ABC NDF of Low et al. 2012 at (b, c), its A fixed by the normalization (the file comment).
 struct Abc {
+    /// b > 0, in [abc_min_b, abc_max_b]: the scale of x = 1 - cos theta_m in D = A (1 + b x)^-c.
     double b;
+    /// c > 0, at most abc_max_c: the exponent in D = A (1 + b x)^-c.
     double c;
     double A;  ///< 1 / (2 pi I(b, c)): D at the pole
 

@@ -17,17 +17,22 @@
 
 namespace smithlab {
 
+/// One per-distribution check: what was computed against what it must equal, and whether it is within tolerance.
 struct CheckResult {
     std::string name;   ///< what is checked
     std::string where;  ///< at which direction / mu
     double value;       ///< what was computed
     double expected;    ///< what it must equal
     double tolerance;   ///< on the relative residual
+    /// |value - expected| / |expected|, 0 where they are equal (infinities included).
     double residual() const { return value == expected ? 0.0 : std::abs(value - expected) / std::abs(expected); }
+    /// Whether the relative residual is within the tolerance (a NaN fails).
     bool passed() const { return residual() <= tolerance; }
 };
 
+/// How the checks compute the integrals they compare.
 struct CheckOptions {
+    /// The quadrature library of the integrals (quadrature.hpp).
     Backend backend = Backend::boost;
     bool with_2d = true;  ///< the nested route costs milliseconds per Lambda
 };

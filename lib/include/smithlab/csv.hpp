@@ -9,8 +9,10 @@
 
 namespace smithlab {
 
+/// One record of a CSV file (RFC 4180), as read_csv returns it.
 struct CsvRecord {
     std::size_t line = 0;  ///< physical line where the record starts, 1-based
+    /// The record's fields, unquoted.
     std::vector<std::string> fields;
     std::string error;  ///< non-empty when the record is malformed (bad quoting); fields are then unusable
 };
@@ -29,6 +31,7 @@ std::string format_shortest(double v);
 
 /// One field, quoted only when it must be (comma, quote, CR or LF inside).
 std::string csv_field(std::string_view s);
+/// One record: the fields as csv_field writes them, joined by commas, then LF.
 void write_csv_record(std::ostream& out, const std::vector<std::string>& fields);
 
 }  // namespace smithlab

@@ -29,6 +29,8 @@ inline Vec3 no_normal() { return Vec3::Constant(std::numeric_limits<double>::qui
 /// drawn.
 inline constexpr long max_tries = 10'000'000;
 
+/// The D cos law of an NDF N: normals m with density D(m) cos(theta_m) (Walter 2007 sec. 5.3), by the NDF's analytic
+/// sampler or a RadialTable (the file comment).
 template <Ndf N>
 class DcosLaw {
 public:
@@ -40,6 +42,7 @@ public:
     }
 
     /// P(tan^2 theta_m > s) and its inverse for v in (0, 1].
+    /// @{
     double sf(double s) const {
         if constexpr (HasDcosSampler<N>)
             if (!table_) return ndf_.Dcos_sf(s);
@@ -50,6 +53,8 @@ public:
             if (!table_) return ndf_.Dcos_r2(v);
         return table_->isf(v);
     }
+    /// @}
+    /// The slope density P22(s) at s = tan^2(theta_m) (ndf.hpp, slope_density).
     double P22(double s) const { return slope_density(ndf_, s); }
     /// D(m) cos(theta_m) = P22(s) (1 + s)^{3/2} for m.z > 0 (within 1e-50 of the horizon, D(cos) cos), else 0.
     double pdf(const Vec3& m) const {
@@ -57,14 +62,17 @@ public:
         const double s = tan2_theta(m);
         return s < 1e100 ? P22(s) * (1.0 + s) * std::sqrt(1.0 + s) : ndf_.D(m.z()) * m.z();
     }
+    /// A normal m drawn from the law: s by the inverse survival function, the azimuth uniform.
     template <class G>
     Vec3 sample(G& g) const {
         const double s = isf(1.0 - uniform01(g));  // v in (0, 1]: s finite
         return normal_from_slope(s, cos_sin_turn(uniform01(g)));
     }
 
+    /// Whether the law of s is tabulated (a RadialTable) rather than the NDF's own.
     bool tabulated() const { return table_ != nullptr; }
     double table_error() const { return table_ ? table_->error_estimate() : 0.0; }  ///< in probability
+    /// The NDF.
     const N& ndf() const { return ndf_; }
 
 private:

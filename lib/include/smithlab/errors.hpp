@@ -14,9 +14,12 @@ namespace smithlab {
 /// The message is kept as printable(message): an item echoed from a binary file (ESC, BEL, NUL, 0xFF) reaches a
 /// terminal as `\x1b`, `\x07`, `\x00`, `\xff`, and a NUL cannot cut the message short.
 struct input_error : std::invalid_argument {
+    /// The error with `message`, kept as printable(message).
+    /// @{
     explicit input_error(std::string_view message);
     explicit input_error(const char* message) : input_error(std::string_view(message)) {}
     explicit input_error(const std::string& message) : input_error(std::string_view(message)) {}
+    /// @}
 };
 
 /// `text` with every byte that is neither printable ASCII, a tab, a newline nor part of a well-formed UTF-8 character

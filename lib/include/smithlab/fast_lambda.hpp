@@ -30,13 +30,21 @@ namespace smithlab {
 
 /// num / den, for a caller that may compare it (x < num / den as x den < num, den >= 0) before it divides.
 struct Quotient {
+    /// The numerator and the denominator.
+    /// @{
     double num, den;
+    /// @}
+    /// num / den.
     double value() const { return num / den; }
 };
 
+/// Lambda of an NDF N at the cost of a closed form, for the walk and the samplers: the closed form, else a LambdaTable;
+/// in tan^2, GGX's form or a Tan2Spline (the file comment).
 template <Ndf N>
 class FastLambda {
 public:
+    /// Builds what `ndf` needs: its LambdaTable (options `table`) where it has no closed form, and the Tan2Spline
+    /// unless it is GGX.
     explicit FastLambda(const N& ndf, const LambdaTableOptions& table = {}) : ndf_(ndf) {
         if (!has_closed_Lambda(ndf_)) table_.emplace(tabulate_Lambda(ndf_, table));
         const double a = ggx_alpha(ndf_);
@@ -77,19 +85,24 @@ public:
         }
         return {1.0, at_tan2(d2 / (az * az))};
     }
+    /// 1 / (1 + Lambda) of that direction, the same way.
     Quotient inv_1p_Lambda(double d2, double az) const {
         if (ggx_alpha2_ > 0.0) return {2.0 * az, az + std::sqrt(az * az + ggx_alpha2_ * d2)};
         return {1.0, 1.0 + at_tan2(d2 / (az * az))};
     }
     /// The walk's Lambda against the route it is built from: within 1e-7 relative where Lambda >= 1e-5, 1e-12 absolute
     /// below (an escape probability C1^Lambda moves by |ln C1| 1e-12 there).
+    /// @{
     static constexpr double spline_tolerance = 1e-7, spline_floor = 1e-5;
+    /// @}
 
+    /// Whether Lambda comes from a table (no closed form).
     bool tabulated() const { return table_.has_value(); }
     /// Relative, of the walk's Lambda: the table's estimate (or 0 for a closed form) plus the spline's tolerance.
     double error_estimate() const {
         return (table_ ? table_->error_estimate() : 0.0) + (spline_ ? spline_tolerance : 0.0);
     }
+    /// The NDF.
     const N& ndf() const { return ndf_; }
 
 private:

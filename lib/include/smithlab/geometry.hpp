@@ -15,6 +15,7 @@
 
 namespace smithlab {
 
+/// A direction or a point: Eigen's 3-vector of doubles, z along the macrosurface normal.
 using Vec3 = Eigen::Vector3d;
 
 /// mu = cot(theta) of a direction, the argument of Lambda: +inf straight up, -inf straight down.
@@ -55,14 +56,21 @@ inline Vec3 direction_from_theta_deg(double theta_deg) { return direction_from_d
 /// n.x = n.y = 0 excluded by construction: Duff, Burgess, Christensen, Hery, Kensler, Liani, Villemin 2017, "Building
 /// an Orthonormal Basis, Revisited", listing 3 (sign = copysign(1, n.z): no singularity at n = -z).
 struct Frame {
+    /// The frame's tangent s, bitangent t and normal n.
+    /// @{
     Vec3 s, t, n;
+    /// @}
+    /// The frame about the unit vector `normal`.
     explicit Frame(const Vec3& normal) : n(normal) {
         const double sign = std::copysign(1.0, n.z()), a = -1.0 / (sign + n.z()), b = n.x() * n.y() * a;
         s = Vec3(1.0 + sign * n.x() * n.x() * a, sign * b, -sign * n.x());
         t = Vec3(b, sign + n.y() * n.y() * a, -n.y());
     }
+    /// v in the frame's coordinates (s, t, n), and back.
+    /// @{
     Vec3 to_local(const Vec3& v) const { return {v.dot(s), v.dot(t), v.dot(n)}; }
     Vec3 to_world(const Vec3& v) const { return v.x() * s + v.y() * t + v.z() * n; }
+    /// @}
 };
 
 /// Mirror reflection of i about m (Walter eq. 39), and the pdf of the reflected direction given m's: pdf_m / (4 |i.m|)
@@ -70,6 +78,7 @@ struct Frame {
 inline Vec3 reflect(const Vec3& i, const Vec3& m) { return 2.0 * i.dot(m) * m - i; }
 /// |d omega_m / d omega_o| for reflection, o = reflect(i, m): 1 / (4 |o.m|) (Walter eq. 14).
 inline double dm_dwo_reflection(const Vec3& o, const Vec3& m) { return 1.0 / (4.0 * std::abs(o.dot(m))); }
+/// The pdf of o = reflect(i, m) given m's pdf_m: pdf_m / (4 |i.m|) (Walter eq. 14).
 inline double reflected_pdf(double pdf_m, const Vec3& i, const Vec3& m) { return pdf_m * dm_dwo_reflection(i, m); }
 
 /// Refraction of wi through a facet of normal m (either orientation), both directions pointing away from the surface
@@ -92,6 +101,7 @@ inline bool refract(const Vec3& wi, const Vec3& m, double eta, Vec3& wt) {
 inline Vec3 half_vector_reflection(const Vec3& i, const Vec3& o) {
     return std::copysign(1.0, i.z()) * (i + o).normalized();
 }
+/// h_t = -(i + eta o) / |i + eta o|, as above.
 inline Vec3 half_vector_transmission(const Vec3& i, const Vec3& o, double eta) { return -(i + eta * o).normalized(); }
 
 /// |d omega_m / d omega_o| for refraction (Walter eq. 17, divided through by eta_i^2):

@@ -83,6 +83,8 @@ GrazingLaw grazing_law(const N& ndf, QuadratureOptions opts = {}) {
 /// (std::call_once). A refusal (input_error) is thrown to every caller that asks, each time.
 class GrazingLawOnce {
 public:
+    /// The grazing law of `ndf` (grazing_law), computed by the first call that succeeds; later calls return it,
+    /// whatever NDF they pass.
     template <Ndf N>
     const GrazingLaw& get(const N& ndf, const QuadratureOptions& opts) {
         std::call_once(once_, [&] { law_ = grazing_law(ndf, opts); });  // a throw leaves it to the next call

@@ -59,11 +59,16 @@ inline constexpr int tree_size = 16;
 /// sum_k V[k] r_k^2 f(r_k^2) (Gauss, V = 0 on the Kronrod-only nodes); W and V include the node's H and the
 /// piece's half-width.
 struct Piece {
+    /// The nodes' r^2 / mu^2, and their Kronrod and Gauss weights.
+    /// @{
     std::array<double, nodes> S, W, V;
+    /// @}
 };
 
+/// A fixed piece with its bisections to depth 3, in heap order (tree[1] the piece).
 using Tree = std::array<Piece, tree_size>;
 
+/// The precomputed trees of the fixed pieces: the panels u in [2j, 2j + 2], and the tails beyond each.
 struct Tables {
     std::array<Tree, max_panels> panel;         ///< [1]: u in [2j, 2j + 2]
     std::array<Tree, max_panels + 1> tail;      ///< [1]: u >= 2J, in s from atan(1 / sinh(2J)) down to 0
@@ -75,19 +80,28 @@ const Tables& tables();
 
 /// The Gauss-Kronrod 10-21 nodes on [-1, 1] (all 21), Kronrod weights and Gauss weights (0 on Kronrod-only nodes).
 struct Rule {
+    /// The nodes, the Kronrod weights and the Gauss weights.
+    /// @{
     std::array<double, nodes> x, wk, wg;
+    /// @}
 };
+/// The rule, built once.
 const Rule& rule();
 
 /// H for a node given in u, or in s (the tail): the integrand's geometric factor times its Jacobian, and r^2/mu^2.
 struct Geometry {
+    /// r^2 / mu^2 at the node, and H.
+    /// @{
     double S, H;
+    /// @}
 };
+/// The node at u (the panels): S = cosh^2 u, sinh and cosh from one expm1.
 inline Geometry at_u(double u) {
     // sinh and cosh from one expm1: sinh u = m (m + 2) / (2 (m + 1)), m = e^u - 1, exact as u -> 0.
     const double m = std::expm1(u), sh = m * (m + 2.0) / (2.0 * (m + 1.0)), ch = sh + 1.0 / (m + 1.0);
     return {ch * ch, sh * detail::tan_minus_x(std::atan(sh), sh) / ch};
 }
+/// The node at s = pi/2 - t (the tails): S = 1 / sin^2 s.
 inline Geometry at_s(double s) {
     // t = pi/2 - s: sec^2 t = 1/sin^2 s, tan t = cos s / sin s; the t-form's sec^2 t carries r^2 = mu^2 sec^2 t.
     const double sn = std::sin(s), tn = std::cos(s) / sn;
@@ -96,7 +110,10 @@ inline Geometry at_s(double s) {
 
 /// The result of one piece: Kronrod value, QUADPACK error estimate.
 struct PieceResult {
+    /// The Kronrod value, and QUADPACK's error estimate.
+    /// @{
     double K, E;
+    /// @}
 };
 
 /// QUADPACK QK21's error estimate from the Kronrod and Gauss sums, resabs = sum w|g| and resasc = sum w|g - K/len|.
@@ -125,6 +142,8 @@ inline PieceResult combine(const std::array<double, nodes>& g, const std::array<
     return {K, quadpack_error(K, G, resabs, resasc)};
 }
 
+/// A piece of `ndf`'s integral at mu^2 = mu2 on the piece's precomputed nodes, of half-width h: its g_k = r_k^2
+/// P22(r_k^2) combined.
 template <Ndf N>
 PieceResult eval_piece(const N& ndf, double mu2, const Piece& p, double h) {
     std::array<double, nodes> g;

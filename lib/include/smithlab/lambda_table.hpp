@@ -38,13 +38,17 @@
 
 namespace smithlab {
 
+/// How a LambdaTable is built: the range its spline must cover, its tolerance, and the exact route of its knots.
 struct LambdaTableOptions {
+    /// @{
     double mu_min = 1e-5;  ///< the spline covers at least [mu_min, mu_max], less where Lambda drops below 1e-290
     double mu_max = 1e5;
+    /// @}
     double tolerance = 1e-6;   ///< on the relative error of Lambda, as estimated (measured: ~5x below)
     LambdaOptions exact = {};  ///< the route the knots are computed by
 };
 
+/// Lambda of one NDF at every mu >= 0, tabulated once from an exact route in three pieces (the file comment).
 class LambdaTable {
 public:
     /// exact(mu) is Lambda at mu > 0; it is called only here. input_error on bad options, on a Lambda that is negative,
@@ -52,6 +56,8 @@ public:
     /// and when no step down to 2^-13 meets the tolerance.
     LambdaTable(const std::function<double(double)>& exact, const LambdaTableOptions& opts);
 
+    /// Lambda(mu) for mu >= 0: the asymptote below mu_lo, the spline on [mu_lo, mu_hi], the power tail beyond; NaN for
+    /// mu < 0 or NaN.
     double Lambda(double mu) const {
         const double x = std::log(mu);
         if (x >= x_lo_ && x <= x_hi_) {
@@ -65,11 +71,15 @@ public:
         if (x > x_hi_) return std::exp(ln_Lambda_hi_ + slope_hi_ * (x - x_hi_));  // mu = +inf: 0
         return x;                                                                 // NaN, mu < 0
     }
+    /// G1 = 1 / (1 + Lambda(|mu|)) (Walter 2007 eq. 44: G1 takes |mu|).
     double G1(double mu) const { return 1.0 / (1.0 + Lambda(std::abs(mu))); }
 
+    /// @{
     double mu_min() const { return std::exp(x_lo_); }  ///< the spline's range, [mu_lo, mu_hi]
     double mu_max() const { return std::exp(x_hi_); }
+    /// @}
     double step() const { return 1.0 / inv_h_; }  ///< in ln mu
+    /// The number of knots of the spline.
     std::size_t knots() const { return coef_.size() + 1; }
     bool underflows() const { return underflows_; }            ///< beyond mu_max(), Lambda < 1e-290
     double error_estimate() const { return error_estimate_; }  ///< relative, of Lambda, the worst of the three pieces
@@ -83,6 +93,8 @@ private:
     std::vector<std::array<double, 4>> coef_;  ///< per interval, in u = (x - x_i)/h in [0, 1]
 };
 
+/// The table of `ndf`'s Lambda, its knots by smithlab::Lambda with opts.exact (the NDF's own quadrature backend where
+/// it names one).
 template <Ndf N>
 LambdaTable tabulate_Lambda(const N& ndf, const LambdaTableOptions& opts = {}) {
     LambdaOptions e = opts.exact;

@@ -10,10 +10,15 @@
 
 namespace smithlab {
 
+/// One enumerator of E with its name (as parsed and printed) and a one-line description (for the CLI's help).
 template <class E>
 struct Named {
+    /// The enumerator.
     E value;
+    /// Its name, and what it means.
+    /// @{
     std::string_view name, description;
+    /// @}
 };
 
 /// The entry named `name`, or nullptr.

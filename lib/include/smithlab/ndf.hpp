@@ -29,37 +29,47 @@
 
 namespace smithlab {
 
+/// An NDF: a type with `double D(double cos_theta_m) const`, normalized as the file comment says (Walter et al. 2007,
+/// eq. 4).
 template <class N>
 concept Ndf = requires(const N& n, double c) {
     { n.D(c) } -> std::convertible_to<double>;
 };
 
+/// An NDF's own slope form: `double slope_density(double r2) const`, P22 at r^2 = tan^2(theta_m).
 template <class N>
 concept HasSlopeDensity = requires(const N& n, double r2) {
     { n.slope_density(r2) } -> std::convertible_to<double>;
 };
 
+/// An NDF's closed-form Smith Lambda: `double Lambda(double mu) const` for mu > 0.
 template <class N>
 concept HasClosedLambda = requires(const N& n, double mu) {
     { n.Lambda(mu) } -> std::convertible_to<double>;
 };
 
+/// An NDF's interpolated Lambda: `double Lambda_spline(double mu) const`.
 template <class N>
 concept HasSplineLambda = requires(const N& n, double mu) {
     { n.Lambda_spline(mu) } -> std::convertible_to<double>;
 };
 
+/// An NDF's analytic D cos sampler: the survival function `Dcos_sf(r2)` of r^2 = tan^2(theta_m) and its inverse
+/// `Dcos_r2(v)` on (0, 1].
 template <class N>
 concept HasDcosSampler = requires(const N& n, double x) {
     { n.Dcos_sf(x) } -> std::convertible_to<double>;
     { n.Dcos_r2(x) } -> std::convertible_to<double>;
 };
 
+/// The capability `double ggx_alpha() const`: the alpha of the GGX distribution the NDF is, NaN when it is not.
 template <class N>
 concept HasGgxAlpha = requires(const N& n) {
     { n.ggx_alpha() } -> std::convertible_to<double>;
 };
 
+/// The capability `double beckmann_alpha() const`: the alpha of the Beckmann distribution the NDF is, NaN when it is
+/// not.
 template <class N>
 concept HasBeckmannAlpha = requires(const N& n) {
     { n.beckmann_alpha() } -> std::convertible_to<double>;
@@ -97,6 +107,7 @@ double slope_density(const N& ndf, double r2) {
 inline double core_slope_scale(double P22_at_pole) {
     return P22_at_pole > 0.0 && P22_at_pole < INFINITY ? 1.0 / std::sqrt(std::numbers::pi * P22_at_pole) : 1.0;
 }
+/// The core slope scale of `ndf`, from its P22 at the pole.
 template <Ndf N>
 double core_slope_scale(const N& ndf) {
     return core_slope_scale(slope_density(ndf, 0.0));
@@ -109,7 +120,9 @@ inline double D_from_P22(double P22, double s) { return P22 * (1.0 + s) * (1.0 +
 /// tabulated samplers), to set beside what N's own members give.
 template <Ndf N>
 struct DOnly {
+    /// The NDF whose D is all that is shown.
     N ndf;
+    /// N's D, nothing else of it.
     double D(double cos_theta_m) const { return ndf.D(cos_theta_m); }
 };
 
@@ -129,12 +142,14 @@ bool has_closed_Lambda(const N& ndf) {
     else return HasClosedLambda<N>;
 }
 
+/// Whether `ndf` offers an analytic D cos sampler (Dcos_sf and Dcos_r2). Type-erased NDFs answer at run time.
 template <Ndf N>
 bool has_Dcos_sampler(const N& ndf) {
     if constexpr (requires { ndf.has_Dcos_sampler(); }) return ndf.has_Dcos_sampler();
     else return HasDcosSampler<N>;
 }
 
+/// Whether `ndf` offers a spline Lambda. Type-erased NDFs answer at run time.
 template <Ndf N>
 bool has_spline_Lambda(const N& ndf) {
     if constexpr (requires { ndf.has_spline_Lambda(); }) return ndf.has_spline_Lambda();
@@ -143,6 +158,7 @@ bool has_spline_Lambda(const N& ndf) {
 
 /// The capabilities: the alpha of the GGX (Beckmann) distribution `ndf` is, or NaN. Type-erased NDFs answer at run
 /// time.
+/// @{
 template <Ndf N>
 double ggx_alpha(const N& ndf) {
     if constexpr (HasGgxAlpha<N>) return ndf.ggx_alpha();
@@ -154,5 +170,6 @@ double beckmann_alpha(const N& ndf) {
     if constexpr (HasBeckmannAlpha<N>) return ndf.beckmann_alpha();
     else return std::numeric_limits<double>::quiet_NaN();
 }
+/// @}
 
 }  // namespace smithlab

@@ -23,6 +23,8 @@
 
 namespace smithlab {
 
+/// The quadrature library of the integrals: Boost.Math's double-exponential rules, or GSL's adaptive Gauss-Kronrod
+/// (QAG, QAGIU).
 enum class Backend { boost, gsl };
 /// The backends by name (`--backend NAME`).
 inline constexpr std::array<Named<Backend>, 2> backend_names = {{
@@ -31,9 +33,12 @@ inline constexpr std::array<Named<Backend>, 2> backend_names = {{
 }};
 
 Backend parse_backend(std::string_view name);  ///< "boost" | "gsl", throws input_error otherwise
+/// The backend's name, as backend_names spells it.
 std::string_view to_string(Backend b);
 
+/// How an integral is computed: the library, and the relative tolerance asked of it.
 struct QuadratureOptions {
+    /// The library (Boost by default).
     Backend backend = Backend::boost;
     double tolerance = 1e-12;  ///< relative
 };
@@ -41,10 +46,12 @@ struct QuadratureOptions {
 /// A non-owning reference to a callable double(double): no allocation, one indirect call per node.
 class FunctionRef {
 public:
+    /// Refers to `f`, which must outlive the reference (no copy is made).
     template <class F>
     requires(!std::is_same_v<std::remove_cvref_t<F>, FunctionRef>)
         FunctionRef(const F& f)  // NOLINT(google-explicit-constructor): implicit by design
         : obj_(&f), call_([](const void* o, double x) { return (*static_cast<const F*>(o))(x); }) {}
+    /// f(x).
     double operator()(double x) const { return call_(obj_, x); }
 
 private:

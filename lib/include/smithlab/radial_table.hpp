@@ -20,6 +20,8 @@
 
 namespace smithlab {
 
+/// A law on s = tan^2(theta_m) in (0, inf), tabulated from its density: survival function and inverse (see the file
+/// comment).
 class RadialTable {
 public:
     /// w: the (unnormalized) density in s, finite and >= 0. input_error when it has no mass, is not finite, or has
@@ -29,6 +31,8 @@ public:
     double total() const { return total_; }  ///< integral of w over (0, inf), as tabulated
     double sf(double s) const;               ///< P(tan^2 > s), in [0, 1]
     double isf(double v) const;              ///< s with sf(s) = v, for v in (0, 1]
+    /// The largest difference between the tabulated and the true survival function at the cells' midpoints: absolute,
+    /// in probability.
     double error_estimate() const { return error_; }
 
 private:

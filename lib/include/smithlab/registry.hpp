@@ -30,12 +30,16 @@
 
 namespace smithlab {
 
+/// The parameters of one spec as an NDF's factory reads them: numbers and texts by key, and the NDF's name for
+/// messages.
 class NdfParams {
 public:
+    /// The parameters `values` and `texts` of the NDF named `ndf`.
     NdfParams(std::string ndf, std::map<std::string, double> values, std::map<std::string, std::string> texts = {})
         : ndf_(std::move(ndf)), values_(std::move(values)), texts_(std::move(texts)) {}
     double at(const std::string& key) const;                ///< throws input_error naming the missing key
     const std::string& text(const std::string& key) const;  ///< a text parameter (NdfInfo::text_parameters)
+    /// The NDF's name, for messages.
     const std::string& ndf() const { return ndf_; }
 
 private:
@@ -44,18 +48,26 @@ private:
     std::map<std::string, std::string> texts_;
 };
 
+/// What the registry knows of an NDF family: its name, parameters, description and example specs, and how a roughness
+/// sets it.
 struct NdfInfo {
+    /// The family's name, as a spec names it ("gtr").
     std::string name;
     std::vector<std::string> parameters;  ///< in canonical order
+    /// A one-line description, for `smithlab list`.
     std::string description;
     std::vector<std::string> examples;  ///< spec strings, stiff corners included
     /// For a family without a parameter `alpha`: the parameter a roughness alpha sets (the fitter's alpha axis, a
     /// scene's grid.alpha) and its value at alpha given the family's other parameters, e.g. Blinn-Phong's
     /// n = 2 / alpha^2 - 2 (Walter et al. 2007, sec. 5.2). None: the family cannot be swept over alpha.
     struct Roughness {
+        /// The parameter a roughness alpha sets, and its value at alpha given the others.
+        /// @{
         std::string parameter;
         std::function<double(double alpha, const NdfParams& others)> from_alpha;
+        /// @}
     };
+    /// How a roughness alpha sets the family, for a family without a parameter `alpha`.
     std::optional<Roughness> roughness = std::nullopt;
     /// Parameters whose values are text, after the numbers in the canonical spec: a file's path
     /// ("tabulated(file=ndf.csv)"; spec.hpp's grammar).
@@ -64,8 +76,11 @@ struct NdfInfo {
     std::vector<std::pair<std::string, double>> defaults = {};
 };
 
+/// NDF families by name: each registered with its NdfInfo and a factory, made from spec strings or parameters (the file
+/// comment).
 class NdfRegistry {
 public:
+    /// What a registration keeps: the NDF made from checked parameters, as an AnyNdf named by the canonical spec.
     using Factory = std::function<AnyNdf(const NdfParams&, NdfSpec canonical_spec)>;
 
     /// Register an NDF type: the factory builds it from validated-present parameters and checks their ranges.
@@ -103,6 +118,7 @@ public:
                          const std::vector<std::pair<std::string, std::string>>& texts = {}) const;
     /// Every text parameter any registered NDF declares (for a spec parser, spec.hpp).
     std::vector<std::string> text_keys() const;
+    /// The family named `name`, or nullptr.
     const NdfInfo* find(std::string_view name) const;
     std::vector<const NdfInfo*> list() const;  ///< in registration order
 

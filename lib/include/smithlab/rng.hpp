@@ -18,16 +18,22 @@
 
 namespace smithlab {
 
+/// The sequential generator: pcg64 (O'Neill 2014).
 using Rng = pcg64;
 
 /// A generator for `seed` and stream `stream` (independent sequences for, e.g., one per thread or per estimate).
 inline Rng make_rng(std::uint64_t seed, std::uint64_t stream = 0) { return Rng(seed, stream); }
 
+/// The counter-based generator of the walks: Philox4x64-10 (Salmon et al. 2011) keyed by (seed, cell), counting from
+/// (walk, 0); a uniform random bit generator of 64-bit numbers.
 class WalkRng {
 public:
+    /// The numbers drawn: 64 bits, from min() = 0 to max() = 2^64 - 1.
+    /// @{
     using result_type = std::uint64_t;
     static constexpr result_type min() { return 0; }
     static constexpr result_type max() { return std::numeric_limits<result_type>::max(); }
+    /// @}
 
     /// The first block at once: a walk always draws, and its Philox rounds then overlap whatever comes before.
     WalkRng(std::uint64_t seed, std::uint64_t cell, std::uint64_t walk) : key_{{seed, cell}}, ctr_{{walk, 0, 0, 0}} {
@@ -68,8 +74,12 @@ requires std::uniform_random_bit_generator<G> &&(G::min() == 0) &&
 /// a signed 32-bit integer k, gives (k + 1/2) 2^-31, on a grid of step 2^-31 symmetric about 0 (a rejection sampler
 /// of the unit disk draws one per try; visible_normals_closed.hpp).
 struct SquarePoint {
+    /// The point's two coordinates, each in (-1, 1).
+    /// @{
     double a, b;
+    /// @}
 };
+/// The point of the square from one draw of g, as above.
 template <class G>
 requires std::uniform_random_bit_generator<G> &&(G::min() == 0) &&
     (G::max() == ~std::uint64_t{0}) [[gnu::always_inline]] inline SquarePoint uniform_square(G& g) {

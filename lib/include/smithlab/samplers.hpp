@@ -14,18 +14,27 @@ namespace smithlab {
 
 /// A sampler prepared for one NDF and one direction wi.
 struct BoundSampler {
+    /// Draws a normal and its pdf.
     std::function<NormalSample(Rng&)> sample;
     std::function<double(const Vec3& m)> pdf;  ///< the density sample() draws from
     double table_error = 0.0;                  ///< its tables' estimate (0 when analytic)
 };
 
+/// A sampler by name: what it is, which directions it takes, the NDFs it applies to, and how it is prepared.
 struct SamplerInfo {
+    /// Whether wi matters, and where it may be: ignored (the D cos samplers), above the surface only, or anywhere.
     enum class Incidence { ignored, upper, any };  // whether wi matters, and where it may be
 
+    /// Its name (`smithlab sample --sampler NAME`) and a one-line description.
+    /// @{
     std::string name;
     std::string description;
+    /// @}
+    /// The directions wi it takes.
     Incidence incidence;
+    /// The NDFs it is defined for.
     std::function<bool(const AnyNdf&)> applies;
+    /// Prepares it for an NDF and a direction wi (prepare() below checks both first).
     std::function<BoundSampler(const AnyNdf&, const Vec3& wi)> prepare;
 };
 

@@ -16,6 +16,7 @@
 
 namespace smithlab {
 
+/// D(m) of a unit normal m, from the slope density at s = tan^2(theta_m) (Walter 2007 eq. 42); 0 for m.z <= 0.
 template <Ndf N>
 double D_of_normal(const N& ndf, const Vec3& m) {
     if (!(m.z() > 0.0)) return 0.0;

@@ -39,6 +39,7 @@ inline constexpr std::array<Named<Method>, 6> method_names = {{
      "estimate misses --tolerance"},
 }};
 Method parse_method(std::string_view name);  ///< throws input_error naming the unknown method
+/// The method's name, as method_names spells it.
 std::string_view to_string(Method m);
 
 /// Downward directions (mu < 0). Smith's ray-tracing derivation gives Lambda(-mu) = -1 - Lambda(mu);
@@ -78,13 +79,20 @@ double Lambda_at(double mu, Downward convention, const F& Lambda_up) {
     return Lambda_of_sign(mu, Lambda_of_abs(mu, Lambda_up), convention);
 }
 
+/// How Lambda is computed: the method, the quadrature library and tolerance where it integrates, and the convention for
+/// downward directions.
 struct LambdaOptions {
+    /// The route (the closed form where there is one, by default).
     Method method = Method::automatic;
+    /// The quadrature library of the quadrature methods.
     Backend backend = Backend::boost;
     double tolerance = 1e-12;  ///< relative, for the quadrature methods
+    /// Lambda of a downward direction (mu < 0).
     Downward downward = Downward::smith;
 };
 
+/// The form of G2: height-correlated (Heitz 2014 eq. 99 and 101) or uncorrelated, G1(wi) G1(wo) (Walter 2007 eq. 23;
+/// Heitz 2014 eq. 98).
 enum class G2Form { height_correlated, uncorrelated };
 
 namespace detail {
@@ -276,6 +284,7 @@ inline double mu_of_cos(double c) {
 /// Lambda and G1 from c = cos(theta_v) instead of mu (a renderer holds the cosine), for any NDF: through mu_of_cos,
 /// with Lambda's and G1's conventions (c < 0: below the surface). Ggx (ndfs.hpp) and Gtr at gamma = 0..4 (gtr.hpp)
 /// overload these with forms written in c itself, a root and a division cheaper and exact at c -> 0 and c -> 1.
+/// @{
 template <Ndf N>
 double Lambda_from_cos(const N& ndf, double c, const LambdaOptions& opts = {}) {
     return Lambda(ndf, mu_of_cos(c), opts);
@@ -284,6 +293,7 @@ template <Ndf N>
 double G1_from_cos(const N& ndf, double c, const LambdaOptions& opts = {}) {
     return G1(ndf, mu_of_cos(c), opts);
 }
+/// @}
 
 /// Bidirectional shadowing-masking. Same side (reflection): height-correlated 1/(1 + Lambda_i + Lambda_o)
 /// (Hammon 2017 appendix, "Solving for G2") or uncorrelated G1 G1 (Walter 2007 eq. 23).
@@ -292,6 +302,8 @@ double G1_from_cos(const N& ndf, double c, const LambdaOptions& opts = {}) {
 /// (Heitz 2014, "Understanding the masking-shadowing function", section on transmission).
 double G2_from_Lambdas(double Lambda_i, double Lambda_o, bool same_side, G2Form form);
 
+/// G2 of `ndf` for the directions mu_i = cot(theta_i) and mu_o = cot(theta_o), of either sign (opposite signs:
+/// transmission), by G2_from_Lambdas on Lambda(|mu|) of the method in `opts`.
 template <Ndf N>
 double G2(const N& ndf, double mu_i, double mu_o, G2Form form = G2Form::height_correlated,
           const LambdaOptions& opts = {}) {

@@ -12,8 +12,11 @@ namespace smithlab {
 /// A parsed spec: name(key=value, ...). Values are doubles, but for the keys a spec declares textual (a file's path:
 /// "tabulated(file=ndf.csv)"). NDFs and facet materials are named this way.
 struct NdfSpec {
+    /// The NDF's or material's name.
     std::string name;
+    /// The numeric parameters, as (key, value) in the order written.
     std::vector<std::pair<std::string, double>> params;
+    /// The text parameters (the keys declared textual), as (key, text) in the order written.
     std::vector<std::pair<std::string, std::string>> texts = {};
 };
 

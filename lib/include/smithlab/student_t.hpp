@@ -12,8 +12,12 @@
 
 namespace smithlab {
 
+/// The STD of Ribardiere et al. 2017 at roughness alpha and shape gamma (the file comment); made by student(), which
+/// checks the domain and computes P.
 struct StudentT {
+    /// The roughness alpha > 0 (the slope scale: the lobe is GGX's at gamma = 2, Beckmann's as gamma -> inf).
     double alpha;
+    /// The shape gamma in [student_min_gamma, student_max_gamma]: the slope density's tail falls like r^(-2 gamma).
     double gamma;
     double P;  ///< Lambda's prefactor Gamma(gamma - 1/2) / Gamma(gamma) sqrt(gamma - 1) / (4 (gamma - 3/2) sqrt(pi))
 
@@ -33,8 +37,10 @@ struct StudentT {
     /// Beckmann's exp(-r^2/alpha^2) as gamma -> inf), inverted as r^2 = (gamma - 1) alpha^2 (v^(-1/(gamma - 1)) - 1):
     /// the paper's importance sampling of the STD (its tan^2 = (xi^(1/(1-gamma)) - 1)(gamma - 1) alpha^2), in the
     /// survival v = 1 - xi, with expm1/log1p near v = 1 and r = 0 so that both ends keep their digits.
+    /// @{
     double Dcos_sf(double r2) const;
     double Dcos_r2(double v) const;
+    /// @}
 
     /// The capability "GGX of this alpha" (ndf.hpp): at gamma = 2 P22 = alpha^2 / (pi (alpha^2 + r^2)^2) is GGX's;
     /// NaN at every other gamma.
@@ -48,8 +54,11 @@ struct StudentT {
 /// and refuse a law with more than 1e-12 beyond tan^2 = 2e98, which at alpha = 1 is gamma < 1.62), though the closed
 /// form has no such limit; at gamma -> 3/2 every Lambda -> inf. At gamma = 1e6 the law is within ~1e-6 of Beckmann's
 /// across its lobe (P22 / P22_Beckmann - 1 = (x^2/2 - x) / (gamma - 1), x = r^2 / alpha^2), and 1e6 is where GTR stops.
+/// @{
 inline constexpr double student_min_gamma = 1.65;
 inline constexpr double student_max_gamma = 1e6;
+/// @}
+/// The STD at (alpha, gamma), with its prefactor P; input_error naming the parameter outside the accepted domain.
 StudentT student(double alpha, double gamma);
 
 }  // namespace smithlab

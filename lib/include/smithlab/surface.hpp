@@ -21,6 +21,8 @@
 
 namespace smithlab {
 
+/// The Smith microsurface of one NDF, its type erased: each call runs a block of walks, a direction pair or a fitter's
+/// point on the concrete type.
 class AnySurface {
 public:
     virtual ~AnySurface() = default;
@@ -30,15 +32,19 @@ public:
     /// One direction pair by the eval estimator over r.threads (walk::eval_cell).
     virtual walk::EvalTally eval_cell(const walk::Material& material, const walk::EvalRequest& r) const = 0;
     /// The fitter's points, one thread each (fit::trace_eval_point, fit::trace_albedo_point).
+    /// @{
     virtual fit::SplitMoments eval_point(const walk::Material& material, const Vec3& wi, const Vec3& wo,
                                          std::uint64_t seed, std::uint64_t stream, std::int64_t walks) const = 0;
     virtual fit::SplitMoments albedo_point(const walk::Material& material, const Vec3& wi, std::uint64_t seed,
                                            std::uint64_t stream, std::int64_t walks) const = 0;
+    /// @}
 };
 
+/// The microsurface of the concrete NDF type N, built once (its tables included); every call visits the material once.
 template <Ndf N>
 class SurfaceOf final : public AnySurface {
 public:
+    /// Builds walk::Microsurface<N> of `ndf` with the given conventions.
     SurfaceOf(const N& ndf, const walk::MicrosurfaceOptions& opts) : ms_(ndf, opts) {}
 
     walk::CellPartial trace_block(const walk::Material& material, const walk::CellRequest& r,
@@ -67,12 +73,15 @@ private:
 class NdfKernels {
 public:
     virtual ~NdfKernels() = default;
+    /// A new microsurface of the NDF (its tables built) for the given conventions.
     virtual std::shared_ptr<const AnySurface> surface(const walk::MicrosurfaceOptions& opts) const = 0;
 };
 
+/// The kernels of the concrete NDF type N: surfaces of SurfaceOf<N>.
 template <Ndf N>
 class KernelsOf final : public NdfKernels {
 public:
+    /// Holds `ndf`, of which every surface is made.
     explicit KernelsOf(N ndf) : ndf_(std::move(ndf)) {}
     std::shared_ptr<const AnySurface> surface(const walk::MicrosurfaceOptions& opts) const override {
         return std::make_shared<const SurfaceOf<N>>(ndf_, opts);

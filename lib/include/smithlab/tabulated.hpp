@@ -82,6 +82,7 @@ inline constexpr std::size_t tabulated_min_points = 3;
 /// D(theta); /dev/zero, an endless pipe or a mistaken file is refused without being held.
 inline constexpr std::size_t tabulated_max_bytes = std::size_t{64} << 20;
 
+/// How a table is read.
 struct TabulatedOptions {
     bool normalize = false;  ///< divide D by its projected area A instead of refusing |A - 1| >
                              ///< tabulated_area_tolerance
@@ -91,6 +92,7 @@ namespace detail {
 struct TabulatedTable;
 }
 
+/// A measured isotropic NDF: D(theta_m) from a table (the file comment), an NDF in the sense of ndf.hpp.
 class TabulatedNdf {
 public:
     /// D(cos theta_m): 0 for cos <= 0; cos > 1 (rounding) is read as 1.
@@ -98,9 +100,11 @@ public:
     /// P22(r^2) = D cos^4 at r^2 = tan^2 theta_m (Walter 2007 eq. 42); 0 at r^2 = inf.
     double slope_density(double r2) const;
 
-    std::size_t points() const;    ///< rows in the table
+    std::size_t points() const;  ///< rows in the table
+    /// @{
     double theta_min_deg() const;  ///< the table's first and last angle, in degrees
     double theta_max_deg() const;
+    /// @}
     double horizon_D() const;             ///< D_0: D at theta_m = 90 degrees, from the tail law
     double area_as_read() const;          ///< A before any rescaling
     double normalization_factor() const;  ///< 1 / A: what D was multiplied by
@@ -112,6 +116,7 @@ public:
     /// slopes scaled by s; still normalized), s in [1e-4, 1e4] (input_error otherwise). Its core slope scale
     /// (ndf.hpp, core_slope_scale) is s times the table's: what a roughness alpha sets (the registry's "tabulated").
     TabulatedNdf scaled(double s) const;
+    /// The slope scale s it was stretched by (scaled()), 1 for the table as read.
     double scale() const { return scale_; }
     /// "" unless D was rescaled by more than 1e-9 (|A - 1| >= 1e-9): then the factor and the area it came from.
     std::string note() const;

@@ -29,10 +29,14 @@
 
 namespace smithlab {
 
+/// A function of t = tan^2(theta) > 0 tabulated as cubics indexed by the bits of t (the file comment).
 class Tan2Spline {
 public:
+    /// Each binade of t is split in 2^sub_bits equal pieces.
     static constexpr int sub_bits = 4;
+    /// @{
     static constexpr int lowest_binade = -40, highest_binade = 40;  ///< tan(theta) in [2^-20, 2^20)
+    /// @}
 
     /// f(t) >= 0 at every t the table covers (finite where a piece is to answer).
     Tan2Spline(const std::function<double(double)>& f, double tolerance, double floor);
@@ -48,8 +52,11 @@ public:
         return in_log_[piece] ? std::exp(p) : std::max(p, 0.0);      // a cubic near 0 within the floor may dip below it
     }
 
+    /// The tolerance and the floor it was built to: a piece answers within tolerance/2 max(|f|, floor).
+    /// @{
     double tolerance() const { return tolerance_; }
     double floor() const { return floor_; }
+    /// @}
     double answered() const { return answered_; }  ///< the fraction of the pieces that answer
 
 private:

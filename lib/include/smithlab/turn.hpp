@@ -15,8 +15,12 @@
 
 namespace smithlab {
 
+/// cos and sin of one angle: c = cos, s = sin.
 struct CosSin {
+    /// The cosine c and the sine s.
+    /// @{
     double c, s;
+    /// @}
 };
 
 namespace detail {

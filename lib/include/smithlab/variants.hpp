@@ -29,13 +29,18 @@ enum class LambdaRoute {
     other,      ///< an approximation or an interpolant: none of the above
 };
 
+/// A named way to compute Lambda (an exact route, an interpolant or an approximation), prepared once per NDF.
 struct LambdaVariant {
+    /// The name `--method` and the report know it by, and a one-line description for `--list-methods`.
+    /// @{
     std::string name;
     std::string description;
+    /// @}
     std::function<bool(const AnyNdf&)> applies;  ///< the NDFs it is defined for
     /// The per-NDF work (reading its parameters, building a table) done once; what it returns evaluates Lambda at
     /// finite mu > 0, as often as the caller likes.
     std::function<LambdaOfMu(const AnyNdf&)> prepare;
+    /// The route it computes Lambda by (route_on: a table's, the route it was built from).
     LambdaRoute route = LambdaRoute::other;
     /// Why it does not apply to an NDF applies() refuses, naming the parameter, its value and the domain it covers
     /// ("method 'family' covers gtr with gamma in [0, 20]; got gamma = 21"); unset: a message naming the NDF's family.
@@ -48,11 +53,14 @@ LambdaRoute route_on(const LambdaVariant& variant, const AnyNdf& ndf);
 /// Lambda_1d or Lambda_2d, by either backend.
 bool is_quadrature(LambdaRoute route);
 
+/// The variants by name, in registration order.
 class VariantRegistry {
 public:
     void add(LambdaVariant v);  ///< input_error on a duplicate name
+    /// The variant named `name`, or nullptr.
     const LambdaVariant* find(std::string_view name) const;
     const LambdaVariant& at(std::string_view name) const;  ///< input_error naming the unknown variant
+    /// Every variant, in registration order.
     const std::vector<LambdaVariant>& list() const { return variants_; }
 
 private:
@@ -79,9 +87,12 @@ double Lambda_beckmann_rational(double alpha, double mu);
 
 /// G2 for two directions on the same side (reflection), against the exact height-correlated 1/(1 + Li + Lo).
 struct G2Variant {
+    /// Its name and a one-line description, and the NDFs it is defined for.
+    /// @{
     std::string name;
     std::string description;
     std::function<bool(const AnyNdf&)> applies;
+    /// @}
     std::function<double(const AnyNdf&, double mu_i, double mu_o)> G2;  ///< for finite mu > 0
 };
 

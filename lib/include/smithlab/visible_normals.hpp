@@ -70,9 +70,14 @@ std::optional<GgxMixture> fit_ggx_mixture(const N& ndf, const DcosLaw<N>& dcos) 
 /// mixture: the mixture where it bounds the NDF, else rejection.
 enum class VisibleRoute { automatic, closed, mixture, rejection, tabulated };
 
+/// The visible normals of an NDF N for directions anywhere on the sphere, by the route VisibleRoute picks (the file
+/// comment).
 template <Ndf N>
 class VisibleNormals {
 public:
+    /// Prepares the route for `ndf`: the D cos law, the Lambda table, the mixture fitted or the tables of the rejection
+    /// route; `route` other than automatic forces one (tabulated: the rejection route with the D cos law tabulated
+    /// too).
     explicit VisibleNormals(const N& ndf, VisibleRoute route = VisibleRoute::automatic)
         : dcos_(ndf, route == VisibleRoute::tabulated), Lambda_(ndf) {
         if (route == VisibleRoute::automatic || route == VisibleRoute::closed) ggx_ = ggx_alpha(ndf);
@@ -104,6 +109,8 @@ public:
         return sample_by_rejection(v, g);
     }
 
+    /// The rejection route for any NDF (the file comment), whatever route was prepared: a normal from D_v for a unit v,
+    /// no_normal() when it cannot draw.
     template <class G>
     [[gnu::noinline]] Vec3 sample_by_rejection(const Vec3& v, G& g) const {
         const double sin_v = norm_xy(v);
@@ -143,9 +150,13 @@ public:
         return s < 1e100 ? D_from_P22(dcos_.P22(s), s) : dcos_.ndf().D(m.z());
     }
 
+    /// The NDF's Lambda for the walk (fast_lambda.hpp).
     const FastLambda<N>& Lambda() const { return Lambda_; }
+    /// The NDF's D cos law.
     const DcosLaw<N>& dcos() const { return dcos_; }
+    /// Whether the route is a closed form (GGX's or Beckmann's visible normals).
     bool closed_form() const { return ggx_ > 0.0 || beckmann_ > 0.0; }
+    /// The mixture of GGX lobes the route draws through, if any.
     const std::optional<GgxMixture>& mixture() const { return mixture_; }
     /// The worst of its tables' estimates: the CDF tables' in probability, the Lambda table's relative.
     double table_error() const {

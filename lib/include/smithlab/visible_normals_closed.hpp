@@ -43,9 +43,13 @@ namespace smithlab {
 /// whole sphere in Smith's convention (Heitz 2014 eq. 72: (1 + Lambda) cos theta above the horizon, Lambda |cos|
 /// below).
 struct GgxCap {
+    /// GGX's alpha; s_xy, the stretched direction's horizontal part; P and Q as above.
+    /// @{
     double alpha, sx, sy, P, Q;
+    /// @}
 };
 
+/// The cap of GGX of roughness alpha for the unit direction v: v stretched, P and Q formed without cancellation.
 inline GgxCap ggx_cap(double alpha, const Vec3& v) {
     const double sx = alpha * v.x(), sy = alpha * v.y(), sz = v.z();
     const double d2 = sx * sx + sy * sy, l = std::sqrt(d2 + sz * sz);
@@ -72,6 +76,8 @@ inline bool ggx_cap_normal(const Vec3& h, const Vec3& v, Vec3& m) {
     return m.z() > 0.0 && v.dot(m) > 0.0;
 }
 
+/// A visible normal of GGX of roughness alpha for the unit direction v, by the spherical cap (Dupuy & Benyoub 2023, as
+/// above); no_normal() when v is straight down or 100 tries fail.
 template <class G>
 Vec3 sample_ggx_visible_normal(double alpha, const Vec3& v, G& g) {
     const GgxCap c = ggx_cap(alpha, v);
@@ -89,6 +95,9 @@ Vec3 sample_ggx_visible_normal(double alpha, const Vec3& v, G& g) {
 /// (A&S 7.2.5: ierfc' = -erfc), all terms positive for w >= b; solved by Newton's method on ln N.
 double beckmann_visible_slope(double mu, double u);
 
+/// A visible normal of Beckmann of roughness alpha for the unit direction v: the slopes of the alpha = 1 configuration
+/// (beckmann_visible_slope and a Gaussian y), turned back and unstretched (Heitz & d'Eon 2014 sec. 4); straight up, the
+/// D cos law (Walter 2007 eq. 28); no_normal() when v is straight down or 100 tries fail.
 template <class G>
 Vec3 sample_beckmann_visible_normal(double alpha, const Vec3& v, G& g) {
     const double sin_v = norm_xy(v);

@@ -42,9 +42,13 @@
 
 namespace smithlab {
 
+/// A mixture of up to max_lobes GGX lobes whose slope density Q bounds an NDF's, P22 <= K Q, and the exact visible
+/// normals drawn through it (the file comment).
 class GgxMixture {
 public:
+    /// The most lobes a mixture keeps.
     static constexpr int max_lobes = 8;
+    /// The bins of the table that bounds P22 / Q over x = s / (s + r0^2).
     static constexpr int bins = 256;
     static constexpr double max_bound = 3.0;  ///< acceptance at least 1/3 (times A(v) / A_Q(v))
 
@@ -102,9 +106,12 @@ public:
     }
 
     double bound() const { return K_; }  ///< K: P22 <= K Q
+    /// The number of lobes, and lobe k's alpha and weight w_k (the weights sum to 1).
+    /// @{
     int lobes() const { return lobes_; }
     double alpha(int k) const { return alpha_[k]; }
     double weight(int k) const { return weight_[k]; }
+    /// @}
 
 private:
     GgxMixture() = default;

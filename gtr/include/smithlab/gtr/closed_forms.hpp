@@ -27,7 +27,11 @@ namespace gtr_closed {
 
 /// Lambda = num / den with num >= 0, den > 0 (finite, neither overflowing on the stated domain).
 struct Ratio {
+    /// The numerator and the denominator.
+    /// @{
     double num, den;
+    /// @}
+    /// num / den.
     double Lambda() const { return num / den; }
     double G1() const { return den / (den + num); }  ///< 1 / (1 + num / den)
 };
@@ -35,7 +39,9 @@ struct Ratio {
 /// The domain of the mu forms below: alpha in [1e-50, 1], mu in [mu_small, mu_big]; Lambda_gtr_closed continues them
 /// beyond by their asymptotes. There mu^2 lies in [1e-200, 1e100], and every product below stays within double
 /// (the extremes: den of gamma = 4 is 16 c mu s^3 <= 4e202 at mu = 1e50, >= 1.6e-249 at mu = 1e-100, alpha = 1e-50).
+/// @{
 inline constexpr double mu_big = 1e50, mu_small = 1e-100;
+/// @}
 
 /// sqrt(mu^2 + x2) for mu in [1e-100, 1e50], x2 = alpha^2 in [1e-100, 1]: mu^2 neither overflows nor underflows
 /// harmfully (below 1e-100 it is negligible next to x2), and the root of a sum of two positive rounded products is
@@ -67,6 +73,8 @@ inline Ratio ratio1_of_x(double alpha, double x, double A, double mu) {
     if (d == 0.0) return {x * A, den};
     return {x * (A * d + mu * (d - std::log(u))), d * den};
 }
+/// gamma = 1 in mu (Dimov 2015 sec. 3.2, in the form derived above ratio1_of_x); alpha = 1, the uniform D, by gamma =
+/// 0's form.
 inline Ratio ratio1(double alpha, double mu, double A, double B) {
     if (alpha == 1.0) return ratio0(mu, B);
     return ratio1_of_x(alpha, (1.0 - alpha) * (1.0 + alpha) / ((A + B) * (mu + A)), A, mu);

@@ -57,9 +57,15 @@ inline constexpr int gtr_family_degree = 6;  ///< each leaf's polynomial: total 
 /// (their magnitudes sum to <= 2.97 on every leaf, so rounding them moves the value by <= 1.8e-7: the generator prints
 /// the figure, and its checks are of these rounded values). Half the bytes of doubles: ~7 cache lines a leaf, not 12.
 struct GtrFamilyLeaf {
+    /// The number of terms of degree >= 2.
     static constexpr int n_higher = (gtr_family_degree + 1) * (gtr_family_degree + 2) * (gtr_family_degree + 3) / 6 - 4;
+    /// The box: s = (x - centre) * scale.
+    /// @{
     double centre[3], scale[3];
-    double c0, linear[3];    ///< the terms in 1, s0, s1, s2
+    /// @}
+    /// @{
+    double c0, linear[3];  ///< the terms in 1, s0, s1, s2
+    /// @}
     float higher[n_higher];  ///< c_ijk s0^i s1^j s2^k for 2 <= i + j + k <= degree, in gtr_family_plan's order
 };
 /// The stored order of a leaf's terms of degree >= 2 (GtrFamilyLeaf::higher): row (i, j) holds c_ijk for k from
@@ -68,13 +74,25 @@ struct GtrFamilyLeaf {
 /// odd row. term[q] = (i, j, k) of stored term q: the generator writes the terms in this order; the evaluator
 /// (GtrFamily::polynomial) runs the pairs two rows at a time.
 struct GtrFamilyPlan {
+    /// The polynomials' total degree.
     static constexpr int degree = gtr_family_degree;
-    static constexpr int n_rows = (degree + 1) * (degree + 2) / 2;                 ///< the (i, j) with i + j <= degree
-    std::array<int, n_rows> i{}, j{}, k0{}, length{};                              ///< per row, in (i, j) order
+    static constexpr int n_rows = (degree + 1) * (degree + 2) / 2;  ///< the (i, j) with i + j <= degree
+    /// Each row's (i, j), first power k0 of s2, and number of terms.
+    /// @{
+    std::array<int, n_rows> i{}, j{}, k0{}, length{};  ///< per row, in (i, j) order
+    /// @}
+    /// Pair p's two rows and where its terms start; the odd rows and where theirs start.
+    /// @{
     std::array<int, n_rows> pair_a{}, pair_b{}, pair_at{}, single{}, single_at{};  ///< rows; where their terms start
+    /// @}
+    /// The number of pairs, of odd rows, and of terms placed.
+    /// @{
     int n_pairs = 0, n_singles = 0, n_terms = 0;
+    /// @}
+    /// term[q] = (i, j, k) of stored term q.
     std::array<std::array<int, 3>, GtrFamilyLeaf::n_higher> term{};
 };
+/// The plan of the stored order, as above: rows by length, longest first, paired in (i, j) order, then the odd rows.
 constexpr GtrFamilyPlan make_gtr_family_plan() {
     constexpr int degree = gtr_family_degree, n_rows = GtrFamilyPlan::n_rows;
     GtrFamilyPlan p;
@@ -112,57 +130,82 @@ constexpr GtrFamilyPlan make_gtr_family_plan() {
     p.n_terms = at;
     return p;
 }
+/// The stored order, computed at compile time.
 inline constexpr GtrFamilyPlan gtr_family_plan = make_gtr_family_plan();
 static_assert(gtr_family_plan.n_terms == GtrFamilyLeaf::n_higher);  // every row placed once, in pairs or alone
 
+/// A node of a chart's k-d tree: an inner node splits its box in two along one axis; a leaf's node points at its leaf.
 struct GtrFamilyNode {
     double split;       ///< an inner node: its children hold x[axis] < split and >= split
     std::int32_t next;  ///< >= 0: the first of its two children; < 0: the leaf ~next
+    /// The axis of the split: 0 ln alpha, 1 gamma, 2 z.
     std::int32_t axis;
 };
+/// The generated tree: nodes, leaves and the measured bounds (family_gen.cpp writes it).
 struct GtrFamilyData {
     const GtrFamilyNode* nodes;   ///< each chart's top boxes first (chart 0's, chart 1's; row-major over a, gamma, z),
     std::size_t n_nodes;          ///< then children in pairs
     const GtrFamilyLeaf* leaves;  ///< n_leaves + 1: the last, empty, for the boxes that are no leaf
+    /// The number of leaves, the empty one past the last not counted.
     std::size_t n_leaves;
     double asymptote_bound;  ///< relative Lambda, beyond the charts
     int max_depth;           ///< splits below a top box
 };
+/// The tree, compiled in (the build tree's family_patches.cpp).
 extern const GtrFamilyData gtr_family_data;
 
+/// Lambda and G1 of every GTR at once from the generated tree (the file comment); one instance, shared.
 class GtrFamily {
 public:
+    /// The domain: alpha in [alpha_min, 1], gamma in [0, gamma_max].
+    /// @{
     static constexpr double alpha_min = 1e-4;
     static constexpr double gamma_max = 20.0;
-    static constexpr double xi_lo = -9.0, eta_hi = 9.8;
-    /// below xi_lo, R(mu_lo) / (mu_lo Lambda) ~ (mu_lo / alpha)^2 gamma < 1e-6; above eta_hi, mu >= 1.8e4, past every
+    /// @}
+    /// The charts' ends: chart 0 from xi = xi_lo, chart 1 up to eta = eta_hi, the asymptotes beyond.
+    /// Below xi_lo, R(mu_lo) / (mu_lo Lambda) ~ (mu_lo / alpha)^2 gamma < 1e-6; above eta_hi, mu >= 1.8e4, past every
     /// GTR's second slope scale (1 and sqrt(gamma), gtr.hpp), where Lambda ~ C mu^-2
+    /// @{
+    static constexpr double xi_lo = -9.0, eta_hi = 9.8;
+    /// @}
+    /// Each leaf's polynomial: total degree.
     static constexpr int degree = gtr_family_degree;
     static constexpr double a_lo = -9.2103403719762;       ///< just below ln 1e-4
     static constexpr std::array<int, 3> top = {8, 8, 14};  ///< each chart's
+    /// Each chart's box in (ln alpha, gamma, z): from lo to hi.
+    /// @{
     static constexpr std::array<std::array<double, 3>, 2> lo = {{{a_lo, 0.0, xi_lo}, {a_lo, 0.0, 0.5 * a_lo}}};
     static constexpr std::array<std::array<double, 3>, 2> hi = {
         {{0.0, gamma_max, -0.5 * a_lo}, {0.0, gamma_max, eta_hi}}};
+    /// @}
+    /// The top boxes of each chart.
     static constexpr std::size_t top_cells = static_cast<std::size_t>(top[0]) * top[1] * top[2];
     /// 1 / the width of chart c's top boxes along axis d (x -> top box: (x - lo) * inv_step)
     static constexpr double inv_step(int c, int d) { return top[d] / (hi[c][d] - lo[c][d]); }
     /// The domain (the checked calls' rules): alpha in [1e-4, 1], gamma in [0, 20]; NaN is outside.
+    /// @{
     static constexpr bool alpha_in_domain(double alpha) { return alpha >= alpha_min && alpha <= 1.0; }
     static constexpr bool gamma_in_domain(double gamma) { return gamma >= 0.0 && gamma <= gamma_max; }
+    /// @}
     /// A leaf's estimate is at most `tolerance` relative in Lambda and `G1_tolerance` in G1; its checks at most twice.
+    /// @{
     static constexpr double tolerance = 4e-6;
     static constexpr double G1_tolerance = 4e-7;
+    /// @}
 
+    /// The evaluator, built at the first call (thread-safe) and shared.
     static const GtrFamily& get();
 
-    /// Lambda at finite mu > 0 for alpha in [1e-4, 1], gamma in [0, 20]: nothing is checked here (see
-    /// Lambda_gtr_family for the checked call; a NaN gives some value, never a read out of bounds). No allocation,
-    /// exception or virtual call.
     /// The chart of (a = ln alpha, eta = ln mu): 0 below mu = sqrt(alpha), else 1 (NaN: 1); chart c's third coordinate
     /// z of (a, eta), and ln mu back from z (the generator's and the tests' one definition).
+    /// @{
     static constexpr int chart_of(double a, double eta) { return eta < 0.5 * a ? 0 : 1; }
     static constexpr double z_of(int c, double a, double eta) { return c == 0 ? eta - a : eta; }
     static constexpr double ln_mu_of(int c, double a, double z) { return c == 0 ? a + z : z; }
+    /// @}
+    /// Lambda at finite mu > 0 for alpha in [1e-4, 1], gamma in [0, 20]: nothing is checked here (see
+    /// Lambda_gtr_family for the checked call; a NaN gives some value, never a read out of bounds). No allocation,
+    /// exception or virtual call.
     double Lambda_up(double alpha, double gamma, double mu) const {
         const double a = std::log(alpha), eta = std::log(mu);
         if (chart_of(a, eta) == 0) {  // locate clamps xi to xi_lo; mu = 0: +inf
@@ -172,6 +215,7 @@ public:
         const double f = value(1, {a, gamma, eta});  // locate clamps eta to eta_hi; mu = inf: 0
         return std::exp(eta > eta_hi ? f - (eta - eta_hi) : f) / mu;
     }
+    /// G1 = 1 / (1 + Lambda_up), on the same terms.
     double G1_up(double alpha, double gamma, double mu) const { return 1.0 / (1.0 + Lambda_up(alpha, gamma, mu)); }
 
     /// ln(mu Lambda) at x = (ln alpha, gamma, z) in chart c, inside the chart's box (clamped to it).
@@ -181,9 +225,13 @@ public:
     }
     /// The leaf holding x in chart c (x clamped to the chart's box), and x in its coordinates s in [-1, 1]^3.
     struct Located {
+        /// The leaf, and x in its coordinates.
+        /// @{
         const GtrFamilyLeaf* leaf;
         std::array<double, 3> s;
+        /// @}
     };
+    /// The leaf holding x in chart c, as above: the top box by x's cell, then down the tree.
     Located locate(int c, std::array<double, 3> x) const {
         std::size_t cell = 0;
         for (int d = 0; d < 3; ++d) {
@@ -275,8 +323,11 @@ public:
     double error_bound() const { return error_bound_; }
     /// e^xi_lo: mu / alpha where the lower asymptote begins (Lambda_up)
     double mu_lo_rel() const { return mu_lo_rel_; }
+    /// The stated bound on |dG1| (error_bound()).
     double G1_error_bound() const { return G1_error_bound_; }
+    /// The tree it reads.
     const GtrFamilyData& data() const { return data_; }
+    /// The bytes of its nodes and leaves.
     std::size_t bytes() const { return data_.n_nodes * sizeof(GtrFamilyNode) + data_.n_leaves * sizeof(GtrFamilyLeaf); }
 
 private:
@@ -288,8 +339,11 @@ private:
 
 /// Checked calls: input_error naming alpha (not in [1e-4, 1], NaN) or gamma (not in [0, 20], NaN); mu as everywhere
 /// (smith.hpp): NaN refused, 0 gives Lambda = inf, inf gives 0, mu < 0 follows the downward convention; G1 takes |mu|.
+/// @{
 double Lambda_gtr_family(double alpha, double gamma, double mu, Downward downward = Downward::smith);
 double G1_gtr_family(double alpha, double gamma, double mu);
+/// @}
+/// The domain check of the checked calls: input_error naming alpha or gamma outside it.
 void require_gtr_family_domain(double alpha, double gamma);
 
 }  // namespace smithlab

@@ -47,8 +47,11 @@ const char* name(GtrFamilyRoute route);  ///< "one point", "AVX2", "AVX-512"
 void G1_gtr_family(std::span<const double> alpha, std::span<const double> gamma, std::span<const double> mu,
                    std::span<double> out, std::size_t first = 0);
 
+/// G1 of GtrFamily at many points at once, on the fastest vector route this CPU and build run (the file comment); one
+/// instance, built at first use.
 class GtrFamilyStream {
 public:
+    /// The stream, built at the first call (thread-safe) and shared.
     static const GtrFamilyStream& get();
 
     /// G1 at n points (alpha[i], gamma[i], |mu[i]|), alpha in [1e-4, 1], gamma in [0, 20]: nothing is checked (a NaN
@@ -63,6 +66,7 @@ public:
                std::size_t n) const;
     /// The route G1_up takes here: the fastest this CPU and build run.
     GtrFamilyRoute route() const { return route_; }
+    /// Whether this CPU and build run `route` (one_point always).
     bool runs(GtrFamilyRoute route) const;
     /// Whether G1_up runs several points at a time here (else it is GtrFamily::G1_up point by point).
     bool vectorized() const { return route_ != GtrFamilyRoute::one_point; }
@@ -73,26 +77,41 @@ public:
     /// group 0 five Horner steps in s2, group 1 four, group 2 two, group 3 one (96 floats, zero where a row is
     /// shorter), then the box and the constant and linear terms (as GtrFamilyLeaf).
     struct alignas(64) Leaf {
+        /// The 80 terms of degree >= 2 in the lanes' order (96 floats, zeros where a row is shorter).
         float c[96];
+        /// The box (s = (x - centre) * scale) and the constant and linear terms.
+        /// @{
         double centre[3], scale[3], c0, linear[3];
+        /// @}
     };
     static_assert(sizeof(Leaf) == 512);  // eight cache lines, prefetched whole
     /// One top box: where its grid of leaf numbers starts in `ids`, and its finest split per axis (2^depth cells).
     struct Cell {
+        /// Where the box's grid of leaf numbers starts in `ids`.
         std::int32_t offset;
+        /// The box's finest split per axis (2^depth cells), and a byte of padding.
+        /// @{
         std::uint8_t depth[3], pad;
+        /// @}
     };
+    /// Which row (i, j) and first power k0 of s2 each of the eight lanes of each group holds.
     struct Lanes {
         static constexpr int steps[4] = {5, 4, 2, 1};      ///< Horner steps of each group
         static constexpr int offset[4] = {0, 40, 72, 88};  ///< where each group's 8 x steps floats start in Leaf::c
+        /// @{
         std::int64_t i[4][8], j[4][8], k0[4][8];  ///< row (i, j) of each lane and its first power of s2; 7: a zero lane
+        /// @}
     };
     static_assert(Lanes::offset[3] + 8 * Lanes::steps[3] == 96);
     /// The AVX2 route's leaves: the box and the constant and linear terms (as GtrFamilyLeaf), then for each row
     /// (i, j), in (i, j) order from row_at, its c_ijk as a vector over k: k = 0..7 where i + j <= 2, else k = 0..3
     /// (i + j + k <= degree), zero where k < k0 or i + j + k > degree (136 floats; ten cache lines).
     struct alignas(64) RowLeaf {
+        /// The box (s = (x - centre) * scale) and the constant and linear terms.
+        /// @{
         double centre[3], scale[3], c0, linear[3];
+        /// @}
+        /// Each row's c_ijk as a vector over k, in (i, j) order (row_at).
         float c[136];
     };
     static_assert(sizeof(RowLeaf) == 640);
@@ -103,10 +122,15 @@ public:
             for (int b = 0; b <= 6 - a && (a < i || b < j); ++b) at += a + b <= 2 ? 8 : 4;
         return at;
     }
+    /// The leaves in each layout (row_leaves: empty where the AVX2 route does not run), the top boxes, and the lanes'
+    /// plan.
+    /// @{
     const std::vector<RowLeaf>& row_leaves() const { return row_leaves_; }
     const std::vector<Leaf>& leaves() const { return leaves_; }
     const std::vector<Cell>& cells() const { return cells_; }
+    /// @}
     const std::vector<std::uint16_t>& ids() const { return ids_; }  ///< one past the last is a zero (32-bit gathers)
+    /// The lanes' plan of Leaf::c.
     const Lanes& lanes() const { return lanes_; }
 
 private:

@@ -13,8 +13,12 @@
 
 namespace smithlab {
 
+/// The GTR distribution at (alpha, gamma) with its prefactor K (the file comment); made by gtr(), which checks the
+/// domain.
 struct Gtr {
+    /// The roughness alpha in [1e-50, 1] (GGX's alpha at gamma = 2).
     double alpha;
+    /// The shape gamma in [0, gtr_max_gamma]: 2 is GGX, 1 the log limit, larger gamma a narrower, Beckmann-like lobe.
     double gamma;
     double K;  ///< P22 prefactor, see gtr_K
 
@@ -29,11 +33,13 @@ struct Gtr {
 
     /// Closed forms exist for every integer gamma (Dimov 2015 sec. 3 for 0..4, generated above); see closed_forms.hpp.
     /// Inline: the closed forms are a renderer's hot path; the throw is out of line.
+    /// @{
     bool has_closed_Lambda() const { return gtr_has_closed_form(gamma); }
     double Lambda(double mu) const {
         if (!has_closed_Lambda()) no_closed_Lambda();
         return Lambda_gtr_closed(alpha, static_cast<int>(gamma), mu);
     }
+    /// @}
     [[noreturn]] void no_closed_Lambda() const;  ///< input_error naming gamma
     /// Dimov 2015 section 5: natural cubic spline in gamma through G1 at gamma = 0..4, gamma clamped to 4 above;
     /// the spline's G1 clamped to [0, 1] (Lambda_of_interpolated_G1).
@@ -44,8 +50,10 @@ struct Gtr {
     /// L_c = ln(1/t) = log1p((1 - alpha^2) / (alpha^2 + r^2)),
     ///     S = exp(e (L - L_c)) expm1(e L_c) / expm1(e L)   (-> L_c / L at gamma = 1; 1/(1 + r^2) at alpha = 1),
     ///     L_c(v) = -log1p(v expm1(-e L)) / e,  r^2 = (1 - alpha^2) / expm1(L_c) - alpha^2.
+    /// @{
     double Dcos_sf(double r2) const;
     double Dcos_r2(double v) const;
+    /// @}
 
     /// The capability "GGX of this alpha" (smithlab/ndf.hpp): at gamma = 2, D = alpha^2 / (pi (1 + (alpha^2 - 1)
     /// cos^2)^2) is GGX (Burley 2012, appendix B); NaN at every other gamma.
@@ -72,6 +80,7 @@ inline double gtr_K(double alpha, double gamma) {
 /// (tests/test_domain.cpp); 1e6 is as far as that reference reaches (its (r^2 + alpha^2)^gamma at r^2 = 1e120 leaves
 /// cpp_bin_float's exponent range near gamma = 2.7e6), and a lobe narrower than alpha / 1000 is no material.
 inline constexpr double gtr_max_gamma = 1e6;
+/// GTR at (alpha, gamma), its K computed (gtr_K); input_error naming the parameter outside the accepted domain.
 Gtr gtr(double alpha, double gamma);
 
 /// Lambda and G1 from c = cos(theta_v) (a renderer holds the cosine; mu = cot = c / sqrt(1 - c^2) costs a root and a
@@ -81,11 +90,13 @@ Gtr gtr(double alpha, double gamma);
 /// (Lambda_from_cos in smith.hpp). c in [0, 1]; c > 1 (rounding) is read as 1; c < 0 (below the surface): G1 takes |c|
 /// (Walter 2007 eq. 44) and Lambda is Smith's -1 - Lambda(|c|), as smithlab::Lambda(ndf, mu) gives; NaN gives NaN.
 double Lambda_from_cos_slow(const Gtr& ndf, double c);  ///< gamma > 4, non-integer gamma, c < cos_small, c < 0, NaN
+/// Lambda from c = cos(theta_v), as described above: the forms in c for integer gamma <= 4, else Lambda_from_cos_slow.
 inline double Lambda_from_cos(const Gtr& ndf, double c) {
     if (c >= gtr_closed::cos_small && ndf.gamma <= 4.0 && ndf.has_closed_Lambda())
         return c >= 1.0 ? 0.0 : gtr_closed::ratio_cos(ndf.alpha, static_cast<int>(ndf.gamma), c).Lambda();
     return Lambda_from_cos_slow(ndf, c);
 }
+/// G1 = 1 / (1 + Lambda(|c|)) from c = cos(theta_v), by the same routes.
 inline double G1_from_cos(const Gtr& ndf, double c) {
     const double a = std::abs(c);
     if (a >= gtr_closed::cos_small && ndf.gamma <= 4.0 && ndf.has_closed_Lambda())

@@ -54,8 +54,10 @@
 namespace smithlab::fit {
 
 /// x = sqrt((1 + c) mu / (mu + c)) and its inverse; c > 0, mu and x in [0, 1].
+/// @{
 double warp_cosine(double c, double mu);
 double unwarp_cosine(double c, double x);
+/// @}
 
 /// Nodes clustered about a cosine mu_k: a share `weight` of the axis, spread as asinh((mu - mu_k) / width). The
 /// default weight 0 is no cluster.
@@ -82,16 +84,22 @@ double warp_scale(double cot);
 double lookup_power_law(const std::vector<double>& alphas, const std::vector<double>& values, double alpha,
                         const char* what);
 
+/// The nodes of an albedo table: the alphas, each row's warp scale, the cosines a row and a node cluster (the file
+/// comment).
 struct AlbedoGrid {
     std::vector<double> alphas;  ///< ascending, > 0
     std::vector<double> scales;  ///< the warp's scale c at each alpha (warp_scale of the NDF there), > 0
     int n_x = 32;                ///< cosines a row, x_j = j / (n_x - 1)
     NodeCluster cluster;         ///< none by default
+    /// The node x_j = j / (n_x - 1) of the axis.
     double x(int j) const { return static_cast<double>(j) / (n_x - 1); }
     /// The axis at scale c: x of mu (the warp, and the cluster's share), and its inverse (by bisection where a cluster
     /// is, to a few ulps).
+    /// @{
     double x_of(double c, double mu) const;
     double mu_of(double c, double x) const;
+    /// @}
+    /// The cosine of node (i, j): row i's warp scale at x_j.
     double mu(std::size_t i, int j) const { return mu_of(scales[i], x(j)); }
     /// The scale at any alpha > 0: lookup_power_law of the scales.
     double scale(double alpha) const;
@@ -104,9 +112,13 @@ enum class Stored { value, log };
 
 /// values[i * n_x + j] at (alphas[i], x_j): the albedo, or ln of it.
 struct AlbedoTable {
+    /// The grid.
     AlbedoGrid grid;
+    /// The stored values, row by row (alpha), n_x each.
     std::vector<double> values;
+    /// Whether the values are the albedo or its logarithm.
     Stored stored = Stored::value;
+    /// The stored value at node (i, j).
     double at(std::size_t i, int j) const { return values[i * static_cast<std::size_t>(grid.n_x) + j]; }
     /// Bilinear in (sqrt(alpha), x) (exp of it for Stored::log), with the rules above outside the alphas; input_error
     /// for alpha <= 0 or NaN, or mu outside [0, 1].
@@ -118,13 +130,19 @@ inline constexpr double grazing_mu = 2e-3;
 
 /// The worst |lookup - exact| and where it is.
 struct InterpolationError {
+    /// The worst error, and the alpha and mu where it is.
+    /// @{
     double max = 0.0, alpha = 0.0, mu = 0.0;
+    /// @}
 };
 
 /// A table with its measured error: `fine` holds the exact values on the refined grid (alphas at refine steps of
 /// sqrt(alpha) between nodes, x at steps of 1 / (refine (n_x - 1))), `table` every refine-th of them (or their logs).
 struct CheckedTable {
+    /// The table, and the exact values on the refined grid it is measured against.
+    /// @{
     AlbedoTable table, fine;
+    /// @}
     InterpolationError error;    ///< at mu >= grazing_mu
     InterpolationError grazing;  ///< at mu < grazing_mu
 };
@@ -140,6 +158,8 @@ CheckedTable tabulate(const AlbedoGrid& grid, int refine, const AlbedoRow& row, 
 /// value per entry of `stored` at mu into out[0 ..). Returns one measured table per value, each stored as asked (a
 /// value tabulated as Stored::log must be > 0).
 using AlbedoRows = std::function<std::function<void(double mu, double* out)>(double alpha)>;
+/// The tables of the values `rows` writes, on the refined grid with `threads` threads (0: the hardware's), each
+/// measured.
 std::vector<CheckedTable> tabulate(const AlbedoGrid& grid, int refine, const std::vector<Stored>& stored,
                                    const AlbedoRows& rows, unsigned threads = 0);
 

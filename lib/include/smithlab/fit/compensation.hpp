@@ -66,6 +66,8 @@ namespace smithlab::fit {
 /// The tables' quadrature tolerance: values to ~1e-8 relative, far below their interpolation error ~5e-4 (albedo_grid).
 inline constexpr double table_tolerance = 1e-8;
 
+/// How the single-scattering albedos are integrated: the tolerance, the G2 form, and the Lambda table of an NDF without
+/// a closed form.
 struct AlbedoOptions {
     double tolerance = 1e-10;  ///< relative, of each Gauss-Kronrod integral (inner ones at a tenth of it)
     /// The G2 the single scattering uses: height-correlated (Walter 2007 eq. 20's Smith G2 as Heitz 2014 eq. 99 and
@@ -95,6 +97,7 @@ double cosine_average(FunctionRef e, double tolerance);
 template <Ndf N>
 class SingleScatteringAlbedo {
 public:
+    /// Holds `ndf` and its Lambda (the closed form, else a table built here).
     explicit SingleScatteringAlbedo(const N& ndf, const AlbedoOptions& opts = {})
         : ndf_(ndf),
           Lambda_(ndf_, opts.lambda_table),
@@ -114,8 +117,12 @@ public:
     /// directional albedos of single reflection, E_R (facets of reflectance F(wi.m), Walter 2007 eq. 20 and 22), and
     /// of single transmission, E_T (eq. 21). Their sum is the albedo Turquin 2019 divides the dielectric BSDF by.
     struct Dielectric {
+        /// E_R and E_T at one mu.
+        /// @{
         double R = 0.0, T = 0.0;
+        /// @}
     };
+    /// E_R and E_T of the interface at mu = cos theta_i in [0, 1] and relative index eta, with the G2 of the options.
     Dielectric dielectric(double mu, double eta) const {
         auto P22 = [&](double r2) { return slope_density(ndf_, r2); };
         auto L = [&](double m) { return Lambda_(m); };
@@ -157,6 +164,7 @@ template <Ndf N>
 double directional_albedo(const N& ndf, double mu, const AlbedoOptions& opts = {}) {
     return SingleScatteringAlbedo<N>(ndf, opts)(mu);
 }
+/// E_avg of `ndf` (SingleScatteringAlbedo::average).
 template <Ndf N>
 double average_albedo(const N& ndf, const AlbedoOptions& opts = {}) {
     return SingleScatteringAlbedo<N>(ndf, opts).average();
@@ -206,6 +214,7 @@ double kulla_conty_ratio(const AlbedoTable& E, const std::vector<double>& missin
 /// the exact 1 - E_avg (SingleScatteringAlbedo::missing) would leave the table's error in E, integrated, divided by
 /// 1 - E_avg, which is ~alpha^2 at small alpha (4e-3 in the furnace of GGX's 32 x 48 table at alpha 0.03).
 double table_missing(const AlbedoTable& E, double alpha);
+/// The same at each of E's alphas, in their order.
 std::vector<double> table_missing(const AlbedoTable& E);
 
 /// "smithlab_" + the family name made an identifier: runs of other characters than letters and digits become one '_'

@@ -28,25 +28,37 @@
 namespace smithlab::fit {
 
 using walk::diffuse_bins;
+/// One walk's value split by its diffuse events k: x_k in bin diffuse_bin(k) (walk.hpp), so that sum_k a^k x_k is its
+/// value at albedo a.
 using Split = std::array<double, diffuse_bins>;
 
+/// The moments of a point's split values over its walks: the sums of x_k and of x_k x_l, from which the mean and the
+/// variance at every albedo follow exactly.
 struct SplitMoments {
+    /// The number of products x_k x_l with k <= l.
     static constexpr int pairs = diffuse_bins * (diffuse_bins + 1) / 2;
+    /// The walks.
     std::int64_t walks = 0;
+    /// The sum of x_k over the walks, per bin.
     Split sum{};
     std::array<double, pairs> cross{};  ///< sum of x_k x_l, k <= l, row by row
     std::int64_t capped = 0;            ///< walks cut short (walk.hpp), counted when traced (the cache keeps no count)
 
+    /// The index in `cross` of x_k x_l, k <= l.
     static int pair(int k, int l) {  // k <= l
         return k * diffuse_bins - k * (k - 1) / 2 + (l - k);
     }
+    /// Adds one walk's split value x.
     void add(const Split& x);
+    /// Adds the walks of o.
     void merge(const SplitMoments& o);
 };
 
 /// Which diffuse events a value counts: k >= min_k (1: the diffuse part; 0: everything).
 struct AlbedoPower {
+    /// The albedo a.
     double albedo;
+    /// The fewest diffuse events counted.
     int min_k = 1;
 };
 
@@ -59,16 +71,25 @@ double tail_bound(const SplitMoments& m, const AlbedoPower& a);
 
 /// The geometry of a point: degrees; phi the azimuth of wo from wi's plane.
 struct Directions {
+    /// The incidence and exit angles from the normal, and the azimuth of wo from wi's plane, in degrees.
+    /// @{
     double theta_i, theta_o, phi;
+    /// @}
+    /// The unit directions of theta_i (in the xz-plane) and of (theta_o, phi).
+    /// @{
     Vec3 wi() const;
     Vec3 wo() const;
+    /// @}
 };
 
 /// One traced point: a surface (its roughness alpha: the NDF family and the material are the dataset's), a pair of
 /// directions (eval) or one (albedo: theta_o, phi unused), and its moments.
 struct DataPoint {
+    /// The surface's roughness.
     double alpha;
+    /// Its directions.
     Directions dir;
+    /// Its moments.
     SplitMoments moments;
 };
 

@@ -79,10 +79,16 @@ double chan_2018(const Vec3& wi, const Vec3& wo, double alpha, double albedo, do
 /// Read as the BRDF f (no N.L): k = 1.05 = 21/20 is what makes smooth/pi integrate against cos to exactly
 /// 1 - (1 - N.V)^5 <= 1 (his normalisation k = 21/(20 pi)); an f cos reading would need N.L on the slide.
 struct HammonConstants {
+    /// The slide's (a, b, c, k, m), at their published values.
+    /// @{
     double rough_a = 0.9, rough_b = 0.4, rough_c = 0.5, smooth = 1.05, multi = 0.1159;
+    /// @}
 };
+/// Hammon's single term, (1/pi) lerp(smooth, rough, alpha).
 double hammon_2017_single(const Vec3& wi, const Vec3& wo, double alpha, const HammonConstants& k);
+/// The first reading: albedo (single + albedo multi).
 double hammon_2017(const Vec3& wi, const Vec3& wo, double alpha, double albedo, const HammonConstants& k = {});
+/// The second reading: albedo (single + multi).
 double hammon_2017_linear(const Vec3& wi, const Vec3& wo, double alpha, double albedo, const HammonConstants& k = {});
 
 /// smithlab's own family (designed from the traced data, `smithlab fit`): Hammon's single term with the roughness
@@ -95,9 +101,14 @@ double hammon_2017_linear(const Vec3& wi, const Vec3& wo, double alpha, double a
 ///     f = albedo (single + albedo multi).
 /// At (p, q, u) = (1, 1, 0) it is Hammon 2017: those are its starting constants.
 struct Smithlab2026Constants {
+    /// Hammon's constants a, b, c, k and m.
     HammonConstants hammon;
+    /// The roughness blend's exponent p, the multiple-scattering lobe's exponent q and its weight u of 1 - facing.
+    /// @{
     double p = 1.0, q = 1.0, u = 0.0;
+    /// @}
 };
+/// The model at constants k, as above.
 double smithlab_2026(const Vec3& wi, const Vec3& wo, double alpha, double albedo, const Smithlab2026Constants& k);
 
 // ---- the fitter's table -----------------------------------------------------------------------------------------
@@ -110,15 +121,20 @@ using DiffuseFn = double (*)(const Vec3& wi, const Vec3& wo, double alpha, doubl
 /// The values a free constant can take where the model means what its source says: lo < c < hi (an infinite bound where
 /// none applies), and why. A fit whose constant ends at or beyond a bound has left the model's own domain.
 struct ParameterRange {
+    /// The bounds, lo < c < hi.
+    /// @{
     double lo = -INFINITY, hi = INFINITY;
+    /// @}
     std::string_view why;  ///< one line, e.g. "sigma = s alpha, a slope angle's standard deviation: at most pi/2"
 };
 
+/// A diffuse model of the fitter's table: its name, free constants and their published values, its source, and f.
 struct DiffuseModel {
     std::string_view name;                     ///< e.g. "hammon-2017"
     std::vector<std::string_view> parameters;  ///< names of the free constants; empty for a fixed baseline
     std::vector<double> published;             ///< their published values (a fit's start, the fixed baseline)
     std::string_view source;                   ///< citation, one line
+    /// The BRDF.
     DiffuseFn f;
     /// Its starting constants make a model of its own, measured as a baseline; false where they make another one
     /// (smithlab-2026 starts at hammon-2017).

@@ -28,6 +28,9 @@ namespace smithlab::fit {
 /// missing: 1 - E_avg at E's alphas.
 std::vector<InterpolationError> kulla_conty_furnace(const CheckedTable& E, const std::vector<double>& missing,
                                                     double mu_min);
+/// The same for Turquin 2019's normalization, the BSDF divided by its tabulated albedo: the worst
+/// |albedo / table - 1| over mu >= mu_min at each alpha of the check grid, for `sum` the albedo divided by (E_R + E_T
+/// for a dielectric, fit/compensation.hpp).
 std::vector<InterpolationError> turquin_furnace(const CheckedTable& sum, double mu_min);
 
 /// The worst of a furnace's alphas.

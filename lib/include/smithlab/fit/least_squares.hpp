@@ -26,22 +26,34 @@ namespace smithlab::fit {
 /// r = residuals(p): writes all of r.
 using ResidualFn = std::function<void(std::span<const double> p, std::span<double> r)>;
 
+/// When the nonlinear least-squares solver (GSL's trust-region Levenberg-Marquardt) stops.
 struct LeastSquaresOptions {
+    /// The most iterations before it gives up (converged = false).
     int max_iterations = 500;
     double xtol = 1e-8;  ///< GSL's tests: the step relative to p, the gradient relative to chi^2
+    /// The gradient test's tolerance (see xtol).
     double gtol = 1e-8;
 };
 
+/// What a least-squares fit found: the parameters, their standard errors and covariance, the residuals, chi^2, and
+/// whether it converged.
 struct LeastSquaresFit {
+    /// The parameters at the solution, and their standard errors sqrt(diag(covariance) max(1, chi^2 / dof)).
+    /// @{
     std::vector<double> params, stderr_;
+    /// @}
     std::vector<double> covariance;  ///< (J^T J)^-1, p x p row by row, unscaled
     std::vector<double> jacobian;    ///< J at the solution, residuals x p row by row
     std::vector<double> residuals;   ///< r at the solution
+    /// The sum of the squared residuals at the solution.
     double chi2 = 0.0;
     std::int64_t dof = 0;  ///< residuals - parameters
+    /// The iterations taken.
     int iterations = 0;
+    /// Whether the solver met its tolerances (else `reason`).
     bool converged = false;
     std::string reason;  ///< why not, when not
+    /// chi^2 / dof, 0 where dof <= 0.
     double chi2_dof() const { return dof > 0 ? chi2 / static_cast<double>(dof) : 0.0; }
 };
 

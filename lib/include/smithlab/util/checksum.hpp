@@ -16,8 +16,10 @@
 
 namespace smithlab::util {
 
+/// The CRC-64/XZ of the file comment (Boost.CRC).
 using Crc64 = boost::crc_optimal<64, 0x42F0E1EBA9EA3693ULL, ~0ULL, ~0ULL, true, true>;
 
+/// The CRC-64/XZ of `bytes`.
 inline std::uint64_t crc64(std::string_view bytes) {
     Crc64 crc;
     crc.process_bytes(bytes.data(), bytes.size());

@@ -29,6 +29,7 @@ inline unsigned thread_count(unsigned threads) {
 template <class Partial>
 class InOrder {
 public:
+    /// Starts from `total`, before any partial.
     explicit InOrder(Partial total) : total_(std::move(total)) {}
     /// Adds partial b; merge(total, partial) for each that is next in order. Returns how many were merged.
     template <class Merge>
@@ -41,7 +42,9 @@ public:
         }
         return merged_ - before;
     }
+    /// How many partials are merged: those numbered 0 .. merged() - 1.
     std::uint64_t merged() const { return merged_; }
+    /// The total of the partials merged so far.
     Partial& total() { return total_; }
 
 private:

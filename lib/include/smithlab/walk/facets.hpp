@@ -29,15 +29,22 @@
 
 namespace smithlab::walk {
 
+/// What one event of a material does: the next direction and the weight it carries.
 struct Scatter {
+    /// The next direction, away from the facet (on the other side when transmitted).
     Vec3 wo;
     double weight;  ///< 0: absorbed
+    /// Whether the event was diffuse (it counts toward the diffuse tallies and the diffuse events of the walk).
     bool diffuse;
     bool transmitted = false;  ///< through to the other side (two-sided materials only)
 };
 
+/// The phase function of a material toward wo (the file comment), split into its specular and diffuse parts.
 struct Phase {
+    /// The part from specular events (mirror facets, the half vector's) and the part from diffuse ones.
+    /// @{
     double specular = 0.0, diffuse = 0.0;
+    /// @}
 };
 
 namespace detail {
@@ -71,10 +78,12 @@ double hammon_lobe_cos(double u);
 /// F = 1: every facet a perfect mirror.
 struct Mirror {
     static constexpr bool reciprocal = true;  ///< f(wi, wo) = f(wo, wi) facet by facet
+    /// The mirror reflection of wi about m, weight 1.
     template <class G>
     Scatter sample(const Vec3& wi, const Vec3& m, G&) const {
         return {reflect(wi, m), 1.0, false};
     }
+    /// D(h) / (4 A(wi)), h the half vector of wi and wo (F = 1); no diffuse part.
     template <class Microsurface, class G>
     Phase phase(const Microsurface& ms, const Vec3& wi, const Vec3& wo, G&) const {
         return {detail::mirror_phase(ms, wi, wo, [](double) { return 1.0; }), 0.0};
@@ -83,12 +92,17 @@ struct Mirror {
 
 /// Mirror facets of a conductor, complex index eta + i k, with the exact Fresnel reflectance (fresnel.hpp).
 struct Conductor {
+    /// The complex index eta + i k: eta in [1e-6, 1e6], k in [0, 1e6].
+    /// @{
     double eta, k;
+    /// @}
     static constexpr bool reciprocal = true;  ///< f(wi, wo) = f(wo, wi) facet by facet
+    /// The mirror reflection of wi about m, weighted by the Fresnel reflectance F(wi.m).
     template <class G>
     Scatter sample(const Vec3& wi, const Vec3& m, G&) const {
         return {reflect(wi, m), fresnel_conductor(wi.dot(m), eta, k), false};
     }
+    /// F(wi.h) D(h) / (4 A(wi)), h the half vector of wi and wo; no diffuse part.
     template <class Microsurface, class G>
     Phase phase(const Microsurface& ms, const Vec3& wi, const Vec3& wo, G&) const {
         return {detail::mirror_phase(ms, wi, wo, [this](double c) { return fresnel_conductor(c, eta, k); }), 0.0};
@@ -97,13 +111,16 @@ struct Conductor {
 
 /// Lambertian facets (Heitz et al. 2016, sec. 5.3, the diffuse microsurface): each reflects albedo / pi about m.
 struct Lambert {
+    /// The facets' albedo, in [0, 1].
     double albedo;
     static constexpr bool reciprocal = true;  ///< f(wi, wo) = f(wo, wi) facet by facet
+    /// A cosine-distributed direction about m (Malley's method), weight albedo; a diffuse event.
     template <class G>
     Scatter sample(const Vec3&, const Vec3& m, G& g) const {
         if (albedo == 0.0) return {m, 0.0, true};
         return {detail::about(m, std::sqrt(uniform01(g)), g), albedo, true};  // Malley: cos = sqrt(u)
     }
+    /// The diffuse part albedo / pi <wo.m>, estimated at one visible normal m of wi; no specular part.
     template <class Microsurface, class G>
     Phase phase(const Microsurface& ms, const Vec3& wi, const Vec3& wo, G& g) const {
         if (albedo == 0.0) return {};
@@ -117,16 +134,24 @@ struct Lambert {
 /// k = 21 / (20 pi): facet BRDF F spec + (1 - F(wi.m)) albedo k (1 - (1 - wo.m)^5), symmetric in wi and wo.
 /// The branch is chosen with probability F (Russian roulette between the two, unbiased), so weights stay in [0, 1].
 struct FresnelDiffuse {
+    /// f0, Schlick's reflectance at normal incidence, and the albedo of the light that enters: both in [0, 1].
+    /// @{
     double f0, albedo;
+    /// @}
     static constexpr bool reciprocal = true;  ///< f(wi, wo) = f(wo, wi) facet by facet
+    /// The normalization of Hammon's lobe k (1 - (1 - cos)^5) cos.
     static constexpr double k = 21.0 / (20.0 * std::numbers::pi);
 
+    /// With probability F(wi.m) the mirror reflection (weight 1), else a direction from Hammon's lobe about m (weight
+    /// albedo, a diffuse event).
     template <class G>
     Scatter sample(const Vec3& wi, const Vec3& m, G& g) const {
         if (uniform01(g) < fresnel_schlick(f0, wi.dot(m))) return {reflect(wi, m), 1.0, false};
         if (albedo == 0.0) return {m, 0.0, true};
         return {detail::about(m, detail::hammon_lobe_cos(uniform01(g)), g), albedo, true};
     }
+    /// The specular part F(wi.h) D(h) / (4 A(wi)), and the diffuse part (1 - F(wi.m)) albedo k (1 - (1 - wo.m)^5) wo.m
+    /// estimated at one visible normal m of wi.
     template <class Microsurface, class G>
     Phase phase(const Microsurface& ms, const Vec3& wi, const Vec3& wo, G& g) const {
         Phase p{detail::mirror_phase(ms, wi, wo, [this](double c) { return fresnel_schlick(f0, c); }), 0.0};
@@ -149,9 +174,13 @@ struct FresnelDiffuse {
 ///     (1 - F(wi.h)) <wi.h> D(h) / A(wi) |d omega_h / d omega_o|,  h = -(wi + eta' wo) / |.| turned up,
 /// the Jacobian Walter 2007 eq. 17 (geometry.hpp, dm_dwo_refraction), eta' the relative index on this side.
 struct Dielectric {
+    /// The index below the surface over that above, in [1e-3, 1e3].
     double eta;
+    /// It lets rays through to the other side (TwoSided).
     static constexpr bool two_sided = true;
 
+    /// With probability F(wi.m) (or under total internal reflection) the mirror reflection, else the refraction
+    /// (Snell), weight 1; `above` tells the side, hence the relative index.
     template <class G>
     Scatter sample(const Vec3& wi, const Vec3& m, G& g, bool above) const {
         const double e = above ? eta : 1.0 / eta;
@@ -160,6 +189,8 @@ struct Dielectric {
             return {reflect(wi, m), 1.0, false};
         return {t, 1.0, false, true};
     }
+    /// Toward wo on this side (wo.z > 0) the reflection's part, below it the refraction's (the formula above), both
+    /// specular; `above` tells the side.
     template <class Microsurface, class G>
     Phase phase(const Microsurface& ms, const Vec3& wi, const Vec3& wo, G&, bool above) const {
         const double e = above ? eta : 1.0 / eta;
@@ -175,6 +206,8 @@ struct Dielectric {
     }
 };
 
+/// A material that lets rays through to the other side of the microsurface (`static constexpr bool two_sided = true`):
+/// its sample and phase are told the side the ray is on.
 template <class M>
 concept TwoSided = requires {
     requires M::two_sided;
@@ -189,12 +222,14 @@ concept Reciprocal = !TwoSided<M> && requires {
     requires M::reciprocal;
 };
 
+/// The facet materials, a closed set, visited once per block of walks.
 using Material = std::variant<Mirror, Conductor, Lambert, FresnelDiffuse, Dielectric>;
 
 /// "mirror", "conductor(eta=, k=)", "lambert(albedo=1)", "fresnel-diffuse(f0=0.02, albedo=1)", "dielectric(eta=1.5)";
 /// input_error naming an unknown material (with the known ones), an unknown or missing parameter, or a value out of
 /// its range.
 Material parse_material(std::string_view spec);
+/// The material's canonical spec, every parameter given, as parse_material reads it.
 std::string format_material(const Material& material);
 /// Whether any event of the material is diffuse (the tallies of the diffuse component exist only then).
 bool has_diffuse(const Material& material);

@@ -9,10 +9,15 @@
 
 namespace smithlab::walk {
 
+/// A facet material as parse_material reads it.
 struct MaterialInfo {
+    /// Its name, its spec with the parameters' defaults ("lambert(albedo=1)"), and what it is.
+    /// @{
     std::string_view name, spec, description;
+    /// @}
 };
 
+/// Every facet material parse_material reads, in the order the messages and front ends list them.
 inline constexpr std::array<MaterialInfo, 5> material_catalogue = {{
     {"mirror", "mirror", "every facet a perfect mirror (F = 1)"},
     {"conductor", "conductor(eta=, k=)",

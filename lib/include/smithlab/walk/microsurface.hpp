@@ -41,8 +41,12 @@ namespace smithlab::walk {
 /// visible: a visible normal of -T (the default); hammon_dcos: D cos restricted to T.m < 0 (Hammon 2017).
 enum class HitNormal { visible, hammon_dcos };
 
+/// The conventions of a microsurface: Lambda of a downward direction (smith.hpp, Downward) and the law of the hit
+/// normal.
 struct MicrosurfaceOptions {
+    /// Smith's Lambda(-mu) = -1 - Lambda(mu), or Hammon's -Lambda(mu).
     Downward downward = Downward::smith;
+    /// The visible normals of the ray, or Hammon's D cos facing it.
     HitNormal hit_normal = HitNormal::visible;
 };
 
@@ -55,9 +59,12 @@ inline void require_eval_normals(const MicrosurfaceOptions& opts) {
             "Hammon's D cos hit normals are for the sample estimator (trace)");
 }
 
+/// The Smith microsurface of an NDF N with the height law Heights: where a ray next meets it, whether it escapes, and
+/// the normal it hits (the file comment).
 template <Ndf N, class Heights = UniformHeights>
 class Microsurface {
 public:
+    /// Builds the NDF's visible normals (their tables included) for the given conventions.
     explicit Microsurface(const N& ndf, const MicrosurfaceOptions& opts = {}) : normals_(ndf), opts_(opts) {}
 
     /// Lambda of a travel direction w: Lambda(mu) for mu = cot(theta_w) >= 0, the downward convention below. From
@@ -144,7 +151,9 @@ public:
         return normals_.sample(v, g);
     }
 
+    /// The NDF's visible normals.
     const VisibleNormals<N>& normals() const { return normals_; }
+    /// The conventions it was built with.
     const MicrosurfaceOptions& options() const { return opts_; }
 
 private:

@@ -14,18 +14,27 @@
 
 namespace smithlab::walk {
 
+/// A cell of the sample estimator: one incident direction, its walks and their random streams, the tallies asked for.
 struct CellRequest {
     Vec3 wi;  ///< toward the light, wi.z > 0
+    /// The seed and the cell's index: walk k draws from WalkRng(seed, cell, k).
+    /// @{
     std::uint64_t seed = 1, cell = 0;
+    /// @}
+    /// The walks traced.
     std::int64_t walks = 100'000;
+    /// Where each walk stops short of escaping.
     WalkLimits limits{};
     BrdfBins brdf;              ///< empty: no directional tally is allocated
     unsigned threads = 0;       ///< 0: all cores
     std::int64_t block = 4096;  ///< walks per block (part of the result's definition: the merge order)
 };
 
+/// A traced cell: its albedo tallies and, when asked for, its directional tallies.
 struct CellResult {
+    /// The albedo tallies.
     AlbedoTally albedo;
+    /// The directional tallies, when the request has bins.
     std::optional<BrdfTally> brdf;
 };
 
@@ -36,7 +45,9 @@ inline std::uint64_t block_count(std::int64_t walks, std::int64_t block) {
 
 /// What one block of a cell's walks leaves, and the cell's total: the partials merged in block order.
 struct CellPartial {
+    /// The albedo tallies.
     AlbedoTally albedo;
+    /// The directional tallies, when the request has bins.
     std::optional<BrdfTally> brdf;
 };
 
@@ -47,6 +58,7 @@ inline CellPartial empty_partial(const CellRequest& r) {
     return p;
 }
 
+/// Adds the partial p to total (both with or both without directional tallies).
 inline void merge_partial(CellPartial& total, const CellPartial& p) {
     total.albedo.merge(p.albedo);
     if (total.brdf) total.brdf->merge(*p.brdf);
@@ -82,12 +94,24 @@ CellResult trace_cell(const Microsurface& ms, const M& material, const CellReque
     return {std::move(total.albedo), std::move(total.brdf)};
 }
 
+/// A direction pair of the eval estimator: its walks and random streams, the estimator, and the threads and blocks it
+/// runs in.
 struct EvalRequest {
+    /// The incident direction (toward the light) and the outgoing one.
+    /// @{
     Vec3 wi, wo;  ///< wi.z > 0; wo anywhere (f |cos theta_o| = 0 below for the materials here)
+    /// @}
+    /// The seed and the cell's index: walk k draws from WalkRng(seed, cell, k).
+    /// @{
     std::uint64_t seed = 1, cell = 0;
+    /// @}
+    /// The walks traced.
     std::int64_t walks = 100'000;
+    /// Where each walk stops short of escaping.
     WalkLimits limits{};
+    /// The threads (0: all cores).
     unsigned threads = 0;
+    /// Walks per block (the merge order: part of the result's definition).
     std::int64_t block = 4096;
     EvalEstimator estimator = EvalEstimator::next_event;  ///< walk.hpp; the brdf command's is next_event
     /// If set, called before each block, on the thread that runs it (a front end's check for an interruption, once
@@ -95,6 +119,8 @@ struct EvalRequest {
     std::function<void()> before_block = {};
 };
 
+/// The eval estimator's tallies of f(wi, wo) |cos theta_o| over r.walks walks from r.wi toward r.wo, in blocks merged
+/// in block order over r.threads threads: the same bits for any number of threads.
 template <class Microsurface, class M>
 EvalTally eval_cell(const Microsurface& ms, const M& material, const EvalRequest& r) {
     return util::reduce_blocks(

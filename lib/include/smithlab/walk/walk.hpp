@@ -30,8 +30,10 @@ namespace smithlab::walk {
 
 /// Tallies by scattering order: 1, 2, 3, 4+.
 inline constexpr int order_bins = 4;
+/// The bin of scattering order `order` >= 1: 0, 1, 2 for orders 1, 2, 3, and 3 for 4 or more.
 inline int order_bin(std::int64_t order) { return static_cast<int>(std::min<std::int64_t>(order, order_bins)) - 1; }
 
+/// Where a walk stops short of escaping.
 struct WalkLimits {
     int max_order = 0;  ///< > 0: the walk ends after this many hits (the orders beyond are not asked for)
     std::int64_t max_events = 1'000'000;  ///< a walk still inside after this many hits ends as `capped` (never a hang)
@@ -42,15 +44,20 @@ struct WalkLimits {
 /// by the albedo, and nothing else depends on it), so a walk traced at albedo 1 and split by k gives the result at
 /// every albedo a as sum_k a^k f_k (the fitter's data: fit/dataset.hpp).
 inline constexpr int diffuse_bins = 16;
+/// The bin of k diffuse events: k, the last bin for diffuse_bins - 1 or more.
 inline int diffuse_bin(int k) { return std::min(k, diffuse_bins - 1); }
 
+/// One walk of the sample estimator (sample_walk): where it left, what it carries, how many hits and diffuse events.
 struct WalkSample {
     Vec3 wo;             ///< the exit direction, when escaped
     double weight;       ///< what it carries out (0 when absorbed, truncated or capped)
     int order;           ///< hits before it left
     int diffuse_events;  ///< diffuse events on the way
+    /// Whether it left the surface (else it was absorbed, truncated at max_order, or capped).
     bool escaped;
+    /// Whether it was still inside after max_events hits (or met a normal that could not be drawn).
     bool capped;
+    /// Whether any event on the way was diffuse.
     bool diffuse() const { return diffuse_events > 0; }
 };
 
@@ -98,6 +105,8 @@ double expected_first_escape(const Microsurface& ms, const Vec3& w, const Vec3& 
 }
 }  // namespace detail
 
+/// One walk from wi (pointing away from the surface) on the microsurface ms with facets of `material`, drawing from g:
+/// the sample estimator (Heitz et al. 2016, alg. 1-2; the file comment).
 template <class Microsurface, class M, class G>
 WalkSample sample_walk(const Microsurface& ms, const M& material, const Vec3& wi, G& g, const WalkLimits& limits = {}) {
     bool above = !TwoSided<M> || wi.z() > 0.0;
@@ -153,6 +162,7 @@ WalkSample sample_walk(const Microsurface& ms, const M& material, const Vec3& wi
 /// reciprocal is the fitter's: its equal-error time (ns a walk x variance) is the lowest at every point bench_fit
 /// measures.
 enum class EvalEstimator { next_event, expected_first, reciprocal };
+/// The estimator's name ("next_event", "expected_first", "reciprocal"), as the fitter's cache key names it.
 inline const char* name(EvalEstimator e) {
     return e == EvalEstimator::next_event    ? "next_event"
         : e == EvalEstimator::expected_first ? "expected_first"
@@ -160,10 +170,17 @@ inline const char* name(EvalEstimator e) {
 }
 inline constexpr double reciprocal_cos = 0.64278760968653933;  ///< cos 50 degrees
 
+/// One walk of the eval estimator (eval_walk): its estimate of f(wi, wo) |cos theta_o| by order bin and component, and
+/// by diffuse events.
 struct EvalSample {
+    /// @{
     std::array<double, order_bins> specular{}, diffuse{};  ///< f |cos theta_o| by order bin and component
-    std::array<double, diffuse_bins> by_diffuse{};         ///< the same by diffuse events (diffuse_bin), all orders
+    /// @}
+    std::array<double, diffuse_bins> by_diffuse{};  ///< the same by diffuse events (diffuse_bin), all orders
+    /// The hits of the walk.
     std::int64_t events = 0;
+    /// Whether it was stopped at max_events hits, or gave no estimate (a normal that could not be drawn, a microsurface
+    /// whose hits are not visible normals).
     bool capped = false;
 };
 
@@ -184,6 +201,8 @@ inline void add_next_event(EvalSample& out, std::int64_t order, int diffuse, dou
 }
 }  // namespace detail
 
+/// One walk from wi with next-event estimation toward wo at every hit, by `estimator` (EvalEstimator): an unbiased
+/// estimate of f(wi, wo) |cos theta_o| (Heitz et al. 2016, alg. 3; the file comment).
 template <class Microsurface, class M, class G>
 EvalSample eval_walk(const Microsurface& ms, const M& material, const Vec3& wi, const Vec3& wo, G& g,
                      const WalkLimits& limits = {}, EvalEstimator estimator = EvalEstimator::next_event) {
