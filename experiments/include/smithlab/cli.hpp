@@ -1,17 +1,18 @@
-// <smithlab/cli.hpp> -- the `smithlab` command line as a library call (target smithlab::cli).
-//
-// A program that registers its own NDFs becomes a full `smithlab` with them: eval, check, sample, report, trace,
-// brdf, fit and list, each NDF walked and fitted as its own type (registry.hpp, surface.hpp):
-//     int main(int argc, char** argv) {
-//         smithlab::NdfRegistry registry = smithlab::builtin_registry();
-//         registry.add({.name = "mine", .parameters = {"alpha"}, .description = "...",
-//                       .examples = {"mine(alpha=0.3)"}},
-//                      [](const smithlab::NdfParams& p) { return Mine{p.at("alpha")}; });
-//         return smithlab::run_cli(argc, argv, registry);
-//     }
-// Its `--help` names the registry's NDFs, its own among them; `--version` prints smithlab's version. Its own diffuse
-// models come in the same way, through the second run_cli below (docs/extending.md).
-// Under mpirun (where the library was built with MPI), trace, fit and report run on every rank, as `smithlab` does.
+/// @file
+/// <smithlab/cli.hpp> -- the `smithlab` command line as a library call (target smithlab::cli).
+///
+/// A program that registers its own NDFs becomes a full `smithlab` with them: eval, check, sample, report, trace,
+/// brdf, fit and list, each NDF walked and fitted as its own type (registry.hpp, surface.hpp):
+///     int main(int argc, char** argv) {
+///         smithlab::NdfRegistry registry = smithlab::builtin_registry();
+///         registry.add({.name = "mine", .parameters = {"alpha"}, .description = "...",
+///                       .examples = {"mine(alpha=0.3)"}},
+///                      [](const smithlab::NdfParams& p) { return Mine{p.at("alpha")}; });
+///         return smithlab::run_cli(argc, argv, registry);
+///     }
+/// Its `--help` names the registry's NDFs, its own among them; `--version` prints smithlab's version. Its own diffuse
+/// models come in the same way, through the second run_cli below (docs/extending.md).
+/// Under mpirun (where the library was built with MPI), trace, fit and report run on every rank, as `smithlab` does.
 #pragma once
 
 #include "smithlab/fit/diffuse_registry.hpp"
@@ -19,13 +20,13 @@
 
 namespace smithlab {
 
-// Parses argv as `smithlab` does and runs the subcommand on `registry`; returns the exit code (0 fine, 1 a check
-// failed, 2 bad input, 3 an internal error). Call it once, from main, before any other thread starts: it installs
-// the signal handlers that remove a run's temporary outputs, and initializes MPI under mpirun.
+/// Parses argv as `smithlab` does and runs the subcommand on `registry`; returns the exit code (0 fine, 1 a check
+/// failed, 2 bad input, 3 an internal error). Call it once, from main, before any other thread starts: it installs
+/// the signal handlers that remove a run's temporary outputs, and initializes MPI under mpirun.
 int run_cli(int argc, char** argv, const NdfRegistry& registry);
-// The same with the diffuse models of `models` (fit::builtin_diffuse_registry() and a program's own, added by
-// models.add: smithlab/fit/diffuse_registry.hpp) in place of the built-in ones: fit fits and exports them, list and
-// fit --list-models list them.
+/// The same with the diffuse models of `models` (fit::builtin_diffuse_registry() and a program's own, added by
+/// models.add: smithlab/fit/diffuse_registry.hpp) in place of the built-in ones: fit fits and exports them, list and
+/// fit --list-models list them.
 int run_cli(int argc, char** argv, const NdfRegistry& registry, const fit::DiffuseRegistry& models);
 
 }  // namespace smithlab

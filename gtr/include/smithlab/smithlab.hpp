@@ -1,5 +1,6 @@
-// <smithlab/smithlab.hpp> -- the public API in one include: the NDFs and the Smith engine (any NDF), the samplers,
-// the microsurface walk, the diffuse fitter, and the GTR family.
+/// @file
+/// <smithlab/smithlab.hpp> -- the public API in one include: the NDFs and the Smith engine (any NDF), the samplers,
+/// the microsurface walk, the diffuse fitter, and the GTR family.
 #pragma once
 
 #include "smithlab/abc.hpp"

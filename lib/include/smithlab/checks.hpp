@@ -1,6 +1,7 @@
-// smithlab/checks.hpp -- the checks every NDF must pass (docs/math.md; Walter 2007
-// sec. 3 and appendix A; Heitz 2014 eq. 2 for the projected-area identity). Each is computed by a route independent
-// of the one it checks.
+/// @file
+/// smithlab/checks.hpp -- the checks every NDF must pass (docs/math.md; Walter 2007
+/// sec. 3 and appendix A; Heitz 2014 eq. 2 for the projected-area identity). Each is computed by a route independent
+/// of the one it checks.
 #pragma once
 
 #include <algorithm>
@@ -16,30 +17,35 @@
 
 namespace smithlab {
 
+/// One per-distribution check: what was computed against what it must equal, and whether it is within tolerance.
 struct CheckResult {
-    std::string name;   // what is checked
-    std::string where;  // at which direction / mu
-    double value;       // what was computed
-    double expected;    // what it must equal
-    double tolerance;   // on the relative residual
+    std::string name;   ///< what is checked
+    std::string where;  ///< at which direction / mu
+    double value;       ///< what was computed
+    double expected;    ///< what it must equal
+    double tolerance;   ///< on the relative residual
+    /// |value - expected| / |expected|, 0 where they are equal (infinities included).
     double residual() const { return value == expected ? 0.0 : std::abs(value - expected) / std::abs(expected); }
+    /// Whether the relative residual is within the tolerance (a NaN fails).
     bool passed() const { return residual() <= tolerance; }
 };
 
+/// How the checks compute the integrals they compare.
 struct CheckOptions {
+    /// The quadrature library of the integrals (quadrature.hpp).
     Backend backend = Backend::boost;
-    bool with_2d = true;  // the nested route costs milliseconds per Lambda
+    bool with_2d = true;  ///< the nested route costs milliseconds per Lambda
 };
 
 namespace detail {
-// integral over phi in [0, 2 pi) of max(0, a cos(phi) + b), a >= 0.
+/// integral over phi in [0, 2 pi) of max(0, a cos(phi) + b), a >= 0.
 double clamped_cosine_azimuth(double a, double b);
 std::string format_where(const char* name, double value);
 
-// D cos^4 at tan^2 = r2 as the checks on D read it: through cos(theta_m), as the user wrote D, while the NDF's core
-// scale is >= 1e-3; below, where cos(theta_m) cannot carry a slope's digits (the rounding of sin^2 = (1-c)(1+c) is
-// 1e-16 / r^2 relative: a few 1e-9 of the integrals at alpha = 1e-4, 1e-7 at 1e-5, all of them from 1e-8 on), through
-// the NDF's slope form P22 (for a D-only NDF that is D again).
+/// D cos^4 at tan^2 = r2 as the checks on D read it: through cos(theta_m), as the user wrote D, while the NDF's core
+/// scale is >= 1e-3; below, where cos(theta_m) cannot carry a slope's digits (the rounding of sin^2 = (1-c)(1+c) is
+/// 1e-16 / r^2 relative: a few 1e-9 of the integrals at alpha = 1e-4, 1e-7 at 1e-5, all of them from 1e-8 on), through
+/// the NDF's slope form P22 (for a D-only NDF that is D again).
 template <Ndf N>
 double checked_D_cos4(const N& ndf, double r2, double r0) {
     if constexpr (HasSlopeDensity<N>) {
@@ -53,7 +59,7 @@ double checked_D_cos4(const N& ndf, double r2, double r0) {
 // cos^4(theta) r dr, and integrated on a log axis split at the core scale r0 (and 1, and the kink), so that the peak
 // of D at r ~ alpha is found at any alpha. D is read as the user wrote it (detail::checked_D_cos4).
 
-// 1. integral over the hemisphere of D(m) cos(theta_m) dm = 2 pi integral_0^inf D cos^4 r dr = 1.
+/// 1. integral over the hemisphere of D(m) cos(theta_m) dm = 2 pi integral_0^inf D cos^4 r dr = 1.
 template <Ndf N>
 double projected_area(const N& ndf, Backend backend = Backend::boost) {
     const double r0 = core_slope_scale(ndf);
@@ -61,9 +67,9 @@ double projected_area(const N& ndf, Backend backend = Backend::boost) {
     return 2.0 * std::numbers::pi * integrate_log_axis(f, {backend, 1e-12}, std::min(r0, 1.0), std::max(r0, 1.0));
 }
 
-// 3. integral of <v.m> D(m) dm over the hemisphere for v at theta_v: the azimuth of the clamped cosine is done in
-// closed form, the polar angle by quadrature in r, split at the kink r = cot(theta_v). Smith's G1 is defined
-// so that G1(v) times this equals cos(theta_v) (Heitz 2014 eq. 2).
+/// 3. integral of <v.m> D(m) dm over the hemisphere for v at theta_v: the azimuth of the clamped cosine is done in
+/// closed form, the polar angle by quadrature in r, split at the kink r = cot(theta_v). Smith's G1 is defined
+/// so that G1(v) times this equals cos(theta_v) (Heitz 2014 eq. 2).
 template <Ndf N>
 double visible_projected_area(const N& ndf, double theta_v, Backend backend = Backend::boost) {
     const double sv = std::sin(theta_v), cv = std::cos(theta_v), r0 = core_slope_scale(ndf), kink = cv / sv;
@@ -75,11 +81,11 @@ double visible_projected_area(const N& ndf, double theta_v, Backend backend = Ba
     return integrate_log_axis(f, {backend, 1e-12}, std::min(r0, kink), std::max(r0, kink));
 }
 
-// Tolerances. The checks on D itself (1 and 3) read D through cos(theta_m), whose rounding near the pole is a
-// relative error of ~1e-16/theta^2 in sin^2(theta): at alpha = 1e-4 that is 1e-8 in D across the peak. Integrated,
-// it averages down to a few 1e-9, so those checks are held to 1e-8; the slope-space ones to 1e-9 and tighter.
-// The Lambda comparisons run at mu = {0.1, 1, 10} s, s = min(max(1, r0), 1e11), inside the quadrature routes'
-// domain (smith.hpp); an NDF whose core scale r0 exceeds 1e22 leaves them none, and is refused (input_error).
+/// Tolerances. The checks on D itself (1 and 3) read D through cos(theta_m), whose rounding near the pole is a
+/// relative error of ~1e-16/theta^2 in sin^2(theta): at alpha = 1e-4 that is 1e-8 in D across the peak. Integrated,
+/// it averages down to a few 1e-9, so those checks are held to 1e-8; the slope-space ones to 1e-9 and tighter.
+/// The Lambda comparisons run at mu = {0.1, 1, 10} s, s = min(max(1, r0), 1e11), inside the quadrature routes'
+/// domain (smith.hpp); an NDF whose core scale r0 exceeds 1e22 leaves them none, and is refused (input_error).
 template <Ndf N>
 std::vector<CheckResult> run_checks(const N& ndf, const CheckOptions& opts = {}) {
     std::vector<CheckResult> out;

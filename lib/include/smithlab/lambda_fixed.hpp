@@ -1,32 +1,33 @@
-// smithlab/lambda_fixed.hpp -- the reduced 1D Lambda by fixed Gauss-Kronrod panels with precomputed nodes.
-//
-// The integral (smith.hpp, Lambda_1d; docs/math.md)
-//   Lambda(mu) = (2/mu) integral_mu^inf f(r^2) r (sqrt(r^2 - mu^2) - mu acos(mu/r)) dr,   f(r^2) = P22,
-// in u = acosh(r/mu) (r = mu cosh u, sqrt(r^2 - mu^2) = mu sinh u, acos(mu/r) = gd u = atan(sinh u)):
-//   Lambda(mu) = 2 integral_0^inf f(r^2) r^2 H(u) du,   H(u) = sinh u (sinh u - gd u) / cosh u.
-// (This is the t-form of smith.hpp with sec t = cosh u, t = gd u.) Two facts make a fixed rule work:
-//  - every geometric factor depends on u alone, not on mu: on fixed nodes u_k, r_k^2 = mu^2 cosh^2 u_k, and
-//    Lambda = 2 sum_k w_k H(u_k) r_k^2 f(r_k^2) is a dot product with precomputed coefficients, one f per node;
-//  - u ~ ln(2 r/mu) for large u: a feature of f at a slope scale r_f (the core r0 = 1/sqrt(pi P22(0)), a GTR tail
-//    bending at r ~ 1) sits at u ~ ln(2 r_f/mu) and is O(1) wide there, whatever mu is; the singularities of the
-//    integrand nearest to the real u-axis (GGX's pole r^2 = -alpha^2, GTR's branch point r^2 = -1, gd's at
-//    u = i pi/2) are pi/2 away from it. The integrand is even in u (sinh u - gd u is odd), zero like u^4 at u = 0.
-// Rule: Gauss-Kronrod 15-31 (Kronrod 1965; the nodes and weights are Boost.Math's gauss_kronrod<double, 31>) on
-// panels [2j, 2j + 2] of u, j < J, then the tail u >= 2J in s = pi/2 - t = atan(1/sinh u) in [0, s_J] (the t-form
-// of smith.hpp, where a power tail of f is smooth: f ~ r^-4 makes the integrand tend to a constant as s -> 0),
-// with J the first panel edge beyond ln(2 max(r0, 1)/mu), at least 1 (the tail then starts past every feature it
-// knows of: its nearest singularity, at s ~ i mu/r_f, is at least one tail length off its end point s = 0). A panel of
-// width 2 puts a singularity pi/2 off its middle at Bernstein ellipse parameter rho = 3.4 (Trefethen 2008, "Is Gauss
-// quadrature better than Clenshaw-Curtis?", thm 4.5: error ~ rho^-2n): 15-point Gauss ~ 1e-16, 31-point Kronrod far
-// below, of the panel's size. (Gauss-Kronrod 10-21 on these panels stopped ~1e-9 short of QUADPACK's test at u ~ 0,
-// where the triple pole of 1/cosh^3 sits, and bisected there.) Error estimate per piece: QUADPACK's QK21 (Piessens, de
-// Doncker-Kapenga, Ueberhuber, Kahaner 1983, sec. 3.2),
-//   E = resasc min(1, (200 |K - G| / resasc)^1.5), at least 50 eps resabs;
-// accepted when the sum of E over the pieces is <= tolerance x |Lambda| (tests/test_quadrature.cpp checks that E
-// bounds the error). Otherwise the worst piece is bisected (nodes computed on the fly), up to max_pieces pieces;
-// if that does not converge either, the answer is the adaptive route Lambda_1d (opts.backend) -- the stiff corners
-// (Beckmann at mu/alpha >~ 5, heavy Student-t tails) take that path.
-// No allocation, no exceptions, no virtual call in the loop: it is a template on the concrete NDF.
+/// @file
+/// smithlab/lambda_fixed.hpp -- the reduced 1D Lambda by fixed Gauss-Kronrod panels with precomputed nodes.
+///
+/// The integral (smith.hpp, Lambda_1d; docs/math.md)
+///   Lambda(mu) = (2/mu) integral_mu^inf f(r^2) r (sqrt(r^2 - mu^2) - mu acos(mu/r)) dr,   f(r^2) = P22,
+/// in u = acosh(r/mu) (r = mu cosh u, sqrt(r^2 - mu^2) = mu sinh u, acos(mu/r) = gd u = atan(sinh u)):
+///   Lambda(mu) = 2 integral_0^inf f(r^2) r^2 H(u) du,   H(u) = sinh u (sinh u - gd u) / cosh u.
+/// (This is the t-form of smith.hpp with sec t = cosh u, t = gd u.) Two facts make a fixed rule work:
+///  - every geometric factor depends on u alone, not on mu: on fixed nodes u_k, r_k^2 = mu^2 cosh^2 u_k, and
+///    Lambda = 2 sum_k w_k H(u_k) r_k^2 f(r_k^2) is a dot product with precomputed coefficients, one f per node;
+///  - u ~ ln(2 r/mu) for large u: a feature of f at a slope scale r_f (the core r0 = 1/sqrt(pi P22(0)), a GTR tail
+///    bending at r ~ 1) sits at u ~ ln(2 r_f/mu) and is O(1) wide there, whatever mu is; the singularities of the
+///    integrand nearest to the real u-axis (GGX's pole r^2 = -alpha^2, GTR's branch point r^2 = -1, gd's at
+///    u = i pi/2) are pi/2 away from it. The integrand is even in u (sinh u - gd u is odd), zero like u^4 at u = 0.
+/// Rule: Gauss-Kronrod 15-31 (Kronrod 1965; the nodes and weights are Boost.Math's gauss_kronrod<double, 31>) on
+/// panels [2j, 2j + 2] of u, j < J, then the tail u >= 2J in s = pi/2 - t = atan(1/sinh u) in [0, s_J] (the t-form
+/// of smith.hpp, where a power tail of f is smooth: f ~ r^-4 makes the integrand tend to a constant as s -> 0),
+/// with J the first panel edge beyond ln(2 max(r0, 1)/mu), at least 1 (the tail then starts past every feature it
+/// knows of: its nearest singularity, at s ~ i mu/r_f, is at least one tail length off its end point s = 0). A panel of
+/// width 2 puts a singularity pi/2 off its middle at Bernstein ellipse parameter rho = 3.4 (Trefethen 2008, "Is Gauss
+/// quadrature better than Clenshaw-Curtis?", thm 4.5: error ~ rho^-2n): 15-point Gauss ~ 1e-16, 31-point Kronrod far
+/// below, of the panel's size. (Gauss-Kronrod 10-21 on these panels stopped ~1e-9 short of QUADPACK's test at u ~ 0,
+/// where the triple pole of 1/cosh^3 sits, and bisected there.) Error estimate per piece: QUADPACK's QK21 (Piessens, de
+/// Doncker-Kapenga, Ueberhuber, Kahaner 1983, sec. 3.2),
+///   E = resasc min(1, (200 |K - G| / resasc)^1.5), at least 50 eps resabs;
+/// accepted when the sum of E over the pieces is <= tolerance x |Lambda| (tests/test_quadrature.cpp checks that E
+/// bounds the error). Otherwise the worst piece is bisected (nodes computed on the fly), up to max_pieces pieces;
+/// if that does not converge either, the answer is the adaptive route Lambda_1d (opts.backend) -- the stiff corners
+/// (Beckmann at mu/alpha >~ 5, heavy Student-t tails) take that path.
+/// No allocation, no exceptions, no virtual call in the loop: it is a template on the concrete NDF.
 #pragma once
 
 #include <array>
@@ -39,66 +40,83 @@
 namespace smithlab {
 
 namespace detail {
-double tan_minus_x(double t, double tan_t);  // smith.cpp
+double tan_minus_x(double t, double tan_t);  ///< smith.cpp
 }
 
 namespace fixed_rule {
 
-inline constexpr int nodes = 31;            // Gauss-Kronrod 15-31
-inline constexpr double panel_width = 2.0;  // in u
-inline constexpr int max_panels = 32;       // u up to 64: mu down to ~1e-27 max(r0, 1)
-inline constexpr int max_pieces = 64;       // the bisection's limits before the adaptive route takes over:
-inline constexpr int max_untabled = 4;      // pieces, and bisections below the trees' depth (each ~5 us)
-// Each fixed piece comes with its bisections to depth 3, precomputed: a tree in heap order, tree[1] the piece,
-// tree[2i] and tree[2i + 1] the halves of tree[i]. Deeper halves get their nodes computed on the fly (~80 ns a node
-// against ~0 from the table: sinh, cosh, atan).
+inline constexpr int nodes = 31;            ///< Gauss-Kronrod 15-31
+inline constexpr double panel_width = 2.0;  ///< in u
+inline constexpr int max_panels = 32;       ///< u up to 64: mu down to ~1e-27 max(r0, 1)
+inline constexpr int max_pieces = 64;       ///< the bisection's limits before the adaptive route takes over:
+inline constexpr int max_untabled = 4;      ///< pieces, and bisections below the trees' depth (each ~5 us)
+/// Each fixed piece comes with its bisections to depth 3, precomputed: a tree in heap order, tree[1] the piece,
+/// tree[2i] and tree[2i + 1] the halves of tree[i]. Deeper halves get their nodes computed on the fly (~80 ns a node
+/// against ~0 from the table: sinh, cosh, atan).
 inline constexpr int tree_size = 16;
 
-// One piece of the integral on fixed nodes: r_k^2 = mu^2 S[k]; the piece is sum_k W[k] r_k^2 f(r_k^2) (Kronrod) and
-// sum_k V[k] r_k^2 f(r_k^2) (Gauss, V = 0 on the Kronrod-only nodes); W and V include the node's H and the
-// piece's half-width.
+/// One piece of the integral on fixed nodes: r_k^2 = mu^2 S[k]; the piece is sum_k W[k] r_k^2 f(r_k^2) (Kronrod) and
+/// sum_k V[k] r_k^2 f(r_k^2) (Gauss, V = 0 on the Kronrod-only nodes); W and V include the node's H and the
+/// piece's half-width.
 struct Piece {
+    /// The nodes' r^2 / mu^2, and their Kronrod and Gauss weights.
+    /// @{
     std::array<double, nodes> S, W, V;
+    /// @}
 };
 
+/// A fixed piece with its bisections to depth 3, in heap order (tree[1] the piece).
 using Tree = std::array<Piece, tree_size>;
 
+/// The precomputed trees of the fixed pieces: the panels u in [2j, 2j + 2], and the tails beyond each.
 struct Tables {
-    std::array<Tree, max_panels> panel;         // [1]: u in [2j, 2j + 2]
-    std::array<Tree, max_panels + 1> tail;      // [1]: u >= 2J, in s from atan(1 / sinh(2J)) down to 0
-    std::array<double, max_panels + 1> s_edge;  // s at u = 2J
+    std::array<Tree, max_panels> panel;         ///< [1]: u in [2j, 2j + 2]
+    std::array<Tree, max_panels + 1> tail;      ///< [1]: u >= 2J, in s from atan(1 / sinh(2J)) down to 0
+    std::array<double, max_panels + 1> s_edge;  ///< s at u = 2J
 };
 
-// Built once, at the first call (a function-local static: thread-safe, C++11 [stmt.dcl]/4): ~2 ms, 0.8 MB.
+/// Built once, at the first call (a function-local static: thread-safe, C++11 [stmt.dcl]/4): ~2 ms, 0.8 MB.
 const Tables& tables();
 
-// The Gauss-Kronrod 10-21 nodes on [-1, 1] (all 21), Kronrod weights and Gauss weights (0 on Kronrod-only nodes).
+/// The Gauss-Kronrod 10-21 nodes on [-1, 1] (all 21), Kronrod weights and Gauss weights (0 on Kronrod-only nodes).
 struct Rule {
+    /// The nodes, the Kronrod weights and the Gauss weights.
+    /// @{
     std::array<double, nodes> x, wk, wg;
+    /// @}
 };
+/// The rule, built once.
 const Rule& rule();
 
-// H for a node given in u, or in s (the tail): the integrand's geometric factor times its Jacobian, and r^2/mu^2.
+/// H for a node given in u, or in s (the tail): the integrand's geometric factor times its Jacobian, and r^2/mu^2.
 struct Geometry {
+    /// r^2 / mu^2 at the node, and H.
+    /// @{
     double S, H;
+    /// @}
 };
+/// The node at u (the panels): S = cosh^2 u, sinh and cosh from one expm1.
 inline Geometry at_u(double u) {
     // sinh and cosh from one expm1: sinh u = m (m + 2) / (2 (m + 1)), m = e^u - 1, exact as u -> 0.
     const double m = std::expm1(u), sh = m * (m + 2.0) / (2.0 * (m + 1.0)), ch = sh + 1.0 / (m + 1.0);
     return {ch * ch, sh * detail::tan_minus_x(std::atan(sh), sh) / ch};
 }
+/// The node at s = pi/2 - t (the tails): S = 1 / sin^2 s.
 inline Geometry at_s(double s) {
     // t = pi/2 - s: sec^2 t = 1/sin^2 s, tan t = cos s / sin s; the t-form's sec^2 t carries r^2 = mu^2 sec^2 t.
     const double sn = std::sin(s), tn = std::cos(s) / sn;
     return {1.0 / (sn * sn), tn * detail::tan_minus_x(std::numbers::pi / 2 - s, tn)};
 }
 
-// The result of one piece: Kronrod value, QUADPACK error estimate.
+/// The result of one piece: Kronrod value, QUADPACK error estimate.
 struct PieceResult {
+    /// The Kronrod value, and QUADPACK's error estimate.
+    /// @{
     double K, E;
+    /// @}
 };
 
-// QUADPACK QK21's error estimate from the Kronrod and Gauss sums, resabs = sum w|g| and resasc = sum w|g - K/len|.
+/// QUADPACK QK21's error estimate from the Kronrod and Gauss sums, resabs = sum w|g| and resasc = sum w|g - K/len|.
 inline double quadpack_error(double K, double G, double resabs, double resasc) {
     constexpr double eps = 2.220446049250313e-16;
     double e = std::abs(K - G);
@@ -106,8 +124,8 @@ inline double quadpack_error(double K, double G, double resabs, double resasc) {
     return std::fmax(e, 50.0 * eps * resabs);
 }
 
-// A piece from its 21 integrand values g_k = r_k^2 f(r_k^2), the Kronrod and Gauss weights (with H and the
-// half-width) and the half-width h.
+/// A piece from its 21 integrand values g_k = r_k^2 f(r_k^2), the Kronrod and Gauss weights (with H and the
+/// half-width) and the half-width h.
 inline PieceResult combine(const std::array<double, nodes>& g, const std::array<double, nodes>& W,
                            const std::array<double, nodes>& V, double h) {
     double K = 0.0, G = 0.0, resabs = 0.0;
@@ -124,6 +142,8 @@ inline PieceResult combine(const std::array<double, nodes>& g, const std::array<
     return {K, quadpack_error(K, G, resabs, resasc)};
 }
 
+/// A piece of `ndf`'s integral at mu^2 = mu2 on the piece's precomputed nodes, of half-width h: its g_k = r_k^2
+/// P22(r_k^2) combined.
 template <Ndf N>
 PieceResult eval_piece(const N& ndf, double mu2, const Piece& p, double h) {
     std::array<double, nodes> g;
@@ -135,7 +155,7 @@ PieceResult eval_piece(const N& ndf, double mu2, const Piece& p, double h) {
     return combine(g, p.W, p.V, h);
 }
 
-// A piece [a, b] of u (in_s false) or of s (in_s true), nodes computed here (the bisection).
+/// A piece [a, b] of u (in_s false) or of s (in_s true), nodes computed here (the bisection).
 template <Ndf N>
 PieceResult eval_interval(const N& ndf, double mu2, double a, double b, bool in_s) {
     const Rule& R = rule();
@@ -155,17 +175,17 @@ PieceResult eval_interval(const N& ndf, double mu2, double a, double b, bool in_
 
 }  // namespace fixed_rule
 
-// Lambda with its error estimate, as the fixed rule found it, and how: the number of slope-density evaluations
-// and whether the estimate met the tolerance (else Lambda_fixed returns the adaptive route's value).
+/// Lambda with its error estimate, as the fixed rule found it, and how: the number of slope-density evaluations
+/// and whether the estimate met the tolerance (else Lambda_fixed returns the adaptive route's value).
 struct FixedLambda {
-    double Lambda = 0.0;     // the fixed rule's value (also when it did not converge)
-    double error = 0.0;      // its estimated absolute error (sum of QUADPACK's per-piece estimates)
-    int evaluations = 0;     // slope-density evaluations
-    bool converged = false;  // error <= tolerance x Lambda
+    double Lambda = 0.0;     ///< the fixed rule's value (also when it did not converge)
+    double error = 0.0;      ///< its estimated absolute error (sum of QUADPACK's per-piece estimates)
+    int evaluations = 0;     ///< slope-density evaluations
+    bool converged = false;  ///< error <= tolerance x Lambda
 };
 
-// The fixed rule alone (no fallback), for mu in (0, inf) with the scale r0 = 1/sqrt(pi P22(0)) (1 if P22(0) is 0
-// or not finite). Lambda_fixed() below validates the domain and falls back; this is the core, for tests and benches.
+/// The fixed rule alone (no fallback), for mu in (0, inf) with the scale r0 = 1/sqrt(pi P22(0)) (1 if P22(0) is 0
+/// or not finite). Lambda_fixed() below validates the domain and falls back; this is the core, for tests and benches.
 template <Ndf N>
 FixedLambda Lambda_fixed_rule(const N& ndf, double mu, double tolerance = 1e-12) {
     using namespace fixed_rule;
@@ -182,7 +202,7 @@ FixedLambda Lambda_fixed_rule(const N& ndf, double mu, double tolerance = 1e-12)
     struct Open {
         double a, b, K, E;
         bool in_s;
-        const Tree* tree;  // the piece is (*tree)[node] while node < tree_size
+        const Tree* tree;  ///< the piece is (*tree)[node] while node < tree_size
         int node;
     };
     std::array<Open, max_pieces> pieces;

@@ -1,10 +1,11 @@
-// smithlab/material_kernels.hpp -- the walks of a registered facet material, compiled for its concrete type where it
-// is registered (material_registry.hpp), so that its hot loop has no virtual call per bounce.
-//
-// A surface (surface.hpp) hands a registered material its microsurface once per block of walks. MaterialKernelsOf<M,
-// NdfTypes<Ns...>> holds the walk templates instantiated for M on walk::Microsurface<N> for each N listed, and on
-// Microsurface<AnyNdf> (the NDF erased: a virtual D and Lambda each) for an NDF of any other type; it finds which by
-// the surface's NDF type, once per block.
+/// @file
+/// smithlab/material_kernels.hpp -- the walks of a registered facet material, compiled for its concrete type where it
+/// is registered (material_registry.hpp), so that its hot loop has no virtual call per bounce.
+///
+/// A surface (surface.hpp) hands a registered material its microsurface once per block of walks. MaterialKernelsOf<M,
+/// NdfTypes<Ns...>> holds the walk templates instantiated for M on walk::Microsurface<N> for each N listed, and on
+/// Microsurface<AnyNdf> (the NDF erased: a virtual D and Lambda each) for an NDF of any other type; it finds which by
+/// the surface's NDF type, once per block.
 #pragma once
 
 #include <memory>
@@ -51,7 +52,7 @@ public:
     bool dirac_at(const Vec3& wi, const Vec3& wo) const override { return walk::material_dirac_at(m_, wi, wo); }
 
 private:
-    // f on the surface's microsurface of its concrete NDF type where that is listed, else on the erased one.
+    /// f on the surface's microsurface of its concrete NDF type where that is listed, else on the erased one.
     template <class F>
     auto on_microsurface(const AnySurface& s, F f) const {
         using R = decltype(f(s.erased_microsurface()));
@@ -67,8 +68,8 @@ private:
     M m_;
 };
 
-// A material of type M as a walk::Material: a built-in one as itself, any other with its walks compiled here for
-// the NDF types listed (and for any NDF, erased).
+/// A material of type M as a walk::Material: a built-in one as itself, any other with its walks compiled here for
+/// the NDF types listed (and for any NDF, erased).
 template <class M, class Ndfs = core_ndf_types>
 walk::Material make_material(M m, Ndfs = {}) {
     if constexpr (walk::builtin_material<M>) {

@@ -1,4 +1,5 @@
-// smithlab/named.hpp -- enumerators by name: one table per enum, read by its parser, its printer and the CLI's help.
+/// @file
+/// smithlab/named.hpp -- enumerators by name: one table per enum, read by its parser, its printer and the CLI's help.
 #pragma once
 
 #include <array>
@@ -9,13 +10,18 @@
 
 namespace smithlab {
 
+/// One enumerator of E with its name (as parsed and printed) and a one-line description (for the CLI's help).
 template <class E>
 struct Named {
+    /// The enumerator.
     E value;
+    /// Its name, and what it means.
+    /// @{
     std::string_view name, description;
+    /// @}
 };
 
-// The entry named `name`, or nullptr.
+/// The entry named `name`, or nullptr.
 template <class E, std::size_t N>
 constexpr const Named<E>* find_named(const std::array<Named<E>, N>& table, std::string_view name) {
     for (const Named<E>& e : table)
@@ -23,7 +29,7 @@ constexpr const Named<E>* find_named(const std::array<Named<E>, N>& table, std::
     return nullptr;
 }
 
-// show(entry) for each entry, joined by sep, the last by last_sep: "a, b or c" with sep ", " and last_sep " or ".
+/// show(entry) for each entry, joined by sep, the last by last_sep: "a, b or c" with sep ", " and last_sep " or ".
 template <class E, std::size_t N, class Show>
 std::string join_entries(const std::array<Named<E>, N>& table, std::string_view sep, std::string_view last_sep,
                          const Show& show) {
@@ -35,13 +41,13 @@ std::string join_entries(const std::array<Named<E>, N>& table, std::string_view 
     return out;
 }
 
-// The names joined by sep, the last by last_sep: "a, b or c" with sep ", " and last_sep " or ".
+/// The names joined by sep, the last by last_sep: "a, b or c" with sep ", " and last_sep " or ".
 template <class E, std::size_t N>
 std::string join_names(const std::array<Named<E>, N>& table, std::string_view sep, std::string_view last_sep) {
     return join_entries(table, sep, last_sep, [](const Named<E>& e) { return std::string(e.name); });
 }
 
-// "name (description)" for each entry, joined as join_names joins the names (for a CLI option's help).
+/// "name (description)" for each entry, joined as join_names joins the names (for a CLI option's help).
 template <class E, std::size_t N>
 std::string join_described(const std::array<Named<E>, N>& table, std::string_view sep, std::string_view last_sep) {
     return join_entries(table, sep, last_sep, [](const Named<E>& e) {
@@ -49,7 +55,7 @@ std::string join_described(const std::array<Named<E>, N>& table, std::string_vie
     });
 }
 
-// Every name of the table, in its order (for a CLI's list of accepted values).
+/// Every name of the table, in its order (for a CLI's list of accepted values).
 template <class E, std::size_t N>
 std::vector<std::string> names_of(const std::array<Named<E>, N>& table) {
     std::vector<std::string> out;
@@ -57,7 +63,7 @@ std::vector<std::string> names_of(const std::array<Named<E>, N>& table) {
     return out;
 }
 
-// The name of value in table, or "?".
+/// The name of value in table, or "?".
 template <class E, std::size_t N>
 constexpr std::string_view name_of(const std::array<Named<E>, N>& table, E value) {
     for (const Named<E>& e : table)

@@ -1,5 +1,6 @@
-// smithlab/ndf_types.hpp -- lists of concrete NDF types, for code compiled against each of them: a registered facet
-// material's walks (material_kernels.hpp).
+/// @file
+/// smithlab/ndf_types.hpp -- lists of concrete NDF types, for code compiled against each of them: a registered facet
+/// material's walks (material_kernels.hpp).
 #pragma once
 
 namespace smithlab {
@@ -14,8 +15,8 @@ struct StudentT;
 struct Abc;
 class TabulatedNdf;
 
-// The types register_core_ndfs's factories return (registry.hpp); smithlab/smithlab.hpp's builtin_ndf_types adds
-// the GTR family's.
+/// The types register_core_ndfs's factories return (registry.hpp); smithlab/smithlab.hpp's builtin_ndf_types adds
+/// the GTR family's.
 using core_ndf_types = NdfTypes<Ggx, Beckmann, BlinnPhong, StudentT, Abc, TabulatedNdf>;
 
 template <class... A, class... B>

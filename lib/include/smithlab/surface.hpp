@@ -1,14 +1,15 @@
-// smithlab/surface.hpp -- the Smith microsurface of one NDF with the NDF's type erased once: what a command runs on a
-// cell of walks, a block (or a point) at a time.
-//
-// A command holds NDFs as AnyNdf (registry.hpp); a walk needs the concrete type, so that D, Lambda and the visible
-// normals are direct calls (walk.hpp). The registry records, for the type its factory returns, how to build
-// SurfaceOf<N> (NdfKernels); make_surface builds one per cell, tables included, and each of its calls is one virtual
-// call for a whole block of walks (4096 by default) or a point: none per bounce. Every operation visits the facet
-// material once (walk/material.hpp): a built-in one runs the templates of walk/trace.hpp and fit/dataset.hpp on
-// Microsurface<N> here; a registered one runs its own instantiations of them (MaterialKernels, compiled where it was
-// registered: material_kernels.hpp) on this surface's concrete microsurface where its registration listed N, else on
-// the NDF erased (Microsurface<AnyNdf>, built on first use).
+/// @file
+/// smithlab/surface.hpp -- the Smith microsurface of one NDF with the NDF's type erased once: what a command runs on a
+/// cell of walks, a block (or a point) at a time.
+///
+/// A command holds NDFs as AnyNdf (registry.hpp); a walk needs the concrete type, so that D, Lambda and the visible
+/// normals are direct calls (walk.hpp). The registry records, for the type its factory returns, how to build
+/// SurfaceOf<N> (NdfKernels); make_surface builds one per cell, tables included, and each of its calls is one virtual
+/// call for a whole block of walks (4096 by default) or a point: none per bounce. Every operation visits the facet
+/// material once (walk/material.hpp): a built-in one runs the templates of walk/trace.hpp and fit/dataset.hpp on
+/// Microsurface<N> here; a registered one runs its own instantiations of them (MaterialKernels, compiled where it was
+/// registered: material_kernels.hpp) on this surface's concrete microsurface where its registration listed N, else on
+/// the NDF erased (Microsurface<AnyNdf>, built on first use).
 #pragma once
 
 #include <cstdint>
@@ -28,26 +29,26 @@ namespace smithlab {
 class AnySurface {
 public:
     virtual ~AnySurface() = default;
-    // Block b of a cell (walk::trace_block): the sample estimator's tallies.
+    /// Block b of a cell (walk::trace_block): the sample estimator's tallies.
     virtual walk::CellPartial trace_block(const walk::Material& material, const walk::CellRequest& r,
                                           std::uint64_t b) const = 0;
-    // One direction pair by the eval estimator over r.threads (walk::eval_cell).
+    /// One direction pair by the eval estimator over r.threads (walk::eval_cell).
     virtual walk::EvalTally eval_cell(const walk::Material& material, const walk::EvalRequest& r) const = 0;
-    // The fitter's points, one thread each (fit::trace_eval_point, fit::trace_albedo_point).
+    /// The fitter's points, one thread each (fit::trace_eval_point, fit::trace_albedo_point).
     virtual fit::SplitMoments eval_point(const walk::Material& material, const Vec3& wi, const Vec3& wo,
                                          std::uint64_t seed, std::uint64_t stream, std::int64_t walks) const = 0;
     virtual fit::SplitMoments albedo_point(const walk::Material& material, const Vec3& wi, std::uint64_t seed,
                                            std::uint64_t stream, std::int64_t walks) const = 0;
 
-    // For a registered material's kernels: the NDF's concrete type and its walk::Microsurface of that type, and the
-    // same microsurface with the NDF erased (built on first use; its tables may refuse the NDF, as input_error).
+    /// For a registered material's kernels: the NDF's concrete type and its walk::Microsurface of that type, and the
+    /// same microsurface with the NDF erased (built on first use; its tables may refuse the NDF, as input_error).
     virtual const std::type_info& ndf_type() const = 0;
     virtual const void* microsurface() const = 0;
     virtual const walk::Microsurface<AnyNdf>& erased_microsurface() const = 0;
 };
 
-// A registered material's walks (walk/material.hpp, RegisteredMaterial): the operations of AnySurface for one
-// concrete material type, on a surface it is given (material_kernels.hpp, MaterialKernelsOf).
+/// A registered material's walks (walk/material.hpp, RegisteredMaterial): the operations of AnySurface for one
+/// concrete material type, on a surface it is given (material_kernels.hpp, MaterialKernelsOf).
 class MaterialKernels {
 public:
     virtual ~MaterialKernels() = default;
@@ -63,7 +64,7 @@ public:
 template <Ndf N>
 class SurfaceOf final : public AnySurface {
 public:
-    // `self`: the same NDF as an AnyNdf, for the erased microsurface.
+    /// `self`: the same NDF as an AnyNdf, for the erased microsurface.
     SurfaceOf(const N& ndf, const walk::MicrosurfaceOptions& opts, AnyNdf self)
         : ms_(ndf, opts), self_(std::move(self)) {}
 
@@ -101,7 +102,7 @@ public:
     }
 
 private:
-    // A built-in material runs `builtin` on its concrete type; a registered one, `registered` on its kernels.
+    /// A built-in material runs `builtin` on its concrete type; a registered one, `registered` on its kernels.
     template <class Builtin, class Registered>
     static auto visit(const walk::Material& material, Builtin builtin, Registered registered) {
         return std::visit(
@@ -120,11 +121,11 @@ private:
     mutable std::unique_ptr<const walk::Microsurface<AnyNdf>> erased_;
 };
 
-// What the registry attaches to the NDFs it makes (AnyNdf::kernels): the surface of the concrete type N.
+/// What the registry attaches to the NDFs it makes (AnyNdf::kernels): the surface of the concrete type N.
 class NdfKernels {
 public:
     virtual ~NdfKernels() = default;
-    // `self`: the AnyNdf these kernels are attached to.
+    /// `self`: the AnyNdf these kernels are attached to.
     virtual std::shared_ptr<const AnySurface> surface(const AnyNdf& self, const walk::MicrosurfaceOptions& opts) const = 0;
 };
 
@@ -141,8 +142,8 @@ private:
     N ndf_;
 };
 
-// The microsurface of `ndf` (its tables built here: they may refuse the NDF, as input_error): through the kernels
-// its registration attached, else (an AnyNdf made outside a registry) on AnyNdf itself, a virtual D and Lambda each.
+/// The microsurface of `ndf` (its tables built here: they may refuse the NDF, as input_error): through the kernels
+/// its registration attached, else (an AnyNdf made outside a registry) on AnyNdf itself, a virtual D and Lambda each.
 std::shared_ptr<const AnySurface> make_surface(const AnyNdf& ndf, const walk::MicrosurfaceOptions& opts = {});
 
 }  // namespace smithlab

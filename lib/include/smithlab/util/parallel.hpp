@@ -1,8 +1,9 @@
-// smithlab/util/parallel.hpp -- numbered blocks of work over threads, reduced in block order.
-//
-// Block b is a pure function of b (its walks draw from WalkRng(seed, cell, walk)), and the partial sums are merged in
-// the order 0, 1, 2, ... whatever thread finished first, so the result is the same bits for any number of threads.
-// Memory: a partial result waits only until every block before it is merged.
+/// @file
+/// smithlab/util/parallel.hpp -- numbered blocks of work over threads, reduced in block order.
+///
+/// Block b is a pure function of b (its walks draw from WalkRng(seed, cell, walk)), and the partial sums are merged in
+/// the order 0, 1, 2, ... whatever thread finished first, so the result is the same bits for any number of threads.
+/// Memory: a partial result waits only until every block before it is merged.
 #pragma once
 
 #include <algorithm>
@@ -17,19 +18,20 @@
 
 namespace smithlab::util {
 
-// The threads a run uses: `threads`, or all cores for 0.
+/// The threads a run uses: `threads`, or all cores for 0.
 inline unsigned thread_count(unsigned threads) {
     return threads ? threads : std::max(1u, std::thread::hardware_concurrency());
 }
 
-// Partials numbered 0, 1, 2, ... that arrive in any order, merged into a total in number order: a partial waits
-// only until every one before it is merged. Not thread-safe (its users lock). Also the distributed runs'
-// (experiments/cluster/block_jobs.hpp), which merge what other processes traced in the same order: the same bits.
+/// Partials numbered 0, 1, 2, ... that arrive in any order, merged into a total in number order: a partial waits
+/// only until every one before it is merged. Not thread-safe (its users lock). Also the distributed runs'
+/// (experiments/cluster/block_jobs.hpp), which merge what other processes traced in the same order: the same bits.
 template <class Partial>
 class InOrder {
 public:
+    /// Starts from `total`, before any partial.
     explicit InOrder(Partial total) : total_(std::move(total)) {}
-    // Adds partial b; merge(total, partial) for each that is next in order. Returns how many were merged.
+    /// Adds partial b; merge(total, partial) for each that is next in order. Returns how many were merged.
     template <class Merge>
     std::uint64_t add(std::uint64_t b, Partial p, Merge&& merge) {
         pending_.emplace(b, std::move(p));
@@ -40,7 +42,9 @@ public:
         }
         return merged_ - before;
     }
+    /// How many partials are merged: those numbered 0 .. merged() - 1.
     std::uint64_t merged() const { return merged_; }
+    /// The total of the partials merged so far.
     Partial& total() { return total_; }
 
 private:
@@ -49,8 +53,8 @@ private:
     std::uint64_t merged_ = 0;
 };
 
-// run(b) -> Partial for b in [0, blocks), on `threads` threads (0: all cores); merge(total, partial) in block order;
-// progress(merged_blocks) after each merge. The first exception a block throws is rethrown here.
+/// run(b) -> Partial for b in [0, blocks), on `threads` threads (0: all cores); merge(total, partial) in block order;
+/// progress(merged_blocks) after each merge. The first exception a block throws is rethrown here.
 template <class Partial, class Run, class Merge, class Progress>
 Partial reduce_blocks(std::uint64_t blocks, unsigned threads, Partial total, Run run, Merge merge, Progress progress) {
     threads = static_cast<unsigned>(std::min<std::uint64_t>(thread_count(threads), std::max<std::uint64_t>(blocks, 1)));

@@ -1,5 +1,6 @@
-// smithlab/walk/conductor.hpp -- the facet material `Conductor` (mirror facets of a conductor): how a facet scatters (sample), its phase
-// function (phase), and its registration (info, make, spec; material_registry.hpp).
+/// @file
+/// smithlab/walk/conductor.hpp -- the facet material `Conductor` (mirror facets of a conductor): how a facet scatters
+/// (sample), its phase function (phase), and its registration (info, make, spec; material_registry.hpp).
 #pragma once
 
 #include <cmath>
@@ -11,10 +12,10 @@
 
 namespace smithlab::walk {
 
-// Mirror facets of a conductor, complex index eta + i k, with the exact Fresnel reflectance (fresnel.hpp).
+/// Mirror facets of a conductor, complex index eta + i k, with the exact Fresnel reflectance (fresnel.hpp).
 struct Conductor {
     double eta, k;
-    static constexpr bool reciprocal = true;  // f(wi, wo) = f(wo, wi) facet by facet
+    static constexpr bool reciprocal = true;  ///< f(wi, wo) = f(wo, wi) facet by facet
     static MaterialInfo info() {
         return {"conductor",
                 {{"eta", NAN, 1e-6, 1e6}, {"k", NAN, 0.0, 1e6}},

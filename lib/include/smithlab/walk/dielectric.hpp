@@ -1,5 +1,6 @@
-// smithlab/walk/dielectric.hpp -- the facet material `Dielectric` (a smooth dielectric interface): how a facet scatters (sample), its phase
-// function (phase), and its registration (info, make, spec; material_registry.hpp).
+/// @file
+/// smithlab/walk/dielectric.hpp -- the facet material `Dielectric` (a smooth dielectric interface): how a facet
+/// scatters (sample), its phase function (phase), and its registration (info, make, spec; material_registry.hpp).
 #pragma once
 
 #include <cmath>
@@ -11,13 +12,13 @@
 
 namespace smithlab::walk {
 
-// A smooth dielectric interface on every facet, index eta below the surface over that above (Heitz et al. 2016,
-// sec. 6.2, the dielectric microsurface): the exact Fresnel reflectance F (fresnel.hpp) reflects, 1 - F refracts
-// (Snell), chosen with probability F (weights stay 1). On the side below, the relative index is 1 / eta and past the
-// critical angle everything reflects. The phase function toward wo, the part of it that leaves along wo from this
-// side: reflection when wo.z > 0 (F D(h) / (4 A(wi)), as for mirrors), refraction when wo.z < 0,
-//     (1 - F(wi.h)) <wi.h> D(h) / A(wi) |d omega_h / d omega_o|,  h = -(wi + eta' wo) / |.| turned up,
-// the Jacobian Walter 2007 eq. 17 (geometry.hpp, dm_dwo_refraction), eta' the relative index on this side.
+/// A smooth dielectric interface on every facet, index eta below the surface over that above (Heitz et al. 2016,
+/// sec. 6.2, the dielectric microsurface): the exact Fresnel reflectance F (fresnel.hpp) reflects, 1 - F refracts
+/// (Snell), chosen with probability F (weights stay 1). On the side below, the relative index is 1 / eta and past the
+/// critical angle everything reflects. The phase function toward wo, the part of it that leaves along wo from this
+/// side: reflection when wo.z > 0 (F D(h) / (4 A(wi)), as for mirrors), refraction when wo.z < 0,
+///     (1 - F(wi.h)) <wi.h> D(h) / A(wi) |d omega_h / d omega_o|,  h = -(wi + eta' wo) / |.| turned up,
+/// the Jacobian Walter 2007 eq. 17 (geometry.hpp, dm_dwo_refraction), eta' the relative index on this side.
 struct Dielectric {
     double eta;
     static constexpr bool two_sided = true;
@@ -30,9 +31,9 @@ struct Dielectric {
     }
     static Dielectric make(const MaterialParams& p) { return {p.at("eta")}; }
     NdfSpec spec() const { return {"dielectric", {{"eta", eta}}}; }
-    // Index-matched (eta = 1), it neither reflects nor bends light: every ray leaves along -wi, a Dirac delta at
-    // wo = -wi (within 1e-9 of a unit vector: the rounding of directions given in degrees) the eval estimator has no
-    // finite density for.
+    /// Index-matched (eta = 1), it neither reflects nor bends light: every ray leaves along -wi, a Dirac delta at
+    /// wo = -wi (within 1e-9 of a unit vector: the rounding of directions given in degrees) the eval estimator has no
+    /// finite density for.
     bool dirac_at(const Vec3& wi, const Vec3& wo) const { return eta == 1.0 && (wi + wo).norm() <= 1e-9; }
     template <class G>
     Scatter sample(const Vec3& wi, const Vec3& m, G& g, bool above) const {

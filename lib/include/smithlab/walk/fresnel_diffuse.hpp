@@ -1,5 +1,6 @@
-// smithlab/walk/fresnel_diffuse.hpp -- the facet material `FresnelDiffuse` (Hammon 2017's facets): how a facet scatters (sample), its phase
-// function (phase), and its registration (info, make, spec; material_registry.hpp).
+/// @file
+/// smithlab/walk/fresnel_diffuse.hpp -- the facet material `FresnelDiffuse` (Hammon 2017's facets): how a facet
+/// scatters (sample), its phase function (phase), and its registration (info, make, spec; material_registry.hpp).
 #pragma once
 
 #include <cmath>
@@ -11,13 +12,13 @@
 
 namespace smithlab::walk {
 
-// Hammon 2017's facets ("Reflection/Transmission", "Transmission Direction"): Schlick F reflects specularly; the
-// rest enters, is tinted by albedo, and leaves through the facet again into the lobe k (1 - (1 - cos)^5) cos about m,
-// k = 21 / (20 pi): facet BRDF F spec + (1 - F(wi.m)) albedo k (1 - (1 - wo.m)^5), symmetric in wi and wo.
-// The branch is chosen with probability F (Russian roulette between the two, unbiased), so weights stay in [0, 1].
+/// Hammon 2017's facets ("Reflection/Transmission", "Transmission Direction"): Schlick F reflects specularly; the
+/// rest enters, is tinted by albedo, and leaves through the facet again into the lobe k (1 - (1 - cos)^5) cos about m,
+/// k = 21 / (20 pi): facet BRDF F spec + (1 - F(wi.m)) albedo k (1 - (1 - wo.m)^5), symmetric in wi and wo.
+/// The branch is chosen with probability F (Russian roulette between the two, unbiased), so weights stay in [0, 1].
 struct FresnelDiffuse {
     double f0, albedo;
-    static constexpr bool reciprocal = true;  // f(wi, wo) = f(wo, wi) facet by facet
+    static constexpr bool reciprocal = true;  ///< f(wi, wo) = f(wo, wi) facet by facet
     static constexpr double k = 21.0 / (20.0 * std::numbers::pi);
 
     static MaterialInfo info() {

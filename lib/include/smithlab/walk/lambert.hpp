@@ -1,5 +1,6 @@
-// smithlab/walk/lambert.hpp -- the facet material `Lambert` (Lambertian facets): how a facet scatters (sample), its phase
-// function (phase), and its registration (info, make, spec; material_registry.hpp).
+/// @file
+/// smithlab/walk/lambert.hpp -- the facet material `Lambert` (Lambertian facets): how a facet scatters (sample), its
+/// phase function (phase), and its registration (info, make, spec; material_registry.hpp).
 #pragma once
 
 #include <cmath>
@@ -11,10 +12,10 @@
 
 namespace smithlab::walk {
 
-// Lambertian facets (Heitz et al. 2016, sec. 5.3, the diffuse microsurface): each reflects albedo / pi about m.
+/// Lambertian facets (Heitz et al. 2016, sec. 5.3, the diffuse microsurface): each reflects albedo / pi about m.
 struct Lambert {
     double albedo;
-    static constexpr bool reciprocal = true;  // f(wi, wo) = f(wo, wi) facet by facet
+    static constexpr bool reciprocal = true;  ///< f(wi, wo) = f(wo, wi) facet by facet
     static MaterialInfo info() {
         return {"lambert",
                 {{"albedo", 1.0, 0.0, 1.0}},

@@ -1,9 +1,10 @@
-// smithlab/walk/material.hpp -- a facet material as a value: one of the built-in materials, or a registered one
-// whose walks were compiled where it was registered (material_kernels.hpp), with its canonical spec and what it does.
-//
-// A command holds its materials as Material; the walk takes the concrete type. AnySurface (surface.hpp) visits the
-// built-in alternatives once per block of walks and runs walk/trace.hpp's templates on them directly; a registered
-// material runs its own compiled walks (one virtual call per block, none per bounce).
+/// @file
+/// smithlab/walk/material.hpp -- a facet material as a value: one of the built-in materials, or a registered one
+/// whose walks were compiled where it was registered (material_kernels.hpp), with its canonical spec and what it does.
+///
+/// A command holds its materials as Material; the walk takes the concrete type. AnySurface (surface.hpp) visits the
+/// built-in alternatives once per block of walks and runs walk/trace.hpp's templates on them directly; a registered
+/// material runs its own compiled walks (one virtual call per block, none per bounce).
 #pragma once
 
 #include <memory>
@@ -26,20 +27,20 @@ class MaterialKernels;  // surface.hpp
 
 namespace smithlab::walk {
 
-// A material of a type outside the built-in list: its walks, compiled for its concrete type (material_kernels.hpp).
+/// A material of a type outside the built-in list: its walks, compiled for its concrete type (material_kernels.hpp).
 struct RegisteredMaterial {
     std::shared_ptr<const MaterialKernels> kernels;
 };
 
-// Whether M is one of the materials every NDF's surface is compiled against (surface.hpp).
+/// Whether M is one of the materials every NDF's surface is compiled against (surface.hpp).
 template <class M>
 inline constexpr bool builtin_material = std::is_same_v<M, Mirror> || std::is_same_v<M, Conductor> ||
                                          std::is_same_v<M, Lambert> || std::is_same_v<M, FresnelDiffuse> ||
                                          std::is_same_v<M, Dielectric>;
 
-// What a material type may say about itself, each optional: whether any of its events is diffuse (the tallies of
-// the diffuse component exist only then; default: none is), and where its BSDF holds a Dirac delta that the eval
-// estimator has no finite density for (default: nowhere).
+/// What a material type may say about itself, each optional: whether any of its events is diffuse (the tallies of
+/// the diffuse component exist only then; default: none is), and where its BSDF holds a Dirac delta that the eval
+/// estimator has no finite density for (default: nowhere).
 template <class M>
 bool material_has_diffuse(const M& m) {
     if constexpr (requires { m.has_diffuse(); }) return m.has_diffuse();
@@ -51,7 +52,7 @@ bool material_dirac_at(const M& m, const Vec3& wi, const Vec3& wo) {
     else return false;
 }
 
-// A material's spec as text: "conductor(eta=0.2, k=3)", the bare name where it has no parameters ("mirror").
+/// A material's spec as text: "conductor(eta=0.2, k=3)", the bare name where it has no parameters ("mirror").
 inline std::string material_spec_text(const NdfSpec& spec) {
     return spec.params.empty() && spec.texts.empty() ? spec.name : format_spec(spec);
 }
@@ -60,28 +61,28 @@ class Material {
 public:
     using Kind = std::variant<Mirror, Conductor, Lambert, FresnelDiffuse, Dielectric, RegisteredMaterial>;
 
-    // A built-in material.
+    /// A built-in material.
     template <class M>
         requires builtin_material<M>
     Material(M m)
         : spec_(material_spec_text(m.spec())), has_diffuse_(material_has_diffuse(m)), transmits_(TwoSided<M>),
           kind_(std::move(m)) {}
-    // A registered material: its kernels, its canonical spec, and what it does (material_kernels.hpp fills these in
-    // from its type).
+    /// A registered material: its kernels, its canonical spec, and what it does (material_kernels.hpp fills these in
+    /// from its type).
     Material(RegisteredMaterial registered, std::string spec, bool has_diffuse, bool transmits)
         : spec_(std::move(spec)), has_diffuse_(has_diffuse), transmits_(transmits), kind_(std::move(registered)) {}
 
-    // "conductor(eta=0.2, k=3)": every parameter, in its declared order.
+    /// "conductor(eta=0.2, k=3)": every parameter, in its declared order.
     const std::string& spec() const { return spec_; }
-    // Whether any event of the material is diffuse (the tallies of the diffuse component exist only then).
+    /// Whether any event of the material is diffuse (the tallies of the diffuse component exist only then).
     bool has_diffuse() const { return has_diffuse_; }
-    // Whether light goes through it (the transmission tallies exist only then): a two-sided material (facets.hpp).
+    /// Whether light goes through it (the transmission tallies exist only then): a two-sided material (facets.hpp).
     bool transmits() const { return transmits_; }
-    // Whether the material's BSDF holds a Dirac delta at (wi, wo), where it has no finite density for the eval
-    // estimator to return (an index-matched dielectric at wo = -wi).
+    /// Whether the material's BSDF holds a Dirac delta at (wi, wo), where it has no finite density for the eval
+    /// estimator to return (an index-matched dielectric at wo = -wi).
     bool dirac_at(const Vec3& wi, const Vec3& wo) const;
 
-    // The built-in material of type M, or nullptr.
+    /// The built-in material of type M, or nullptr.
     template <class M>
     const M* get_if() const {
         return std::get_if<M>(&kind_);

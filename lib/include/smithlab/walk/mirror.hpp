@@ -1,5 +1,6 @@
-// smithlab/walk/mirror.hpp -- the facet material `Mirror` (every facet a perfect mirror): how a facet scatters (sample), its phase
-// function (phase), and its registration (info, make, spec; material_registry.hpp).
+/// @file
+/// smithlab/walk/mirror.hpp -- the facet material `Mirror` (every facet a perfect mirror): how a facet scatters
+/// (sample), its phase function (phase), and its registration (info, make, spec; material_registry.hpp).
 #pragma once
 
 #include <cmath>
@@ -11,9 +12,9 @@
 
 namespace smithlab::walk {
 
-// F = 1: every facet a perfect mirror.
+/// F = 1: every facet a perfect mirror.
 struct Mirror {
-    static constexpr bool reciprocal = true;  // f(wi, wo) = f(wo, wi) facet by facet
+    static constexpr bool reciprocal = true;  ///< f(wi, wo) = f(wo, wi) facet by facet
     static MaterialInfo info() { return {"mirror", {}, "every facet a perfect mirror (F = 1)"}; }
     static Mirror make(const MaterialParams&) { return {}; }
     NdfSpec spec() const { return {"mirror", {}}; }

@@ -1,10 +1,11 @@
-// smithlab/fit/diffuse/chan_2018.hpp -- Chan 2018, "Material Advances in Call of Duty: WWII" (SIGGRAPH course,
-// Physically Based Shading), as Unreal Engine 5 writes it (Engine/Shaders/Private/BRDF.ush, Diffuse_Chan),
-// a2 = alpha^2:
-//     g = saturate(log2(2/a2 - 1)/18),  Fd = lerp(F0, FdV FdL, saturate(2.2 g - 0.5)),
-//     F0 = VoH + (1 - VoH)^5,  FdX = 1 - 0.75 (1 - NoX)^5,
-//     Fb = ((34.5 g - 59) g + 24.5) VoH 2^(-max(73.2 g - 21.2, 8.9) sqrt(NoH)) * retro_weight,
-//     f = albedo/pi (Fd + Fb).
+/// @file
+/// smithlab/fit/diffuse/chan_2018.hpp -- Chan 2018, "Material Advances in Call of Duty: WWII" (SIGGRAPH course,
+/// Physically Based Shading), as Unreal Engine 5 writes it (Engine/Shaders/Private/BRDF.ush, Diffuse_Chan),
+/// a2 = alpha^2:
+///     g = saturate(log2(2/a2 - 1)/18),  Fd = lerp(F0, FdV FdL, saturate(2.2 g - 0.5)),
+///     F0 = VoH + (1 - VoH)^5,  FdX = 1 - 0.75 (1 - NoX)^5,
+///     Fb = ((34.5 g - 59) g + 24.5) VoH 2^(-max(73.2 g - 21.2, 8.9) sqrt(NoH)) * retro_weight,
+///     f = albedo/pi (Fd + Fb).
 #pragma once
 
 #include <algorithm>
@@ -57,7 +58,7 @@ float smithlab_chan_2018(vec3 L, vec3 V, vec3 N, float alpha, float albedo, floa
 }
 )";
 
-// "chan-2018": retro-reflectivity weight 1, no constants.
+/// "chan-2018": retro-reflectivity weight 1, no constants.
 inline DiffuseModel chan_2018_model() {
     return {.name = "chan-2018",
             .source =

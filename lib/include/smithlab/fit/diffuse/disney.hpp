@@ -1,7 +1,8 @@
-// smithlab/fit/diffuse/disney.hpp -- Burley 2012, "Physically-Based Shading at Disney" (SIGGRAPH course notes),
-// sec. 5.3, Disney's diffuse BRDF:
-//     f = albedo/pi (1 + (FD90 - 1)(1 - cos_l)^5)(1 + (FD90 - 1)(1 - cos_v)^5),  FD90 = 0.5 + 2 r cos^2(theta_d),
-// r the perceptual roughness (sqrt(alpha)), theta_d the angle between wi and the half vector.
+/// @file
+/// smithlab/fit/diffuse/disney.hpp -- Burley 2012, "Physically-Based Shading at Disney" (SIGGRAPH course notes),
+/// sec. 5.3, Disney's diffuse BRDF:
+///     f = albedo/pi (1 + (FD90 - 1)(1 - cos_l)^5)(1 + (FD90 - 1)(1 - cos_v)^5),  FD90 = 0.5 + 2 r cos^2(theta_d),
+/// r the perceptual roughness (sqrt(alpha)), theta_d the angle between wi and the half vector.
 #pragma once
 
 #include <cmath>
@@ -34,7 +35,7 @@ float smithlab_disney_diffuse(vec3 L, vec3 V, vec3 N, float perceptual_roughness
 }
 )";
 
-// "disney": r = sqrt(alpha), no constants.
+/// "disney": r = sqrt(alpha), no constants.
 inline DiffuseModel disney_model() {
     return {.name = "disney",
             .source = "Burley 2012, Physically-Based Shading at Disney, sec. 5.3 (r = sqrt(alpha))",

@@ -1,9 +1,10 @@
-// smithlab/fit/diffuse/eon.hpp -- Portsmouth, Kutz and Hill 2025, "EON: A Practical Energy-Preserving Rough Diffuse
-// BRDF", JCGT 14(1) (the OpenPBR diffuse lobe), roughness r in [0, 1]: the FON single-scattering lobe (Fujii's model
-// at sigma = r, rho = albedo) plus the paper's energy-compensation lobe
-//     f_ms = rho_ms/pi (1 - E_F(mu_i))(1 - E_F(mu_o)) / (1 - <E_F>),
-//     rho_ms = rho^2 <E_F> / (1 - rho (1 - <E_F>)),
-// with the paper's exact E_F (eon_fon_albedo) and its closed-form average <E_F> (eon_fon_average_albedo).
+/// @file
+/// smithlab/fit/diffuse/eon.hpp -- Portsmouth, Kutz and Hill 2025, "EON: A Practical Energy-Preserving Rough Diffuse
+/// BRDF", JCGT 14(1) (the OpenPBR diffuse lobe), roughness r in [0, 1]: the FON single-scattering lobe (Fujii's model
+/// at sigma = r, rho = albedo) plus the paper's energy-compensation lobe
+///     f_ms = rho_ms/pi (1 - E_F(mu_i))(1 - E_F(mu_o)) / (1 - `<E_F>`),
+///     rho_ms = rho^2 `<E_F>` / (1 - rho (1 - `<E_F>`)),
+/// with the paper's exact E_F (eon_fon_albedo) and its closed-form average `<E_F>` (eon_fon_average_albedo).
 #pragma once
 
 #include <algorithm>
@@ -14,17 +15,17 @@
 
 namespace smithlab::fit {
 
-// E_F(mu), the FON lobe's directional albedo at rho = 1 (the paper's exact, analytic form; not its fitted
-// approximation): A (1 + r G(mu)/pi), G(mu) = S (acos(mu) - S mu) + (2/3)((S/mu)(1 - S^3) - S), S = sqrt(1 - mu^2).
+/// E_F(mu), the FON lobe's directional albedo at rho = 1 (the paper's exact, analytic form; not its fitted
+/// approximation): A (1 + r G(mu)/pi), G(mu) = S (acos(mu) - S mu) + (2/3)((S/mu)(1 - S^3) - S), S = sqrt(1 - mu^2).
 inline double eon_fon_albedo(double mu, double r) {
     const double a = 1.0 / (1.0 + common::eon_c1 * r);
     return a * (1.0 + r * common::eon_g(mu) * common::inv_pi);
 }
 
-// <E_F> = 2 int_0^1 E_F(mu) mu dmu = A (1 + (2/3 - 28/(15 pi)) r).
+/// `<E_F>` = 2 int_0^1 E_F(mu) mu dmu = A (1 + (2/3 - 28/(15 pi)) r).
 inline double eon_fon_average_albedo(double r) { return common::eon_average_albedo(r); }
 
-// EON's directional albedo (the paper's E_EON): rho E_F(mu) + rho_ms (1 - E_F(mu)); exactly 1 at rho = 1.
+/// EON's directional albedo (the paper's E_EON): rho E_F(mu) + rho_ms (1 - E_F(mu)); exactly 1 at rho = 1.
 inline double eon_albedo(double mu, double r, double albedo) {
     return albedo * eon_fon_albedo(mu, r) + common::eon_rho_ms(r, albedo) * common::eon_one_minus_fon_albedo(mu, r);
 }
@@ -57,7 +58,7 @@ float smithlab_eon(vec3 L, vec3 V, vec3 N, float r, float albedo)
 }
 )";
 
-// "eon": r = clamp(c alpha, 0, 1), c free, start 1 (not published).
+/// "eon": r = clamp(c alpha, 0, 1), c free, start 1 (not published).
 inline DiffuseModel eon_model() {
     return {.name = "eon",
             .parameters = {"r_scale"},

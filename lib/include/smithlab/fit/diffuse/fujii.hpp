@@ -1,8 +1,9 @@
-// smithlab/fit/diffuse/fujii.hpp -- Fujii 2012/2013, "A tiny improvement of Oren-Nayar reflectance model"
-// (mimosa-pudica.net/improved-oren-nayar.html):
-//     f = albedo/pi (A + B s/t),  s = wi.wo - (n.wi)(n.wo),  t = 1 if s <= 0 else max(n.wi, n.wo),
-//     A = 1/(1 + (1/2 - 2/(3 pi)) sigma),  B = sigma A.
-// Negative where sigma > 1 and s < 0 (A + B s >= A (1 - sigma)): smithlab returns max(0, f) (a guard, not Fujii's).
+/// @file
+/// smithlab/fit/diffuse/fujii.hpp -- Fujii 2012/2013, "A tiny improvement of Oren-Nayar reflectance model"
+/// (mimosa-pudica.net/improved-oren-nayar.html):
+///     f = albedo/pi (A + B s/t),  s = wi.wo - (n.wi)(n.wo),  t = 1 if s <= 0 else max(n.wi, n.wo),
+///     A = 1/(1 + (1/2 - 2/(3 pi)) sigma),  B = sigma A.
+/// Negative where sigma > 1 and s < 0 (A + B s >= A (1 - sigma)): smithlab returns max(0, f) (a guard, not Fujii's).
 #pragma once
 
 #include <algorithm>
@@ -28,7 +29,7 @@ float smithlab_fujii(vec3 L, vec3 V, vec3 N, float sigma, float albedo)
 }
 )";
 
-// "fujii": sigma = s alpha, s free, start 1 (not published).
+/// "fujii": sigma = s alpha, s free, start 1 (not published).
 inline DiffuseModel fujii_model() {
     return {.name = "fujii",
             .parameters = {"sigma_scale"},

@@ -1,11 +1,12 @@
-// smithlab/fit/diffuse/hammon_2017.hpp -- Hammon 2017, "PBR Diffuse Lighting for GGX+Smith Microsurfaces" (GDC),
-// slide "GGX Diffuse Approximation":
-//     facing = 0.5 + 0.5 L.V,  rough = facing (a - b facing)(c + N.H)/N.H,
-//     smooth = k (1 - (1 - N.L)^5)(1 - (1 - N.V)^5),  single = (1/pi) lerp(smooth, rough, alpha),  multi = m alpha,
-// with the published (a, b, c, k, m) = (0.9, 0.4, 0.5, 1.05, 0.1159). The slide's last line lost its superscripts;
-// its two readings are hammon_2017, albedo (single + albedo multi), and hammon_2017_linear, albedo (single + multi).
-// Read as the BRDF f (no N.L): k = 1.05 = 21/20 is what makes smooth/pi integrate against cos to exactly
-// 1 - (1 - N.V)^5 <= 1 (his normalisation k = 21/(20 pi)); an f cos reading would need N.L on the slide.
+/// @file
+/// smithlab/fit/diffuse/hammon_2017.hpp -- Hammon 2017, "PBR Diffuse Lighting for GGX+Smith Microsurfaces" (GDC),
+/// slide "GGX Diffuse Approximation":
+///     facing = 0.5 + 0.5 L.V,  rough = facing (a - b facing)(c + N.H)/N.H,
+///     smooth = k (1 - (1 - N.L)^5)(1 - (1 - N.V)^5),  single = (1/pi) lerp(smooth, rough, alpha),  multi = m alpha,
+/// with the published (a, b, c, k, m) = (0.9, 0.4, 0.5, 1.05, 0.1159). The slide's last line lost its superscripts;
+/// its two readings are hammon_2017, albedo (single + albedo multi), and hammon_2017_linear, albedo (single + multi).
+/// Read as the BRDF f (no N.L): k = 1.05 = 21/20 is what makes smooth/pi integrate against cos to exactly
+/// 1 - (1 - N.V)^5 <= 1 (his normalisation k = 21/(20 pi)); an f cos reading would need N.L on the slide.
 #pragma once
 
 #include <cmath>
@@ -41,11 +42,11 @@ inline double hammon_2017_linear(const Vec3& wi, const Vec3& wo, double alpha, d
     return albedo * (hammon_2017_single(wi, wo, alpha, k) + k.multi * alpha);
 }
 
-// The constants (rough_a, rough_b, rough_c, smooth, multi) from the fitter's array.
+/// The constants (rough_a, rough_b, rough_c, smooth, multi) from the fitter's array.
 inline HammonConstants hammon_constants(const double* c) { return {c[0], c[1], c[2], c[3], c[4]}; }
 
-// The ranges of Hammon 2017's constants (his slide's terms): the rough term's shape a - b facing is left free; the
-// others are non-negative where the term they scale is.
+/// The ranges of Hammon 2017's constants (his slide's terms): the rough term's shape a - b facing is left free; the
+/// others are non-negative where the term they scale is.
 inline std::vector<ParameterRange> hammon_ranges() {
     constexpr double inf = INFINITY;
     return {{},
@@ -93,7 +94,7 @@ float smithlab_hammon_2017_linear(vec3 L, vec3 V, vec3 N, float alpha, float alb
 }
 )";
 
-// "hammon-2017": rough_a, rough_b, rough_c, smooth and multi free, from the published values.
+/// "hammon-2017": rough_a, rough_b, rough_c, smooth and multi free, from the published values.
 inline DiffuseModel hammon_2017_model() {
     return {.name = "hammon-2017",
             .parameters = {"rough_a", "rough_b", "rough_c", "smooth", "multi"},
@@ -108,7 +109,7 @@ inline DiffuseModel hammon_2017_model() {
             .ranges = hammon_ranges()};
 }
 
-// "hammon-2017-linear": the same constants.
+/// "hammon-2017-linear": the same constants.
 inline DiffuseModel hammon_2017_linear_model() {
     return {.name = "hammon-2017-linear",
             .parameters = {"rough_a", "rough_b", "rough_c", "smooth", "multi"},

@@ -1,5 +1,6 @@
-// smithlab/fit/diffuse/lambert.hpp -- Lambert's diffuse BRDF, the baseline every rough model reduces to at zero
-// roughness: f = albedo / pi (Lambert 1760, Photometria).
+/// @file
+/// smithlab/fit/diffuse/lambert.hpp -- Lambert's diffuse BRDF, the baseline every rough model reduces to at zero
+/// roughness: f = albedo / pi (Lambert 1760, Photometria).
 #pragma once
 
 #include <string_view>
@@ -9,7 +10,7 @@
 
 namespace smithlab::fit {
 
-// Lambert: albedo / pi.
+/// Lambert: albedo / pi.
 inline double lambert(double albedo) { return albedo * common::inv_pi; }
 
 inline constexpr std::string_view lambert_glsl =
@@ -20,7 +21,7 @@ float smithlab_lambert(float albedo)
 }
 )";
 
-// "lambert": no constants.
+/// "lambert": no constants.
 inline DiffuseModel lambert_model() {
     return {.name = "lambert",
             .source = "Lambert 1760, Photometria: albedo/pi",

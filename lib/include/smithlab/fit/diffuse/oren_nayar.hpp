@@ -1,13 +1,14 @@
-// smithlab/fit/diffuse/oren_nayar.hpp -- Oren and Nayar 1994, "Generalization of Lambert's Reflectance Model"
-// (SIGGRAPH), the full functional approximation: its direct term L1 (with C1, C2, C3) plus its interreflection term
-// L2, both divided by E0 cos(theta_i):
-//     f = albedo/pi [C1 + cos(phi) C2 tan(beta) + (1 - |cos(phi)|) C3 tan((alpha' + beta)/2)]
-//       + 0.17 albedo^2/pi sigma^2/(sigma^2 + 0.13) [1 - cos(phi) (2 beta/pi)^2],
-// alpha' = max(theta_i, theta_o), beta = min, phi the azimuth between them, sigma the standard deviation of the
-// facets' slope angle (radians); C1 = 1 - 0.5 sigma^2/(sigma^2 + 0.33), C2 = 0.45 sigma^2/(sigma^2 + 0.09) sin(alpha')
-// where cos(phi) >= 0 and 0.45 sigma^2/(sigma^2 + 0.09)(sin(alpha') - (2 beta/pi)^3) otherwise,
-// C3 = 0.125 sigma^2/(sigma^2 + 0.09) (4 alpha' beta/pi^2)^2. Can dip below 0 (forward scattering, both grazing, at
-// sigma >~ 0.7): smithlab returns max(0, f).
+/// @file
+/// smithlab/fit/diffuse/oren_nayar.hpp -- Oren and Nayar 1994, "Generalization of Lambert's Reflectance Model"
+/// (SIGGRAPH), the full functional approximation: its direct term L1 (with C1, C2, C3) plus its interreflection term
+/// L2, both divided by E0 cos(theta_i):
+///     f = albedo/pi [C1 + cos(phi) C2 tan(beta) + (1 - |cos(phi)|) C3 tan((alpha' + beta)/2)]
+///       + 0.17 albedo^2/pi sigma^2/(sigma^2 + 0.13) [1 - cos(phi) (2 beta/pi)^2],
+/// alpha' = max(theta_i, theta_o), beta = min, phi the azimuth between them, sigma the standard deviation of the
+/// facets' slope angle (radians); C1 = 1 - 0.5 sigma^2/(sigma^2 + 0.33), C2 = 0.45 sigma^2/(sigma^2 + 0.09) sin(alpha')
+/// where cos(phi) >= 0 and 0.45 sigma^2/(sigma^2 + 0.09)(sin(alpha') - (2 beta/pi)^3) otherwise,
+/// C3 = 0.125 sigma^2/(sigma^2 + 0.09) (4 alpha' beta/pi^2)^2. Can dip below 0 (forward scattering, both grazing, at
+/// sigma >~ 0.7): smithlab returns max(0, f).
 #pragma once
 
 #include <algorithm>
@@ -72,7 +73,7 @@ float smithlab_oren_nayar(vec3 L, vec3 V, vec3 N, float sigma, float albedo)
 }
 )";
 
-// "oren-nayar": sigma = s alpha, s free (published 0.5: Hammon 2017's comparison).
+/// "oren-nayar": sigma = s alpha, s free (published 0.5: Hammon 2017's comparison).
 inline DiffuseModel oren_nayar_model() {
     return {.name = "oren-nayar",
             .parameters = {"sigma_scale"},
@@ -88,7 +89,7 @@ inline DiffuseModel oren_nayar_model() {
                         "3), an angle within (-pi/2, pi/2): at most pi/2 at alpha = 1"}}};
 }
 
-// "oren-nayar-sqrt2": sigma = alpha/sqrt(2), no constants.
+/// "oren-nayar-sqrt2": sigma = alpha/sqrt(2), no constants.
 inline DiffuseModel oren_nayar_sqrt2_model() {
     return {.name = "oren-nayar-sqrt2",
             .source =

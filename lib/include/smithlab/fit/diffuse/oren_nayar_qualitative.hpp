@@ -1,8 +1,9 @@
-// smithlab/fit/diffuse/oren_nayar_qualitative.hpp -- Oren and Nayar 1994, "Generalization of Lambert's Reflectance
-// Model" (SIGGRAPH), its qualitative model (the full model's L2 and C3 dropped, C2 simplified):
-//     f = albedo/pi (A + B max(0, cos(phi)) sin(alpha') tan(beta)),
-//     A = 1 - 0.5 sigma^2/(sigma^2 + 0.33), B = 0.45 sigma^2/(sigma^2 + 0.09),
-// alpha' = max(theta_i, theta_o), beta = min, phi the azimuth between them, sigma the facets' slope-angle deviation.
+/// @file
+/// smithlab/fit/diffuse/oren_nayar_qualitative.hpp -- Oren and Nayar 1994, "Generalization of Lambert's Reflectance
+/// Model" (SIGGRAPH), its qualitative model (the full model's L2 and C3 dropped, C2 simplified):
+///     f = albedo/pi (A + B max(0, cos(phi)) sin(alpha') tan(beta)),
+///     A = 1 - 0.5 sigma^2/(sigma^2 + 0.33), B = 0.45 sigma^2/(sigma^2 + 0.09),
+/// alpha' = max(theta_i, theta_o), beta = min, phi the azimuth between them, sigma the facets' slope-angle deviation.
 #pragma once
 
 #include <algorithm>
@@ -32,7 +33,7 @@ float smithlab_oren_nayar_qualitative(vec3 L, vec3 V, vec3 N, float sigma, float
 }
 )";
 
-// "oren-nayar-qualitative": sigma = 0.5 alpha, no constants.
+/// "oren-nayar-qualitative": sigma = 0.5 alpha, no constants.
 inline DiffuseModel oren_nayar_qualitative_model() {
     return {
         .name = "oren-nayar-qualitative",

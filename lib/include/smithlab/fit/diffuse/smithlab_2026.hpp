@@ -1,13 +1,14 @@
-// smithlab/fit/diffuse/smithlab_2026.hpp -- smithlab's own family (designed from the traced data, `smithlab fit`):
-// Hammon's single term (fit/diffuse/hammon_2017.hpp) with the roughness blend t = alpha^p instead of alpha (the traced
-// single-event light turns rough faster than linearly in alpha), and a multiple-scattering lobe that grows as alpha^q
-// with a term in 1 - facing, so that it can lean toward or away from forward scattering (the traced k >= 2 light of
-// GGX alpha = 1 is 1.85x brighter toward forward grazing than at normal incidence, and dimmer toward grazing
-// retro-reflection):
-//     single = (1/pi) lerp(smooth, rough, alpha^p)   (smooth, rough as Hammon's, constants a, b, c, k),
-//     multi  = m alpha^q (1 + u (1 - facing)),  facing = 0.5 + 0.5 L.V,
-//     f = albedo (single + albedo multi).
-// At (p, q, u) = (1, 1, 0) it is Hammon 2017: those are its starting constants.
+/// @file
+/// smithlab/fit/diffuse/smithlab_2026.hpp -- smithlab's own family (designed from the traced data, `smithlab fit`):
+/// Hammon's single term (fit/diffuse/hammon_2017.hpp) with the roughness blend t = alpha^p instead of alpha (the traced
+/// single-event light turns rough faster than linearly in alpha), and a multiple-scattering lobe that grows as alpha^q
+/// with a term in 1 - facing, so that it can lean toward or away from forward scattering (the traced k >= 2 light of
+/// GGX alpha = 1 is 1.85x brighter toward forward grazing than at normal incidence, and dimmer toward grazing
+/// retro-reflection):
+///     single = (1/pi) lerp(smooth, rough, alpha^p)   (smooth, rough as Hammon's, constants a, b, c, k),
+///     multi  = m alpha^q (1 + u (1 - facing)),  facing = 0.5 + 0.5 L.V,
+///     f = albedo (single + albedo multi).
+/// At (p, q, u) = (1, 1, 0) it is Hammon 2017: those are its starting constants.
 #pragma once
 
 #include <cmath>
@@ -55,7 +56,7 @@ float smithlab_2026(vec3 L, vec3 V, vec3 N, float alpha, float albedo, float rou
 }
 )";
 
-// "smithlab-2026": Hammon's constants and p, q, u free; it starts at hammon-2017, so it is no baseline of its own.
+/// "smithlab-2026": Hammon's constants and p, q, u free; it starts at hammon-2017, so it is no baseline of its own.
 inline DiffuseModel smithlab_2026_model() {
     return {.name = "smithlab-2026",
             .parameters = {"rough_a", "rough_b", "rough_c", "smooth", "multi", "blend_power", "multi_power",
