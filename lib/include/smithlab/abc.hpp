@@ -122,13 +122,17 @@ inline double abc_scaled_power(double A, double q, double c, double t = 1.0) {
 /// (1 + b x)^-c is within ~(b c x)^2 / (2 c) of its limit exp(-b c x) across the lobe, and larger c adds nothing a
 /// Gaussian in 1 - cos theta_m does not. Every b, c in the domain keeps A, D and P22 finite (A <= ~2e19 at b = 1e16,
 /// c = 1e4, where alpha = sqrt(2 / (b c)) = 1.4e-10, inside the quadrature routes' domain).
+///@{
 inline constexpr double abc_min_b = 1e-8;
 inline constexpr double abc_max_b = 1e16;
 inline constexpr double abc_max_c = 1e4;
+///@}
 
+/// The ABC NDF D(m) = A (1 + b (1 - cos theta_m))^-c (Low et al. 2012), normalized so that D cos theta_m integrates
+/// to 1 over the hemisphere.
 struct Abc {
-    double b;
-    double c;
+    double b;  ///< the lobe's sharpness B (b > 0); b = 2 / (c alpha^2) matches Beckmann's alpha near the pole
+    double c;  ///< the falloff exponent C (c > 0); large c tends to a Gaussian in 1 - cos theta_m
     double A;  ///< 1 / (2 pi I(b, c)): D at the pole
 
     /// D(cos theta_m) = A (1 + b (1 - cos))^-c (Low et al. 2012); 1 - cos is exact for cos >= 1/2 (Sterbenz). cos > 1

@@ -28,11 +28,16 @@ namespace smithlab {
 template <class M, class Ndfs>
 class MaterialKernelsOf;
 
+/// The walks of material type M, instantiated on walk::Microsurface`<`N`>` for each N of Ns and on
+/// Microsurface`<`AnyNdf`>` for any other NDF: the surface's NDF type picks one, once per call.
 template <class M, class... Ns>
 class MaterialKernelsOf<M, NdfTypes<Ns...>> final : public MaterialKernels {
 public:
+    /// Holds `material` by value for the walks.
     explicit MaterialKernelsOf(M material) : m_(std::move(material)) {}
 
+    /// The operations of MaterialKernels (surface.hpp), run with this material on `s`'s microsurface.
+    ///@{
     walk::CellPartial trace_block(const AnySurface& s, const walk::CellRequest& r, std::uint64_t b) const override {
         return on_microsurface(s, [&](const auto& ms) { return walk::trace_block(ms, m_, r, b); });
     }
@@ -50,6 +55,7 @@ public:
                                [&](const auto& ms) { return fit::trace_albedo_point(ms, m_, wi, seed, stream, walks); });
     }
     bool dirac_at(const Vec3& wi, const Vec3& wo) const override { return walk::material_dirac_at(m_, wi, wo); }
+    ///@}
 
 private:
     /// f on the surface's microsurface of its concrete NDF type where that is listed, else on the erased one.

@@ -6,7 +6,7 @@
 /// `static M make(const MaterialParams&)`) and its spec (`NdfSpec spec() const`); registering it is one line,
 ///     registry.materials().add<TintedMirror>();
 /// and every command then reads it by name. Its walks are compiled there for each NDF type of the list given
-/// (default: core_ndf_types; smithlab/smithlab.hpp's builtin_ndf_types adds GTR's), and for any other NDF on the NDF
+/// (default: core_ndf_types; smithlab/gtr/registry.hpp's builtin_ndf_types adds GTR's), and for any other NDF on the NDF
 /// erased (material_kernels.hpp).
 #pragma once
 
@@ -23,8 +23,11 @@
 
 namespace smithlab {
 
+/// The facet materials by name: each one's MaterialInfo (parameters, ranges, description) and the factory that
+/// makes it from a spec's parameters, in registration order.
 class MaterialRegistry {
 public:
+    /// Makes a material from its parsed, range-checked parameters.
     using Factory = std::function<walk::Material(const walk::MaterialParams&)>;
 
     /// The built-in materials: mirror, conductor, lambert, fresnel-diffuse, dielectric.
@@ -41,6 +44,7 @@ public:
     /// The material a spec names; input_error naming an unknown material (with the known ones), an unknown or
     /// missing parameter, or a value out of its range.
     walk::Material make(std::string_view spec) const;
+    /// The material named `name`, or nullptr.
     const walk::MaterialInfo* find(std::string_view name) const;
     std::vector<const walk::MaterialInfo*> list() const;  ///< in registration order
 

@@ -5,6 +5,7 @@
 
 namespace smithlab {
 
+/// A compile-time list of concrete NDF types (no members): a material's walks are instantiated for each.
 template <class... Ns>
 struct NdfTypes {};
 
@@ -15,10 +16,11 @@ struct StudentT;
 struct Abc;
 class TabulatedNdf;
 
-/// The types register_core_ndfs's factories return (registry.hpp); smithlab/smithlab.hpp's builtin_ndf_types adds
+/// The types register_core_ndfs's factories return (registry.hpp); smithlab/gtr/registry.hpp's builtin_ndf_types adds
 /// the GTR family's.
 using core_ndf_types = NdfTypes<Ggx, Beckmann, BlinnPhong, StudentT, Abc, TabulatedNdf>;
 
+/// The concatenation of two lists, A's types first: core_ndf_types + NdfTypes`<`MyNdf`>`{}.
 template <class... A, class... B>
 constexpr NdfTypes<A..., B...> operator+(NdfTypes<A...>, NdfTypes<B...>) {
     return {};

@@ -125,8 +125,10 @@ public:
 
     /// The facet materials a front end with this registry reads by name (material_registry.hpp): the built-in ones,
     /// and those added to it.
+    ///@{
     MaterialRegistry& materials() { return materials_; }
     const MaterialRegistry& materials() const { return materials_; }
+    ///@}
 
 private:
     void add_erased(NdfInfo info, Factory make);

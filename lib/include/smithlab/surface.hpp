@@ -26,6 +26,8 @@
 
 namespace smithlab {
 
+/// The Smith microsurface of one NDF, its type erased: the walks a command runs on it, one virtual call per block of
+/// walks or per point, for any facet material.
 class AnySurface {
 public:
     virtual ~AnySurface() = default;
@@ -35,16 +37,20 @@ public:
     /// One direction pair by the eval estimator over r.threads (walk::eval_cell).
     virtual walk::EvalTally eval_cell(const walk::Material& material, const walk::EvalRequest& r) const = 0;
     /// The fitter's points, one thread each (fit::trace_eval_point, fit::trace_albedo_point).
+    ///@{
     virtual fit::SplitMoments eval_point(const walk::Material& material, const Vec3& wi, const Vec3& wo,
                                          std::uint64_t seed, std::uint64_t stream, std::int64_t walks) const = 0;
     virtual fit::SplitMoments albedo_point(const walk::Material& material, const Vec3& wi, std::uint64_t seed,
                                            std::uint64_t stream, std::int64_t walks) const = 0;
+    ///@}
 
     /// For a registered material's kernels: the NDF's concrete type and its walk::Microsurface of that type, and the
     /// same microsurface with the NDF erased (built on first use; its tables may refuse the NDF, as input_error).
+    ///@{
     virtual const std::type_info& ndf_type() const = 0;
     virtual const void* microsurface() const = 0;
     virtual const walk::Microsurface<AnyNdf>& erased_microsurface() const = 0;
+    ///@}
 };
 
 /// A registered material's walks (walk/material.hpp, RegisteredMaterial): the operations of AnySurface for one
@@ -52,6 +58,9 @@ public:
 class MaterialKernels {
 public:
     virtual ~MaterialKernels() = default;
+    /// AnySurface's trace_block, eval_cell, eval_point and albedo_point for this material on the surface `s`, and
+    /// whether the material's phase has a Dirac delta at (wi, wo) (walk::material_dirac_at).
+    ///@{
     virtual walk::CellPartial trace_block(const AnySurface& s, const walk::CellRequest& r, std::uint64_t b) const = 0;
     virtual walk::EvalTally eval_cell(const AnySurface& s, const walk::EvalRequest& r) const = 0;
     virtual fit::SplitMoments eval_point(const AnySurface& s, const Vec3& wi, const Vec3& wo, std::uint64_t seed,
@@ -59,8 +68,11 @@ public:
     virtual fit::SplitMoments albedo_point(const AnySurface& s, const Vec3& wi, std::uint64_t seed,
                                            std::uint64_t stream, std::int64_t walks) const = 0;
     virtual bool dirac_at(const Vec3& wi, const Vec3& wo) const = 0;
+    ///@}
 };
 
+/// The surface of the concrete NDF type N: walk::Microsurface`<`N`>`, so that D, Lambda and the visible normals are
+/// direct calls in the walks.
 template <Ndf N>
 class SurfaceOf final : public AnySurface {
 public:
@@ -68,6 +80,9 @@ public:
     SurfaceOf(const N& ndf, const walk::MicrosurfaceOptions& opts, AnyNdf self)
         : ms_(ndf, opts), self_(std::move(self)) {}
 
+    /// AnySurface's operations: a built-in material's walks on walk::Microsurface`<`N`>`, a registered one's through
+    /// its kernels.
+    ///@{
     walk::CellPartial trace_block(const walk::Material& material, const walk::CellRequest& r,
                                   std::uint64_t b) const override {
         return visit(material, [&](const auto& m) { return walk::trace_block(ms_, m, r, b); },
@@ -87,7 +102,10 @@ public:
         return visit(material, [&](const auto& m) { return fit::trace_albedo_point(ms_, m, wi, seed, stream, walks); },
                      [&](const MaterialKernels& k) { return k.albedo_point(*this, wi, seed, stream, walks); });
     }
+    ///@}
 
+    /// typeid(N), the walk::Microsurface`<`N`>` itself, and the same NDF erased (built once, on first use).
+    ///@{
     const std::type_info& ndf_type() const override { return typeid(N); }
     const void* microsurface() const override { return &ms_; }
     const walk::Microsurface<AnyNdf>& erased_microsurface() const override {
@@ -100,6 +118,7 @@ public:
             return *erased_;
         }
     }
+    ///@}
 
 private:
     /// A built-in material runs `builtin` on its concrete type; a registered one, `registered` on its kernels.
@@ -129,9 +148,11 @@ public:
     virtual std::shared_ptr<const AnySurface> surface(const AnyNdf& self, const walk::MicrosurfaceOptions& opts) const = 0;
 };
 
+/// The NdfKernels of the concrete NDF type N: a copy of the NDF, from which it builds SurfaceOf`<`N`>`.
 template <Ndf N>
 class KernelsOf final : public NdfKernels {
 public:
+    /// Holds a copy of `ndf`, the concrete type of the AnyNdf these kernels attach to.
     explicit KernelsOf(N ndf) : ndf_(std::move(ndf)) {}
     std::shared_ptr<const AnySurface> surface(const AnyNdf& self,
                                               const walk::MicrosurfaceOptions& opts) const override {

@@ -54,9 +54,11 @@
 
 namespace smithlab::compensation {
 
-/// x = sqrt((1 + c) mu / (mu + c)) and its inverse; c > 0, mu and x in [0, 1].
+/// x = sqrt((1 + c) mu / (mu + c)) and its inverse, mu = c x^2 / (1 + c - x^2); c > 0, mu and x in [0, 1].
+///@{
 double warp_cosine(double c, double mu);
 double unwarp_cosine(double c, double x);
+///@}
 
 /// Nodes clustered about a cosine mu_k: a share `weight` of the axis, spread as asinh((mu - mu_k) / width). The
 /// default weight 0 is no cluster.
@@ -83,16 +85,22 @@ double warp_scale(double cot);
 double lookup_power_law(const std::vector<double>& alphas, const std::vector<double>& values, double alpha,
                         const char* what);
 
+/// The nodes of a table over (alpha, mu): the alphas, each row's warp scale, and n_x cosines a row, uniform in the
+/// warped cosine x (with a node cluster's share where the grid has one).
 struct AlbedoGrid {
     std::vector<double> alphas;  ///< ascending, > 0
     std::vector<double> scales;  ///< the warp's scale c at each alpha (warp_scale of the NDF there), > 0
     int n_x = 32;                ///< cosines a row, x_j = j / (n_x - 1)
     NodeCluster cluster;         ///< none by default
+    /// The j-th node of the warped axis, x_j = j / (n_x - 1).
     double x(int j) const { return static_cast<double>(j) / (n_x - 1); }
     /// The axis at scale c: x of mu (the warp, and the cluster's share), and its inverse (by bisection where a cluster
     /// is, to a few ulps).
+    ///@{
     double x_of(double c, double mu) const;
     double mu_of(double c, double x) const;
+    ///@}
+    /// The cosine of node (i, j): mu_of at row i's scale and x_j.
     double mu(std::size_t i, int j) const { return mu_of(scales[i], x(j)); }
     /// The scale at any alpha > 0: lookup_power_law of the scales.
     double scale(double alpha) const;
@@ -105,9 +113,10 @@ enum class Stored { value, log };
 
 /// values[i * n_x + j] at (alphas[i], x_j): the albedo, or ln of it.
 struct AlbedoTable {
-    AlbedoGrid grid;
-    std::vector<double> values;
-    Stored stored = Stored::value;
+    AlbedoGrid grid;                ///< the nodes
+    std::vector<double> values;     ///< n_alpha x n_x, row-major (row i = alphas[i])
+    Stored stored = Stored::value;  ///< whether values are the albedo or its natural logarithm
+    /// The stored value at node (i, j), as held (ln of the albedo for Stored::log).
     double at(std::size_t i, int j) const { return values[i * static_cast<std::size_t>(grid.n_x) + j]; }
     /// Bilinear in (sqrt(alpha), x) (exp of it for Stored::log), with the rules above outside the alphas; input_error
     /// for alpha <= 0 or NaN, or mu outside [0, 1].
@@ -119,13 +128,19 @@ inline constexpr double grazing_mu = 2e-3;
 
 /// The worst |lookup - exact| and where it is.
 struct InterpolationError {
+    /// The worst |lookup - exact|, and the alpha and mu where it is.
+    ///@{
     double max = 0.0, alpha = 0.0, mu = 0.0;
+    ///@}
 };
 
 /// A table with its measured error: `fine` holds the exact values on the refined grid (alphas at refine steps of
 /// sqrt(alpha) between nodes, x at steps of 1 / (refine (n_x - 1))), `table` every refine-th of them (or their logs).
 struct CheckedTable {
+    /// The table a renderer looks up, and the exact values on the refined grid it is measured against.
+    ///@{
     AlbedoTable table, fine;
+    ///@}
     InterpolationError error;    ///< at mu >= grazing_mu
     InterpolationError grazing;  ///< at mu < grazing_mu
 };
@@ -141,6 +156,8 @@ CheckedTable tabulate(const AlbedoGrid& grid, int refine, const AlbedoRow& row, 
 /// value per entry of `stored` at mu into out[0 ..). Returns one measured table per value, each stored as asked (a
 /// value tabulated as Stored::log must be > 0).
 using AlbedoRows = std::function<std::function<void(double mu, double* out)>(double alpha)>;
+/// Tabulates rows(alpha) on the refined grid with `threads` threads (0: the hardware's), one measured table per entry
+/// of `stored`, each stored as that entry asks.
 std::vector<CheckedTable> tabulate(const AlbedoGrid& grid, int refine, const std::vector<Stored>& stored,
                                    const AlbedoRows& rows, unsigned threads = 0);
 

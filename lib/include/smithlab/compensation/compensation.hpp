@@ -66,6 +66,8 @@ namespace smithlab::compensation {
 /// The tables' quadrature tolerance: values to ~1e-8 relative, far below their interpolation error ~5e-4 (albedo_grid).
 inline constexpr double table_tolerance = 1e-8;
 
+/// How E(mu) and E_avg are computed: the quadrature's tolerance, the G2 form and the LambdaTable of an NDF without a
+/// closed-form Lambda.
 struct AlbedoOptions {
     double tolerance = 1e-10;  ///< relative, of each Gauss-Kronrod integral (inner ones at a tenth of it)
     /// The G2 the single scattering uses: height-correlated (Walter 2007 eq. 20's Smith G2 as Heitz 2014 eq. 99 and
@@ -95,6 +97,7 @@ double cosine_average(FunctionRef e, double tolerance);
 template <Ndf N>
 class SingleScatteringAlbedo {
 public:
+    /// Holds a copy of `ndf` and builds its Lambda (a LambdaTable of opts.lambda_table where it has no closed form).
     explicit SingleScatteringAlbedo(const N& ndf, const AlbedoOptions& opts = {})
         : ndf_(ndf),
           Lambda_(ndf_, opts.lambda_table),
@@ -114,8 +117,12 @@ public:
     /// directional albedos of single reflection, E_R (facets of reflectance F(wi.m), Walter 2007 eq. 20 and 22), and
     /// of single transmission, E_T (eq. 21). Their sum is the albedo Turquin 2019 divides the dielectric BSDF by.
     struct Dielectric {
+        /// E_R, the albedo of single reflection, and E_T, that of single transmission, each in [0, 1].
+        ///@{
         double R = 0.0, T = 0.0;
+        ///@}
     };
+    /// E_R and E_T at mu = cos theta_i in [0, 1] for relative index eta, with the options' G2 and tolerance.
     Dielectric dielectric(double mu, double eta) const {
         auto P22 = [&](double r2) { return slope_density(ndf_, r2); };
         auto L = [&](double m) { return Lambda_(m); };
@@ -152,7 +159,8 @@ private:
     double masking_cot_;  ///< the slope scale (albedo_grid.hpp, masking_cot): the radial quadrature's first panel
 };
 
-/// One-off conveniences (each builds the Lambda table again for an NDF without a closed form).
+/// One-off conveniences (each builds the Lambda table again for an NDF without a closed form): E(mu) and E_avg.
+///@{
 template <Ndf N>
 double directional_albedo(const N& ndf, double mu, const AlbedoOptions& opts = {}) {
     return SingleScatteringAlbedo<N>(ndf, opts)(mu);
@@ -161,6 +169,7 @@ template <Ndf N>
 double average_albedo(const N& ndf, const AlbedoOptions& opts = {}) {
     return SingleScatteringAlbedo<N>(ndf, opts).average();
 }
+///@}
 
 /// The node cluster of a dielectric's tables (albedo_grid.hpp) at relative index eta (below over above) on a grid whose
 /// first alpha is alpha_min: from inside (eta < 1), b = 0.35 of the axis about the critical cosine mu_c =
@@ -206,8 +215,10 @@ double kulla_conty_ratio(const AlbedoTable& E, const std::vector<double>& missin
 /// compensation/furnace.hpp): the exact 1 - E_avg (SingleScatteringAlbedo::missing) would leave the table's error in E,
 /// integrated, divided by 1 - E_avg, which is ~alpha^2 at small alpha (4e-3 in the furnace of GGX's 32 x 48 table at
 /// alpha 0.03).
+///@{
 double table_missing(const AlbedoTable& E, double alpha);
 std::vector<double> table_missing(const AlbedoTable& E);
+///@}
 
 /// "smithlab_" + the family name made an identifier: runs of other characters than letters and digits become one '_'
 /// ("gtr(gamma=1.5)" -> smithlab_gtr_gamma_1_5); the names of the renderer formats start with it

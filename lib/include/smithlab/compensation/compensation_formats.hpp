@@ -60,10 +60,12 @@ std::string compensation_identifier(const CompensationExport& e);
 ///   glsl: GLSL 3.30 (no `#version` line: it goes after the includer's): const float arrays and functions;
 ///   hlsl: HLSL: static const float arrays and the same functions.
 enum class Language { c, glsl, hlsl };
+/// A text format: its language and its file's extension.
 struct SourceFormat {
-    Language language;
+    Language language;      ///< the language written
     const char* extension;  ///< of its file: ".h", ".glsl", ".hlsl"
 };
+/// Every text format, in the order of Language.
 inline constexpr std::array<SourceFormat, 3> source_formats{
     {{Language::c, ".h"}, {Language::glsl, ".glsl"}, {Language::hlsl, ".hlsl"}}};
 

@@ -25,10 +25,13 @@
 namespace smithlab::compensation {
 
 /// The worst |albedo - 1| over mu >= mu_min at each alpha of the check grid (t.fine.grid.alphas), and where.
-/// missing: 1 - E_avg at E's alphas.
+/// missing: 1 - E_avg at E's alphas. Kulla and Conty's furnace of mirror facets from the table of E, and Turquin's of
+/// a dielectric from the table of E_R + E_T (`sum`).
+///@{
 std::vector<InterpolationError> kulla_conty_furnace(const CheckedTable& E, const std::vector<double>& missing,
                                                     double mu_min);
 std::vector<InterpolationError> turquin_furnace(const CheckedTable& sum, double mu_min);
+///@}
 
 /// The worst of a furnace's alphas.
 InterpolationError worst_of(const std::vector<InterpolationError>& per_alpha);

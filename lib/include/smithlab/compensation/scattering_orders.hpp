@@ -37,7 +37,11 @@ namespace smithlab::compensation {
 /// The shares of the light single scattering misses by order: q_1 (the separable G2's), then of the rest q_2, q_3,
 /// and p, the escape chance of each hit past the third.
 struct ScatteringOrders {
+    /// q_2 and q_3, the shares of the light that leaves after exactly 2 and 3 hits; p, the escape chance of each hit
+    /// past the third; q_1, the separable G2's share (0 for the height-correlated one).
+    ///@{
     double q2 = 1.0, q3 = 0.0, p = 1.0, q1 = 0.0;
+    ///@}
 };
 
 /// The orders of one cell of mirror-facet walks (walk/trace.hpp, walk::Mirror; every walk leaves with weight 1), with
@@ -45,10 +49,14 @@ struct ScatteringOrders {
 /// -> 0 at normal incidence, 1 - E ~ 0), all of it is order 2. input_error for a tally of no walks, capped walks, or
 /// walks that did not all leave with weight 1 (not mirror facets).
 struct OrderEstimate {
-    ScatteringOrders orders;
+    ScatteringOrders orders;  ///< q_2, q_3 and p of the cell (q_1 = 0: the walk's G2 is the height-correlated one)
+    /// The standard errors of q_2 and q_3 (multinomial, over the walks that hit twice or more).
+    ///@{
     double q2_stderr = 0.0, q3_stderr = 0.0;
+    ///@}
     std::int64_t multiple = 0;  ///< walks that hit twice or more
 };
+/// The orders of the mirror-facet walks tallied in `mirror`, with their standard errors (OrderEstimate's rules).
 OrderEstimate scattering_orders(const walk::AlbedoTally& mirror);
 
 /// A_ms = (1 - E) (q_1 F + (1 - q_1) (F^2 q_2 + F^3 q_3 + (1 - q_2 - q_3) F^4 p / (1 - F (1 - p)))), F = F_avg in
@@ -58,8 +66,15 @@ double multiple_scattering_albedo(double E, const ScatteringOrders& q, double F_
 /// q_2, q_3 and p over (alpha, mu): tables on one grid (albedo_grid.hpp), looked up bilinearly (below the first alpha,
 /// its row); q_1 a table on the same grid for the separable G2, none (0) for the height-correlated one.
 struct OrderTables {
+    /// The tables of q_2, q_3, p and q_1 (q_1 without values: none, 0), stored as values on one grid.
+    ///@{
     AlbedoTable q2, q3, p, q1;
-    std::vector<double> q2_stderr, q3_stderr;  ///< at each node, as the tables' values
+    ///@}
+    /// The standard errors of q_2 and q_3 at each node, as the tables' values.
+    ///@{
+    std::vector<double> q2_stderr, q3_stderr;
+    ///@}
+    /// The orders at (alpha, mu): each table's AlbedoTable::lookup, q_1 = 0 where its table has no values.
     ScatteringOrders lookup(double alpha, double mu) const;
 };
 
@@ -68,6 +83,8 @@ struct OrderTables {
 /// a walk cannot start horizontal. The nodes run on `threads` threads (0: all cores), each node's walks in the thread
 /// that runs it.
 using OrderCell = std::function<walk::AlbedoTally(std::size_t node, double alpha, double mu)>;
+/// Traces every node of `grid` with `trace` on `threads` threads (0: all cores) and returns q_2, q_3 and p with their
+/// standard errors (q_1 left empty: the walk's G2 is the height-correlated one).
 OrderTables tabulate_orders(const AlbedoGrid& grid, const OrderCell& trace, unsigned threads = 0);
 
 }  // namespace smithlab::compensation

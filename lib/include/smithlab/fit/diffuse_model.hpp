@@ -29,7 +29,10 @@ using DiffuseFn = double (*)(const Vec3& wi, const Vec3& wo, double alpha, doubl
 /// The values a free constant can take where the model means what its source says: lo < c < hi (an infinite bound where
 /// none applies), and why. A fit whose constant ends at or beyond a bound has left the model's own domain.
 struct ParameterRange {
+    /// The open bounds lo `<` c `<` hi; -INFINITY or INFINITY where a side is unbounded.
+    ///@{
     double lo = -INFINITY, hi = INFINITY;
+    ///@}
     std::string_view why;  ///< one line, e.g. "sigma = s alpha, a slope angle's standard deviation: at most pi/2"
 };
 
@@ -40,7 +43,9 @@ struct ParameterRange {
 /// function that `functions` or the common helpers define, {i} standing for the model's constant i (inlined at the
 /// exported value), e.g. "smithlab_oren_nayar(L, V, N, {0} * alpha, albedo)".
 struct Glsl {
+    /// The GLSL function definitions the model needs beyond the common helpers, callees first.
     std::vector<std::string_view> functions;
+    /// The exported function's return expression, `{i}` standing for constant i.
     std::string_view call;
 };
 
@@ -49,12 +54,15 @@ struct Glsl {
 struct NoGlsl {
     explicit NoGlsl() = default;
 };
+/// The value to write for a model without a GLSL transcription: `.glsl = no_glsl`.
 inline constexpr NoGlsl no_glsl{};
 
 /// A Glsl or no_glsl, and nothing else: it has no default, so that a DiffuseModel that names neither does not compile.
 class GlslTranscription {
 public:
+    /// A model with this GLSL transcription.
     GlslTranscription(Glsl glsl) : glsl_(std::move(glsl)) {}
+    /// A model without a GLSL transcription.
     GlslTranscription(NoGlsl) {}
     const Glsl* get() const { return glsl_ ? &*glsl_ : nullptr; }  ///< nullptr: the model has none
 
@@ -62,11 +70,15 @@ private:
     std::optional<Glsl> glsl_;
 };
 
+/// A diffuse model as the fitter takes it: its name, free constants with published values and ranges, source,
+/// f (a DiffuseFn) and its GLSL transcription or no_glsl. Built-in models come from the `*_model()` functions in
+/// fit/diffuse/.
 struct DiffuseModel {
     std::string_view name = {};                     ///< e.g. "hammon-2017"
     std::vector<std::string_view> parameters = {};  ///< names of the free constants; empty for a fixed baseline
     std::vector<double> published = {};             ///< their published values (a fit's start, the fixed baseline)
     std::string_view source = {};                   ///< citation, one line
+    /// The BRDF in the fitter's one shape (conventions of DiffuseFn); required.
     DiffuseFn f = nullptr;
     GlslTranscription glsl;  ///< required: .glsl = Glsl{{functions...}, "call"} or .glsl = no_glsl
     /// Its starting constants make a model of its own, measured as a baseline; false where they make another one

@@ -19,6 +19,8 @@
 
 namespace smithlab::fit {
 
+/// Diffuse models by name, in registration order: each checked when added, so that every one can be fitted, listed and
+/// exported.
 class DiffuseRegistry {
 public:
     /// Adds a model; input_error naming it where its name is not lower-case letters, digits and '-' from a letter or

@@ -22,6 +22,8 @@
 
 namespace smithlab::fit {
 
+/// The data a diffuse model is fitted to: the traced points, the albedos each is fitted at, the weights' relative
+/// floor and the alphas where the fit holds the model energy-bounded.
 struct FitData {
     std::vector<DataPoint> points;  ///< eval points (f |cos theta_o|)
     std::vector<double> albedos;    ///< the albedos each point is fitted at
@@ -53,8 +55,12 @@ double chi2_per_value(const DiffuseModel& m, const std::vector<double>& params, 
 
 /// Relative errors of f |cos theta_o| over every point and albedo whose traced value is positive.
 struct RelativeErrors {
+    /// The RMS and the largest |model - traced| / traced.
+    ///@{
     double rms = 0.0, max = 0.0;
+    ///@}
 };
+/// The relative errors of m with these constants on data.
 RelativeErrors relative_errors(const DiffuseModel& m, const std::vector<double>& params, const FitData& data);
 
 /// The model's directional albedo, the integral of f(wi, wo) cos theta_o over the hemisphere of wo, by a product
@@ -71,8 +77,12 @@ double albedo_rms(const DiffuseModel& m, const std::vector<double>& params, cons
 /// The largest directional albedo of the model at albedo 1 over alphas x theta_i (degrees), and where: above 1 the
 /// model makes energy (not energy-bounded).
 struct AlbedoPeak {
+    /// The largest directional albedo, and the alpha and theta_i (degrees) where it is.
+    ///@{
     double albedo = 0.0, alpha = 0.0, theta_i = 0.0;
+    ///@}
 };
+/// The peak of model_albedo at albedo 1 over alphas x thetas (degrees).
 AlbedoPeak max_albedo(const DiffuseModel& m, const std::vector<double>& params, const std::vector<double>& alphas,
                       const std::vector<double>& thetas);
 
@@ -80,8 +90,12 @@ AlbedoPeak max_albedo(const DiffuseModel& m, const std::vector<double>& params, 
 /// |f(wi, wo) - f(wo, wi)| / max(f(wi, wo), f(wo, wi)) (0 for a model symmetric in L and V, as a BRDF must be:
 /// Helmholtz reciprocity), and the smallest f (negative: the model is not a BRDF there).
 struct GridCheck {
+    /// The largest relative asymmetry |f(wi, wo) - f(wo, wi)| / max, and the smallest f.
+    ///@{
     double asymmetry = 0.0, min_f = INFINITY;
+    ///@}
 };
+/// The reciprocity and positivity check of m with these constants over alphas and the grid of direction pairs.
 GridCheck check_on_grid(const DiffuseModel& m, const std::vector<double>& params, const std::vector<double>& alphas);
 
 }  // namespace smithlab::fit

@@ -22,9 +22,15 @@ namespace smithlab::fit {
 /// "hammon-2017-fitted" refitted), `ndf` the NDF family's label ("gtr(gamma=1.5)"), `constants` one per
 /// model.parameters, `stderrs` their standard errors (empty when not fitted).
 struct ShaderModel {
+    /// The model's name in the outputs and the NDF family's label.
+    ///@{
     std::string_view name, ndf;
-    const DiffuseModel* model;
+    ///@}
+    const DiffuseModel* model;  ///< the model exported, with its GLSL transcription (DiffuseModel::glsl)
+    /// The constants, one per model.parameters, and their standard errors (empty when not fitted).
+    ///@{
     std::span<const double> constants, stderrs;
+    ///@}
 };
 
 /// `text` as a GLSL identifier or file-name part: lower-case letters and digits kept, '.' -> 'p', every other run of

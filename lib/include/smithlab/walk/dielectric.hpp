@@ -20,9 +20,12 @@ namespace smithlab::walk {
 ///     (1 - F(wi.h)) <wi.h> D(h) / A(wi) |d omega_h / d omega_o|,  h = -(wi + eta' wo) / |.| turned up,
 /// the Jacobian Walter 2007 eq. 17 (geometry.hpp, dm_dwo_refraction), eta' the relative index on this side.
 struct Dielectric {
-    double eta;
-    static constexpr bool two_sided = true;
+    double eta;  ///< the index below the surface over that above
+    static constexpr bool two_sided = true;  ///< light goes through to the other side (TwoSided, facets.hpp)
 
+    /// The registration (material_registry.hpp): name, parameters and description; the material a checked spec
+    /// makes; and its spec back.
+    ///@{
     static MaterialInfo info() {
         return {"dielectric",
                 {{"eta", 1.5, 1e-3, 1e3}},
@@ -31,10 +34,13 @@ struct Dielectric {
     }
     static Dielectric make(const MaterialParams& p) { return {p.at("eta")}; }
     NdfSpec spec() const { return {"dielectric", {{"eta", eta}}}; }
+    ///@}
     /// Index-matched (eta = 1), it neither reflects nor bends light: every ray leaves along -wi, a Dirac delta at
     /// wo = -wi (within 1e-9 of a unit vector: the rounding of directions given in degrees) the eval estimator has no
     /// finite density for.
     bool dirac_at(const Vec3& wi, const Vec3& wo) const { return eta == 1.0 && (wi + wo).norm() <= 1e-9; }
+    /// Reflection about m with probability F(wi.m), else refraction (Snell; reflection past the critical angle),
+    /// weight 1; `above`: the side the ray is on.
     template <class G>
     Scatter sample(const Vec3& wi, const Vec3& m, G& g, bool above) const {
         const double e = above ? eta : 1.0 / eta;
@@ -43,6 +49,7 @@ struct Dielectric {
             return {reflect(wi, m), 1.0, false};
         return {t, 1.0, false, true};
     }
+    /// The reflected or the refracted part toward wo from the side `above` names (the formulas above); no diffuse part.
     template <class Microsurface, class G>
     Phase phase(const Microsurface& ms, const Vec3& wi, const Vec3& wo, G&, bool above) const {
         const double e = above ? eta : 1.0 / eta;

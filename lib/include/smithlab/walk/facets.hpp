@@ -29,15 +29,20 @@
 
 namespace smithlab::walk {
 
+/// What sample returns: the next direction, the weight it carries, and what kind of event it was.
 struct Scatter {
-    Vec3 wo;
+    Vec3 wo;  ///< the next direction, unit, in the frame of the side the ray is on
     double weight;  ///< 0: absorbed
-    bool diffuse;
+    bool diffuse;  ///< whether the event was diffuse (counted in the diffuse orders, walk.hpp)
     bool transmitted = false;  ///< through to the other side (two-sided materials only)
 };
 
+/// What phase returns: the phase function rho(wi -> wo), per steradian, split into its specular and diffuse parts.
 struct Phase {
+    /// The mirror part (analytic) and the diffuse part (one-sample estimate).
+    ///@{
     double specular = 0.0, diffuse = 0.0;
+    ///@}
 };
 
 namespace detail {

@@ -29,7 +29,7 @@ namespace smithlab::walk {
 
 /// A material of a type outside the built-in list: its walks, compiled for its concrete type (material_kernels.hpp).
 struct RegisteredMaterial {
-    std::shared_ptr<const MaterialKernels> kernels;
+    std::shared_ptr<const MaterialKernels> kernels;  ///< the material's walks on any surface (never null)
 };
 
 /// Whether M is one of the materials every NDF's surface is compiled against (surface.hpp).
@@ -41,6 +41,7 @@ inline constexpr bool builtin_material = std::is_same_v<M, Mirror> || std::is_sa
 /// What a material type may say about itself, each optional: whether any of its events is diffuse (the tallies of
 /// the diffuse component exist only then; default: none is), and where its BSDF holds a Dirac delta that the eval
 /// estimator has no finite density for (default: nowhere).
+///@{
 template <class M>
 bool material_has_diffuse(const M& m) {
     if constexpr (requires { m.has_diffuse(); }) return m.has_diffuse();
@@ -51,14 +52,18 @@ bool material_dirac_at(const M& m, const Vec3& wi, const Vec3& wo) {
     if constexpr (requires { m.dirac_at(wi, wo); }) return m.dirac_at(wi, wo);
     else return false;
 }
+///@}
 
 /// A material's spec as text: "conductor(eta=0.2, k=3)", the bare name where it has no parameters ("mirror").
 inline std::string material_spec_text(const NdfSpec& spec) {
     return spec.params.empty() && spec.texts.empty() ? spec.name : format_spec(spec);
 }
 
+/// A facet material as a value, with its canonical spec and whether it is diffuse or transmits: a built-in type or
+/// a RegisteredMaterial.
 class Material {
 public:
+    /// The material itself: one of the built-in types, or a registered material's kernels.
     using Kind = std::variant<Mirror, Conductor, Lambert, FresnelDiffuse, Dielectric, RegisteredMaterial>;
 
     /// A built-in material.
@@ -87,7 +92,7 @@ public:
     const M* get_if() const {
         return std::get_if<M>(&kind_);
     }
-    const Kind& kind() const { return kind_; }
+    const Kind& kind() const { return kind_; }  ///< the material itself, for std::visit
 
 private:
     std::string spec_;

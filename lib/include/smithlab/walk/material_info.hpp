@@ -15,16 +15,19 @@ namespace smithlab::walk {
 /// A parameter of a material spec: its key, its value where the spec leaves it out (NaN: required), and the closed
 /// range [lo, hi] a value must lie in.
 struct MaterialParameter {
-    std::string key;
-    double fallback = NAN;
+    std::string key;        ///< the parameter's name in a spec, such as "eta"
+    double fallback = NAN;  ///< the value where the spec leaves it out; NaN: required
+    /// The closed range a value must lie in.
+    ///@{
     double lo = -INFINITY, hi = INFINITY;
+    ///@}
 };
 
 /// A material as a registry lists it: "conductor", {eta, k}, "mirror facets of a conductor ...".
 struct MaterialInfo {
-    std::string name;
-    std::vector<MaterialParameter> parameters;
-    std::string description;
+    std::string name;                          ///< the name a spec uses, such as "conductor"
+    std::vector<MaterialParameter> parameters;  ///< in the order front ends list them
+    std::string description;                   ///< one line, for `smithlab list` and `--help`
     /// Whether light goes through it (a two-sided material, facets.hpp): filled in by the registry.
     bool transmits = false;
 
@@ -37,10 +40,11 @@ struct MaterialInfo {
 /// factory reads.
 class MaterialParams {
 public:
+    /// The material's name and its values by key (already filled in and checked by the registry).
     MaterialParams(std::string name, std::map<std::string, double> values)
         : name_(std::move(name)), values_(std::move(values)) {}
     double at(const std::string& key) const;  ///< std::out_of_range names a key the material did not declare
-    const std::string& name() const { return name_; }
+    const std::string& name() const { return name_; }  ///< the material's name
 
 private:
     std::string name_;

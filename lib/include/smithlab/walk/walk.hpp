@@ -30,8 +30,10 @@ namespace smithlab::walk {
 
 /// Tallies by scattering order: 1, 2, 3, 4+.
 inline constexpr int order_bins = 4;
+/// The bin of scattering order `order` (1 or more): order - 1, the orders from order_bins on in the last.
 inline int order_bin(std::int64_t order) { return static_cast<int>(std::min<std::int64_t>(order, order_bins)) - 1; }
 
+/// Where a walk stops short of escaping: a highest order asked for, and a cap on its hits.
 struct WalkLimits {
     int max_order = 0;  ///< > 0: the walk ends after this many hits (the orders beyond are not asked for)
     std::int64_t max_events = 1'000'000;  ///< a walk still inside after this many hits ends as `capped` (never a hang)
@@ -42,16 +44,18 @@ struct WalkLimits {
 /// by the albedo, and nothing else depends on it), so a walk traced at albedo 1 and split by k gives the result at
 /// every albedo a as sum_k a^k f_k (the fitter's data: fit/dataset.hpp).
 inline constexpr int diffuse_bins = 16;
+/// The bin of k diffuse events: k, those from diffuse_bins - 1 on in the last.
 inline int diffuse_bin(int k) { return std::min(k, diffuse_bins - 1); }
 
+/// One walk of sample_walk: where it left, what it carries, and how it ended.
 struct WalkSample {
     Vec3 wo;             ///< the exit direction, when escaped
     double weight;       ///< what it carries out (0 when absorbed, truncated or capped)
     int order;           ///< hits before it left
     int diffuse_events;  ///< diffuse events on the way
-    bool escaped;
-    bool capped;
-    bool diffuse() const { return diffuse_events > 0; }
+    bool escaped;        ///< it left the surface (else absorbed, truncated at max_order, or capped)
+    bool capped;         ///< it ended at max_events hits, or where no visible normal could be drawn
+    bool diffuse() const { return diffuse_events > 0; }  ///< whether any event on the way was diffuse
 };
 
 namespace detail {
@@ -98,6 +102,8 @@ double expected_first_escape(const Microsurface& ms, const Vec3& w, const Vec3& 
 }
 }  // namespace detail
 
+/// One walk from wi on `ms` with `material` (Heitz et al. 2016, alg. 1-2): the weighted density of the exit direction is
+/// f(wi, wo) `|`cos theta_o`|`; wi.z `<` 0 (light from below) only for a two-sided material.
 template <class Microsurface, class M, class G>
 WalkSample sample_walk(const Microsurface& ms, const M& material, const Vec3& wi, G& g, const WalkLimits& limits = {}) {
     bool above = !TwoSided<M> || wi.z() > 0.0;
@@ -153,6 +159,7 @@ WalkSample sample_walk(const Microsurface& ms, const M& material, const Vec3& wi
 /// reciprocal is the fitter's: its equal-error time (ns a walk x variance) is the lowest at every point bench_fit
 /// measures.
 enum class EvalEstimator { next_event, expected_first, reciprocal };
+/// The estimator's name as front ends spell it: "next_event", "expected_first", "reciprocal".
 inline const char* name(EvalEstimator e) {
     return e == EvalEstimator::next_event    ? "next_event"
         : e == EvalEstimator::expected_first ? "expected_first"
@@ -160,11 +167,17 @@ inline const char* name(EvalEstimator e) {
 }
 inline constexpr double reciprocal_cos = 0.64278760968653933;  ///< cos 50 degrees
 
+/// One walk of eval_walk: its estimate of f(wi, wo) `|`cos theta_o`|`, split by scattering order, component and
+/// diffuse events.
 struct EvalSample {
-    std::array<double, order_bins> specular{}, diffuse{};  ///< f |cos theta_o| by order bin and component
+    /// f `|`cos theta_o`|` by order bin (order_bin) and component.
+    ///@{
+    std::array<double, order_bins> specular{}, diffuse{};
+    ///@}
     std::array<double, diffuse_bins> by_diffuse{};         ///< the same by diffuse events (diffuse_bin), all orders
-    std::int64_t events = 0;
-    bool capped = false;
+    std::int64_t events = 0;  ///< hits of the walk (of the reversed one for EvalEstimator::reciprocal)
+    bool capped = false;      ///< it ended at max_events hits or where no normal could be drawn (no estimate where the
+                              ///< microsurface's hits do not draw visible normals)
 };
 
 namespace detail {
@@ -256,6 +269,8 @@ EvalSample eval_walk_by(const Microsurface& ms, const M& material, const Vec3& w
 
 }  // namespace detail
 
+/// One walk from wi with next-event estimation toward wo at every hit (Heitz et al. 2016, alg. 3; `estimator`: which
+/// of the EvalEstimator variants): an unbiased estimate of f(wi, wo) `|`cos theta_o`|`.
 template <class Microsurface, class M, class G>
 EvalSample eval_walk(const Microsurface& ms, const M& material, const Vec3& wi, const Vec3& wo, G& g,
                      const WalkLimits& limits = {}, EvalEstimator estimator = EvalEstimator::next_event) {

@@ -17,6 +17,8 @@
 
 namespace smithlab::fit {
 
+/// Chan 2018 diffuse BRDF as UE5's Diffuse_Chan (file comment), alpha the GGX roughness (a2 = alpha^2), albedo in
+/// [0, 1]; retro_weight scales the retro-reflective term Fb (1: as published).
 inline double chan_2018(const Vec3& wi, const Vec3& wo, double alpha, double albedo, double retro_weight = 1.0) {
     using common::pow5;
     const Vec3 sum = wi + wo;
@@ -36,6 +38,7 @@ inline double chan_2018(const Vec3& wi, const Vec3& wo, double alpha, double alb
     return albedo * common::inv_pi * (fd + retro_weight * fb);
 }
 
+/// GLSL transcription of chan_2018: smithlab_chan_2018(L, V, N, alpha, albedo, retro_weight).
 inline constexpr std::string_view chan_2018_glsl =
     R"(// Chan 2018, Material Advances in Call of Duty: WWII, as Unreal Engine 5's BRDF.ush Diffuse_Chan (a2 = alpha^2).
 float smithlab_chan_2018(vec3 L, vec3 V, vec3 N, float alpha, float albedo, float retro_weight)

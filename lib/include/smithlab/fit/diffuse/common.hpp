@@ -21,9 +21,13 @@
 
 namespace smithlab::fit::common {
 
+/// pi and 1/pi (smithlab_pi and smithlab_inv_pi in GLSL).
+///@{
 inline constexpr double pi = std::numbers::pi;
 inline constexpr double inv_pi = std::numbers::inv_pi;
+///@}
 
+/// x^5 as (x^2)^2 x: the fifth power of Schlick's factors (1 - cos)^5.
 inline double pow5(double x) {
     const double x2 = x * x;
     return x2 * x2 * x;
@@ -39,8 +43,10 @@ inline double s_over_t(const Vec3& wi, const Vec3& wo) {
 }
 
 /// EON's constants (the paper's constant1_FON and constant2_FON): A = 1/(1 + c1 r), `<E_F>` = A (1 + c2 r).
+///@{
 inline constexpr double eon_c1 = 0.5 - 2.0 / (3.0 * pi);
 inline constexpr double eon_c2 = 2.0 / 3.0 - 28.0 / (15.0 * pi);
+///@}
 
 /// G(mu) of E_F (fit/diffuse/eon.hpp), with (S/mu)(1 - S^3) = S mu (1 + S + S^2)/(1 + S) (as 1 - S = mu^2/(1 + S)):
 /// no 0/0 at grazing, where G -> pi/2 - 2/3 = pi c1.

@@ -13,6 +13,7 @@
 
 namespace smithlab::fit {
 
+/// Disney's diffuse BRDF (Burley 2012 sec. 5.3), perceptual_roughness r = sqrt(alpha), albedo in [0, 1].
 inline double disney_diffuse(const Vec3& wi, const Vec3& wo, double perceptual_roughness, double albedo) {
     // cos^2(theta_d) = (wi.h)^2 = |wi + wo|^2 / 4 (h = (wi + wo)/|wi + wo|).
     const double cos2_d = 0.25 * (wi + wo).squaredNorm();
@@ -22,6 +23,7 @@ inline double disney_diffuse(const Vec3& wi, const Vec3& wo, double perceptual_r
     return albedo * common::inv_pi * (fl * fv);
 }
 
+/// GLSL transcription of disney_diffuse: smithlab_disney_diffuse(L, V, N, perceptual_roughness, albedo).
 inline constexpr std::string_view disney_diffuse_glsl =
     R"(// Burley 2012, Physically-Based Shading at Disney, sec. 5.3: albedo/pi (1 + (FD90 - 1)(1 - cos_l)^5)
 // (1 + (FD90 - 1)(1 - cos_v)^5), FD90 = 0.5 + 2 r cos^2(theta_d), cos^2(theta_d) = |L + V|^2 / 4.

@@ -30,6 +30,8 @@ inline double eon_albedo(double mu, double r, double albedo) {
     return albedo * eon_fon_albedo(mu, r) + common::eon_rho_ms(r, albedo) * common::eon_one_minus_fon_albedo(mu, r);
 }
 
+/// The EON BRDF (Portsmouth, Kutz and Hill 2025): the FON lobe max(0, f_ss) plus the compensation lobe f_ms,
+/// roughness r in [0, 1], albedo rho in [0, 1].
 inline double eon(const Vec3& wi, const Vec3& wo, double r, double albedo) {
     using common::eon_c1, common::eon_c2, common::inv_pi;
     const double a = 1.0 / (1.0 + eon_c1 * r);
@@ -43,6 +45,7 @@ inline double eon(const Vec3& wi, const Vec3& wo, double r, double albedo) {
     return std::max(0.0, f_ss) + f_ms;
 }
 
+/// GLSL transcription of eon: smithlab_eon(L, V, N, r, albedo).
 inline constexpr std::string_view eon_glsl =
     R"(// Portsmouth, Kutz and Hill 2025, EON, JCGT 14(1): the FON lobe plus rho_ms/pi (1 - E_F(mu_i))(1 - E_F(mu_o)) /
 // (1 - <E_F>), the factor A r of 1 - E_F cancelled against 1 - <E_F> = A r (c1 - c2): no 0/0 at r = 0.

@@ -14,11 +14,13 @@
 
 namespace smithlab::fit {
 
+/// Fujii's improved Oren-Nayar BRDF, albedo/pi (A + B s/t), sigma the roughness, albedo in [0, 1]; max(0, f).
 inline double fujii(const Vec3& wi, const Vec3& wo, double sigma, double albedo) {
     const double a = 1.0 / (1.0 + common::eon_c1 * sigma), b = sigma * a;
     return std::max(0.0, albedo * common::inv_pi * (a + b * common::s_over_t(wi, wo)));
 }
 
+/// GLSL transcription of fujii: smithlab_fujii(L, V, N, sigma, albedo).
 inline constexpr std::string_view fujii_glsl =
     R"(// Fujii 2013, A tiny improvement of Oren-Nayar reflectance model: albedo/pi (A + B s/t), A = 1/(1 + c1 sigma),
 // B = sigma A; max(0, f) (smithlab's guard, not Fujii's).

@@ -18,10 +18,16 @@
 
 namespace smithlab::fit {
 
+/// Hammon 2017's constants (a, b, c, k, m) of his GGX diffuse approximation, defaulting to the published values.
 struct HammonConstants {
+    /// a, b, c of the rough term, k of the smooth term, m of the multiple-scattering term multi = m alpha.
+    ///@{
     double rough_a = 0.9, rough_b = 0.4, rough_c = 0.5, smooth = 1.05, multi = 0.1159;
+    ///@}
 };
 
+/// Hammon 2017's single-scattering term (1/pi) lerp(smooth, rough, alpha), without albedo; alpha the GGX
+/// roughness, or the blend weight that replaces it (smithlab-2026 passes alpha^p).
 inline double hammon_2017_single(const Vec3& wi, const Vec3& wo, double alpha, const HammonConstants& k) {
     using common::pow5;
     const Vec3 sum = wi + wo;
@@ -33,10 +39,12 @@ inline double hammon_2017_single(const Vec3& wi, const Vec3& wo, double alpha, c
     return common::inv_pi * (smooth + alpha * (rough - smooth));
 }
 
+/// Hammon 2017 read as albedo (single + albedo multi), multi = m alpha.
 inline double hammon_2017(const Vec3& wi, const Vec3& wo, double alpha, double albedo, const HammonConstants& k = {}) {
     return albedo * (hammon_2017_single(wi, wo, alpha, k) + albedo * (k.multi * alpha));
 }
 
+/// Hammon 2017 read as albedo (single + multi), multi = m alpha.
 inline double hammon_2017_linear(const Vec3& wi, const Vec3& wo, double alpha, double albedo,
                                  const HammonConstants& k = {}) {
     return albedo * (hammon_2017_single(wi, wo, alpha, k) + k.multi * alpha);
@@ -56,6 +64,8 @@ inline std::vector<ParameterRange> hammon_ranges() {
             {0.0, inf, "multi = m alpha, the light scattered more than once: negative below m = 0"}};
 }
 
+/// GLSL transcription of hammon_2017_single: smithlab_hammon_2017_single(L, V, N, alpha, rough_a, rough_b,
+/// rough_c, smooth_k).
 inline constexpr std::string_view hammon_2017_single_glsl =
     R"(// Hammon 2017, PBR Diffuse Lighting for GGX+Smith Microsurfaces (GDC), slide "GGX Diffuse Approximation":
 // facing = 0.5 + 0.5 L.V = |L + V|^2 / 4, rough = facing (a - b facing)(c + N.H)/N.H,
@@ -74,6 +84,7 @@ float smithlab_hammon_2017_single(vec3 L, vec3 V, vec3 N, float alpha, float rou
 }
 )";
 
+/// GLSL transcription of hammon_2017 (calls smithlab_hammon_2017_single).
 inline constexpr std::string_view hammon_2017_glsl =
     R"(// Hammon 2017 read as albedo (single + albedo multi), multi = m alpha.
 float smithlab_hammon_2017(vec3 L, vec3 V, vec3 N, float alpha, float albedo, float rough_a, float rough_b,
@@ -84,6 +95,7 @@ float smithlab_hammon_2017(vec3 L, vec3 V, vec3 N, float alpha, float albedo, fl
 }
 )";
 
+/// GLSL transcription of hammon_2017_linear (calls smithlab_hammon_2017_single).
 inline constexpr std::string_view hammon_2017_linear_glsl =
     R"(// Hammon 2017 read as albedo (single + multi), multi = m alpha.
 float smithlab_hammon_2017_linear(vec3 L, vec3 V, vec3 N, float alpha, float albedo, float rough_a, float rough_b,

@@ -13,6 +13,7 @@ namespace smithlab::fit {
 /// Lambert: albedo / pi.
 inline double lambert(double albedo) { return albedo * common::inv_pi; }
 
+/// GLSL transcription of lambert: smithlab_lambert(albedo).
 inline constexpr std::string_view lambert_glsl =
     R"(// Lambert: albedo / pi.
 float smithlab_lambert(float albedo)

@@ -21,6 +21,8 @@
 
 namespace smithlab::fit {
 
+/// Oren and Nayar 1994's full model (L1 + L2, file comment), sigma the facets' slope-angle standard deviation
+/// (radians), albedo in [0, 1]; max(0, f).
 inline double oren_nayar(const Vec3& wi, const Vec3& wo, double sigma, double albedo) {
     using common::pi;
     const double s2 = sigma * sigma;
@@ -46,6 +48,7 @@ inline double oren_nayar(const Vec3& wi, const Vec3& wo, double sigma, double al
     return std::max(0.0, albedo * common::inv_pi * (l1 + l2));
 }
 
+/// GLSL transcription of oren_nayar: smithlab_oren_nayar(L, V, N, sigma, albedo).
 inline constexpr std::string_view oren_nayar_glsl =
     R"(// Oren and Nayar 1994, Generalization of Lambert's Reflectance Model, the full model: L1 (C1, C2, C3) plus the
 // interreflection term L2, sigma the facets' slope-angle deviation (radians); alpha' = max(theta_i, theta_o) and

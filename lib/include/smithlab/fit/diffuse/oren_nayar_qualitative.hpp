@@ -14,6 +14,8 @@
 
 namespace smithlab::fit {
 
+/// Oren and Nayar 1994's qualitative model, albedo/pi (A + B max(0, cos(phi)) sin(alpha') tan(beta)), sigma the
+/// facets' slope-angle standard deviation (radians), albedo in [0, 1].
 inline double oren_nayar_qualitative(const Vec3& wi, const Vec3& wo, double sigma, double albedo) {
     const double s2 = sigma * sigma;
     const double a = 1.0 - 0.5 * s2 / (s2 + 0.33), b = 0.45 * s2 / (s2 + 0.09);
@@ -22,6 +24,7 @@ inline double oren_nayar_qualitative(const Vec3& wi, const Vec3& wo, double sigm
     return albedo * common::inv_pi * (a + b * (s / std::max(wi.z(), wo.z())));
 }
 
+/// GLSL transcription of oren_nayar_qualitative: smithlab_oren_nayar_qualitative(L, V, N, sigma, albedo).
 inline constexpr std::string_view oren_nayar_qualitative_glsl =
     R"(// Oren and Nayar 1994, the qualitative model: albedo/pi (A + B max(0, cos(phi)) sin(alpha') tan(beta)).
 float smithlab_oren_nayar_qualitative(vec3 L, vec3 V, vec3 N, float sigma, float albedo)

@@ -20,11 +20,18 @@
 
 namespace smithlab::fit {
 
+/// The constants of smithlab-2026: Hammon's (a, b, c, k, m) and (p, q, u); the defaults make it Hammon 2017.
 struct Smithlab2026Constants {
+    /// Hammon 2017's constants: the single term's a, b, c, k and the multiple-scattering scale m.
     HammonConstants hammon;
+    /// p: the roughness blend t = alpha^p; q: multi grows as alpha^q; u: the multi term's lean 1 + u (1 - facing).
+    ///@{
     double p = 1.0, q = 1.0, u = 0.0;
+    ///@}
 };
 
+/// smithlab-2026 (file comment): albedo (single + albedo multi), single Hammon's blended by alpha^p, multi =
+/// m alpha^q (1 + u (1 - facing)); alpha the GGX roughness, albedo in [0, 1].
 inline double smithlab_2026(const Vec3& wi, const Vec3& wo, double alpha, double albedo,
                             const Smithlab2026Constants& k) {
     const double t = std::pow(alpha, k.p);
@@ -33,6 +40,7 @@ inline double smithlab_2026(const Vec3& wi, const Vec3& wo, double alpha, double
     return albedo * (hammon_2017_single(wi, wo, t, k.hammon) + albedo * multi);
 }
 
+/// The ranges of smithlab-2026's eight constants: Hammon's (hammon_ranges), then p and q positive, u above -1.
 inline std::vector<ParameterRange> smithlab_2026_ranges() {
     constexpr double inf = INFINITY;
     std::vector<ParameterRange> r = hammon_ranges();
@@ -42,6 +50,7 @@ inline std::vector<ParameterRange> smithlab_2026_ranges() {
     return r;
 }
 
+/// GLSL transcription of smithlab_2026 (calls smithlab_hammon_2017_single).
 inline constexpr std::string_view smithlab_2026_glsl =
     R"(// smithlab 2026 (this tool's own family, from the traced data): Hammon's single term blended by t = alpha^p,
 // multi = m alpha^q (1 + u (1 - facing)), f = albedo (single + albedo multi).
