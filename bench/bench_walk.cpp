@@ -110,7 +110,8 @@ void add_block_of(const std::string& name, const N& ndf) {
     });
 }
 
-void add_block_of(const std::string& name, const smithlab::AnyNdf& ndf, const walk::Material& material = walk::Mirror{}) {
+void add_block_of(const std::string& name, const smithlab::AnyNdf& ndf,
+                  const walk::Material& material = walk::Mirror{}) {
     const std::shared_ptr<const smithlab::AnySurface> surface = smithlab::make_surface(ndf);
     add_block(name, [surface, material](const walk::CellRequest& r, std::uint64_t b) {
         return surface->trace_block(material, r, b);

@@ -8,13 +8,13 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <numbers>
-#include <stdexcept>
-#include <type_traits>
-#include <variant>
 #include <smithlab/single_scattering.hpp>
 #include <smithlab/smithlab.hpp>
 #include <smithlab/walk/trace.hpp>
+#include <stdexcept>
 #include <string>
+#include <type_traits>
+#include <variant>
 #include <vector>
 
 #include "donly_registry.hpp"
@@ -74,8 +74,7 @@ auto visit_builtin(const walk::Material& material, F f) {
         [&](const auto& m) -> decltype(f(walk::Mirror{})) {
             if constexpr (std::is_same_v<std::decay_t<decltype(m)>, walk::RegisteredMaterial>)
                 throw std::logic_error("visit_builtin: " + material.spec() + " is not a built-in material");
-            else
-                return f(m);
+            else return f(m);
         },
         material.kind());
 }
@@ -177,9 +176,8 @@ TEST_CASE("reciprocity: f(wi, wo) = f(wo, wi) over 20 pairs, grazing ones includ
                 return walk::Estimate{e.value / wo.z(), e.stderr_ / wo.z()};
             };
             const walk::Estimate ab = f(a, b, 1), ba = f(b, a, 2);
-            INFO(material.spec()
-                 << " (" << p[0] << "," << p[1] << ") <-> (" << p[2] << "," << p[3] << "): " << ab.value << " +- "
-                 << ab.stderr_ << " vs " << ba.value << " +- " << ba.stderr_);
+            INFO(material.spec() << " (" << p[0] << "," << p[1] << ") <-> (" << p[2] << "," << p[3] << "): " << ab.value
+                                 << " +- " << ab.stderr_ << " vs " << ba.value << " +- " << ba.stderr_);
             CHECK(std::abs(ab.value - ba.value) < 4.0 * std::hypot(ab.stderr_, ba.stderr_));
         }
     }
@@ -242,7 +240,8 @@ TEST_CASE("material specs: named, validated, refused with the item named", "[wal
     CHECK(smithlab::MaterialRegistry().make("conductor(eta=0.2, k=3)").spec() == "conductor(eta=0.2, k=3)");
     CHECK_THROWS_WITH(smithlab::MaterialRegistry().make("velvet"), Catch::Contains("unknown material 'velvet'"));
     CHECK_THROWS_WITH(smithlab::MaterialRegistry().make("lambert(albedo=1.5)"), Catch::Contains("albedo"));
-    CHECK_THROWS_WITH(smithlab::MaterialRegistry().make("lambert(rho=0.5)"), Catch::Contains("unknown parameter 'rho'"));
+    CHECK_THROWS_WITH(smithlab::MaterialRegistry().make("lambert(rho=0.5)"),
+                      Catch::Contains("unknown parameter 'rho'"));
     CHECK_THROWS_WITH(smithlab::MaterialRegistry().make("conductor(eta=1)"), Catch::Contains("'k' is required"));
     CHECK_THROWS_WITH(smithlab::MaterialRegistry().make("mirror(albedo=nan)"), Catch::Contains("albedo"));
 }

@@ -8,8 +8,9 @@ namespace smithlab::cli {
 
 CLI::App* add_list(CLI::App& app) {
     return app.add_subcommand(
-        "list", "List the registered NDFs, their parameters and example specs, the facet materials, and the diffuse "
-                "models' names");
+        "list",
+        "List the registered NDFs, their parameters and example specs, the facet materials, and the diffuse "
+        "models' names");
 }
 
 int run_list(const NdfRegistry& registry, const fit::DiffuseRegistry& models) {

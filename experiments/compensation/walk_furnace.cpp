@@ -59,7 +59,8 @@ struct FurnaceWalks {
 void metal_rows(const FurnaceCell& k, FurnaceWalks& w) {
     const double alpha = k.alpha, mu = k.mu;
     std::vector<walk::Material> metals{walk::Mirror{}};
-    for (const std::string& spec : w.c.conductors) metals.push_back(MaterialRegistry().make(spec));  // conductors, checked by the scene
+    for (const std::string& spec : w.c.conductors)
+        metals.push_back(MaterialRegistry().make(spec));  // conductors, checked by the scene
     for (const walk::Material& m : metals) {
         const walk::Estimate total =
             w.next(k, m, k.above).albedo(walk::Hemisphere::all, walk::all_orders, walk::Component::all);

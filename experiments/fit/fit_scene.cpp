@@ -9,8 +9,8 @@
 #include "scene/strict_table.hpp"
 #include "scene/value_checks.hpp"
 #include "smithlab/csv.hpp"
-#include "smithlab/spec.hpp"
 #include "smithlab/material_registry.hpp"
+#include "smithlab/spec.hpp"
 
 namespace smithlab::fitrun {
 
@@ -33,8 +33,8 @@ void check_material(StrictTable& doc, const std::string& spec, const MaterialReg
         doc.fail("material", e.what());
     }
     const NdfSpec parts = parse_spec(m->spec(), "material spec");
-    const auto albedo = std::find_if(parts.params.begin(), parts.params.end(),
-                                     [](const auto& p) { return p.first == "albedo"; });
+    const auto albedo =
+        std::find_if(parts.params.begin(), parts.params.end(), [](const auto& p) { return p.first == "albedo"; });
     if (!m->has_diffuse() && (albedo == parts.params.end() || albedo->second != 0.0))
         doc.fail("material", "must be lambert or fresnel-diffuse facets (a diffuse material), got '" + spec + "'");
     if (albedo == parts.params.end() || albedo->second != 1.0)

@@ -29,7 +29,8 @@ struct CoatedLambert {
     double r, albedo;
     static constexpr bool reciprocal = true;
     static smithlab::walk::MaterialInfo info() {
-        return {"coated-lambert", {{"r", 0.04, 0.0, 1.0}, {"albedo", 1.0, 0.0, 1.0}},
+        return {"coated-lambert",
+                {{"r", 0.04, 0.0, 1.0}, {"albedo", 1.0, 0.0, 1.0}},
                 "Lambertian facets under a clear coat of constant reflectance r (both in [0, 1])"};
     }
     static CoatedLambert make(const smithlab::walk::MaterialParams& p) { return {p.at("r"), p.at("albedo")}; }

@@ -46,8 +46,8 @@ std::string family_label(const WalkCell& c) {
 }
 
 std::string cell_name(const WalkCell& c) {
-    return "walk cell " + std::to_string(c.index) + " (" + c.ndf.spec() + ", " + c.material.spec() +
-        ", theta_i " + format_shortest(c.theta_i) + ")";
+    return "walk cell " + std::to_string(c.index) + " (" + c.ndf.spec() + ", " + c.material.spec() + ", theta_i " +
+        format_shortest(c.theta_i) + ")";
 }
 
 // Says on stderr which cells had walks cut short; refuses the first whose capped walks could carry more than its
@@ -189,8 +189,8 @@ void write_walk_markdown(const std::vector<WalkResult>& results, const WalkScene
        << "| ndf | material | alpha | theta_i | order 1 | order 2 | order 3 | order 4+ | lost (2+) | all |\n"
        << "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const WalkResult& r : results) {
-        md << "| " << family_label(r.cell) << " | " << r.cell.material.spec() << " | "
-           << format_shortest(r.cell.alpha) << " | " << format_shortest(r.cell.theta_i);
+        md << "| " << family_label(r.cell) << " | " << r.cell.material.spec() << " | " << format_shortest(r.cell.alpha)
+           << " | " << format_shortest(r.cell.theta_i);
         for (const walk::Estimate& e : r.albedo) md << format_printf(" | %.5f +- %.5f", e.value, e.stderr_);
         md << " |\n";
     }

@@ -115,8 +115,7 @@ void write_rows(std::ostream& out, const std::vector<std::string>& rows, const s
 }  // namespace
 
 CellLabel cell_label(const AnyNdf& ndf, const walk::Material& m, const TraceCell& cell, std::int64_t walks) {
-    return {ndf.spec(), m.spec(), format_shortest(cell.theta_i), format_shortest(cell.phi_i),
-            std::to_string(walks)};
+    return {ndf.spec(), m.spec(), format_shortest(cell.theta_i), format_shortest(cell.phi_i), std::to_string(walks)};
 }
 
 CellRows cell_rows(const CellLabel& label, const walk::CellResult& r) {

@@ -51,7 +51,7 @@ std::map<std::string, AnyNdf> checked_ndfs(const std::vector<SceneNdf>& scene_nd
 }
 
 std::map<std::string, walk::Material> parsed_materials(const std::vector<std::string>& specs,
-                                                      const MaterialRegistry& registry) {
+                                                       const MaterialRegistry& registry) {
     std::map<std::string, walk::Material> materials;
     for (const std::string& spec : specs) materials.emplace(spec, registry.make(spec));
     return materials;
@@ -91,8 +91,8 @@ walk::CellRequest request_for(const CellSettings& w, const Prepared& p) {
 
 // "cell 12 (ggx(alpha=0.3), mirror, theta_i 45, phi_i 0)": a cell in messages.
 std::string cell_name(const Prepared& p) {
-    return "cell " + std::to_string(p.cell.index) + " (" + p.ndf.spec() + ", " + p.material.spec() +
-        ", theta_i " + format_shortest(p.cell.theta_i) + ", phi_i " + format_shortest(p.cell.phi_i) + ")";
+    return "cell " + std::to_string(p.cell.index) + " (" + p.ndf.spec() + ", " + p.material.spec() + ", theta_i " +
+        format_shortest(p.cell.theta_i) + ", phi_i " + format_shortest(p.cell.phi_i) + ")";
 }
 
 std::vector<CellJob> cell_jobs(const std::vector<Prepared>& prepared, const CellSettings& w) {
@@ -190,8 +190,8 @@ RunMeta write_outputs(const fs::path& dir, const std::vector<Prepared>& prepared
         const Prepared& p = prepared[i];
         const CellRows& r = rows.emplace_back(std::move(*done[i]));
         ndfs.push_back(p.ndf);
-        meta.cells.push_back({p.cell.index, p.ndf.spec(), p.material.spec(), p.cell.theta_i,
-                              p.cell.phi_i, r.bounces, r.capped});
+        meta.cells.push_back(
+            {p.cell.index, p.ndf.spec(), p.material.spec(), p.cell.theta_i, p.cell.phi_i, r.bounces, r.capped});
         sum.bounces += r.bounces;
         sum.total.push_back(r.total);
     }
@@ -208,7 +208,8 @@ RunSummary run_scene(const TraceScene& s, const std::string& source, const NdfRe
     const walk::MicrosurfaceOptions opts = parse_walk_options(s.downward, s.hit_normal, source + ": walks.");
     const CellSettings settings = cell_settings(s);
     const std::vector<Prepared> prepared =
-        prepare_cells(cells(s), checked_ndfs(s.ndfs, registry, opts), parsed_materials(s.materials, registry.materials()), settings, source);
+        prepare_cells(cells(s), checked_ndfs(s.ndfs, registry, opts),
+                      parsed_materials(s.materials, registry.materials()), settings, source);
     std::vector<CellJob> jobs = cell_jobs(prepared, settings);
 
     // Under MPI with more than one rank, every rank has checked the scene alike; from here rank 0 alone owns OUT and

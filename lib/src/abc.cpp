@@ -18,5 +18,4 @@ void register_abc(NdfRegistry& r) {
         [](const NdfParams& p) { return abc(p.at("b"), p.at("c")); });
 }
 
-
 }  // namespace smithlab

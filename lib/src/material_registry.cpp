@@ -31,7 +31,8 @@ double MaterialParams::at(const std::string& key) const {
 bool Material::dirac_at(const Vec3& wi, const Vec3& wo) const {
     return std::visit(
         [&](const auto& m) {
-            if constexpr (std::is_same_v<std::decay_t<decltype(m)>, RegisteredMaterial>) return m.kernels->dirac_at(wi, wo);
+            if constexpr (std::is_same_v<std::decay_t<decltype(m)>, RegisteredMaterial>)
+                return m.kernels->dirac_at(wi, wo);
             else return material_dirac_at(m, wi, wo);
         },
         kind_);
@@ -83,7 +84,8 @@ MaterialRegistry::MaterialRegistry() {
 }
 
 void MaterialRegistry::add_erased(walk::MaterialInfo info, Factory make) {
-    if (!is_spec_name(info.name)) throw input_error("material name '" + info.name + "': " + std::string(spec_name_rule));
+    if (!is_spec_name(info.name))
+        throw input_error("material name '" + info.name + "': " + std::string(spec_name_rule));
     if (find(info.name)) throw input_error("material '" + info.name + "' is registered twice");
     entries_.emplace_back(std::move(info), std::move(make));
 }

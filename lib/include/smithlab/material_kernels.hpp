@@ -51,8 +51,8 @@ public:
     }
     fit::SplitMoments albedo_point(const AnySurface& s, const Vec3& wi, std::uint64_t seed, std::uint64_t stream,
                                    std::int64_t walks) const override {
-        return on_microsurface(s,
-                               [&](const auto& ms) { return fit::trace_albedo_point(ms, m_, wi, seed, stream, walks); });
+        return on_microsurface(
+            s, [&](const auto& ms) { return fit::trace_albedo_point(ms, m_, wi, seed, stream, walks); });
     }
     bool dirac_at(const Vec3& wi, const Vec3& wo) const override { return walk::material_dirac_at(m_, wi, wo); }
     ///@}
@@ -83,8 +83,9 @@ walk::Material make_material(M m, Ndfs = {}) {
     } else {
         std::string spec = walk::material_spec_text(m.spec());
         const bool diffuse = walk::material_has_diffuse(m);
-        return walk::Material(walk::RegisteredMaterial{std::make_shared<const MaterialKernelsOf<M, Ndfs>>(std::move(m))},
-                              std::move(spec), diffuse, walk::TwoSided<M>);
+        return walk::Material(
+            walk::RegisteredMaterial{std::make_shared<const MaterialKernelsOf<M, Ndfs>>(std::move(m))}, std::move(spec),
+            diffuse, walk::TwoSided<M>);
     }
 }
 

@@ -6,8 +6,8 @@
 /// `static M make(const MaterialParams&)`) and its spec (`NdfSpec spec() const`); registering it is one line,
 ///     registry.materials().add<TintedMirror>();
 /// and every command then reads it by name. Its walks are compiled there for each NDF type of the list given
-/// (default: core_ndf_types; smithlab/gtr/registry.hpp's builtin_ndf_types adds GTR's), and for any other NDF on the NDF
-/// erased (material_kernels.hpp).
+/// (default: core_ndf_types; smithlab/gtr/registry.hpp's builtin_ndf_types adds GTR's), and for any other NDF on the
+/// NDF erased (material_kernels.hpp).
 #pragma once
 
 #include <functional>

@@ -85,22 +85,26 @@ public:
     ///@{
     walk::CellPartial trace_block(const walk::Material& material, const walk::CellRequest& r,
                                   std::uint64_t b) const override {
-        return visit(material, [&](const auto& m) { return walk::trace_block(ms_, m, r, b); },
-                     [&](const MaterialKernels& k) { return k.trace_block(*this, r, b); });
+        return visit(
+            material, [&](const auto& m) { return walk::trace_block(ms_, m, r, b); },
+            [&](const MaterialKernels& k) { return k.trace_block(*this, r, b); });
     }
     walk::EvalTally eval_cell(const walk::Material& material, const walk::EvalRequest& r) const override {
-        return visit(material, [&](const auto& m) { return walk::eval_cell(ms_, m, r); },
-                     [&](const MaterialKernels& k) { return k.eval_cell(*this, r); });
+        return visit(
+            material, [&](const auto& m) { return walk::eval_cell(ms_, m, r); },
+            [&](const MaterialKernels& k) { return k.eval_cell(*this, r); });
     }
     fit::SplitMoments eval_point(const walk::Material& material, const Vec3& wi, const Vec3& wo, std::uint64_t seed,
                                  std::uint64_t stream, std::int64_t walks) const override {
-        return visit(material, [&](const auto& m) { return fit::trace_eval_point(ms_, m, wi, wo, seed, stream, walks); },
-                     [&](const MaterialKernels& k) { return k.eval_point(*this, wi, wo, seed, stream, walks); });
+        return visit(
+            material, [&](const auto& m) { return fit::trace_eval_point(ms_, m, wi, wo, seed, stream, walks); },
+            [&](const MaterialKernels& k) { return k.eval_point(*this, wi, wo, seed, stream, walks); });
     }
     fit::SplitMoments albedo_point(const walk::Material& material, const Vec3& wi, std::uint64_t seed,
                                    std::uint64_t stream, std::int64_t walks) const override {
-        return visit(material, [&](const auto& m) { return fit::trace_albedo_point(ms_, m, wi, seed, stream, walks); },
-                     [&](const MaterialKernels& k) { return k.albedo_point(*this, wi, seed, stream, walks); });
+        return visit(
+            material, [&](const auto& m) { return fit::trace_albedo_point(ms_, m, wi, seed, stream, walks); },
+            [&](const MaterialKernels& k) { return k.albedo_point(*this, wi, seed, stream, walks); });
     }
     ///@}
 
@@ -128,8 +132,7 @@ private:
             [&](const auto& m) {
                 if constexpr (std::is_same_v<std::decay_t<decltype(m)>, walk::RegisteredMaterial>)
                     return registered(*m.kernels);
-                else
-                    return builtin(m);
+                else return builtin(m);
             },
             material.kind());
     }
@@ -145,7 +148,8 @@ class NdfKernels {
 public:
     virtual ~NdfKernels() = default;
     /// `self`: the AnyNdf these kernels are attached to.
-    virtual std::shared_ptr<const AnySurface> surface(const AnyNdf& self, const walk::MicrosurfaceOptions& opts) const = 0;
+    virtual std::shared_ptr<const AnySurface> surface(const AnyNdf& self,
+                                                      const walk::MicrosurfaceOptions& opts) const = 0;
 };
 
 /// The NdfKernels of the concrete NDF type N: a copy of the NDF, from which it builds SurfaceOf`<`N`>`.

@@ -20,7 +20,7 @@ namespace smithlab::walk {
 ///     (1 - F(wi.h)) <wi.h> D(h) / A(wi) |d omega_h / d omega_o|,  h = -(wi + eta' wo) / |.| turned up,
 /// the Jacobian Walter 2007 eq. 17 (geometry.hpp, dm_dwo_refraction), eta' the relative index on this side.
 struct Dielectric {
-    double eta;  ///< the index below the surface over that above
+    double eta;                              ///< the index below the surface over that above
     static constexpr bool two_sided = true;  ///< light goes through to the other side (TwoSided, facets.hpp)
 
     /// The registration (material_registry.hpp): name, parameters and description; the material a checked spec

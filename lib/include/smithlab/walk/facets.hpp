@@ -31,9 +31,9 @@ namespace smithlab::walk {
 
 /// What sample returns: the next direction, the weight it carries, and what kind of event it was.
 struct Scatter {
-    Vec3 wo;  ///< the next direction, unit, in the frame of the side the ray is on
-    double weight;  ///< 0: absorbed
-    bool diffuse;  ///< whether the event was diffuse (counted in the diffuse orders, walk.hpp)
+    Vec3 wo;                   ///< the next direction, unit, in the frame of the side the ray is on
+    double weight;             ///< 0: absorbed
+    bool diffuse;              ///< whether the event was diffuse (counted in the diffuse orders, walk.hpp)
     bool transmitted = false;  ///< through to the other side (two-sided materials only)
 };
 

@@ -14,7 +14,7 @@ namespace smithlab::walk {
 
 /// Lambertian facets (Heitz et al. 2016, sec. 5.3, the diffuse microsurface): each reflects albedo / pi about m.
 struct Lambert {
-    double albedo;  ///< the facets' reflectance, in [0, 1]
+    double albedo;                            ///< the facets' reflectance, in [0, 1]
     static constexpr bool reciprocal = true;  ///< f(wi, wo) = f(wo, wi) facet by facet
     /// The registration (material_registry.hpp): name, parameters and description; the material a checked spec
     /// makes; and its spec back.

@@ -35,8 +35,7 @@ struct RegisteredMaterial {
 /// Whether M is one of the materials every NDF's surface is compiled against (surface.hpp).
 template <class M>
 inline constexpr bool builtin_material = std::is_same_v<M, Mirror> || std::is_same_v<M, Conductor> ||
-                                         std::is_same_v<M, Lambert> || std::is_same_v<M, FresnelDiffuse> ||
-                                         std::is_same_v<M, Dielectric>;
+    std::is_same_v<M, Lambert> || std::is_same_v<M, FresnelDiffuse> || std::is_same_v<M, Dielectric>;
 
 /// What a material type may say about itself, each optional: whether any of its events is diffuse (the tallies of
 /// the diffuse component exist only then; default: none is), and where its BSDF holds a Dirac delta that the eval
@@ -68,9 +67,10 @@ public:
 
     /// A built-in material.
     template <class M>
-        requires builtin_material<M>
-    Material(M m)
-        : spec_(material_spec_text(m.spec())), has_diffuse_(material_has_diffuse(m)), transmits_(TwoSided<M>),
+    requires builtin_material<M> Material(M m)
+        : spec_(material_spec_text(m.spec())),
+          has_diffuse_(material_has_diffuse(m)),
+          transmits_(TwoSided<M>),
           kind_(std::move(m)) {}
     /// A registered material: its kernels, its canonical spec, and what it does (material_kernels.hpp fills these in
     /// from its type).

@@ -25,9 +25,9 @@ struct MaterialParameter {
 
 /// A material as a registry lists it: "conductor", {eta, k}, "mirror facets of a conductor ...".
 struct MaterialInfo {
-    std::string name;                          ///< the name a spec uses, such as "conductor"
+    std::string name;                           ///< the name a spec uses, such as "conductor"
     std::vector<MaterialParameter> parameters;  ///< in the order front ends list them
-    std::string description;                   ///< one line, for `smithlab list` and `--help`
+    std::string description;                    ///< one line, for `smithlab list` and `--help`
     /// Whether light goes through it (a two-sided material, facets.hpp): filled in by the registry.
     bool transmits = false;
 
@@ -43,7 +43,7 @@ public:
     /// The material's name and its values by key (already filled in and checked by the registry).
     MaterialParams(std::string name, std::map<std::string, double> values)
         : name_(std::move(name)), values_(std::move(values)) {}
-    double at(const std::string& key) const;  ///< std::out_of_range names a key the material did not declare
+    double at(const std::string& key) const;           ///< std::out_of_range names a key the material did not declare
     const std::string& name() const { return name_; }  ///< the material's name
 
 private:

@@ -102,8 +102,8 @@ double expected_first_escape(const Microsurface& ms, const Vec3& w, const Vec3& 
 }
 }  // namespace detail
 
-/// One walk from wi on `ms` with `material` (Heitz et al. 2016, alg. 1-2): the weighted density of the exit direction is
-/// f(wi, wo) `|`cos theta_o`|`; wi.z `<` 0 (light from below) only for a two-sided material.
+/// One walk from wi on `ms` with `material` (Heitz et al. 2016, alg. 1-2): the weighted density of the exit direction
+/// is f(wi, wo) `|`cos theta_o`|`; wi.z `<` 0 (light from below) only for a two-sided material.
 template <class Microsurface, class M, class G>
 WalkSample sample_walk(const Microsurface& ms, const M& material, const Vec3& wi, G& g, const WalkLimits& limits = {}) {
     bool above = !TwoSided<M> || wi.z() > 0.0;
@@ -174,7 +174,7 @@ struct EvalSample {
     ///@{
     std::array<double, order_bins> specular{}, diffuse{};
     ///@}
-    std::array<double, diffuse_bins> by_diffuse{};         ///< the same by diffuse events (diffuse_bin), all orders
+    std::array<double, diffuse_bins> by_diffuse{};  ///< the same by diffuse events (diffuse_bin), all orders
     std::int64_t events = 0;  ///< hits of the walk (of the reversed one for EvalEstimator::reciprocal)
     bool capped = false;      ///< it ended at max_events hits or where no normal could be drawn (no estimate where the
                               ///< microsurface's hits do not draw visible normals)
