@@ -63,8 +63,8 @@ struct FitScene {
 // The fit's size is checked as its [[ndf]] entries are read, before their NDFs are made: points (training direction
 // pairs x alpha, validation points and albedo directions x validation alpha, per NDF) beyond limits.max_cells or
 // walks in all beyond limits.max_walks are refused at the entry that passes the bound (scene/limits.hpp); so is a
-// [compensation] whose tables (each value of E counted as the walks of its time, fit_scene.cpp) and furnace walks,
-// with the fit's, pass limits.max_walks.
+// [compensation] whose tables (each value of E counted as the walks of its time, compensation/settings.cpp) and furnace
+// walks, with the fit's, pass limits.max_walks.
 FitScene parse_fit_scene(const std::string& text, const std::string& source, const NdfRegistry& registry,
                          const fit::DiffuseRegistry& models, const report::SizeLimits& limits = {});
 
