@@ -153,23 +153,23 @@ PieceResult eval_interval(const N& ndf, double mu2, double a, double b, bool in_
     return combine(g, W, V, h);
 }
 
-// A piece the rule holds: [a, b] in u (in s for the tail), its Kronrod value and error estimate, and its nodes,
-// (*tree)[node] while node < tree_size.
+/// A piece the rule holds: [a, b] in u (in s for the tail), its Kronrod value and error estimate, and its nodes.
 struct OpenPiece {
-    double a, b, K, E;
-    bool in_s;
-    const Tree* tree;
-    int node;
+    double a, b;       ///< the ends, in u (in s where in_s)
+    double K, E;       ///< the Kronrod value and QUADPACK's error estimate
+    bool in_s;         ///< a piece of the tail
+    const Tree* tree;  ///< the piece is (*tree)[node] while node < tree_size
+    int node;          ///< its place in the tree (tree_size below the tree's depth)
 };
 
-// The pieces held, and the sums of their values and of their estimates.
+/// The pieces the rule holds, and the sums of their values and of their estimates.
 struct OpenPieces {
-    std::array<OpenPiece, max_pieces> piece;
-    int n = 0;
-    double K = 0.0, E = 0.0;
+    std::array<OpenPiece, max_pieces> piece;  ///< the first n are held
+    int n = 0;                                ///< how many are held
+    double K = 0.0, E = 0.0;                  ///< the sums of their K and of their E
 };
 
-// The first pieces, on the tables' nodes: J panels of u and the tail.
+/// The first pieces, on the tables' nodes: J panels of u and the tail.
 template <Ndf N>
 void start_pieces(const N& ndf, const Tables& T, double mu2, int J, OpenPieces& p) {
     const double h_u = 0.5 * panel_width;
@@ -185,8 +185,8 @@ void start_pieces(const N& ndf, const Tables& T, double mu2, int J, OpenPieces& 
     p.E += r.E;
 }
 
-// Halves the piece of the largest estimate and re-sums; false, with nothing halved, where the adaptive route is
-// to answer instead. untabled counts the bisections below the trees' depth.
+/// Halves the piece of the largest estimate and re-sums; false, with nothing halved, where the adaptive route is
+/// to answer instead. untabled counts the bisections below the trees' depth.
 template <Ndf N>
 bool bisect_worst(const N& ndf, double mu2, OpenPieces& p, int& untabled) {
     int worst = 0;
