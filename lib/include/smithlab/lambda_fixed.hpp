@@ -155,8 +155,10 @@ PieceResult eval_interval(const N& ndf, double mu2, double a, double b, bool in_
 
 /// A piece the rule holds: [a, b] in u (in s for the tail), its Kronrod value and error estimate, and its nodes.
 struct OpenPiece {
-    double a, b;       ///< the ends, in u (in s where in_s)
-    double K, E;       ///< the Kronrod value and QUADPACK's error estimate
+    double a;          ///< the lower end, in u (in s where in_s)
+    double b;          ///< the upper end
+    double K;          ///< the Kronrod value
+    double E;          ///< QUADPACK's error estimate
     bool in_s;         ///< a piece of the tail
     const Tree* tree;  ///< the piece is (*tree)[node] while node < tree_size
     int node;          ///< its place in the tree (tree_size below the tree's depth)
@@ -166,7 +168,8 @@ struct OpenPiece {
 struct OpenPieces {
     std::array<OpenPiece, max_pieces> piece;  ///< the first n are held
     int n = 0;                                ///< how many are held
-    double K = 0.0, E = 0.0;                  ///< the sums of their K and of their E
+    double K = 0.0;                           ///< the sum of their values
+    double E = 0.0;                           ///< the sum of their estimates
 };
 
 /// The first pieces, on the tables' nodes: J panels of u and the tail.
