@@ -56,10 +56,10 @@ void each(benchmark::State& state, F f) {
 
 double mu_of_cos_plain(double c) { return c / std::sqrt((1.0 - c) * (1.0 + c)); }
 
-void register_all() {
-    const Points& p = points();
-    using B = benchmark::State;
-    // GGX.
+using B = benchmark::State;
+
+// GGX.
+void register_ggx(const Points& p) {
     benchmark::RegisterBenchmark("G1/ggx/mu/plain", [&p](B& s) {
         each(s, [&](std::size_t i) { return 1.0 / (1.0 + smithlab_plain::Ggx_Lambda(p.alpha[i], p.mu[i])); });
     });
@@ -80,8 +80,11 @@ void register_all() {
     benchmark::RegisterBenchmark("Lambda/ggx/mu/after", [&p](B& s) {
         each(s, [&](std::size_t i) { return smithlab::Ggx{p.alpha[i]}.Lambda(p.mu[i]); });
     });
-    // GTR, gamma = 0..4: G1 from mu (the free functions; Gtr::Lambda is Lambda_gtr_closed behind a check of gamma),
-    // G1 through Gtr::Lambda, and G1 from cos.
+}
+
+// GTR, gamma = 0..4: G1 from mu (the free functions; Gtr::Lambda is Lambda_gtr_closed behind a check of gamma),
+// G1 through Gtr::Lambda, and G1 from cos.
+void register_gtr_closed(const Points& p) {
     for (int g = 0; g <= 4; ++g) {
         const std::string gs = std::to_string(g);
         benchmark::RegisterBenchmark(("G1/gtr" + gs + "/mu/plain").c_str(), [&p, g](B& s) {
@@ -116,7 +119,10 @@ void register_all() {
             each(s, [&](std::size_t i) { return smithlab::Lambda_gtr_closed(p.alpha[i], g, p.mu[i]); });
         });
     }
-    // The generated forms.
+}
+
+// The generated forms.
+void register_gtr_generated(const Points& p) {
     for (int g : {5, 10, 20, 31}) {
         const std::string gs = std::to_string(g);
         benchmark::RegisterBenchmark(("Lambda/gtr" + gs + "/mu/plain").c_str(), [&p, g](B& s) {
@@ -126,7 +132,10 @@ void register_all() {
             each(s, [&](std::size_t i) { return smithlab::Lambda_gtr_closed(p.alpha[i], g, p.mu[i]); });
         });
     }
-    // Dimov's spline at random (alpha, gamma, mu): V-Ray's use, no per-material preparation.
+}
+
+// Dimov's spline at random (alpha, gamma, mu): V-Ray's use, no per-material preparation.
+void register_dimov_spline(const Points& p) {
     benchmark::RegisterBenchmark("G1/dimov-spline/plain", [&p](B& s) {
         each(s, [&](std::size_t i) { return smithlab_plain::G1_gtr_dimov_spline(p.alpha[i], p.gamma[i], p.mu[i]); });
     });
@@ -140,6 +149,14 @@ void register_all() {
             variants.at("dimov-spline"), smithlab::builtin_registry().make("gtr(alpha=0.3, gamma=1.5)"));
         each(s, [&](std::size_t i) { return Lambda_of(p.mu[i]); });
     });
+}
+
+void register_all() {
+    const Points& p = points();
+    register_ggx(p);
+    register_gtr_closed(p);
+    register_gtr_generated(p);
+    register_dimov_spline(p);
 }
 
 }  // namespace

@@ -87,51 +87,58 @@ void register_all() {
         }
 }
 
-// The fast evaluator against the yardstick, the closed-form GGX G1: G1 = 1/(1 + Lambda) by each, on the
-// concrete types; and what building a table costs (once per NDF).
-void register_table() {
-    auto g1 = [](benchmark::State& state, const auto& Lambda_of) {
-        std::size_t i = 0;
-        for (auto _ : state) benchmark::DoNotOptimize(1.0 / (1.0 + Lambda_of(mus[i++ % mus.size()])));
-        state.SetItemsProcessed(state.iterations());
-    };
-    benchmark::RegisterBenchmark("G1/closed/ggx(0.3)", [g1](benchmark::State& s) {
+// G1 = 1/(1 + Lambda_of(mu)), mu cycling over mus.
+template <class F>
+void time_G1(benchmark::State& state, const F& Lambda_of) {
+    std::size_t i = 0;
+    for (auto _ : state) benchmark::DoNotOptimize(1.0 / (1.0 + Lambda_of(mus[i++ % mus.size()])));
+    state.SetItemsProcessed(state.iterations());
+}
+
+// G1 = 1/(1 + L.at_tan2(tan^2)), tan^2 = 1 / mu^2 cycling over mus.
+template <class L>
+void time_G1_tan2(benchmark::State& state, const L& fast) {
+    std::size_t i = 0;
+    constexpr std::array<double, 5> t2 = {1e4, 1e2, 1.0, 1e-2, 1e-4};  // tan^2 at mu = 0.01 .. 100
+    for (auto _ : state) benchmark::DoNotOptimize(1.0 / (1.0 + fast.at_tan2(t2[i++ % t2.size()])));
+    state.SetItemsProcessed(state.iterations());
+}
+
+// The yardstick and the Student-t's table; the walk's Lambda (FastLambda::at_tan2, tan^2 = 1 / mu^2 given): GGX's
+// closed form, and the spline over the bits of tan^2 that every other NDF gets (tan2_spline.hpp).
+void register_table_yardsticks() {
+    benchmark::RegisterBenchmark("G1/closed/ggx(0.3)", [](benchmark::State& s) {
         const smithlab::Ggx ggx = smithlab::ggx(0.3);
-        g1(s, [&](double mu) { return ggx.Lambda(mu); });
+        time_G1(s, [&](double mu) { return ggx.Lambda(mu); });
     });
-    benchmark::RegisterBenchmark("G1/closed/student(0.3,4)", [g1](benchmark::State& s) {
+    benchmark::RegisterBenchmark("G1/closed/student(0.3,4)", [](benchmark::State& s) {
         const smithlab::StudentT ndf = smithlab::student(0.3, 4.0);
-        g1(s, [&](double mu) { return ndf.Lambda(mu); });
+        time_G1(s, [&](double mu) { return ndf.Lambda(mu); });
     });
-    benchmark::RegisterBenchmark("G1/table/student(0.3,4)", [g1](benchmark::State& s) {
+    benchmark::RegisterBenchmark("G1/table/student(0.3,4)", [](benchmark::State& s) {
         const smithlab::LambdaTable t = smithlab::tabulate_Lambda(smithlab::student(0.3, 4.0));
-        g1(s, [&](double mu) { return t.Lambda(mu); });
+        time_G1(s, [&](double mu) { return t.Lambda(mu); });
     });
-    // The walk's Lambda (FastLambda::at_tan2, tan^2 = 1 / mu^2 given): GGX's closed form, and the spline over the bits
-    // of tan^2 that every other NDF gets (tan2_spline.hpp).
-    auto g1_tan2 = [](benchmark::State& state, const auto& L) {
-        std::size_t i = 0;
-        constexpr std::array<double, 5> t2 = {1e4, 1e2, 1.0, 1e-2, 1e-4};  // tan^2 at mu = 0.01 .. 100
-        for (auto _ : state) benchmark::DoNotOptimize(1.0 / (1.0 + L.at_tan2(t2[i++ % t2.size()])));
-        state.SetItemsProcessed(state.iterations());
-    };
-    benchmark::RegisterBenchmark("G1/walk-tan2/ggx(0.3)", [g1_tan2](benchmark::State& s) {
-        g1_tan2(s, smithlab::FastLambda<smithlab::Ggx>(smithlab::ggx(0.3)));
+    benchmark::RegisterBenchmark("G1/walk-tan2/ggx(0.3)", [](benchmark::State& s) {
+        time_G1_tan2(s, smithlab::FastLambda<smithlab::Ggx>(smithlab::ggx(0.3)));
     });
-    benchmark::RegisterBenchmark("G1/walk-tan2/beckmann(0.3)", [g1_tan2](benchmark::State& s) {
-        g1_tan2(s, smithlab::FastLambda<smithlab::Beckmann>(smithlab::beckmann(0.3)));
+    benchmark::RegisterBenchmark("G1/walk-tan2/beckmann(0.3)", [](benchmark::State& s) {
+        time_G1_tan2(s, smithlab::FastLambda<smithlab::Beckmann>(smithlab::beckmann(0.3)));
     });
-    benchmark::RegisterBenchmark("G1/walk-tan2/gtr(0.3,1.5)", [g1_tan2](benchmark::State& s) {
-        g1_tan2(s, smithlab::FastLambda<smithlab::Gtr>(smithlab::gtr(0.3, 1.5)));
+    benchmark::RegisterBenchmark("G1/walk-tan2/gtr(0.3,1.5)", [](benchmark::State& s) {
+        time_G1_tan2(s, smithlab::FastLambda<smithlab::Gtr>(smithlab::gtr(0.3, 1.5)));
     });
+}
+
+// GTR(0.3, gamma) by its table, and what building the table costs by the default route (auto: the closed form at
+// integer gamma, else the fixed rule) beside the adaptive one that `auto` does not take.
+void register_table_gtr() {
     for (double gamma : {0.5, 1.5, 2.0, 7.3, 15.0}) {
         const std::string name = "gtr(0.3," + std::to_string(gamma).substr(0, gamma < 10 ? 3 : 4) + ")";
-        benchmark::RegisterBenchmark(("G1/table/" + name).c_str(), [g1, gamma](benchmark::State& s) {
+        benchmark::RegisterBenchmark(("G1/table/" + name).c_str(), [gamma](benchmark::State& s) {
             const smithlab::LambdaTable t = smithlab::tabulate_Lambda(smithlab::gtr(0.3, gamma));
-            g1(s, [&](double mu) { return t.Lambda(mu); });
+            time_G1(s, [&](double mu) { return t.Lambda(mu); });
         });
-        // the default route (auto: the closed form at integer gamma, else the fixed rule) beside the adaptive one
-        // that `auto` does not take
         for (const auto& [route, method] :
              {std::pair{"", smithlab::Method::automatic}, std::pair{"/adaptive", smithlab::Method::quadrature}})
             if (method == smithlab::Method::automatic || !smithlab::gtr_has_closed_form(gamma))
@@ -145,8 +152,11 @@ void register_table() {
                     })
                     ->Unit(benchmark::kMillisecond);
     }
-    // Far outside [1e-5, 1e5]: the table's small-mu asymptote (mu = 1e-7) and its continued tail (1e7) for a D-only
-    // GGX (nothing closed-form), against the exact route at 1e-7.
+}
+
+// Far outside [1e-5, 1e5]: the table's small-mu asymptote (mu = 1e-7) and its continued tail (1e7) for a D-only
+// GGX (nothing closed-form), against the exact route at 1e-7; and the table's build.
+void register_table_donly() {
     using DOnlyGgx = smithlab::DOnly<smithlab::Ggx>;
     for (const auto& [at, mu] : {std::pair{"1e-7", 1e-7}, std::pair{"1e7", 1e7}}) {
         benchmark::RegisterBenchmark(
@@ -179,6 +189,14 @@ void register_table() {
                         smithlab::tabulate_Lambda(DOnlyGgx{smithlab::ggx(0.3)}, {.exact = {.method = method}}).knots());
             })
             ->Unit(benchmark::kMillisecond);
+}
+
+// The fast evaluator against the yardstick, the closed-form GGX G1: G1 = 1/(1 + Lambda) by each, on the
+// concrete types; and what building a table costs (once per NDF).
+void register_table() {
+    register_table_yardsticks();
+    register_table_gtr();
+    register_table_donly();
 }
 
 // Below the quadrature domain (mu < 1e-12): the grazing law (grazing.hpp) for GTR(0.3, 1.5) and a D-only GGX. Its

@@ -101,6 +101,61 @@ void copy_frame(const GtrFamilyLeaf& from, L& to) {
     to.c0 = from.c0;
 }
 
+// Each top box's finest split per axis; cells, the number of cells of all their grids (SIZE_MAX where a box's grid
+// alone would pass 2^20)
+std::vector<std::array<int, 3>> finest_splits(const GtrFamilyData& d, std::size_t& cells) {
+    std::vector<std::array<int, 3>> most(2 * GtrFamily::top_cells);
+    cells = 0;
+    for (std::size_t top = 0; top < most.size(); ++top) {
+        depths(d, static_cast<int>(top), {0, 0, 0}, most[top]);
+        const int splits = most[top][0] + most[top][1] + most[top][2];
+        if (splits > 20) cells = SIZE_MAX;
+        else cells += std::size_t{1} << splits;
+    }
+    return most;
+}
+
+// The leaves in lanes (the last, empty, stays zero)
+std::vector<GtrFamilyStream::Leaf> leaves_in_lanes(const GtrFamilyData& d, const GtrFamilyStream::Lanes& lanes) {
+    using Lanes = GtrFamilyStream::Lanes;
+    std::array<std::array<std::array<int, 7>, 7>, 7> where{};  // (i, j, k) -> index in GtrFamilyLeaf::higher
+    for (int q = 0; q < GtrFamilyLeaf::n_higher; ++q) {
+        const auto& t = gtr_family_plan.term[q];
+        where[t[0]][t[1]][t[2]] = q;
+    }
+    std::vector<GtrFamilyStream::Leaf> leaves(d.n_leaves + 1);
+    for (std::size_t n = 0; n < d.n_leaves; ++n) {
+        const GtrFamilyLeaf& from = d.leaves[n];
+        GtrFamilyStream::Leaf& to = leaves[n];
+        copy_frame(from, to);
+        for (int g = 0; g < 4; ++g)
+            for (int t = 0; t < Lanes::steps[g]; ++t)
+                for (int l = 0; l < 8; ++l) {
+                    const int i = static_cast<int>(lanes.i[g][l]), j = static_cast<int>(lanes.j[g][l]);
+                    const int k = static_cast<int>(lanes.k0[g][l]) + t;
+                    to.c[Lanes::offset[g] + 8 * t + l] =
+                        i + j + k <= gtr_family_degree ? from.higher[where[i][j][k]] : 0.0f;
+                }
+    }
+    return leaves;
+}
+
+// The leaves by rows over k, for the AVX2 route (the last, empty, stays zero)
+std::vector<GtrFamilyStream::RowLeaf> leaves_by_rows(const GtrFamilyData& d) {
+    static_assert(gtr_family_degree == 6, "RowLeaf is laid out for total degree 6");
+    std::vector<GtrFamilyStream::RowLeaf> leaves(d.n_leaves + 1);
+    for (std::size_t n = 0; n < d.n_leaves; ++n) {
+        const GtrFamilyLeaf& from = d.leaves[n];
+        GtrFamilyStream::RowLeaf& to = leaves[n];
+        copy_frame(from, to);
+        for (int q = 0; q < GtrFamilyLeaf::n_higher; ++q) {
+            const auto& t = gtr_family_plan.term[q];
+            to.c[GtrFamilyStream::row_at(t[0], t[1]) + t[2]] = from.higher[q];
+        }
+    }
+    return leaves;
+}
+
 bool cpu_has_avx512() {
 #if SMITHLAB_FAMILY_AVX512
     __builtin_cpu_init();
@@ -159,53 +214,15 @@ GtrFamilyStream::GtrFamilyStream() : lanes_(make_lanes()), avx2_(cpu_has_avx2())
     if (!vectorized()) return;  // the stream is GtrFamily::G1_up point by point: nothing here is read
     const GtrFamilyData& d = gtr_family_data;
     // each top box's finest split per axis; the grid's leaf numbers are 16-bit, its cells counted in 32 bits
-    std::vector<std::array<int, 3>> most(2 * GtrFamily::top_cells);
     std::size_t cells = 0;
-    for (std::size_t top = 0; top < most.size(); ++top) {
-        depths(d, static_cast<int>(top), {0, 0, 0}, most[top]);
-        const int splits = most[top][0] + most[top][1] + most[top][2];
-        if (splits > 20) cells = SIZE_MAX;
-        else cells += std::size_t{1} << splits;
-    }
+    const std::vector<std::array<int, 3>> most = finest_splits(d, cells);
     if (d.n_leaves > 65535 || cells > (std::size_t{1} << 30)) {  // data this index cannot hold: one point at a time
         route_ = GtrFamilyRoute::one_point;
         avx2_ = avx512_ = false;
         return;
     }
-    // the leaves in lanes (the last, empty, stays zero)
-    std::array<std::array<std::array<int, 7>, 7>, 7> where{};  // (i, j, k) -> index in GtrFamilyLeaf::higher
-    for (int q = 0; q < GtrFamilyLeaf::n_higher; ++q) {
-        const auto& t = gtr_family_plan.term[q];
-        where[t[0]][t[1]][t[2]] = q;
-    }
-    leaves_.resize(d.n_leaves + 1);
-    for (std::size_t n = 0; n < d.n_leaves; ++n) {
-        const GtrFamilyLeaf& from = d.leaves[n];
-        Leaf& to = leaves_[n];
-        copy_frame(from, to);
-        for (int g = 0; g < 4; ++g)
-            for (int t = 0; t < Lanes::steps[g]; ++t)
-                for (int l = 0; l < 8; ++l) {
-                    const int i = static_cast<int>(lanes_.i[g][l]), j = static_cast<int>(lanes_.j[g][l]);
-                    const int k = static_cast<int>(lanes_.k0[g][l]) + t;
-                    to.c[Lanes::offset[g] + 8 * t + l] =
-                        i + j + k <= gtr_family_degree ? from.higher[where[i][j][k]] : 0.0f;
-                }
-    }
-    // the leaves by rows over k, for the AVX2 route (the last, empty, stays zero)
-    static_assert(gtr_family_degree == 6, "RowLeaf is laid out for total degree 6");
-    if (avx2_) {
-        row_leaves_.resize(d.n_leaves + 1);
-        for (std::size_t n = 0; n < d.n_leaves; ++n) {
-            const GtrFamilyLeaf& from = d.leaves[n];
-            RowLeaf& to = row_leaves_[n];
-            copy_frame(from, to);
-            for (int q = 0; q < GtrFamilyLeaf::n_higher; ++q) {
-                const auto& t = gtr_family_plan.term[q];
-                to.c[row_at(t[0], t[1]) + t[2]] = from.higher[q];
-            }
-        }
-    }
+    leaves_ = leaves_in_lanes(d, lanes_);
+    if (avx2_) row_leaves_ = leaves_by_rows(d);
     // each top box's grid of leaf numbers
     ids_.reserve(cells + 1);
     for (std::size_t top = 0; top < most.size(); ++top) {

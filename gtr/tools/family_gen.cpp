@@ -105,14 +105,15 @@ std::array<std::array<double, N>, N> chebyshev_monomials() {
     return t;
 }
 
-Fit fit(const Box& b) {
-    static const auto T = chebyshev_monomials();
-    std::array<std::array<double, N>, 3> x;  // Chebyshev points of the first kind on each axis
+// ln(mu Lambda) at the box's Chebyshev points of the first kind, [i][j][k] over (a, gamma, z), and the range of
+// ln Lambda there
+std::vector<double> values_at_chebyshev_points(const Box& b, double& ll_min, double& ll_max) {
+    std::array<std::array<double, N>, 3> x;
     for (int d = 0; d < 3; ++d)
         for (int i = 0; i < N; ++i)
             x[d][i] = 0.5 * (b.l[d] + b.h[d]) + 0.5 * (b.h[d] - b.l[d]) * std::cos(std::numbers::pi * (i + 0.5) / N);
-    std::vector<double> v(N * N * N);  // [i][j][k]
-    double ll_min = INFINITY, ll_max = -INFINITY;
+    std::vector<double> v(N * N * N);
+    ll_min = INFINITY, ll_max = -INFINITY;
     for (int i = 0; i < N; ++i)
         for (int k = 0; k < N; ++k) {
             std::array<double, N> out;
@@ -124,7 +125,11 @@ Fit fit(const Box& b) {
                 ll_min = std::min(ll_min, ll), ll_max = std::max(ll_max, ll);
             }
         }
-    // values -> Chebyshev coefficients, one axis at a time: c_m = (2 - [m = 0]) / N sum_l v_l T_m(x_l)
+    return v;
+}
+
+// values -> Chebyshev coefficients, one axis at a time: c_m = (2 - [m = 0]) / N sum_l v_l T_m(x_l)
+void to_chebyshev_coefficients(std::vector<double>& v) {
     for (int axis = 0; axis < 3; ++axis) {
         std::vector<double> c(v.size());
         for (int i = 0; i < N; ++i)
@@ -142,26 +147,20 @@ Fit fit(const Box& b) {
                 }
         v = c;
     }
-    Fit r;
-    r.g1_factor = G1_factor(ll_min, ll_max);
-    // the estimate: the dropped coefficients (total degree > D), each on the axis of its highest degree
-    for (int i = 0; i < N; ++i)
-        for (int j = 0; j < N; ++j)
-            for (int k = 0; k < N; ++k)
-                if (i + j + k > D)
-                    r.estimate[i >= j && i >= k ? 0 : j >= k ? 1 : 2] += std::abs(v[(i * N + j) * N + k]);
-    r.est = r.estimate[0] + r.estimate[1] + r.estimate[2];
-    if (r.est > GtrFamily::tolerance || r.est * r.g1_factor > GtrFamily::G1_tolerance) return r;
-    // the kept part in monomials of s = (x - centre) * scale: the constant and linear terms as doubles, the rest
-    // rounded to float in family.hpp's stored order (gtr_family_plan.term)
-    smithlab::GtrFamilyLeaf& leaf = r.leaf;
+}
+
+// The kept part of the Chebyshev coefficients c in monomials of s = (x - centre) * scale: the constant and linear
+// terms as doubles, the rest rounded to float in family.hpp's stored order (gtr_family_plan.term); the sum of the
+// floats' magnitudes into float_sum.
+void to_monomials(const Box& b, const std::vector<double>& c, smithlab::GtrFamilyLeaf& leaf, double& float_sum) {
+    static const auto T = chebyshev_monomials();
     for (int d = 0; d < 3; ++d) leaf.centre[d] = 0.5 * (b.l[d] + b.h[d]), leaf.scale[d] = 2.0 / (b.h[d] - b.l[d]);
     auto monomial = [&](int i, int j, int k) {
         double m = 0.0;
         for (int ci = i; ci <= D; ++ci)
             for (int cj = j; cj <= D - ci; ++cj)
                 for (int ck = k; ck <= D - ci - cj; ++ck)
-                    m += v[(ci * N + cj) * N + ck] * T[ci][i] * T[cj][j] * T[ck][k];
+                    m += c[(ci * N + cj) * N + ck] * T[ci][i] * T[cj][j] * T[ck][k];
         return m;
     };
     leaf.c0 = monomial(0, 0, 0);
@@ -169,10 +168,14 @@ Fit fit(const Box& b) {
     for (int q = 0; q < smithlab::GtrFamilyLeaf::n_higher; ++q) {
         const auto [i, j, k] = smithlab::gtr_family_plan.term[q];
         leaf.higher[q] = static_cast<float>(monomial(i, j, k));
-        r.float_sum += std::abs(static_cast<double>(leaf.higher[q]));
+        float_sum += std::abs(static_cast<double>(leaf.higher[q]));
     }
-    // checks on the box's 3 x 3 x 3 grid (corners, edge and face midpoints, centre: off the fit's points, the
-    // corners where interpolation errors are largest) against the knots' route, in ln(mu Lambda) and in G1
+}
+
+// checks on the box's 3 x 3 x 3 grid (corners, edge and face midpoints, centre: off the fit's points, the corners
+// where interpolation errors are largest) against the knots' route, in ln(mu Lambda) and in G1
+void check_leaf(const Box& b, Fit& r) {
+    const smithlab::GtrFamilyLeaf& leaf = r.leaf;
     for (int i = 0; i < 3; ++i)
         for (int k = 0; k < 3; ++k) {
             const double a = b.l[0] + 0.5 * i * (b.h[0] - b.l[0]), z = b.l[2] + 0.5 * k * (b.h[2] - b.l[2]);
@@ -189,6 +192,24 @@ Fit fit(const Box& b) {
                 r.G1_check = std::max(r.G1_check, std::abs(G1(got) - G1(want[j])));
             }
         }
+}
+
+Fit fit(const Box& b) {
+    double ll_min = 0.0, ll_max = 0.0;
+    std::vector<double> v = values_at_chebyshev_points(b, ll_min, ll_max);
+    to_chebyshev_coefficients(v);
+    Fit r;
+    r.g1_factor = G1_factor(ll_min, ll_max);
+    // the estimate: the dropped coefficients (total degree > D), each on the axis of its highest degree
+    for (int i = 0; i < N; ++i)
+        for (int j = 0; j < N; ++j)
+            for (int k = 0; k < N; ++k)
+                if (i + j + k > D)
+                    r.estimate[i >= j && i >= k ? 0 : j >= k ? 1 : 2] += std::abs(v[(i * N + j) * N + k]);
+    r.est = r.estimate[0] + r.estimate[1] + r.estimate[2];
+    if (r.est > GtrFamily::tolerance || r.est * r.g1_factor > GtrFamily::G1_tolerance) return r;
+    to_monomials(b, v, r.leaf, r.float_sum);
+    check_leaf(b, r);
     r.ok = r.check <= 2.0 * GtrFamily::tolerance && r.G1_check <= 2.0 * GtrFamily::G1_tolerance;
     return r;
 }
@@ -233,33 +254,55 @@ double asymptote_bound() {
     return *std::max_element(worst.begin(), worst.end());
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-    if (argc != 2) {
-        std::fprintf(stderr, "usage: smithlab_family_gen OUT.cpp\n");
-        return 2;
-    }
-    const auto t0 = std::chrono::steady_clock::now();
+// The top boxes of both charts, GtrFamily::top per axis, each in its slot of the trees' first nodes
+std::vector<Box> top_boxes() {
     const auto& top = GtrFamily::top;
-    std::vector<smithlab::GtrFamilyNode> nodes(2 * GtrFamily::top_cells);
-    std::vector<Box> pending;
+    std::vector<Box> boxes;
     for (int c = 0; c < 2; ++c)
         for (int i = 0; i < top[0]; ++i)
             for (int j = 0; j < top[1]; ++j)
                 for (int k = 0; k < top[2]; ++k)
-                    pending.push_back(
+                    boxes.push_back(
                         {c,
                          {GtrFamily::edge(c, 0, i), GtrFamily::edge(c, 1, j), GtrFamily::edge(c, 2, k)},
                          {GtrFamily::edge(c, 0, i + 1), GtrFamily::edge(c, 1, j + 1), GtrFamily::edge(c, 2, k + 1)},
                          static_cast<int>(c * GtrFamily::top_cells) + (i * top[1] + j) * top[2] + k,
                          0});
+    return boxes;
+}
+
+// The two trees as they grow: their nodes (family.hpp), the leaves' data, and the largest estimates and checks
+struct Trees {
+    std::vector<smithlab::GtrFamilyNode> nodes = std::vector<smithlab::GtrFamilyNode>(2 * GtrFamily::top_cells);
     std::vector<int> no_leaf;  // the slots of boxes in the other chart's half
     std::vector<smithlab::GtrFamilyLeaf> leaf_data;
     std::size_t leaves = 0;
     double est_max = 0.0, g1_est_max = 0.0, check_max = 0.0, g1_check_max = 0.0, float_sum_max = 0.0;
     int depth_max = 0;
-    while (!pending.empty()) {
+
+    void keep_leaf(const Box& b, const Fit& f) {
+        nodes[b.slot] = {0.0, ~static_cast<std::int32_t>(leaves++), 0};
+        leaf_data.push_back(f.leaf);
+        est_max = std::max(est_max, f.est), g1_est_max = std::max(g1_est_max, f.est * f.g1_factor);
+        check_max = std::max(check_max, f.check), g1_check_max = std::max(g1_check_max, f.G1_check);
+        float_sum_max = std::max(float_sum_max, f.float_sum);
+        depth_max = std::max(depth_max, b.depth);
+    }
+    // b halved along the axis of its largest estimate: a split node, the halves into next
+    void halve(const Box& b, const Fit& f, std::vector<Box>& next) {
+        const int axis = static_cast<int>(std::max_element(f.estimate.begin(), f.estimate.end()) - f.estimate.begin());
+        const auto first = static_cast<std::int32_t>(nodes.size());
+        const double split = 0.5 * (b.l[axis] + b.h[axis]);
+        nodes[b.slot] = {split, first, axis};
+        nodes.push_back({}), nodes.push_back({});
+        Box lo = b, hi = b;
+        lo.h[axis] = hi.l[axis] = split;
+        lo.slot = first, hi.slot = first + 1, lo.depth = hi.depth = b.depth + 1;
+        next.push_back(lo), next.push_back(hi);
+    }
+    // One level of the trees: every pending box fitted (in parallel), then kept as a leaf or split, in order;
+    // pending becomes the halves. False, with a message, where a box at max_depth has no fit.
+    bool grow(std::vector<Box>& pending) {
         std::vector<Fit> fits(pending.size());
         std::vector<char> no(pending.size());
         for (std::size_t i = 0; i < pending.size(); ++i) no[i] = other_half(pending[i]);
@@ -272,55 +315,39 @@ int main(int argc, char** argv) {
             const Fit& f = fits[i];
             if (no[i]) {
                 no_leaf.push_back(b.slot);
-                continue;
-            }
-            if (f.ok) {
-                nodes[b.slot] = {0.0, ~static_cast<std::int32_t>(leaves++), 0};
-                leaf_data.push_back(f.leaf);
-                est_max = std::max(est_max, f.est), g1_est_max = std::max(g1_est_max, f.est * f.g1_factor);
-                check_max = std::max(check_max, f.check), g1_check_max = std::max(g1_check_max, f.G1_check);
-                float_sum_max = std::max(float_sum_max, f.float_sum);
-                depth_max = std::max(depth_max, b.depth);
-                continue;
-            }
-            if (b.depth == max_depth) {
+            } else if (f.ok) {
+                keep_leaf(b, f);
+            } else if (b.depth == max_depth) {
                 std::fprintf(stderr,
                              "smithlab_family_gen: no fit within the tolerance at depth %d, chart %d box a "
                              "[%g, %g] gamma [%g, %g] z [%g, %g] (estimate %g)\n",
                              max_depth, b.chart, b.l[0], b.h[0], b.l[1], b.h[1], b.l[2], b.h[2], f.est);
-                return 1;
+                return false;
+            } else {
+                halve(b, f, next);
             }
-            const int axis =
-                static_cast<int>(std::max_element(f.estimate.begin(), f.estimate.end()) - f.estimate.begin());
-            const auto first = static_cast<std::int32_t>(nodes.size());
-            const double split = 0.5 * (b.l[axis] + b.h[axis]);
-            nodes[b.slot] = {split, first, axis};
-            nodes.push_back({}), nodes.push_back({});
-            Box lo = b, hi = b;
-            lo.h[axis] = hi.l[axis] = split;
-            lo.slot = first, hi.slot = first + 1, lo.depth = hi.depth = b.depth + 1;
-            next.push_back(lo), next.push_back(hi);
         }
         pending.swap(next);
+        return true;
     }
-    for (int slot : no_leaf) nodes[slot] = {0.0, ~static_cast<std::int32_t>(leaves), 0};  // the empty leaf
-    const double asymptotes = asymptote_bound();
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+};
 
-    const std::string out_path = argv[1], tmp = out_path + ".tmp";
+// The trees as C++ (hex floats: exact) into out_path, by way of out_path.tmp; false, with a message, on failure
+bool write_trees(const Trees& t, double asymptotes, const std::string& out_path) {
+    const std::string tmp = out_path + ".tmp";
     std::FILE* out = std::fopen(tmp.c_str(), "w");
     if (!out) {
         std::fprintf(stderr, "smithlab_family_gen: cannot write %s\n", tmp.c_str());
-        return 1;
+        return false;
     }
     std::fprintf(out,
                  "// Generated by smithlab_family_gen (gtr/tools/family_gen.cpp) at build time: do not edit.\n"
                  "#include \"smithlab/gtr/family.hpp\"\n\nnamespace smithlab {\nnamespace {\n"
                  "const GtrFamilyNode nodes[] = {\n");
-    for (std::size_t i = 0; i < nodes.size(); ++i)
-        std::fprintf(out, "{%a,%d,%d},%s", nodes[i].split, nodes[i].next, nodes[i].axis, i % 4 == 3 ? "\n" : "");
+    for (std::size_t i = 0; i < t.nodes.size(); ++i)
+        std::fprintf(out, "{%a,%d,%d},%s", t.nodes[i].split, t.nodes[i].next, t.nodes[i].axis, i % 4 == 3 ? "\n" : "");
     std::fprintf(out, "};\nconst GtrFamilyLeaf leaves[] = {\n");
-    for (const smithlab::GtrFamilyLeaf& l : leaf_data) {
+    for (const smithlab::GtrFamilyLeaf& l : t.leaf_data) {
         std::fprintf(out, "{{%a,%a,%a},{%a,%a,%a},%a,{%a,%a,%a},{", l.centre[0], l.centre[1], l.centre[2], l.scale[0],
                      l.scale[1], l.scale[2], l.c0, l.linear[0], l.linear[1], l.linear[2]);
         for (float c : l.higher) std::fprintf(out, "%af,", static_cast<double>(c));
@@ -330,17 +357,36 @@ int main(int argc, char** argv) {
                  "{},\n};\n}  // namespace\n\n"
                  "const GtrFamilyData gtr_family_data = {nodes, %zu, leaves, %zu, %a, %d};\n\n"
                  "}  // namespace smithlab\n",
-                 nodes.size(), leaves, asymptotes, depth_max);
+                 t.nodes.size(), t.leaves, asymptotes, t.depth_max);
     if (std::fclose(out) != 0 || std::rename(tmp.c_str(), out_path.c_str()) != 0) {
         std::fprintf(stderr, "smithlab_family_gen: cannot write %s\n", out_path.c_str());
-        return 1;
+        return false;
     }
-    const double bytes = static_cast<double>(leaf_data.size() * sizeof(smithlab::GtrFamilyLeaf) +
-                                             nodes.size() * sizeof(smithlab::GtrFamilyNode));
+    return true;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc != 2) {
+        std::fprintf(stderr, "usage: smithlab_family_gen OUT.cpp\n");
+        return 2;
+    }
+    const auto t0 = std::chrono::steady_clock::now();
+    Trees t;
+    std::vector<Box> pending = top_boxes();
+    while (!pending.empty())
+        if (!t.grow(pending)) return 1;
+    for (int slot : t.no_leaf) t.nodes[slot] = {0.0, ~static_cast<std::int32_t>(t.leaves), 0};  // the empty leaf
+    const double asymptotes = asymptote_bound();
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (!write_trees(t, asymptotes, argv[1])) return 1;
+    const double bytes = static_cast<double>(t.leaf_data.size() * sizeof(smithlab::GtrFamilyLeaf) +
+                                             t.nodes.size() * sizeof(smithlab::GtrFamilyNode));
     std::printf(
         "smithlab_family_gen: %zu leaves and %zu nodes (%.1f MB), depth <= %d, estimates <= %.3g / %.3g (G1), "
         "checks <= %.3g / %.3g, float terms' |sum| <= %.3g (rounding <= %.2g), asymptotes %.3g, %.1f s\n",
-        leaves, nodes.size(), bytes / 1e6, depth_max, est_max, g1_est_max, check_max, g1_check_max, float_sum_max,
-        std::ldexp(float_sum_max, -24), asymptotes, seconds);
+        t.leaves, t.nodes.size(), bytes / 1e6, t.depth_max, t.est_max, t.g1_est_max, t.check_max, t.g1_check_max,
+        t.float_sum_max, std::ldexp(t.float_sum_max, -24), asymptotes, seconds);
     return 0;
 }

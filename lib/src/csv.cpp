@@ -9,58 +9,67 @@
 
 namespace smithlab {
 
-std::vector<CsvRecord> read_csv(std::istream& in) {
-    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    std::vector<CsvRecord> records;
+namespace {
+
+// A position in the text of a CSV stream and the physical line there.
+struct CsvCursor {
+    const std::string& text;
     std::size_t i = 0, line = 1;
-    const std::size_t n = text.size();
-    auto at_eol = [&](std::size_t k) {
+
+    bool at_eol(std::size_t k) const {
+        const std::size_t n = text.size();
         return k >= n || text[k] == '\n' || (text[k] == '\r' && (k + 1 >= n || text[k + 1] == '\n'));
-    };
-    auto skip_eol = [&] {
-        if (i < n && text[i] == '\r') ++i;
-        if (i < n && text[i] == '\n') ++i;
+    }
+    void skip_eol() {
+        if (i < text.size() && text[i] == '\r') ++i;
+        if (i < text.size() && text[i] == '\n') ++i;
         ++line;
-    };
-    while (i < n) {
-        if (at_eol(i)) {  // blank line
-            skip_eol();
-            continue;
+    }
+
+    // The quoted field whose opening quote is at i, a doubled quote read as one; false when the text ends inside it.
+    bool quoted_field(std::string& field) {
+        const std::size_t n = text.size();
+        ++i;
+        while (i < n) {
+            if (text[i] == '"') {
+                if (i + 1 < n && text[i + 1] == '"') {
+                    field += '"';
+                    i += 2;
+                    continue;
+                }
+                ++i;
+                return true;
+            }
+            if (text[i] == '\n') ++line;
+            field += text[i++];
         }
-        CsvRecord rec;
+        return false;
+    }
+
+    // The unquoted field from i to the next comma or line end; a quote inside it sets error.
+    void unquoted_field(std::string& field, std::string& error) {
+        while (!(at_eol(i) || text[i] == ',')) {
+            if (text[i] == '"') error = "a quote inside an unquoted field";
+            field += text[i++];
+        }
+    }
+
+    // The record starting at i, through its line end. A malformed record gets its error and ends at the end of the
+    // physical line; false when the text ends inside a quoted field (nothing can follow).
+    bool record(CsvRecord& rec) {
         rec.line = line;
         std::string field;
         bool done = false;
         while (!done) {
             field.clear();
-            if (i < n && text[i] == '"') {  // quoted field
-                ++i;
-                bool closed = false;
-                while (i < n) {
-                    if (text[i] == '"') {
-                        if (i + 1 < n && text[i + 1] == '"') {
-                            field += '"';
-                            i += 2;
-                            continue;
-                        }
-                        ++i;
-                        closed = true;
-                        break;
-                    }
-                    if (text[i] == '\n') ++line;
-                    field += text[i++];
-                }
-                if (!closed) {
+            if (i < text.size() && text[i] == '"') {
+                if (!quoted_field(field)) {
                     rec.error = "unterminated quoted field";
-                    records.push_back(std::move(rec));
-                    return records;
+                    return false;
                 }
                 if (!(at_eol(i) || text[i] == ',')) rec.error = "characters after a closing quote";
             } else {
-                while (!(at_eol(i) || text[i] == ',')) {
-                    if (text[i] == '"') rec.error = "a quote inside an unquoted field";
-                    field += text[i++];
-                }
+                unquoted_field(field, rec.error);
             }
             if (!rec.error.empty()) {  // resynchronize at the end of the physical line
                 while (!at_eol(i)) ++i;
@@ -73,7 +82,25 @@ std::vector<CsvRecord> read_csv(std::istream& in) {
             rec.fields.push_back(field);
         }
         skip_eol();
+        return true;
+    }
+};
+
+}  // namespace
+
+std::vector<CsvRecord> read_csv(std::istream& in) {
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::vector<CsvRecord> records;
+    CsvCursor at{text};
+    while (at.i < text.size()) {
+        if (at.at_eol(at.i)) {  // blank line
+            at.skip_eol();
+            continue;
+        }
+        CsvRecord rec;
+        const bool more = at.record(rec);
         records.push_back(std::move(rec));
+        if (!more) break;
     }
     return records;
 }

@@ -91,6 +91,141 @@ std::vector<std::array<double, 4>> spline(const std::vector<double>& y) {
     return coef;
 }
 
+// Lambda at the knots x_front + k coarse of the search for the ends.
+struct EndKnots {
+    double x_front;
+    std::deque<double> L;
+
+    double x(std::size_t k) const { return x_front + coarse * static_cast<double>(k); }
+    // The first knot where Lambda is below floor_Lambda, or L.size().
+    std::size_t first_underflow() const {
+        for (std::size_t k = 0; k < L.size(); ++k)
+            if (L[k] < floor_Lambda) return k;
+        return L.size();
+    }
+};
+
+// The knots from mu_min up to mu_max, or to the first (if any) where Lambda is below floor_Lambda.
+EndKnots knots_from_mu_min(const Exact& exact, const LambdaTableOptions& opts) {
+    const double xa = std::log(opts.mu_min);
+    const auto k_max = static_cast<std::size_t>(std::max(4.0, std::ceil((std::log(opts.mu_max) - xa) / coarse)));
+    EndKnots e{xa, {}};
+    for (std::size_t k = 0; k <= k_max; ++k) {
+        e.L.push_back(exact.needed(e.x(k), "mu_min .. mu_max"));
+        if (e.L.back() < floor_Lambda && k >= 1) break;
+    }
+    return e;
+}
+
+// Down from mu_min until the small-mu asymptote holds to end_tol; its bound.
+double extend_down(EndKnots& e, const Exact& exact, double end_tol) {
+    double bound = small_mu_bound(e.x_front, e.L[0], e.L[1]);
+    while (!(bound <= end_tol)) {
+        if (e.x_front - coarse < -x_limit)
+            throw input_error("cannot tabulate Lambda: mu Lambda does not settle to a constant down to mu = 1e-300");
+        e.L.push_front(exact.needed(e.x_front - coarse, "mu Lambda has not yet settled to its limit as mu -> 0"));
+        e.x_front -= coarse;
+        bound = small_mu_bound(e.x_front, e.L[0], e.L[1]);
+    }
+    return bound;
+}
+
+// Up from the last knot until the slope of f = x + ln Lambda settles (a power tail) with mu Lambda below past_scale
+// c0, returning the error of continuing f linearly; or until Lambda drops below floor_Lambda (at the last knot).
+double extend_up(EndKnots& e, const Exact& exact, double end_tol, double c0) {
+    for (;;) {
+        const std::size_t n = e.L.size() - 1;
+        double f[4];
+        for (int j = 0; j < 4; ++j) f[j] = e.x(n - 3 + j) + std::log(e.L[n - 3 + j]);
+        const double error = large_mu_error(f, e.x(n));
+        if (error <= end_tol && e.L[n] * std::exp(e.x(n)) <= past_scale * c0) return error;
+        if (e.x(n) + coarse > x_limit)
+            throw input_error("cannot tabulate Lambda: its slope in ln mu does not settle up to mu = 1e300");
+        e.L.push_back(exact.needed(e.x(n + 1), "the slope of ln(mu Lambda) has not yet settled as mu -> inf"));
+        if (e.L.back() < floor_Lambda) return 0.0;
+    }
+}
+
+// The ends of the table in ln mu and the bounds of the asymptotes beyond them.
+struct Ends {
+    double x_lo = 0.0, x_hi = 0.0;
+    double small_bound = 0.0, large_error = 0.0;
+    bool underflows = false;  // x_hi is where Lambda crosses floor_Lambda
+};
+
+Ends table_ends(const Exact& exact, const LambdaTableOptions& opts) {
+    const double end_tol = opts.tolerance / 4.0;
+    EndKnots e = knots_from_mu_min(exact, opts);
+    Ends out;
+    out.small_bound = extend_down(e, exact, end_tol);
+    const double c0 = e.L[0] * std::exp(e.x_front) + 0.5 * std::exp(e.x_front);  // to within small_bound
+    std::size_t q = e.first_underflow();
+    out.underflows = q < e.L.size();
+    if (!out.underflows) {
+        out.large_error = extend_up(e, exact, end_tol, c0);
+        q = e.first_underflow();
+        out.underflows = q < e.L.size();
+        out.x_hi = e.x(e.L.size() - 1);
+    }
+    if (out.underflows) {
+        // Lambda crosses floor_Lambda between knots q-1 and q (q >= 1: the small-mu bound needs Lambda_0 >= floor):
+        // the spline ends where it does, to underflow_width.
+        double a = e.x(q - 1), b = e.x(q);
+        while (b - a > underflow_width) {
+            const double m = 0.5 * (a + b);
+            (exact(m) >= floor_Lambda ? a : b) = m;
+        }
+        out.x_hi = a;
+        out.large_error = 0.0;
+    }
+    out.x_lo = e.x_front;
+    if (!(out.x_hi > out.x_lo + 8.0 * underflow_width))
+        throw input_error(
+            "cannot tabulate Lambda: it drops from its small-mu asymptote to below 1e-290 at once, near mu = " +
+            num(std::exp(out.x_lo)));
+    return out;
+}
+
+// The knots y_i = x_i + ln Lambda(x_i) of the spline on [x_lo, x_hi], n intervals of step h, and its error estimate.
+struct SplineKnots {
+    std::vector<double> y;
+    std::size_t n;
+    double h;
+    double estimate = 0.0;
+};
+
+// From ceil(span / coarse) intervals (at least 8), halved until the estimate 5/384 max |4th difference| meets the
+// tolerance.
+SplineKnots refined_knots(const Exact& exact, double x_lo, double x_hi, double tolerance) {
+    auto f = [&](double x) {
+        const double Lx = exact(x);
+        if (!(Lx >= floor_Lambda * 0.5))
+            throw input_error("cannot tabulate Lambda: it is " + std::to_string(Lx) + " at mu = " +
+                              std::to_string(std::exp(x)) + ", inside the table (Lambda must not increase with mu)");
+        return x + std::log(Lx);
+    };
+    const double span = x_hi - x_lo;
+    const std::size_t n0 = std::max<std::size_t>(8, static_cast<std::size_t>(std::ceil(span / coarse)));
+    SplineKnots k{std::vector<double>(n0 + 1), n0, span / static_cast<double>(n0)};
+    for (std::size_t i = 0; i <= k.n; ++i) k.y[i] = f(i == k.n ? x_hi : x_lo + k.h * static_cast<double>(i));
+    for (int halvings = 0;; ++halvings) {
+        double d4 = 0.0;
+        for (std::size_t i = 0; i + 4 <= k.n; ++i)
+            d4 = std::max(d4, std::abs(k.y[i] - 4.0 * k.y[i + 1] + 6.0 * k.y[i + 2] - 4.0 * k.y[i + 3] + k.y[i + 4]));
+        k.estimate = 5.0 / 384.0 * d4;
+        if (k.estimate <= tolerance) return k;
+        if (halvings == max_halvings)
+            throw input_error("cannot tabulate Lambda to a relative " + num(tolerance) + ": estimated error " +
+                              num(k.estimate) + " at step " + num(k.h));
+        std::vector<double> finer(2 * k.n + 1);
+        for (std::size_t i = 0; i <= k.n; ++i) finer[2 * i] = k.y[i];
+        for (std::size_t i = 0; i < k.n; ++i) finer[2 * i + 1] = f(x_lo + k.h * (static_cast<double>(i) + 0.5));
+        k.y = std::move(finer);
+        k.n *= 2;
+        k.h /= 2.0;
+    }
+}
+
 }  // namespace
 
 LambdaTable::LambdaTable(const std::function<double(double)>& exact_fn, const LambdaTableOptions& opts) {
@@ -99,117 +234,28 @@ LambdaTable::LambdaTable(const std::function<double(double)>& exact_fn, const La
             opts.mu_max);
     require(opts.tolerance > 0.0, "table tolerance", "> 0", opts.tolerance);
     const Exact exact{exact_fn};
-    const double end_tol = opts.tolerance / 4.0;
 
-    // 1. The ends, on a grid of step `coarse` from mu_min: Lambda at knots x_front + k coarse, up to the first knot
-    //    (if any) where it is below floor_Lambda.
-    const double xa = std::log(opts.mu_min);
-    const auto k_max = static_cast<std::size_t>(std::max(4.0, std::ceil((std::log(opts.mu_max) - xa) / coarse)));
-    double x_front = xa;
-    std::deque<double> L;
-    auto x_at = [&](std::size_t k) { return x_front + coarse * static_cast<double>(k); };
-    for (std::size_t k = 0; k <= k_max; ++k) {
-        L.push_back(exact.needed(x_at(k), "mu_min .. mu_max"));
-        if (L.back() < floor_Lambda && k >= 1) break;
-    }
-    // Down from mu_min until the small-mu asymptote holds.
-    double small_bound = small_mu_bound(x_front, L[0], L[1]);
-    while (!(small_bound <= end_tol)) {
-        if (x_front - coarse < -x_limit)
-            throw input_error("cannot tabulate Lambda: mu Lambda does not settle to a constant down to mu = 1e-300");
-        L.push_front(exact.needed(x_front - coarse, "mu Lambda has not yet settled to its limit as mu -> 0"));
-        x_front -= coarse;
-        small_bound = small_mu_bound(x_front, L[0], L[1]);
-    }
-    const double c0 = L[0] * std::exp(x_front) + 0.5 * std::exp(x_front);  // to within small_bound
-    auto first_underflow = [&] {
-        for (std::size_t k = 0; k < L.size(); ++k)
-            if (L[k] < floor_Lambda) return k;
-        return L.size();
-    };
-    std::size_t q = first_underflow();
-    bool underflow = q < L.size();
-    double large_error = 0.0, x_hi = 0.0;
-    if (!underflow) {
-        // Up from mu_max until the slope of f settles (a power tail), or Lambda drops below floor_Lambda.
-        for (;;) {
-            const std::size_t n = L.size() - 1;
-            double f[4];
-            for (int j = 0; j < 4; ++j) f[j] = x_at(n - 3 + j) + std::log(L[n - 3 + j]);
-            large_error = large_mu_error(f, x_at(n));
-            if (large_error <= end_tol && L[n] * std::exp(x_at(n)) <= past_scale * c0) break;
-            if (x_at(n) + coarse > x_limit)
-                throw input_error("cannot tabulate Lambda: its slope in ln mu does not settle up to mu = 1e300");
-            L.push_back(exact.needed(x_at(n + 1), "the slope of ln(mu Lambda) has not yet settled as mu -> inf"));
-            if (L.back() < floor_Lambda) {
-                q = n + 1;
-                underflow = true;
-                break;
-            }
-        }
-        x_hi = x_at(L.size() - 1);
-    }
-    if (underflow) {
-        // Lambda crosses floor_Lambda between knots q-1 and q (q >= 1: the small-mu bound needs Lambda_0 >= floor):
-        // the spline ends where it does, to underflow_width.
-        double a = x_at(q - 1), b = x_at(q);
-        while (b - a > underflow_width) {
-            const double m = 0.5 * (a + b);
-            (exact(m) >= floor_Lambda ? a : b) = m;
-        }
-        x_hi = a;
-        underflows_ = true;
-        large_error = 0.0;
-    }
-    x_lo_ = x_front;
-    x_hi_ = x_hi;
-    if (!(x_hi_ > x_lo_ + 8.0 * underflow_width))
-        throw input_error(
-            "cannot tabulate Lambda: it drops from its small-mu asymptote to below 1e-290 at once, near mu = " +
-            num(std::exp(x_lo_)));
+    // 1. The ends, on a grid of step `coarse` from mu_min.
+    const Ends ends = table_ends(exact, opts);
+    x_lo_ = ends.x_lo;
+    x_hi_ = ends.x_hi;
+    underflows_ = ends.underflows;
 
     // 2. The spline on [x_lo, x_hi], refined until its estimate meets the tolerance.
-    auto f = [&](double x) {
-        const double Lx = exact(x);
-        if (!(Lx >= floor_Lambda * 0.5))
-            throw input_error("cannot tabulate Lambda: it is " + std::to_string(Lx) + " at mu = " +
-                              std::to_string(std::exp(x)) + ", inside the table (Lambda must not increase with mu)");
-        return x + std::log(Lx);
-    };
-    const double span = x_hi_ - x_lo_;
-    std::size_t n = std::max<std::size_t>(8, static_cast<std::size_t>(std::ceil(span / coarse)));
-    double h = span / static_cast<double>(n);
-    std::vector<double> y(n + 1);
-    for (std::size_t i = 0; i <= n; ++i) y[i] = f(i == n ? x_hi_ : x_lo_ + h * static_cast<double>(i));
-    double spline_estimate = 0.0;
-    for (int halvings = 0;; ++halvings) {
-        double d4 = 0.0;
-        for (std::size_t i = 0; i + 4 <= n; ++i)
-            d4 = std::max(d4, std::abs(y[i] - 4.0 * y[i + 1] + 6.0 * y[i + 2] - 4.0 * y[i + 3] + y[i + 4]));
-        spline_estimate = 5.0 / 384.0 * d4;
-        if (spline_estimate <= opts.tolerance) break;
-        if (halvings == max_halvings)
-            throw input_error("cannot tabulate Lambda to a relative " + num(opts.tolerance) + ": estimated error " +
-                              num(spline_estimate) + " at step " + num(h));
-        std::vector<double> finer(2 * n + 1);
-        for (std::size_t i = 0; i <= n; ++i) finer[2 * i] = y[i];
-        for (std::size_t i = 0; i < n; ++i) finer[2 * i + 1] = f(x_lo_ + h * (static_cast<double>(i) + 0.5));
-        y = std::move(finer);
-        n *= 2;
-        h /= 2.0;
-    }
-    coef_ = spline(y);
-    inv_h_ = 1.0 / h;
-    g_lo_ = std::exp(y[0]) + 0.5 * std::exp(x_lo_);
+    const SplineKnots k = refined_knots(exact, x_lo_, x_hi_, opts.tolerance);
+    coef_ = spline(k.y);
+    inv_h_ = 1.0 / k.h;
+    g_lo_ = std::exp(k.y[0]) + 0.5 * std::exp(x_lo_);
     const std::array<double, 4>& c = coef_.back();
-    const double end_slope = (c[1] + 2.0 * c[2] + 3.0 * c[3]) / h;  // df/dx at mu_hi
-    ln_Lambda_hi_ = y[n] - x_hi_;
+    const double end_slope = (c[1] + 2.0 * c[2] + 3.0 * c[3]) / k.h;  // df/dx at mu_hi
+    ln_Lambda_hi_ = k.y[k.n] - x_hi_;
     slope_hi_ = std::min(end_slope, 0.0) - 1.0;  // mu Lambda does not increase with mu: f' <= 0
+    double large_error = ends.large_error;
     if (underflows_) {
         // Between mu_hi and the crossing (< underflow_width on): the linear continuation errs by |f''| w^2 / 2.
-        large_error = std::abs(2.0 * c[2] + 6.0 * c[3]) / (h * h) * underflow_width * underflow_width / 2.0;
+        large_error = std::abs(2.0 * c[2] + 6.0 * c[3]) / (k.h * k.h) * underflow_width * underflow_width / 2.0;
     }
-    error_estimate_ = std::max({spline_estimate, small_bound, large_error});
+    error_estimate_ = std::max({k.estimate, ends.small_bound, large_error});
 }
 
 }  // namespace smithlab

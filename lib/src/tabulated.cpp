@@ -159,14 +159,14 @@ double projected_area(const TabulatedTable& t) {
     return 2.0 * pi * s;
 }
 
-}  // namespace
+// The columns of the header: the angle's (theta_deg or cos_theta) and D's.
+struct Columns {
+    int angle, D;
+    bool by_cos;
+    const char* angle_name;
+};
 
-TabulatedNdf tabulated_ndf_from_csv(const std::string& text, const std::string& source, const TabulatedOptions& opts) {
-    std::istringstream in(blank_comments(text));
-    const std::vector<CsvRecord> records = read_csv(in);
-    if (records.empty())
-        throw input_error(source + ": no header; expected a line naming the columns theta_deg (or cos_theta) and D");
-    const CsvRecord& head = records.front();
+Columns header_columns(const CsvRecord& head, const std::string& source) {
     if (!head.error.empty()) refuse(source, head.line, "header: " + head.error);
     int theta_col = -1, cos_col = -1, D_col = -1;
     for (std::size_t k = 0; k < head.fields.size(); ++k) {
@@ -186,11 +186,22 @@ TabulatedNdf tabulated_ndf_from_csv(const std::string& text, const std::string& 
                    "' column (columns: " + got + ")");
     }
     const bool by_cos = cos_col >= 0;
-    const int angle_col = by_cos ? cos_col : theta_col;
-    const char* angle_name = by_cos ? "cos_theta" : "theta_deg";
+    return {by_cos ? cos_col : theta_col, D_col, by_cos, by_cos ? "cos_theta" : "theta_deg"};
+}
 
-    auto table = std::make_shared<TabulatedTable>();
-    TabulatedTable& t = *table;
+// A row's angle in radians, from theta_deg in [0, 90) or cos_theta in (0, 1] (a, read from a_text).
+double row_theta(double a, const std::string& a_text, const Columns& c, const std::string& source, std::size_t line) {
+    if (c.by_cos) {
+        if (!(a > 0.0 && a <= 1.0)) refuse(source, line, "cos_theta must be in (0, 1], got " + a_text);
+        return std::atan2(std::sqrt((1.0 - a) * (1.0 + a)), a);  // exact near the pole, where acos is not
+    }
+    if (!(a >= 0.0 && a < 90.0)) refuse(source, line, "theta_deg must be in [0, 90), got " + a_text);
+    return a * (pi / 180.0);
+}
+
+// The nodes (theta_i, D_i) of the data rows (records after the header), checked row by row.
+void read_nodes(const std::vector<CsvRecord>& records, const Columns& c, const std::string& source, TabulatedTable& t) {
+    const CsvRecord& head = records.front();
     std::string prev_text;
     std::size_t prev_line = 0;
     for (std::size_t r = 1; r < records.size(); ++r) {
@@ -200,42 +211,33 @@ TabulatedNdf tabulated_ndf_from_csv(const std::string& text, const std::string& 
             refuse(
                 source, rec.line,
                 "expected " + std::to_string(head.fields.size()) + " fields, got " + std::to_string(rec.fields.size()));
-        const std::string& a_text = rec.fields[angle_col];
-        const std::string& d_text = rec.fields[D_col];
+        const std::string& a_text = rec.fields[c.angle];
+        const std::string& d_text = rec.fields[c.D];
         double a = 0.0, d = 0.0;
         try {
-            a = parse_double(a_text, angle_name);
+            a = parse_double(a_text, c.angle_name);
             d = parse_double(d_text, "D");
         } catch (const input_error& e) {
             refuse(source, rec.line, e.what());
         }
-        double theta = 0.0;  // radians
-        if (by_cos) {
-            if (!(a > 0.0 && a <= 1.0)) refuse(source, rec.line, "cos_theta must be in (0, 1], got " + a_text);
-            theta = std::atan2(std::sqrt((1.0 - a) * (1.0 + a)), a);  // exact near the pole, where acos is not
-        } else {
-            if (!(a >= 0.0 && a < 90.0)) refuse(source, rec.line, "theta_deg must be in [0, 90), got " + a_text);
-            theta = a * (pi / 180.0);
-        }
+        const double theta = row_theta(a, a_text, c, source, rec.line);
         if (!(d >= 0.0 && d < INFINITY)) refuse(source, rec.line, "D must be finite and >= 0, got " + d_text);
         if (!t.theta.empty() && !(theta > t.theta.back()))
             refuse(source, rec.line,
-                   by_cos ? "cos_theta must decrease from row to row (theta_m increasing), got " + a_text + " after " +
-                           prev_text + " (line " + std::to_string(prev_line) + ")"
-                          : "theta_deg must increase from row to row, got " + a_text + " after " + prev_text +
+                   c.by_cos ? "cos_theta must decrease from row to row (theta_m increasing), got " + a_text +
+                           " after " + prev_text + " (line " + std::to_string(prev_line) + ")"
+                            : "theta_deg must increase from row to row, got " + a_text + " after " + prev_text +
                            " (line " + std::to_string(prev_line) + ")");
         t.theta.push_back(theta);
         t.D.push_back(d);
         prev_text = a_text;
         prev_line = rec.line;
     }
-    const std::size_t n = t.theta.size();
-    if (n < tabulated_min_points)
-        refuse(source, records.back().line,
-               "the table ends after " + std::to_string(n) + " data row" + (n == 1 ? "" : "s") +
-                   "; the interpolation needs at least " + std::to_string(tabulated_min_points));
+}
 
-    // ln D and Steffen's slopes on each run of positive D.
+// ln D and Steffen's slopes on each run of positive D, and the pole's law (D is even in theta).
+void log_interpolant(TabulatedTable& t) {
+    const std::size_t n = t.theta.size();
     t.y.resize(n);
     t.dy.assign(n, 0.0);
     for (std::size_t i = 0; i < n; ++i) t.y[i] = t.D[i] > 0.0 ? std::log(t.D[i]) : -INFINITY;
@@ -249,10 +251,13 @@ TabulatedNdf tabulated_ndf_from_csv(const std::string& text, const std::string& 
         steffen_slopes(t, i, j);
         i = j + 1;
     }
-    // The pole: D is even in theta.
     if (t.theta[0] == 0.0) t.dy[0] = 0.0;
     else t.pole_b = t.dy[0] / (2.0 * t.theta[0]);
-    // The tail: D = D0 + D1 cos^2 through the last node, D1 by least squares over the last four.
+}
+
+// The tail: D = D0 + D1 cos^2 through the last node, D1 by least squares over the last four.
+void fit_tail(TabulatedTable& t) {
+    const std::size_t n = t.theta.size();
     const double c_last = std::cos(t.theta[n - 1]);
     t.c2_last = c_last * c_last;
     const std::size_t q = std::min<std::size_t>(4, n);
@@ -266,7 +271,13 @@ TabulatedNdf tabulated_ndf_from_csv(const std::string& text, const std::string& 
     const double D1 = suu > 0.0 ? sud / suu : 0.0;
     t.D0 = std::clamp(t.D[n - 1] - D1 * t.c2_last, 0.0, dmax);
     t.D1 = (t.D[n - 1] - t.D0) / t.c2_last;
+}
 
+// The projected area, refused unless within the tolerance of 1 or normalize is on; then D divided by it: the Smith
+// model holds only for a normalized D (the checks, G1's visible-area identity, hold it to 1e-8), and the factor is
+// reported (TabulatedNdf::note).
+void normalize_area(TabulatedTable& t, const std::vector<CsvRecord>& records, const std::string& source,
+                    const TabulatedOptions& opts) {
     t.area = projected_area(t);
     if (!(std::abs(t.area - 1.0) <= tabulated_area_tolerance)) {
         if (!opts.normalize)
@@ -281,18 +292,35 @@ TabulatedNdf tabulated_ndf_from_csv(const std::string& text, const std::string& 
             throw input_error(source + ": the projected area of D is " + format_value(t.area) +
                               "; there is no scale to normalize it by");
     }
-    // Within the tolerance (or with normalize) D is divided by its area: the Smith model holds only for a normalized D
-    // (the checks, G1's visible-area identity, hold it to 1e-8), and the factor is reported (TabulatedNdf::note).
-    {
-        t.factor = 1.0 / t.area;
-        const double ln_f = std::log(t.factor);
-        for (std::size_t i = 0; i < n; ++i) {
-            t.D[i] *= t.factor;
-            t.y[i] += ln_f;  // -inf stays -inf; the slopes of ln D are unchanged
-        }
-        t.D0 *= t.factor;
-        t.D1 *= t.factor;
+    t.factor = 1.0 / t.area;
+    const double ln_f = std::log(t.factor);
+    for (std::size_t i = 0; i < t.theta.size(); ++i) {
+        t.D[i] *= t.factor;
+        t.y[i] += ln_f;  // -inf stays -inf; the slopes of ln D are unchanged
     }
+    t.D0 *= t.factor;
+    t.D1 *= t.factor;
+}
+
+}  // namespace
+
+TabulatedNdf tabulated_ndf_from_csv(const std::string& text, const std::string& source, const TabulatedOptions& opts) {
+    std::istringstream in(blank_comments(text));
+    const std::vector<CsvRecord> records = read_csv(in);
+    if (records.empty())
+        throw input_error(source + ": no header; expected a line naming the columns theta_deg (or cos_theta) and D");
+    const Columns columns = header_columns(records.front(), source);
+    auto table = std::make_shared<TabulatedTable>();
+    TabulatedTable& t = *table;
+    read_nodes(records, columns, source, t);
+    const std::size_t n = t.theta.size();
+    if (n < tabulated_min_points)
+        refuse(source, records.back().line,
+               "the table ends after " + std::to_string(n) + " data row" + (n == 1 ? "" : "s") +
+                   "; the interpolation needs at least " + std::to_string(tabulated_min_points));
+    log_interpolant(t);
+    fit_tail(t);
+    normalize_area(t, records, source, opts);
     t.theta_min_deg = t.theta.front() * (180.0 / pi);
     t.theta_max_deg = t.theta.back() * (180.0 / pi);
     t.hash = fnv1a64(text);

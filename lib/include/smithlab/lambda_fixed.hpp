@@ -173,6 +173,73 @@ PieceResult eval_interval(const N& ndf, double mu2, double a, double b, bool in_
     return combine(g, W, V, h);
 }
 
+/// A piece the rule holds: [a, b] in u (in s for the tail), its Kronrod value and error estimate, and its nodes.
+struct OpenPiece {
+    double a;          ///< the lower end, in u (in s where in_s)
+    double b;          ///< the upper end
+    double K;          ///< the Kronrod value
+    double E;          ///< QUADPACK's error estimate
+    bool in_s;         ///< a piece of the tail
+    const Tree* tree;  ///< the piece is (*tree)[node] while node < tree_size
+    int node;          ///< its place in the tree (tree_size below the tree's depth)
+};
+
+/// The pieces the rule holds, and the sums of their values and of their estimates.
+struct OpenPieces {
+    std::array<OpenPiece, max_pieces> piece;  ///< the first n are held
+    int n = 0;                                ///< how many are held
+    double K = 0.0;                           ///< the sum of their values
+    double E = 0.0;                           ///< the sum of their estimates
+};
+
+/// The first pieces, on the tables' nodes: J panels of u and the tail.
+template <Ndf N>
+void start_pieces(const N& ndf, const Tables& T, double mu2, int J, OpenPieces& p) {
+    const double h_u = 0.5 * panel_width;
+    for (int j = 0; j < J; ++j) {
+        const PieceResult r = eval_piece(ndf, mu2, T.panel[j][1], h_u);
+        p.piece[p.n++] = {j * panel_width, (j + 1) * panel_width, r.K, r.E, false, &T.panel[j], 1};
+        p.K += r.K;
+        p.E += r.E;
+    }
+    const PieceResult r = eval_piece(ndf, mu2, T.tail[J][1], 0.5 * T.s_edge[J]);
+    p.piece[p.n++] = {0.0, T.s_edge[J], r.K, r.E, true, &T.tail[J], 1};
+    p.K += r.K;
+    p.E += r.E;
+}
+
+/// Halves the piece of the largest estimate and re-sums; false, with nothing halved, where the adaptive route is
+/// to answer instead. untabled counts the bisections below the trees' depth.
+template <Ndf N>
+bool bisect_worst(const N& ndf, double mu2, OpenPieces& p, int& untabled) {
+    int worst = 0;
+    for (int i = 1; i < p.n; ++i)
+        if (p.piece[i].E > p.piece[worst].E) worst = i;
+    const OpenPiece q = p.piece[worst];
+    const double m = 0.5 * (q.a + q.b);
+    // Below the tree's depth, node stays at tree_size (a piece bisected 60 times would overflow 2^node).
+    const bool tabled = q.node < tree_size / 2;
+    // A piece that needs halving below the tree's depth has a feature narrower than 1/16 of it: an end point
+    // singularity (Blinn n -> 0: s^n), a lobe far narrower than its panel (Beckmann at mu/alpha >~ 20). Bisection
+    // converges there only linearly; the adaptive route's double-exponential rule does better.
+    // At the tail's end point s = 0 such a feature is the power tail itself (s^(k - 4) for f ~ r^-k): no depth
+    // of bisection gains more than a constant factor there, so the adaptive route answers at once.
+    if (!tabled && (++untabled > max_untabled || (q.in_s && q.a == 0.0))) return false;
+    const int child = tabled ? 2 * q.node : tree_size;
+    const double h = 0.5 * (m - q.a);
+    const PieceResult left =
+        tabled ? eval_piece(ndf, mu2, (*q.tree)[child], h) : eval_interval(ndf, mu2, q.a, m, q.in_s);
+    const PieceResult right =
+        tabled ? eval_piece(ndf, mu2, (*q.tree)[child + 1], h) : eval_interval(ndf, mu2, m, q.b, q.in_s);
+    p.piece[worst] = {q.a, m, left.K, left.E, q.in_s, q.tree, child};
+    p.piece[p.n++] = {m, q.b, right.K, right.E, q.in_s, q.tree, tabled ? child + 1 : tree_size};
+    // Re-summed, not updated, so that round-off does not accumulate over the bisections.
+    p.K = 0.0;
+    p.E = 0.0;
+    for (int i = 0; i < p.n; ++i) p.K += p.piece[i].K, p.E += p.piece[i].E;
+    return true;
+}
+
 }  // namespace fixed_rule
 
 /// Lambda with its error estimate, as the fixed rule found it, and how: the number of slope-density evaluations
@@ -196,64 +263,20 @@ FixedLambda Lambda_fixed_rule(const N& ndf, double mu, double tolerance = 1e-12)
     out.evaluations = 1;
     if (!(u_end <= max_panels * panel_width)) return out;  // beyond the tables: not converged
     const int J = u_end <= panel_width ? 1 : static_cast<int>(std::ceil(u_end / panel_width));
-    const double mu2 = mu * mu, h_u = 0.5 * panel_width;
-
-    // The pieces: J panels and the tail, then the bisection's halves. a, b in u (or s for the tail).
-    struct Open {
-        double a, b, K, E;
-        bool in_s;
-        const Tree* tree;  ///< the piece is (*tree)[node] while node < tree_size
-        int node;
-    };
-    std::array<Open, max_pieces> pieces;
-    int n = 0;
-    double K = 0.0, E = 0.0;
-    for (int j = 0; j < J; ++j) {
-        const PieceResult r = eval_piece(ndf, mu2, T.panel[j][1], h_u);
-        pieces[n++] = {j * panel_width, (j + 1) * panel_width, r.K, r.E, false, &T.panel[j], 1};
-        K += r.K;
-        E += r.E;
-    }
-    {
-        const PieceResult r = eval_piece(ndf, mu2, T.tail[J][1], 0.5 * T.s_edge[J]);
-        pieces[n++] = {0.0, T.s_edge[J], r.K, r.E, true, &T.tail[J], 1};
-        K += r.K;
-        E += r.E;
-    }
-    out.evaluations += nodes * n;
-    // Bisect the worst piece until the estimate meets the tolerance or the pieces run out.
+    const double mu2 = mu * mu;
+    // The pieces: J panels and the tail, then the bisection's halves until the estimate meets the tolerance or the
+    // pieces run out.
+    OpenPieces p;
+    start_pieces(ndf, T, mu2, J, p);
+    out.evaluations += nodes * p.n;
     int untabled = 0;
-    while (!(E <= tolerance * std::abs(K)) && n < max_pieces) {
-        int worst = 0;
-        for (int i = 1; i < n; ++i)
-            if (pieces[i].E > pieces[worst].E) worst = i;
-        const Open p = pieces[worst];
-        const double m = 0.5 * (p.a + p.b);
-        // Below the tree's depth, node stays at tree_size (a piece bisected 60 times would overflow 2^node).
-        const bool tabled = p.node < tree_size / 2;
-        // A piece that needs halving below the tree's depth has a feature narrower than 1/16 of it: an end point
-        // singularity (Blinn n -> 0: s^n), a lobe far narrower than its panel (Beckmann at mu/alpha >~ 20). Bisection
-        // converges there only linearly; the adaptive route's double-exponential rule does better.
-        // At the tail's end point s = 0 such a feature is the power tail itself (s^(k - 4) for f ~ r^-k): no depth
-        // of bisection gains more than a constant factor there, so the adaptive route answers at once.
-        if (!tabled && (++untabled > max_untabled || (p.in_s && p.a == 0.0))) break;
-        const int child = tabled ? 2 * p.node : tree_size;
-        const double h = 0.5 * (m - p.a);
-        const PieceResult left =
-            tabled ? eval_piece(ndf, mu2, (*p.tree)[child], h) : eval_interval(ndf, mu2, p.a, m, p.in_s);
-        const PieceResult right =
-            tabled ? eval_piece(ndf, mu2, (*p.tree)[child + 1], h) : eval_interval(ndf, mu2, m, p.b, p.in_s);
+    while (!(p.E <= tolerance * std::abs(p.K)) && p.n < max_pieces) {
+        if (!bisect_worst(ndf, mu2, p, untabled)) break;
         out.evaluations += 2 * nodes;
-        pieces[worst] = {p.a, m, left.K, left.E, p.in_s, p.tree, child};
-        pieces[n++] = {m, p.b, right.K, right.E, p.in_s, p.tree, tabled ? child + 1 : tree_size};
-        // Re-summed, not updated, so that round-off does not accumulate over the bisections.
-        K = 0.0;
-        E = 0.0;
-        for (int i = 0; i < n; ++i) K += pieces[i].K, E += pieces[i].E;
     }
-    out.Lambda = 2.0 * K;
-    out.error = 2.0 * E;
-    out.converged = E <= tolerance * std::abs(K) && std::isfinite(K);
+    out.Lambda = 2.0 * p.K;
+    out.error = 2.0 * p.E;
+    out.converged = p.E <= tolerance * std::abs(p.K) && std::isfinite(p.K);
     return out;
 }
 
