@@ -14,7 +14,7 @@
 #include <array>
 #include <cmath>
 #include <random>
-#include <smithlab/smithlab.hpp>
+#include <smithlab/gtr.hpp>
 #include <string>
 #include <vector>
 

@@ -11,9 +11,9 @@
 #include <cmath>
 #include <memory>
 #include <random>
+#include <smithlab/gtr.hpp>
 #include <smithlab/gtr/family.hpp>
 #include <smithlab/gtr/family_stream.hpp>
-#include <smithlab/smithlab.hpp>
 #include <string>
 #include <vector>
 

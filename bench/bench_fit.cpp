@@ -12,7 +12,7 @@
 #include <smithlab/compensation/scattering_orders.hpp>
 #include <smithlab/fit/dataset.hpp>
 #include <smithlab/fit/fit_model.hpp>
-#include <smithlab/smithlab.hpp>
+#include <smithlab/gtr.hpp>
 #include <smithlab/walk/trace.hpp>
 #include <string>
 #include <utility>

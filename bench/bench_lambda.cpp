@@ -9,7 +9,7 @@
 
 #include <array>
 #include <cstdio>
-#include <smithlab/smithlab.hpp>
+#include <smithlab/gtr.hpp>
 #include <string>
 #include <utility>
 
@@ -105,7 +105,7 @@ void time_G1_tan2(benchmark::State& state, const L& fast) {
 }
 
 // The yardstick and the Student-t's table; the walk's Lambda (FastLambda::at_tan2, tan^2 = 1 / mu^2 given): GGX's
-// closed form, and the spline over the bits of tan^2 that every other NDF gets (tan2_spline.hpp).
+// closed form, and the spline over the bits of tan^2 that every other NDF gets (detail/tan2_spline.hpp).
 void register_table_yardsticks() {
     benchmark::RegisterBenchmark("G1/closed/ggx(0.3)", [](benchmark::State& s) {
         const smithlab::Ggx ggx = smithlab::ggx(0.3);

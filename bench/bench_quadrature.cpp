@@ -11,7 +11,7 @@
 #include <benchmark/benchmark.h>
 
 #include <cmath>
-#include <smithlab/smithlab.hpp>
+#include <smithlab/gtr.hpp>
 #include <string>
 
 namespace {

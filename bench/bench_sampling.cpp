@@ -5,7 +5,7 @@
 // Run: build/bench/bench_sampling --benchmark_min_time=0.2   (one core; docs/performance.md has the current numbers)
 #include <benchmark/benchmark.h>
 
-#include <smithlab/smithlab.hpp>
+#include <smithlab/gtr.hpp>
 #include <string>
 
 namespace {

@@ -20,7 +20,7 @@
 #include <cstdio>
 #include <memory>
 #include <numbers>
-#include <smithlab/smithlab.hpp>
+#include <smithlab/gtr.hpp>
 #include <smithlab/surface.hpp>
 #include <smithlab/walk/trace.hpp>
 #include <string>

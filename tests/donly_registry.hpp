@@ -2,7 +2,7 @@
 // (tabulated) for it. The tests of the samplers and the walk's routes run both.
 #pragma once
 
-#include <smithlab/smithlab.hpp>
+#include <smithlab/gtr.hpp>
 
 inline smithlab::NdfRegistry registry_with_donly() {
     smithlab::NdfRegistry r = smithlab::builtin_registry();

@@ -49,8 +49,9 @@ TEST_CASE("a diffuse model of one's own: its albedo, its registration and its GL
     CHECK(m.f(wi, wo, 0.5, 0.8, &s0) == Approx(fit::lambert(0.8)).epsilon(1e-15));
 
     // Registered after the built-in models; the commands then list, fit and export it (the plug-in example).
-    fit::DiffuseRegistry models = fit::builtin_diffuse_registry();
-    models.add(minnaert_model());
+    smithlab::NdfRegistry registry;  // the built-in materials and diffuse models, to which a program adds its own
+    registry.diffuse_models().add(minnaert_model());
+    const fit::DiffuseRegistry& models = registry.diffuse_models();
     CHECK(&models.at("minnaert") == &models.list().back());
     CHECK(models.names().ends_with(", smithlab-2026, minnaert"));
 

@@ -4,7 +4,7 @@
 // docs/extending.md, and its --check mode (ctest docs_up_to_date) fails when the two differ.
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <smithlab/smithlab.hpp>
+#include <smithlab/gtr.hpp>
 #include <smithlab/walk/trace.hpp>
 
 // [docs: tinted-mirror]

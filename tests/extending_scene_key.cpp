@@ -16,7 +16,7 @@ struct Exposure {
     std::int64_t samples = 16;
 };
 
-Exposure read_exposure(smithlab::report::StrictTable& doc) {
+Exposure read_exposure(smithlab::scene::StrictTable& doc) {
     Exposure e;
     if (auto t = doc.optional_table("exposure", {"stops", "samples"})) {
         e.stops = t->real("stops", e.stops);
@@ -31,8 +31,8 @@ namespace {
 
 // A scene document with the keys "title" and "exposure", read as scene.toml.
 Exposure read_scene(const std::string& text) {
-    const toml::value data = smithlab::report::parse_toml(text, "scene.toml");
-    smithlab::report::StrictTable doc(data, "scene.toml", "", {"title", "exposure"});
+    const toml::value data = smithlab::scene::parse_toml(text, "scene.toml");
+    smithlab::scene::StrictTable doc(data, "scene.toml", "", {"title", "exposure"});
     doc.text("title", "");
     const Exposure e = read_exposure(doc);
     doc.done();

@@ -2,7 +2,7 @@
 // A user who registers an NDF with examples gets these for free.
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <smithlab/smithlab.hpp>
+#include <smithlab/gtr.hpp>
 
 TEST_CASE("every registered NDF passes the per-distribution checks at its example points", "[checks]") {
     const smithlab::NdfRegistry registry = smithlab::builtin_registry();

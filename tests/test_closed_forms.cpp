@@ -2,7 +2,7 @@
 // Relative error of Lambda, not G1 (G1 near 1 hides everything). Target: 1e-13 everywhere.
 #include <catch2/catch.hpp>
 #include <cfloat>
-#include <smithlab/smithlab.hpp>
+#include <smithlab/gtr.hpp>
 
 #include "grid.hpp"
 #include "reference.hpp"

@@ -17,9 +17,9 @@
 #include <memory>
 #include <numbers>
 #include <smithlab/fresnel.hpp>
+#include <smithlab/gtr.hpp>
 #include <smithlab/gtr/gtr.hpp>
 #include <smithlab/single_scattering.hpp>
-#include <smithlab/smithlab.hpp>
 #include <smithlab/walk/trace.hpp>
 #include <sstream>
 #include <string>

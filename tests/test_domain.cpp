@@ -24,7 +24,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <map>
-#include <smithlab/smithlab.hpp>
+#include <smithlab/gtr.hpp>
 #include <string>
 #include <vector>
 

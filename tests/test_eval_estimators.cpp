@@ -6,7 +6,7 @@
 #include <cmath>
 #include <numbers>
 #include <smithlab/fit/dataset.hpp>
-#include <smithlab/smithlab.hpp>
+#include <smithlab/gtr.hpp>
 #include <smithlab/walk/trace.hpp>
 #include <string>
 

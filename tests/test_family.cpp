@@ -5,9 +5,9 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <smithlab/gtr.hpp>
 #include <smithlab/gtr/family.hpp>
 #include <smithlab/gtr/family_stream.hpp>
-#include <smithlab/smithlab.hpp>
 #include <thread>
 #include <vector>
 

@@ -6,9 +6,9 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <random>
+#include <smithlab/gtr.hpp>
 #include <smithlab/gtr/family.hpp>
 #include <smithlab/gtr/family_stream.hpp>
-#include <smithlab/smithlab.hpp>
 #include <tuple>
 #include <vector>
 

@@ -8,7 +8,7 @@
 #include <cstdio>
 #include <functional>
 #include <numbers>
-#include <smithlab/smithlab.hpp>
+#include <smithlab/gtr.hpp>
 #include <sstream>
 #include <string>
 #include <utility>

@@ -2,7 +2,7 @@
 #include <gsl/gsl_interp.h>
 
 #include <catch2/catch.hpp>
-#include <smithlab/smithlab.hpp>
+#include <smithlab/gtr.hpp>
 
 #include "closed_forms_plain.hpp"  // the straightforward evaluation of the closed forms and the spline
 #include "reference.hpp"

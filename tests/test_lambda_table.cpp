@@ -6,7 +6,7 @@
 #include <cmath>
 #include <numbers>
 #include <random>
-#include <smithlab/smithlab.hpp>
+#include <smithlab/gtr.hpp>
 
 #include "grid.hpp"
 #include "reference.hpp"

@@ -7,7 +7,7 @@
 #include <catch2/catch.hpp>
 #include <cfloat>
 #include <random>
-#include <smithlab/smithlab.hpp>
+#include <smithlab/gtr.hpp>
 #include <sstream>
 #include <thread>
 

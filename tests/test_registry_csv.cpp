@@ -1,6 +1,6 @@
 // Spec strings, the registry, and the CSV reader.
 #include <catch2/catch.hpp>
-#include <smithlab/smithlab.hpp>
+#include <smithlab/gtr.hpp>
 #include <sstream>
 
 using namespace smithlab;

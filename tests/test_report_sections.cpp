@@ -18,7 +18,7 @@
 #include "report/sections.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
-#include "smithlab/smithlab.hpp"
+#include "smithlab/gtr.hpp"
 
 namespace fs = std::filesystem;
 using namespace smithlab;
@@ -33,10 +33,10 @@ public:
 
     std::vector<std::string> keys() const override { return {"ggx_g1"}; }
 
-    void read(report::StrictTable& doc, const report::Settings&, const NdfRegistry&) override {
+    void read(scene::StrictTable& doc, const report::Settings&, const NdfRegistry&) override {
         auto t = doc.optional_table("ggx_g1", {"alpha", "mu"});
         if (!t) return;
-        alphas_ = report::read_axis(*t, "alpha");
+        alphas_ = scene::read_axis(*t, "alpha");
         mu_ = t->real("mu", mu_);
         if (!(mu_ > 0.0 && std::isfinite(mu_))) t->fail("mu", "must be finite and > 0");
         t->done();

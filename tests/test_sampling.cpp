@@ -5,7 +5,7 @@
 // helpers (frame, refraction, half vectors, Jacobians); bad input.
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <smithlab/smithlab.hpp>
+#include <smithlab/gtr.hpp>
 #include <string>
 #include <vector>
 
@@ -377,7 +377,7 @@ TEST_CASE("Beckmann visible slopes: the x quantile against quadrature of (mu - x
         auto dens = [&](double t) { return (t - b) * std::exp((c - t) * (c + t)); };
         const double total = GK::integrate(dens, b, INFINITY, 15, 1e-14);
         for (double u : {1e-12, 1e-3, 0.3, 0.7, 0.999}) {
-            const double w = -beckmann_visible_slope(mu, u);
+            const double w = -detail::beckmann_visible_slope(mu, u);
             const double S = GK::integrate(dens, w, INFINITY, 15, 1e-14) / total;
             INFO("mu " << mu << " u " << u << ": w " << w << " survival " << S);
             CHECK(w >= b);

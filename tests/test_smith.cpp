@@ -1,7 +1,7 @@
 // The Smith engine's conventions: limits of mu, downward directions, G1, G2 forms, method selection.
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <smithlab/smithlab.hpp>
+#include <smithlab/gtr.hpp>
 
 using namespace smithlab;
 

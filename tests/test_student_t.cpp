@@ -9,7 +9,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
-#include <smithlab/smithlab.hpp>
+#include <smithlab/gtr.hpp>
 #include <string>
 #include <vector>
 

@@ -13,7 +13,7 @@
 #include <fstream>
 #include <functional>
 #include <numbers>
-#include <smithlab/smithlab.hpp>
+#include <smithlab/gtr.hpp>
 #include <smithlab/tabulated.hpp>
 #include <smithlab/walk/trace.hpp>
 #include <string>

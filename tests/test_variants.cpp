@@ -2,7 +2,7 @@
 // approximations are the published formulas; the interpolants are exact at their knots and better with more knots.
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <smithlab/smithlab.hpp>
+#include <smithlab/gtr.hpp>
 
 using namespace smithlab;
 

@@ -8,8 +8,8 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <numbers>
+#include <smithlab/gtr.hpp>
 #include <smithlab/single_scattering.hpp>
-#include <smithlab/smithlab.hpp>
 #include <smithlab/walk/trace.hpp>
 #include <stdexcept>
 #include <string>
@@ -70,13 +70,9 @@ struct WrongLambda {
 // f on the concrete type of a built-in material (the walk templates take it directly).
 template <class F>
 auto visit_builtin(const walk::Material& material, F f) {
-    return std::visit(
-        [&](const auto& m) -> decltype(f(walk::Mirror{})) {
-            if constexpr (std::is_same_v<std::decay_t<decltype(m)>, walk::RegisteredMaterial>)
-                throw std::logic_error("visit_builtin: " + material.spec() + " is not a built-in material");
-            else return f(m);
-        },
-        material.kind());
+    return walk::visit(material, f, [&](const smithlab::MaterialKernels&) -> decltype(f(walk::Mirror{})) {
+        throw std::logic_error("visit_builtin: " + material.spec() + " is not a built-in material");
+    });
 }
 
 }  // namespace

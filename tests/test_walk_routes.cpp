@@ -6,9 +6,9 @@
 #include <cmath>
 #include <numbers>
 #include <random>
-#include <smithlab/smithlab.hpp>
-#include <smithlab/tan2_spline.hpp>
-#include <smithlab/visible_normals_mixture.hpp>
+#include <smithlab/detail/tan2_spline.hpp>
+#include <smithlab/detail/visible_normals_mixture.hpp>
+#include <smithlab/gtr.hpp>
 #include <string>
 #include <vector>
 
@@ -56,8 +56,8 @@ TEST_CASE("GGX mixture: P22 <= K Q on points of its own, K <= 3, for every bound
         const VisibleNormals<AnyNdf> vn(ndf, VisibleRoute::mixture);
         INFO(spec);
         REQUIRE(vn.mixture().has_value());
-        const GgxMixture& m = *vn.mixture();
-        CHECK(m.bound() <= GgxMixture::max_bound);
+        const detail::GgxMixture& m = *vn.mixture();
+        CHECK(m.bound() <= detail::GgxMixture::max_bound);
         CHECK(m.bound() >= 1.0);  // both are densities: Q cannot lie above P22 everywhere
         double worst = 0.0;
         const double r02 = std::pow(core_slope_scale(ndf), 2.0);
@@ -101,7 +101,7 @@ TEST_CASE("GGX mixture: the acceptance counted equals A(v) / (K A_Q(v)), above a
         const AnyNdf ndf = ndfs.make(spec);
         const VisibleNormals<AnyNdf> vn(ndf, VisibleRoute::mixture);
         REQUIRE(vn.mixture().has_value());
-        const GgxMixture& mix = *vn.mixture();
+        const detail::GgxMixture& mix = *vn.mixture();
         for (double theta : {30.0, 80.0, 100.0}) {
             const Vec3 v = direction_from_deg(theta, 20.0);
             double AQ = 0.0;
@@ -165,7 +165,7 @@ TEST_CASE("Lambda spline: pieces of a power law meet the tolerance, the ends and
     // f = t^(1/2) (Lambda's grazing limit) and f = t (its normal-incidence limit for GGX-like tails): every piece
     // in range answers, within the tolerance.
     for (double p : {0.5, 1.0}) {
-        const Tan2Spline s([p](double t) { return std::pow(t, p); }, 1e-7, 0.0);
+        const detail::Tan2Spline s([p](double t) { return std::pow(t, p); }, 1e-7, 0.0);
         CHECK(s.answered() == 1.0);
         std::mt19937_64 rng(3);
         std::uniform_real_distribution<double> ln_t(std::log(0x1p-40), std::log(0x1p40));
@@ -177,11 +177,11 @@ TEST_CASE("Lambda spline: pieces of a power law meet the tolerance, the ends and
         INFO("p " << p << ": worst relative " << worst);
         CHECK(worst <= 1e-7);
     }
-    const Tan2Spline s([](double t) { return t; }, 1e-7, 0.0);
+    const detail::Tan2Spline s([](double t) { return t; }, 1e-7, 0.0);
     for (double t : {0.0, -1.0, 0x1p-41, 0x1p40, double{INFINITY}, std::nan("")}) CHECK(std::isnan(s(t)));
     CHECK(s(0x1p-40) == 0x1p-40);
     // A function the cubics cannot follow (a jump inside a piece) leaves that piece to the caller.
-    const Tan2Spline jump([](double t) { return t < 1.01 ? 1.0 : 2.0; }, 1e-7, 0.0);
+    const detail::Tan2Spline jump([](double t) { return t < 1.01 ? 1.0 : 2.0; }, 1e-7, 0.0);
     CHECK(std::isnan(jump(1.01)));
     CHECK(jump(3.0) == 2.0);
 }

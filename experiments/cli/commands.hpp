@@ -68,7 +68,7 @@ struct TraceArgs {
     std::string seed = "1";
     bool print_scene = false;
     std::vector<CLI::Option*> cell_options;  // the flags that name one cell: any given means "trace that cell"
-    report::SizeLimits limits;               // --max-cells, --max-walks, --scale
+    scene::SizeLimits limits;                // --max-cells, --max-walks, --scale
 };
 void add_trace(CLI::App& app, TraceArgs& args, const MaterialRegistry& materials);
 int run_trace(const TraceArgs& args, const NdfRegistry& registry);
@@ -87,23 +87,23 @@ struct FitArgs {
     std::string output = "fit";
     int threads = 0;
     bool print_scene = false, list_models = false;
-    report::SizeLimits limits;  // --max-cells, --max-walks, --scale
+    scene::SizeLimits limits;  // --max-cells, --max-walks, --scale
 };
 void add_fit(CLI::App& app, FitArgs& args, const fit::DiffuseRegistry& models);
-int run_fit(const FitArgs& args, const NdfRegistry& registry, const fit::DiffuseRegistry& models);
+int run_fit(const FitArgs& args, const NdfRegistry& registry);
 
 struct TablesArgs {
     std::string scene;  // a scene file; empty: the embedded default (GGX)
     std::string output = "tables";
     int threads = 0;
     bool print_scene = false;
-    report::SizeLimits limits;  // --max-walks, --scale
+    scene::SizeLimits limits;  // --max-walks, --scale
 };
 void add_tables(CLI::App& app, TablesArgs& args);
 int run_tables(const TablesArgs& args, const NdfRegistry& registry);
 
 CLI::App* add_list(CLI::App& app);
-int run_list(const NdfRegistry& registry, const fit::DiffuseRegistry& models);
+int run_list(const NdfRegistry& registry);
 
 // Parses a double, accepting "inf"; NaN and trailing junk are input errors naming `what`.
 double parse_number(const std::string& text, const std::string& what);
@@ -112,7 +112,7 @@ double parse_number(const std::string& text, const std::string& what);
 // decimal 64-bit integer (beyond it refused; CLI11 alone clamps and reads 010 as octal). The message names the option.
 CLI::Validator strict_real();
 CLI::Validator strict_integer();
-// The text of a scene file (at most report::max_scene_bytes: a larger file, /dev/zero or an endless pipe is refused); a
+// The text of a scene file (at most scene::max_scene_bytes: a larger file, /dev/zero or an endless pipe is refused); a
 // directory, a missing or unreadable file is an input error naming it.
 std::string read_scene_file(const std::string& path);
 // The options several subcommands share, spelled and described once.
@@ -128,9 +128,9 @@ CLI::Option* add_seed_option(CLI::App& command, std::string& seed);
 // --downward, from downward_names (smith.hpp).
 CLI::Option* add_downward_option(CLI::App& command, std::string& downward);
 // --max-cells N and --max-walks N: the size a scene may ask for (scene/limits.hpp), inf for no limit.
-void add_limit_options(CLI::App& command, report::SizeLimits& limits);
+void add_limit_options(CLI::App& command, scene::SizeLimits& limits);
 // --max-walks N alone, for a command whose scene has no cells (tables).
-void add_max_walks_option(CLI::App& command, report::SizeLimits& limits);
+void add_max_walks_option(CLI::App& command, scene::SizeLimits& limits);
 // The optional positional SCENE (a TOML file), --print-scene and --scale F (SizeLimits::scale), of report, trace
 // and fit; run_* checks the scale with require_scale.
 void add_scene_options(CLI::App& command, std::string& scene, bool& print_scene, double& scale,

@@ -18,8 +18,8 @@ constexpr long double degree = std::numbers::pi_v<long double> / 180.0L;
 std::int64_t parse_count(const std::string& text, const std::string& what) {
     const bool digits = !text.empty() && text.size() <= 9 && text.find_first_not_of("0123456789") == std::string::npos;
     const std::int64_t n = digits ? std::stoll(text) : -1;
-    if (n < 2 || n > report::max_axis_points)
-        throw input_error(what + ": N must be an integer in [2, " + std::to_string(report::max_axis_points) +
+    if (n < 2 || n > scene::max_axis_points)
+        throw input_error(what + ": N must be an integer in [2, " + std::to_string(scene::max_axis_points) +
                           "] (one point: give it alone), got '" + text + "'");
     return n;
 }
@@ -62,7 +62,7 @@ std::vector<double> parse_range(const std::string& text, const std::string& what
     if (!std::isfinite(lo) || !std::isfinite(hi) || !(lo < hi) || (log && !(lo > 0.0)))
         throw input_error(what + ": LO and HI must be finite with LO < HI" + (log ? " and LO > 0 (log spacing)" : "") +
                           ", got '" + text + "'");
-    return report::spaced(lo, hi, n, log ? report::Spacing::log : report::Spacing::lin);
+    return scene::spaced(lo, hi, n, log ? scene::Spacing::log : scene::Spacing::lin);
 }
 
 std::vector<EvalPoint> eval_points(const std::string& mu, const std::string& theta, const std::string& mu_range,

@@ -65,9 +65,10 @@ void add_fit(CLI::App& app, FitArgs& a, const fit::DiffuseRegistry& models) {
     c->add_flag("--list-models", a.list_models, "list the diffuse models, their constants and sources, and exit");
 }
 
-int run_fit(const FitArgs& a, const NdfRegistry& registry, const fit::DiffuseRegistry& models) {
+int run_fit(const FitArgs& a, const NdfRegistry& registry) {
+    const fit::DiffuseRegistry& models = registry.diffuse_models();
     if (a.print_scene) {
-        std::cout << fitrun::default_fit_scene_text();
+        std::cout << fit::default_fit_scene_text();
         return exit_ok;
     }
     if (a.list_models) {
@@ -83,13 +84,12 @@ int run_fit(const FitArgs& a, const NdfRegistry& registry, const fit::DiffuseReg
     require_threads(a.threads);
     require_scale(a.limits.scale);
     const std::string source = a.scene.empty() ? "<default scene>" : a.scene;
-    const std::string text = a.scene.empty() ? fitrun::default_fit_scene_text() : read_scene_file(a.scene);
-    const fitrun::FitScene scene = fitrun::parse_fit_scene(text, source, registry, models, a.limits);
-    const fitrun::FitSummary sum =
-        fitrun::run_fit(scene, source, text, registry, a.output, static_cast<unsigned>(a.threads));
-    if (mpi::rank() != 0) return exit_ok;  // a rank of a run under mpirun: rank 0 reports
+    const std::string text = a.scene.empty() ? fit::default_fit_scene_text() : read_scene_file(a.scene);
+    const fit::FitScene scene = fit::parse_fit_scene(text, source, registry, a.limits);
+    const fit::FitSummary sum = fit::run_fit(scene, source, text, registry, a.output, static_cast<unsigned>(a.threads));
+    if (cluster::mpi::rank() != 0) return exit_ok;  // a rank of a run under mpirun: rank 0 reports
     std::printf("%-28s %-16s %10s %10s %10s %10s\n", "model", "ndf", "rms_rel", "max_rel", "albedo_rms", "chi2_dof");
-    for (const fitrun::ErrorRow& r : sum.errors)
+    for (const fit::ErrorRow& r : sum.errors)
         std::printf("%-28s %-16s %10.4f %10.4f %10.5f %10.3g\n", r.model.c_str(), r.ndf.c_str(), r.rms_rel, r.max_rel,
                     r.albedo_rms, r.chi2_dof);
     std::printf("points %lld\ntraced %lld\nreused %lld\nseconds %.3g\noutput %s\n", static_cast<long long>(sum.points),

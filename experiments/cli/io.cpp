@@ -55,12 +55,12 @@ std::string read_scene_file(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw input_error("cannot open scene file '" + path + "': " + std::strerror(errno));
     // At most one byte past the cap: /dev/zero, an endless pipe or a huge file is refused without being held.
-    std::string text(report::max_scene_bytes + 1, '\0');
+    std::string text(scene::max_scene_bytes + 1, '\0');
     in.read(text.data(), static_cast<std::streamsize>(text.size()));
     if (in.bad()) throw input_error("cannot read scene file '" + path + "'");
     text.resize(static_cast<std::size_t>(in.gcount()));
-    if (text.size() > report::max_scene_bytes)
-        throw input_error("scene file '" + path + "' is larger than " + std::to_string(report::max_scene_bytes) +
+    if (text.size() > scene::max_scene_bytes)
+        throw input_error("scene file '" + path + "' is larger than " + std::to_string(scene::max_scene_bytes) +
                           " bytes (1 MiB), the most a scene file may hold");
     return text;
 }
@@ -94,7 +94,7 @@ CLI::Option* add_downward_option(CLI::App& command, std::string& downward) {
         ->check(CLI::IsMember(names_of(downward_names)));
 }
 
-void add_limit_options(CLI::App& command, report::SizeLimits& limits) {
+void add_limit_options(CLI::App& command, scene::SizeLimits& limits) {
     command
         .add_option("--max-cells", limits.max_cells,
                     "the most cells a scene may hold, [brdf] bins counted (inf: no limit)")
@@ -103,7 +103,7 @@ void add_limit_options(CLI::App& command, report::SizeLimits& limits) {
     add_max_walks_option(command, limits);
 }
 
-void add_max_walks_option(CLI::App& command, report::SizeLimits& limits) {
+void add_max_walks_option(CLI::App& command, scene::SizeLimits& limits) {
     command.add_option("--max-walks", limits.max_walks, "the most walks a scene may trace in all (inf: no limit)")
         ->capture_default_str()
         ->check(strict_real());

@@ -13,7 +13,8 @@ CLI::App* add_list(CLI::App& app) {
         "models' names");
 }
 
-int run_list(const NdfRegistry& registry, const fit::DiffuseRegistry& models) {
+int run_list(const NdfRegistry& registry) {
+    const fit::DiffuseRegistry& models = registry.diffuse_models();
     for (const NdfInfo* info : registry.list()) {
         std::cout << info->name << "(";
         for (std::size_t i = 0; i < info->parameters.size(); ++i) std::cout << (i ? ", " : "") << info->parameters[i];

@@ -54,7 +54,7 @@ int run_report(const ReportArgs& a, const NdfRegistry& registry, const VariantRe
                                               source, registry, a.scale);
     const report::Work work = report::estimate_work(scene, variants);
     report::check_work(work, a.max_work, source);
-    if (mpi::rank() == 0)
+    if (cluster::mpi::rank() == 0)
         std::fprintf(stderr, "report: work estimated at %s (limit --max-work %g)\n", report::describe(work).c_str(),
                      a.max_work);
     return report::run_report(scene, a.output, registry, variants);  // under mpirun, every rank (rank 0 reports)

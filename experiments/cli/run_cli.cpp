@@ -11,7 +11,6 @@
 #include "output/standard_output.hpp"
 #include "smithlab/cli.hpp"
 #include "smithlab/errors.hpp"
-#include "smithlab/fit/diffuse_models.hpp"
 #include "smithlab/gtr/registry.hpp"
 
 namespace smithlab::cli {
@@ -46,7 +45,7 @@ std::string description(const NdfRegistry& registry) {
         "it writes.";
 }
 
-void add_commands(CLI::App& app, Commands& c, const NdfRegistry& registry, const fit::DiffuseRegistry& models) {
+void add_commands(CLI::App& app, Commands& c, const NdfRegistry& registry) {
     app.set_version_flag("--version", std::string("smithlab ") + SMITHLAB_VERSION, "print the version and exit");
     app.require_subcommand(1);
     add_eval(app, c.eval);
@@ -55,7 +54,7 @@ void add_commands(CLI::App& app, Commands& c, const NdfRegistry& registry, const
     add_sample(app, c.sample);
     add_trace(app, c.trace, registry.materials());
     add_brdf(app, c.brdf);
-    add_fit(app, c.fit, models);
+    add_fit(app, c.fit, registry.diffuse_models());
     add_tables(app, c.tables);
     c.list = add_list(app);
 }
@@ -89,9 +88,9 @@ std::optional<int> parse(CLI::App& app, int argc, char** argv) {
     return std::nullopt;
 }
 
-int dispatch(CLI::App& app, const Commands& c, const NdfRegistry& registry, const fit::DiffuseRegistry& models,
-             const VariantRegistry& variants) {
-    if (mpi::size() > 1 && !app.got_subcommand("trace") && !app.got_subcommand("fit") && !app.got_subcommand("report"))
+int dispatch(CLI::App& app, const Commands& c, const NdfRegistry& registry, const VariantRegistry& variants) {
+    if (cluster::mpi::size() > 1 && !app.got_subcommand("trace") && !app.got_subcommand("fit") &&
+        !app.got_subcommand("report"))
         throw input_error(
             "only trace, fit and report run on several MPI ranks (they trace); run the others without mpirun");
     if (app.got_subcommand("eval")) return run_eval(c.eval, registry, variants);
@@ -100,21 +99,21 @@ int dispatch(CLI::App& app, const Commands& c, const NdfRegistry& registry, cons
     if (app.got_subcommand("sample")) return run_sample(c.sample, registry);
     if (app.got_subcommand("trace")) return run_trace(c.trace, registry);
     if (app.got_subcommand("brdf")) return run_brdf(c.brdf, registry);
-    if (app.got_subcommand("fit")) return run_fit(c.fit, registry, models);
+    if (app.got_subcommand("fit")) return run_fit(c.fit, registry);
     if (app.got_subcommand("tables")) return run_tables(c.tables, registry);
-    if (c.list->parsed()) return run_list(registry, models);
+    if (c.list->parsed()) return run_list(registry);
     return exit_ok;
 }
 
 // The exit code of a failed run, said once. An error on one rank after the ranks started talking would leave the
 // others waiting: it ends the whole job.
 int fail(const char* what, const std::exception& e, int code) {
-    if (mpi::size() > 1 && mpi::talking()) {
-        std::cerr << "smithlab: " << what << " (rank " << mpi::rank() << " of " << mpi::size() << "): " << e.what()
-                  << "\n";
-        mpi::abort(code);
+    if (cluster::mpi::size() > 1 && cluster::mpi::talking()) {
+        std::cerr << "smithlab: " << what << " (rank " << cluster::mpi::rank() << " of " << cluster::mpi::size()
+                  << "): " << e.what() << "\n";
+        cluster::mpi::abort(code);
     }
-    if (mpi::rank() == 0) std::cerr << "smithlab: " << what << ": " << e.what() << "\n";  // every rank's alike
+    if (cluster::mpi::rank() == 0) std::cerr << "smithlab: " << what << ": " << e.what() << "\n";  // every rank's alike
     return code;
 }
 
@@ -122,27 +121,22 @@ int fail(const char* what, const std::exception& e, int code) {
 
 }  // namespace smithlab::cli
 
-namespace smithlab {
-
-int run_cli(int argc, char** argv, const NdfRegistry& registry) {
-    return run_cli(argc, argv, registry, fit::builtin_diffuse_registry());
-}
-
-int run_cli(int argc, char** argv, const NdfRegistry& registry, const fit::DiffuseRegistry& models) {
+// Declared in <smithlab/cli.hpp>; defined by its qualified name, so that this room opens only its own namespace.
+int smithlab::run_cli(int argc, char** argv, const NdfRegistry& registry) {
     output::install_signal_cleanup();  // before any thread: outputs a signal interrupts leave no temporary
     // Under mpirun (and only there: a plain start never touches MPI), MPI_Init now and MPI_Finalize on the way out.
-    mpi::init(argc, argv);
+    cluster::mpi::init(argc, argv);
     struct Finalize {
-        ~Finalize() { mpi::finalize(); }
+        ~Finalize() { cluster::mpi::finalize(); }
     } finalize;
     output::StandardOutput standard_output;  // every write to it checked: a failed one is exit 2, named
     const VariantRegistry variants = builtin_variants();
     CLI::App app{cli::description(registry), "smithlab"};
     cli::Commands commands;
-    cli::add_commands(app, commands, registry, models);
+    cli::add_commands(app, commands, registry);
     try {
         const std::optional<int> done = cli::parse(app, argc, argv);
-        const int code = done ? *done : cli::dispatch(app, commands, registry, models, variants);
+        const int code = done ? *done : cli::dispatch(app, commands, registry, variants);
         output::check_standard_output();  // what is still buffered, and what printf wrote
         return code;
     } catch (const input_error& e) {
@@ -156,5 +150,3 @@ int run_cli(int argc, char** argv, const NdfRegistry& registry, const fit::Diffu
         return cli::fail("internal error (please report it, with the command)", e, cli::exit_internal);
     }
 }
-
-}  // namespace smithlab

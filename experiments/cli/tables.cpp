@@ -47,18 +47,18 @@ void add_tables(CLI::App& app, TablesArgs& a) {
 
 int run_tables(const TablesArgs& a, const NdfRegistry& registry) {
     if (a.print_scene) {
-        std::cout << comprun::default_tables_scene_text();
+        std::cout << compensation::default_tables_scene_text();
         return exit_ok;
     }
     require_threads(a.threads);
     require_scale(a.limits.scale);
     const std::string source = a.scene.empty() ? "<default scene>" : a.scene;
-    const std::string text = a.scene.empty() ? comprun::default_tables_scene_text() : read_scene_file(a.scene);
-    const comprun::TablesScene scene = comprun::parse_tables_scene(text, source, registry, a.limits);
-    const comprun::TablesSummary sum =
-        comprun::run_tables(scene, source, text, registry, a.output, static_cast<unsigned>(a.threads));
+    const std::string text = a.scene.empty() ? compensation::default_tables_scene_text() : read_scene_file(a.scene);
+    const compensation::TablesScene scene = compensation::parse_tables_scene(text, source, registry, a.limits);
+    const compensation::TablesSummary sum =
+        compensation::run_tables(scene, source, text, registry, a.output, static_cast<unsigned>(a.threads));
     std::printf("%-16s %-18s %-28s %12s %13s\n", "ndf", "g2", "table", "interp_error", "furnace_error");
-    for (const comprun::TablesSummary::Row& r : sum.rows)
+    for (const compensation::TablesSummary::Row& r : sum.rows)
         std::printf("%-16s %-18s %-28s %12.2e %13.2e\n", r.ndf.c_str(), r.g2.c_str(), r.table.c_str(), r.interpolation,
                     r.furnace);
     std::printf("seconds %.3g\noutput %s\n", sum.seconds, a.output.c_str());

@@ -64,7 +64,7 @@ trace::TraceScene cell_scene(const TraceArgs& a, const MaterialRegistry& materia
     require(std::isfinite(a.phi_i), "--phi-i", "finite", a.phi_i);
     require(a.max_order >= 0, "--max-order", ">= 0", a.max_order);
     trace::incident_direction(a.theta_i, a.phi_i, "--theta-i", "--phi-i", materials.make(a.material));
-    trace::parse_walk_options(a.downward, a.hit_normal, "--");
+    scene::parse_walk_options(a.downward, a.hit_normal, "--");
     trace::TraceScene s;
     s.title = "one cell";
     s.ndfs = {{a.ndf, std::nullopt}};
@@ -172,7 +172,7 @@ void add_trace(CLI::App& app, TraceArgs& a, const MaterialRegistry& materials) {
             ->check(strict_integer()),
         add_downward_option(*c, a.downward),
         c->add_option("--hit-normal", a.hit_normal,
-                      "hit normal: " + join_described(trace::hit_normal_names, ", ", " or "))
+                      "hit normal: " + join_described(scene::hit_normal_names, ", ", " or "))
             ->capture_default_str(),
         add_seed_option(*c, a.seed)};
     add_threads_option(*c, a.threads);
@@ -199,7 +199,7 @@ int run_trace(const TraceArgs& a, const NdfRegistry& registry) {
         : trace::parse_trace_scene(a.scene.empty() ? trace::default_trace_scene_text() : read_scene_file(a.scene),
                                    source, registry, a.limits);
     const trace::RunSummary sum = trace::run_scene(scene, source, registry, a.output, static_cast<unsigned>(a.threads));
-    if (mpi::rank() != 0) return exit_ok;  // a worker of rank 0's run (mpirun): rank 0 reports
+    if (cluster::mpi::rank() != 0) return exit_ok;  // a worker of rank 0's run (mpirun): rank 0 reports
     if (sum.total.size() == 1) std::printf("albedo %.17g\nstderr %.17g\n", sum.total[0].value, sum.total[0].stderr_);
     std::printf("cells %lld\ntraced %lld\nreused %lld\nwalks %lld\nbounces %lld\nseconds %.3g\noutput %s\n",
                 static_cast<long long>(sum.cells), static_cast<long long>(sum.traced),
@@ -241,7 +241,7 @@ int run_brdf(const BrdfArgs& a, const NdfRegistry& registry) {
     r.threads = static_cast<unsigned>(a.threads);
     require_density(material, r, a);
     const walk::EvalTally t =
-        make_surface(ndf, trace::parse_walk_options(a.downward, "visible", "--"))->eval_cell(material, r);
+        make_surface(ndf, scene::parse_walk_options(a.downward, "visible", "--"))->eval_cell(material, r);
     require_uncapped(t, a);
     print_brdf_lines(brdf_lines(t, ndf, material, r), a);
     return exit_ok;

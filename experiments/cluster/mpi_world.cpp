@@ -14,7 +14,7 @@
 #include <mpi.h>
 #endif
 
-namespace smithlab::mpi {
+namespace smithlab::cluster::mpi {
 
 namespace {
 // started and launched serve the MPI build only.
@@ -136,4 +136,4 @@ std::vector<char> recv(int, int) { no_mpi(); }
 
 #endif
 
-}  // namespace smithlab::mpi
+}  // namespace smithlab::cluster::mpi

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-namespace smithlab::mpi {
+namespace smithlab::cluster::mpi {
 
 // MPI_Init_thread when this process was started by an MPI launcher (Open MPI's or a PMI's environment), else nothing.
 // Call once, first thing in main; finalize() at its end (MPI_Finalize when init() started MPI).
@@ -60,13 +60,13 @@ private:
     std::size_t at_ = 0;
 };
 
-}  // namespace smithlab::mpi
+}  // namespace smithlab::cluster::mpi
 
 #include <cstring>
 #include <stdexcept>
 
 template <class T>
-T smithlab::mpi::Reader::get() {
+T smithlab::cluster::mpi::Reader::get() {
     if (b_.size() - at_ < sizeof(T)) throw std::runtime_error("mpi: a message shorter than its contents");
     T v;
     std::memcpy(&v, b_.data() + at_, sizeof(T));

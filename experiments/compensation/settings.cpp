@@ -10,13 +10,13 @@
 #include "smithlab/csv.hpp"
 #include "smithlab/material_registry.hpp"
 
-namespace smithlab::comprun {
+namespace smithlab::compensation {
 
-using report::StrictTable;
+using scene::StrictTable;
 
-std::vector<double> Settings::default_alphas() { return report::spaced(1e-4, 1.0, 64, report::Spacing::cbrt); }
+std::vector<double> Settings::default_alphas() { return scene::spaced(1e-4, 1.0, 64, scene::Spacing::cbrt); }
 
-std::vector<double> Settings::default_order_alphas() { return report::spaced(0.01, 1.0, 16, report::Spacing::cbrt); }
+std::vector<double> Settings::default_order_alphas() { return scene::spaced(0.01, 1.0, 16, scene::Spacing::cbrt); }
 
 namespace {
 
@@ -31,7 +31,7 @@ constexpr double dielectric_cost = 6.0;
 // Refuses [compensation] when its tables' work (in values of E, as walks) and its furnace's and orders' walks, with
 // the rest of the run's (a fit's), pass --max-walks.
 void check_size(const StrictTable& t, const Settings& c, double families, double other_walks,
-                const report::SizeLimits& limits) {
+                const scene::SizeLimits& limits) {
     const double alphas = (static_cast<double>(c.alpha.size()) - 1.0) * static_cast<double>(c.refine) + 1.0;
     auto fine = [&](std::int64_t n) { return (static_cast<double>(n) - 1.0) * static_cast<double>(c.refine) + 1.0; };
     const double cosines = fine(c.cosines), dielectric_cosines = fine(c.dielectric_cosines);
@@ -60,7 +60,7 @@ void check_size(const StrictTable& t, const Settings& c, double families, double
 // A table's alphas in (0, 1]: two at least, ascending (the tables interpolate between them,
 // compensation/albedo_grid.hpp).
 std::vector<double> table_alphas(StrictTable& t, const char* key) {
-    std::vector<double> a = report::read_bounded(t, key, 0.0, 1.0, true, false, "(0, 1]");
+    std::vector<double> a = scene::read_bounded(t, key, 0.0, 1.0, true, false, "(0, 1]");
     if (a.size() < 2) t.fail(key, "needs 2 values or more (the tables interpolate between them)");
     for (std::size_t i = 1; i < a.size(); ++i)
         if (!(a[i] > a[i - 1])) t.fail(key, "values must ascend");
@@ -70,8 +70,8 @@ std::vector<double> table_alphas(StrictTable& t, const char* key) {
 // Refuses, naming the key, an alpha of the tables or the furnace at which a family cannot be made (below GGX's
 // 1e-50, say): the tables make every NDF at every alpha.
 void require_ndfs_at(const StrictTable& t, const std::string& key, const std::vector<double>& alphas,
-                     const std::vector<report::AlphaFamily>& families, const NdfRegistry& registry) {
-    for (const report::AlphaFamily& f : families)
+                     const std::vector<scene::AlphaFamily>& families, const NdfRegistry& registry) {
+    for (const scene::AlphaFamily& f : families)
         if (f.entry.takes_alpha && !f.entry.roughness_given)
             for (double a : alphas) try {
                     registry.make_at_alpha(f.family(), a, f.params, f.entry.texts);
@@ -84,7 +84,7 @@ void require_ndfs_at(const StrictTable& t, const std::string& key, const std::ve
 std::vector<G2Form> read_g2(StrictTable& t) {
     const std::vector<std::string> names = t.texts("g2");
     if (names.empty()) t.fail("g2", "is an empty list");
-    report::refuse_repeats(t, "g2", names, [](const std::string& g) { return "'" + g + "'"; });
+    scene::refuse_repeats(t, "g2", names, [](const std::string& g) { return "'" + g + "'"; });
     std::vector<G2Form> forms;
     for (const std::string& g : names) {
         if (g != "height-correlated" && g != "separable")
@@ -109,41 +109,41 @@ std::vector<std::string> read_conductors(StrictTable& t) {
         if (!conductor) t.fail("conductors", "must name conductor(eta=, k=) facets, got '" + m + "'");
         conductors.emplace_back(conductor->eta, conductor->k);
     }
-    report::refuse_repeats(t, "conductors", conductors, [](const std::pair<double, double>& c) {
+    scene::refuse_repeats(t, "conductors", conductors, [](const std::pair<double, double>& c) {
         return "conductor(eta=" + format_shortest(c.first) + ", k=" + format_shortest(c.second) + ")";
     });
     return specs;
 }
 
 // The tables' grid and G2 forms, and the dielectrics' eta.
-void read_tables(StrictTable& t, Settings& c, const std::vector<report::AlphaFamily>& families,
+void read_tables(StrictTable& t, Settings& c, const std::vector<scene::AlphaFamily>& families,
                  const NdfRegistry& registry, double scale) {
     if (t.has("alpha")) c.alpha = table_alphas(t, "alpha");
     require_ndfs_at(t, "alpha", c.alpha, families, registry);
     c.cosines = t.integer("cosines", 2, 4096, c.cosines);
     c.dielectric_cosines = t.integer("dielectric_cosines", 2, 4096, c.dielectric_cosines);
     c.refine = t.integer("refine", 1, 100, c.refine);
-    c.refine = report::scaled_count(c.refine, scale, std::min<std::int64_t>(c.refine, 2));
+    c.refine = scene::scaled_count(c.refine, scale, std::min<std::int64_t>(c.refine, 2));
     if (t.has("g2")) c.g2 = read_g2(t);
     // eta in [1.01, 100]: a relative index of 1 is no interface; both sides of each are tabulated
     // (eta = [] as the default scene writes it: no dielectric tables)
     if (t.has("eta") && !(t.value("eta").is_array() && t.value("eta").as_array().empty()))
-        c.eta = report::read_bounded(t, "eta", 1.01, 100.0, false, false, "[1.01, 100]");
-    report::refuse_repeats(t, "eta", c.eta, [](double e) { return format_shortest(e); });
+        c.eta = scene::read_bounded(t, "eta", 1.01, 100.0, false, false, "[1.01, 100]");
+    scene::refuse_repeats(t, "eta", c.eta, [](double e) { return format_shortest(e); });
 }
 
 // The walks: the furnace's cells and the scattering orders'.
-void read_walks(StrictTable& t, Settings& c, const std::vector<report::AlphaFamily>& families,
+void read_walks(StrictTable& t, Settings& c, const std::vector<scene::AlphaFamily>& families,
                 const NdfRegistry& registry, double scale) {
     c.conductors = read_conductors(t);
     if (t.has("furnace_alpha"))
-        c.furnace_alpha = report::read_bounded(t, "furnace_alpha", 0.0, 1.0, true, false, "(0, 1]");
+        c.furnace_alpha = scene::read_bounded(t, "furnace_alpha", 0.0, 1.0, true, false, "(0, 1]");
     require_ndfs_at(t, "furnace_alpha", c.furnace_alpha, families, registry);
     if (t.has("furnace_theta"))
-        c.furnace_theta = report::read_bounded(t, "furnace_theta", 0.0, 90.0, false, true, "[0, 90) degrees");
-    c.furnace_walks = report::scaled_count(t.integer("furnace_walks", 100, 1'000'000'000, c.furnace_walks), scale, 100);
+        c.furnace_theta = scene::read_bounded(t, "furnace_theta", 0.0, 90.0, false, true, "[0, 90) degrees");
+    c.furnace_walks = scene::scaled_count(t.integer("furnace_walks", 100, 1'000'000'000, c.furnace_walks), scale, 100);
     c.order_walks = t.integer("order_walks", 0, 1'000'000'000, c.order_walks);
-    c.order_walks = report::scaled_count(c.order_walks, scale, std::min<std::int64_t>(c.order_walks, 100));
+    c.order_walks = scene::scaled_count(c.order_walks, scale, std::min<std::int64_t>(c.order_walks, 100));
     if (t.has("order_alpha")) c.order_alpha = table_alphas(t, "order_alpha");
     require_ndfs_at(t, "order_alpha", c.order_alpha, families, registry);
     c.order_cosines = t.integer("order_cosines", 2, 4096, c.order_cosines);
@@ -151,8 +151,8 @@ void read_walks(StrictTable& t, Settings& c, const std::vector<report::AlphaFami
 
 }  // namespace
 
-Settings read_settings(StrictTable& doc, const std::vector<report::AlphaFamily>& families, double other_walks,
-                       const NdfRegistry& registry, const report::SizeLimits& limits) {
+Settings read_settings(StrictTable& doc, const std::vector<scene::AlphaFamily>& families, double other_walks,
+                       const NdfRegistry& registry, const scene::SizeLimits& limits) {
     Settings c;
     auto t = doc.optional_table(
         "compensation",
@@ -167,4 +167,4 @@ Settings read_settings(StrictTable& doc, const std::vector<report::AlphaFamily>&
     return c;
 }
 
-}  // namespace smithlab::comprun
+}  // namespace smithlab::compensation

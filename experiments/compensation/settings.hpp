@@ -13,7 +13,7 @@
 #include "smithlab/registry.hpp"
 #include "smithlab/smith.hpp"
 
-namespace smithlab::comprun {
+namespace smithlab::compensation {
 
 struct Settings {
     bool enabled = false;                          // the scene has [compensation]
@@ -44,7 +44,7 @@ struct Settings {
 // 100], a conductor that is not conductor(eta=, k=) facets, a list naming one thing twice, an integer out of its
 // bounds; and tables (each value of E counted as the walks of its time, settings.cpp) and walks (the furnace's, the
 // scattering orders' and other_walks, the rest of the run's) that pass limits.max_walks.
-Settings read_settings(report::StrictTable& doc, const std::vector<report::AlphaFamily>& families, double other_walks,
-                       const NdfRegistry& registry, const report::SizeLimits& limits);
+Settings read_settings(scene::StrictTable& doc, const std::vector<scene::AlphaFamily>& families, double other_walks,
+                       const NdfRegistry& registry, const scene::SizeLimits& limits);
 
-}  // namespace smithlab::comprun
+}  // namespace smithlab::compensation

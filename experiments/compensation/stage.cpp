@@ -5,9 +5,9 @@
 #include "compensation/walk_furnace.hpp"
 #include "output/plot_script.hpp"
 
-namespace smithlab::comprun {
+namespace smithlab::compensation {
 
-StageOutput run_compensation(const std::filesystem::path& dir, const std::vector<report::AlphaFamily>& families,
+StageOutput run_compensation(const std::filesystem::path& dir, const std::vector<scene::AlphaFamily>& families,
                              const Settings& c, const NdfRegistry& registry, const StageRun& run) {
     if (!c.enabled) return {};
     StageOutput out{make_tables(families, c, registry, run), ""};
@@ -20,4 +20,4 @@ StageOutput run_compensation(const std::filesystem::path& dir, const std::vector
     return out;
 }
 
-}  // namespace smithlab::comprun
+}  // namespace smithlab::compensation

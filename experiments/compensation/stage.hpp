@@ -15,7 +15,7 @@
 #include "scene/alpha_family.hpp"
 #include "smithlab/registry.hpp"
 
-namespace smithlab::comprun {
+namespace smithlab::compensation {
 
 struct StageOutput {
     std::vector<FamilyTables> tables;  // of `families`, which they point to
@@ -23,7 +23,7 @@ struct StageOutput {
 };
 
 // Runs the stage into dir; nothing (no file, no section) unless c.enabled.
-StageOutput run_compensation(const std::filesystem::path& dir, const std::vector<report::AlphaFamily>& families,
+StageOutput run_compensation(const std::filesystem::path& dir, const std::vector<scene::AlphaFamily>& families,
                              const Settings& c, const NdfRegistry& registry, const StageRun& run);
 
-}  // namespace smithlab::comprun
+}  // namespace smithlab::compensation

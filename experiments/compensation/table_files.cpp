@@ -10,7 +10,7 @@
 #include "smithlab/compensation/furnace.hpp"
 #include "smithlab/csv.hpp"
 
-namespace smithlab::comprun {
+namespace smithlab::compensation {
 
 namespace fs = std::filesystem;
 
@@ -190,4 +190,4 @@ void write_table_files(const fs::path& dir, const std::vector<FamilyTables>& all
     write_furnace(dir, furnace);
 }
 
-}  // namespace smithlab::comprun
+}  // namespace smithlab::compensation

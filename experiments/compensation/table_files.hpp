@@ -16,9 +16,9 @@
 #include "compensation/walk_furnace.hpp"
 #include "smithlab/registry.hpp"
 
-namespace smithlab::comprun {
+namespace smithlab::compensation {
 
 void write_table_files(const std::filesystem::path& dir, const std::vector<FamilyTables>& all, const Settings& c,
                        const NdfRegistry& registry, const std::vector<FurnaceRow>& furnace);
 
-}  // namespace smithlab::comprun
+}  // namespace smithlab::compensation

@@ -7,7 +7,7 @@
 #include "smithlab/compensation/furnace.hpp"
 #include "smithlab/csv.hpp"
 
-namespace smithlab::comprun {
+namespace smithlab::compensation {
 
 namespace {
 
@@ -102,4 +102,4 @@ std::string tables_markdown(const std::vector<FamilyTables>& all, const Settings
     return md.str();
 }
 
-}  // namespace smithlab::comprun
+}  // namespace smithlab::compensation

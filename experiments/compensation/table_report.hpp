@@ -10,10 +10,10 @@
 #include "compensation/tables.hpp"
 #include "compensation/walk_furnace.hpp"
 
-namespace smithlab::comprun {
+namespace smithlab::compensation {
 
 // The section in Markdown, opening "\n## Energy compensation ...".
 std::string tables_markdown(const std::vector<FamilyTables>& all, const Settings& c,
                             const std::vector<FurnaceRow>& furnace);
 
-}  // namespace smithlab::comprun
+}  // namespace smithlab::compensation

@@ -14,9 +14,9 @@
 #include "smithlab/csv.hpp"
 #include "smithlab/surface.hpp"
 
-namespace smithlab::comprun {
+namespace smithlab::compensation {
 
-using report::AlphaFamily;
+using scene::AlphaFamily;
 
 std::string DielectricTables::name(const std::string& what) const {
     return what + " eta=" + format_shortest(eta) + (inside ? " inside" : " outside");
@@ -263,4 +263,4 @@ std::vector<FamilyTables> make_tables(const std::vector<AlphaFamily>& families, 
     return all;
 }
 
-}  // namespace smithlab::comprun
+}  // namespace smithlab::compensation

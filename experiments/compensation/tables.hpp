@@ -18,7 +18,7 @@
 #include "smithlab/compensation/scattering_orders.hpp"
 #include "smithlab/registry.hpp"
 
-namespace smithlab::comprun {
+namespace smithlab::compensation {
 
 // How the stage runs: `command` names it on stderr ("fit", "tables"), `seed` keys its walks' random streams, on
 // `threads` threads (0: all cores).
@@ -52,7 +52,7 @@ struct DielectricTables {
 
 // One NDF family and G2 form.
 struct FamilyTables {
-    const report::AlphaFamily* family = nullptr;
+    const scene::AlphaFamily* family = nullptr;
     G2Form g2 = G2Form::height_correlated;
     MeasuredTable E;
     std::vector<double> exact_missing;  // 1 - E_avg at E's alphas, each by its own quadrature (of 1 - E)
@@ -70,7 +70,7 @@ compensation::AlbedoOptions table_options(G2Form form);
 
 // The tables of every family, each family's G2 forms in the settings' order, saying on stderr what each one is and how
 // far it has come.
-std::vector<FamilyTables> make_tables(const std::vector<report::AlphaFamily>& families, const Settings& c,
+std::vector<FamilyTables> make_tables(const std::vector<scene::AlphaFamily>& families, const Settings& c,
                                       const NdfRegistry& registry, const StageRun& run);
 
 // Every measured table of a family and G2 form: E, then each dielectric's sum.
@@ -89,4 +89,4 @@ void for_each_alone(const FamilyTables& t, const F& f) {
     }
 }
 
-}  // namespace smithlab::comprun
+}  // namespace smithlab::compensation

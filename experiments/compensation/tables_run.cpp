@@ -8,7 +8,7 @@
 #include "smithlab/compensation/furnace.hpp"
 #include "smithlab/util/parallel.hpp"
 
-namespace smithlab::comprun {
+namespace smithlab::compensation {
 
 namespace fs = std::filesystem;
 
@@ -52,4 +52,4 @@ TablesSummary run_tables(const TablesScene& s, const std::string& source, const 
     return sum;
 }
 
-}  // namespace smithlab::comprun
+}  // namespace smithlab::compensation

@@ -10,7 +10,7 @@
 #include "compensation/tables_scene.hpp"
 #include "smithlab/registry.hpp"
 
-namespace smithlab::comprun {
+namespace smithlab::compensation {
 
 // What the run prints: each measured table's worst errors (compensation_error.csv's), and its time.
 struct TablesSummary {
@@ -25,4 +25,4 @@ struct TablesSummary {
 TablesSummary run_tables(const TablesScene& scene, const std::string& source, const std::string& scene_text,
                          const NdfRegistry& registry, const std::filesystem::path& out, unsigned threads);
 
-}  // namespace smithlab::comprun
+}  // namespace smithlab::compensation

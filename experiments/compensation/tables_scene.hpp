@@ -12,12 +12,12 @@
 #include "scene/limits.hpp"
 #include "smithlab/registry.hpp"
 
-namespace smithlab::comprun {
+namespace smithlab::compensation {
 
 struct TablesScene {
     std::string title = "smithlab tables";
     std::uint64_t seed = 1;
-    std::vector<report::AlphaFamily> ndfs;  // the [[ndf]] axes expanded: one entry per family
+    std::vector<scene::AlphaFamily> ndfs;  // the [[ndf]] axes expanded: one entry per family
     Settings compensation;
 };
 
@@ -26,8 +26,8 @@ struct TablesScene {
 // roughness (alpha is compensation.alpha's), no [[ndf]] or no [compensation], and what read_settings refuses (the
 // size against limits.max_walks included).
 TablesScene parse_tables_scene(const std::string& text, const std::string& source, const NdfRegistry& registry,
-                               const report::SizeLimits& limits = {});
+                               const scene::SizeLimits& limits = {});
 
 const std::string& default_tables_scene_text();
 
-}  // namespace smithlab::comprun
+}  // namespace smithlab::compensation

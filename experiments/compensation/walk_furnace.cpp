@@ -10,7 +10,7 @@
 #include "smithlab/surface.hpp"
 #include "smithlab/util/parallel.hpp"
 
-namespace smithlab::comprun {
+namespace smithlab::compensation {
 
 namespace {
 
@@ -119,7 +119,7 @@ std::vector<FurnaceRow> trace_furnace(const std::vector<FamilyTables>& tables, c
     FurnaceWalks w{c, run};
     for (std::size_t n = 0; n < tables.size(); ++n) {
         if (n > 0 && tables[n].family == tables[n - 1].family) continue;  // one trace per family: each G2 reads it
-        const report::AlphaFamily& family = *tables[n].family;
+        const scene::AlphaFamily& family = *tables[n].family;
         std::fprintf(stderr, "%s: compensation furnace: %s, %zu alphas x %zu angles\n", run.command.c_str(),
                      family_label(family).c_str(), c.furnace_alpha.size(), c.furnace_theta.size());
         for (double alpha : c.furnace_alpha) {
@@ -140,4 +140,4 @@ std::vector<FurnaceRow> trace_furnace(const std::vector<FamilyTables>& tables, c
     return std::move(w.rows);
 }
 
-}  // namespace smithlab::comprun
+}  // namespace smithlab::compensation

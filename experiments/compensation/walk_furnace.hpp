@@ -20,7 +20,7 @@
 #include "compensation/settings.hpp"
 #include "compensation/tables.hpp"
 
-namespace smithlab::comprun {
+namespace smithlab::compensation {
 
 struct FurnaceRow {
     std::string ndf, g2, material, part;  // part: "total", "R" or "T"
@@ -33,4 +33,4 @@ struct FurnaceRow {
 std::vector<FurnaceRow> trace_furnace(const std::vector<FamilyTables>& tables, const Settings& c,
                                       const NdfRegistry& registry, const StageRun& run);
 
-}  // namespace smithlab::comprun
+}  // namespace smithlab::compensation

@@ -5,7 +5,7 @@
 
 #include "smithlab/rng.hpp"
 
-namespace smithlab::fitrun {
+namespace smithlab::fit {
 
 const char* set_name(Set set) {
     static const char* const names[] = {"training", "validation", "albedo"};
@@ -63,4 +63,4 @@ std::vector<Group> data_groups(const FitScene::Training& training, const FitScen
     return out;
 }
 
-}  // namespace smithlab::fitrun
+}  // namespace smithlab::fit

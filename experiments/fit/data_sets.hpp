@@ -11,7 +11,7 @@
 #include "fit/fit_scene.hpp"
 #include "smithlab/fit/dataset.hpp"
 
-namespace smithlab::fitrun {
+namespace smithlab::fit {
 
 enum Set : std::uint64_t { training_set = 0, validation_set = 1, albedo_set = 2 };
 const char* set_name(Set set);  // "training", "validation", "albedo"
@@ -42,4 +42,4 @@ std::vector<double> midpoints(const std::vector<double>& alphas);
 std::vector<Group> data_groups(const FitScene::Training& training, const FitScene::Validation& validation,
                                std::uint64_t seed, std::uint64_t ndf, const std::vector<double>& validation_alphas);
 
-}  // namespace smithlab::fitrun
+}  // namespace smithlab::fit

@@ -8,7 +8,7 @@
 #include "fit/point_cache.hpp"
 #include "smithlab/csv.hpp"
 
-namespace smithlab::fitrun {
+namespace smithlab::fit {
 
 namespace fs = std::filesystem;
 
@@ -67,7 +67,7 @@ std::vector<Place> places(const DataSpec& s, const fs::path& cache, const std::v
     for (std::size_t n = 0; n < plans.size(); ++n)
         for (std::size_t i = 0; i < plans[n].groups.size(); ++i) {
             Place p{n, i, group_file(s, cache, plans[n], i, n), std::nullopt};
-            if (mpi::rank() == 0) p.moments = read_cache(p.file);
+            if (cluster::mpi::rank() == 0) p.moments = read_cache(p.file);
             out.push_back(std::move(p));
         }
     return out;
@@ -80,7 +80,7 @@ std::vector<GroupJob> group_jobs(const std::vector<Plan>& plans, const std::vect
         jobs.push_back({&plans[p.n].ndfs[p.i], &g, p.n,
                         plans[p.n].data.label + ", " + set_name(g.set) + " alpha " + format_shortest(g.alpha) +
                             " (group " + std::to_string(g.index) + ")",
-                        mpi::rank() == 0 && !p.moments});
+                        cluster::mpi::rank() == 0 && !p.moments});
     }
     return jobs;
 }
@@ -125,8 +125,8 @@ std::vector<NdfData> gather(const DataSpec& s, const NdfRegistry& registry, cons
         if (progress) progress(static_cast<std::int64_t>(merged), static_cast<std::int64_t>(all));
     });
     if (traffic) *traffic = t;
-    if (mpi::rank() != 0) return {};
+    if (cluster::mpi::rank() != 0) return {};
     return assemble(plans, at, traced);
 }
 
-}  // namespace smithlab::fitrun
+}  // namespace smithlab::fit

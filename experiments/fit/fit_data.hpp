@@ -17,7 +17,7 @@
 #include "smithlab/fit/dataset.hpp"
 #include "smithlab/registry.hpp"
 
-namespace smithlab::fitrun {
+namespace smithlab::fit {
 
 struct NdfData {
     FitFamily family;
@@ -50,4 +50,4 @@ std::vector<NdfData> gather(const DataSpec& spec, const NdfRegistry& registry, c
                             unsigned threads, const ProgressFn& progress, const std::function<void()>& checked = {},
                             cluster::Traffic* traffic = nullptr);
 
-}  // namespace smithlab::fitrun
+}  // namespace smithlab::fit

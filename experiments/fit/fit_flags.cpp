@@ -5,7 +5,7 @@
 
 #include "smithlab/csv.hpp"
 
-namespace smithlab::fitrun {
+namespace smithlab::fit {
 
 namespace {
 
@@ -68,4 +68,4 @@ void print_flags(const std::vector<Flag>& flags) {
         std::fprintf(stderr, "fit: warning: %s on %s: %s\n", f.model.c_str(), f.ndf.c_str(), f.what.c_str());
 }
 
-}  // namespace smithlab::fitrun
+}  // namespace smithlab::fit

@@ -10,7 +10,7 @@
 
 #include "fit/fit_results.hpp"
 
-namespace smithlab::fitrun {
+namespace smithlab::fit {
 
 struct Flag {
     std::string model, ndf;
@@ -26,4 +26,4 @@ std::string flags_markdown(const std::vector<Flag>& flags);
 // One warning line per flag on stderr.
 void print_flags(const std::vector<Flag>& flags);
 
-}  // namespace smithlab::fitrun
+}  // namespace smithlab::fit

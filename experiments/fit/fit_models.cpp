@@ -4,7 +4,7 @@
 
 #include "smithlab/fit/fit_model.hpp"
 
-namespace smithlab::fitrun {
+namespace smithlab::fit {
 
 namespace {
 
@@ -58,4 +58,4 @@ NdfFits fit_and_measure(const NdfData& d, const std::vector<const fit::DiffuseMo
     return out;
 }
 
-}  // namespace smithlab::fitrun
+}  // namespace smithlab::fit

@@ -11,7 +11,7 @@
 #include "fit/fit_results.hpp"
 #include "smithlab/fit/diffuse_model.hpp"
 
-namespace smithlab::fitrun {
+namespace smithlab::fit {
 
 // What the fits and their measures take from the scene.
 struct FitSettings {
@@ -43,4 +43,4 @@ struct NdfFits {
 NdfFits fit_and_measure(const NdfData& data, const std::vector<const fit::DiffuseModel*>& models,
                         const FitSettings& settings, const FitProgress& progress);
 
-}  // namespace smithlab::fitrun
+}  // namespace smithlab::fit

@@ -7,7 +7,7 @@
 #include "fit/picture_tables.hpp"
 #include "output/plot_script.hpp"
 
-namespace smithlab::fitrun {
+namespace smithlab::fit {
 
 namespace fs = std::filesystem;
 
@@ -70,4 +70,4 @@ std::string write_pictures(const fs::path& dir, const fs::path& cache, const Pic
     return pictures_markdown(p, report);
 }
 
-}  // namespace smithlab::fitrun
+}  // namespace smithlab::fit

@@ -11,7 +11,7 @@
 #include "fit/picture_traces.hpp"
 #include "smithlab/registry.hpp"
 
-namespace smithlab::fitrun {
+namespace smithlab::fit {
 
 // Writes the pictures' data and PNGs into dir/pictures when the scene asks (spec.pictures.enabled; otherwise traces
 // nothing and returns ""), and returns the Markdown that shows them in report.md (links relative to dir). Per NDF
@@ -30,4 +30,4 @@ std::string write_pictures(const std::filesystem::path& dir, const std::filesyst
                            const PictureSpec& spec, const Results& results, const LabelColumns& columns,
                            const NdfRegistry& registry, unsigned threads);
 
-}  // namespace smithlab::fitrun
+}  // namespace smithlab::fit

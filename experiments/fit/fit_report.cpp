@@ -6,7 +6,7 @@
 #include "output/staged_directory.hpp"
 #include "smithlab/csv.hpp"
 
-namespace smithlab::fitrun {
+namespace smithlab::fit {
 
 namespace fs = std::filesystem;
 
@@ -86,4 +86,4 @@ void write_report(const fs::path& dir, const ReportHeading& h, const Results& r,
     output::finish(md, dir / "report.md");
 }
 
-}  // namespace smithlab::fitrun
+}  // namespace smithlab::fit

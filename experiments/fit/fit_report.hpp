@@ -8,7 +8,7 @@
 
 #include "fit/fit_results.hpp"
 
-namespace smithlab::fitrun {
+namespace smithlab::fit {
 
 // The report's opening: the scene's title and how its data were traced and weighed.
 struct ReportHeading {
@@ -20,4 +20,4 @@ struct ReportHeading {
 void write_report(const std::filesystem::path& dir, const ReportHeading& heading, const Results& results,
                   const std::vector<ErrorRow>& errors, const std::string& flags, const std::string& sections);
 
-}  // namespace smithlab::fitrun
+}  // namespace smithlab::fit

@@ -8,7 +8,7 @@
 #include "smithlab/fit/diffuse_model.hpp"
 #include "smithlab/fit/fit_model.hpp"
 
-namespace smithlab::fitrun {
+namespace smithlab::fit {
 
 // A model as measured: its name in the outputs ("<model>" at its published constants, "<model>-fitted" refitted),
 // the model, its constants (and their standard errors when fitted).
@@ -36,4 +36,4 @@ struct ErrorRow {
     fit::GridCheck grid;   // the largest relative |f(l, v) - f(v, l)|, the smallest f
 };
 
-}  // namespace smithlab::fitrun
+}  // namespace smithlab::fit

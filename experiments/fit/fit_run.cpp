@@ -22,7 +22,7 @@
 #include "smithlab/util/parallel.hpp"
 #include "trace/capped_walks.hpp"
 
-namespace smithlab::fitrun {
+namespace smithlab::fit {
 
 namespace fs = std::filesystem;
 
@@ -54,7 +54,7 @@ void print_trace_line(const std::vector<NdfData>& data, double seconds, unsigned
         std::fprintf(stderr,
                      "fit: traced %lld points, %.4g walks, in %.1f s (%.0f ns a walk on %u threads x %d ranks)\n",
                      static_cast<long long>(points), static_cast<double>(walks), seconds,
-                     seconds / static_cast<double>(walks) * 1e9, util::thread_count(threads), mpi::size());
+                     seconds / static_cast<double>(walks) * 1e9, util::thread_count(threads), cluster::mpi::size());
 }
 
 // Says on stderr how many of the walks traced were cut short (trace/capped_walks.hpp): their energy is missing from
@@ -82,7 +82,7 @@ void write_outputs(const fs::path& dir, const FitScene& s, const Results& r, con
     write_values(dir / "validation.csv", r, ValueSet::validation, s.albedos, columns);
     write_shaders(dir, r);
     const std::string compensation =
-        comprun::run_compensation(dir, s.ndfs, s.compensation, registry, {"fit", s.seed, threads}).markdown;
+        compensation::run_compensation(dir, s.ndfs, s.compensation, registry, {"fit", s.seed, threads}).markdown;
     const std::string pictures =
         write_pictures(dir, cache, {s.pictures, s.material, s.seed}, r, columns, registry, threads);
     const std::string trends = write_parameter_trends(dir, r);
@@ -106,7 +106,7 @@ void write_meta(const fs::path& dir, const FitScene& s, const std::string& sourc
                                    {"seconds", sum.seconds},
                                    {"trace_seconds", trace_seconds},
                                    {"threads", util::thread_count(threads)}};
-    if (mpi::size() > 1) meta["mpi"] = cluster::traffic_json(traffic);  // and threads is per rank
+    if (cluster::mpi::size() > 1) meta["mpi"] = cluster::traffic_json(traffic);  // and threads is per rank
     output::write_file(dir / "meta.json", meta.dump(2) + "\n");
 }
 
@@ -127,12 +127,12 @@ FitSummary run_fit(const FitScene& s, const std::string& source, const std::stri
     Results r{gather(
                   data_spec(s), registry, out / "cache", threads, progress,
                   [&] {
-                      if (mpi::size() > 1) mpi::set_talking();
-                      if (mpi::rank() == 0) stage.emplace(out, "fit");  // refuses a bad OUT before any work
+                      if (cluster::mpi::size() > 1) cluster::mpi::set_talking();
+                      if (cluster::mpi::rank() == 0) stage.emplace(out, "fit");  // refuses a bad OUT before any work
                   },
                   &traffic),
               {}};
-    if (mpi::rank() != 0) return {};
+    if (cluster::mpi::rank() != 0) return {};
     const double trace_seconds = seconds_since(t0);
     print_trace_line(r.data, trace_seconds, threads);
     print_capped(r.data);
@@ -148,4 +148,4 @@ FitSummary run_fit(const FitScene& s, const std::string& source, const std::stri
     return sum;
 }
 
-}  // namespace smithlab::fitrun
+}  // namespace smithlab::fit

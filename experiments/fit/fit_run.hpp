@@ -18,7 +18,7 @@
 #include "fit/fit_scene.hpp"
 #include "smithlab/registry.hpp"
 
-namespace smithlab::fitrun {
+namespace smithlab::fit {
 
 struct FitSummary {
     std::int64_t points = 0, traced = 0, reused = 0;
@@ -29,4 +29,4 @@ struct FitSummary {
 FitSummary run_fit(const FitScene& scene, const std::string& source, const std::string& scene_text,
                    const NdfRegistry& registry, const std::filesystem::path& out, unsigned threads);
 
-}  // namespace smithlab::fitrun
+}  // namespace smithlab::fit

@@ -12,13 +12,13 @@
 #include "smithlab/material_registry.hpp"
 #include "smithlab/spec.hpp"
 
-namespace smithlab::fitrun {
+namespace smithlab::fit {
 
 namespace {
 
-using report::read_bounded;
-using report::refuse_repeats;
-using report::StrictTable;
+using scene::read_bounded;
+using scene::refuse_repeats;
+using scene::StrictTable;
 
 constexpr std::size_t max_points = 65535;  // per group: fit/data_sets.hpp's streams give a point 16 bits
 
@@ -44,7 +44,7 @@ void check_material(StrictTable& doc, const std::string& spec, const MaterialReg
 
 void read_models(StrictTable& doc, FitScene& s, const fit::DiffuseRegistry& models) {
     const std::vector<std::string> names = doc.texts("models", {});
-    report::refuse_repeats(doc, "models", names, [](const std::string& m) { return "'" + m + "'"; });
+    scene::refuse_repeats(doc, "models", names, [](const std::string& m) { return "'" + m + "'"; });
     for (const std::string& m : names) {
         try {
             s.models.push_back(&models.at(m));
@@ -75,7 +75,7 @@ PerNdf per_ndf(const FitScene& s, std::size_t pairs) {
 }
 
 // Refuses, at the [[ndf]] entry that brings the fitted NDFs to `ndfs`, a fit of more points or walks than allowed.
-void check_size(const StrictTable& n, double ndfs, PerNdf each, const report::SizeLimits& limits) {
+void check_size(const StrictTable& n, double ndfs, PerNdf each, const scene::SizeLimits& limits) {
     const std::string sweep = format_shortest(ndfs) + " NDFs x ";
     if (ndfs * each.cells > limits.max_cells)
         n.fail("family",
@@ -94,7 +94,7 @@ FitScene::Training read_training(StrictTable& doc, FitScene::Training t, double 
     t.alpha = read_bounded(table, "alpha", 0.0, 1.0, true, false, "(0, 1]");
     t.theta = read_bounded(table, "theta", 0.0, 90.0, false, true, "[0, 90) degrees");
     t.phi = read_bounded(table, "phi", 0.0, 180.0, false, false, "[0, 180] degrees");
-    t.walks = report::scaled_count(table.integer("walks", 100, 1'000'000'000, t.walks), scale, 100);
+    t.walks = scene::scaled_count(table.integer("walks", 100, 1'000'000'000, t.walks), scale, 100);
     // A point's random stream holds its index in 16 bits (fit/data_sets.hpp).
     pairs = 0;
     for (std::size_t i = 0; i < t.theta.size(); ++i)
@@ -118,8 +118,8 @@ FitScene::Validation read_validation(StrictTable& doc, FitScene::Validation v, d
         v.albedo_walks = t->integer("albedo_walks", 100, 1'000'000'000, v.albedo_walks);
         t->done();
     }
-    v.walks = report::scaled_count(v.walks, scale, 100);
-    v.albedo_walks = report::scaled_count(v.albedo_walks, scale, 100);
+    v.walks = scene::scaled_count(v.walks, scale, 100);
+    v.albedo_walks = scene::scaled_count(v.albedo_walks, scale, 100);
     return v;
 }
 
@@ -128,7 +128,7 @@ FitScene::Pictures read_pictures(StrictTable& doc, FitScene::Pictures p, double 
         p.enabled = true;
         if (t->has("sphere_alpha")) p.sphere_alpha = read_bounded(*t, "sphere_alpha", 0.0, 1.0, true, false, "(0, 1]");
         p.pixels = t->integer("pixels", 4, 1024, p.pixels);
-        p.walks = report::scaled_count(t->integer("walks", 100, 1'000'000'000, p.walks), scale, 100);
+        p.walks = scene::scaled_count(t->integer("walks", 100, 1'000'000'000, p.walks), scale, 100);
         if (t->has("slice_alpha")) p.slice_alpha = read_bounded(*t, "slice_alpha", 0.0, 1.0, true, false, "(0, 1]");
         p.slice_n = t->integer("slice_n", 2, 1024, p.slice_n);
         t->done();
@@ -139,8 +139,8 @@ FitScene::Pictures read_pictures(StrictTable& doc, FitScene::Pictures p, double 
 }  // namespace
 
 FitScene parse_fit_scene(const std::string& text, const std::string& source, const NdfRegistry& registry,
-                         const fit::DiffuseRegistry& models, const report::SizeLimits& limits) {
-    const toml::value data = report::parse_toml(text, source);
+                         const scene::SizeLimits& limits) {
+    const toml::value data = scene::parse_toml(text, source);
     StrictTable doc(data, source, "",
                     {"title", "material", "albedos", "models", "floor", "energy_bound", "seed", "ndf", "training",
                      "validation", "compensation", "pictures"});
@@ -150,7 +150,7 @@ FitScene parse_fit_scene(const std::string& text, const std::string& source, con
     check_material(doc, s.material, registry.materials());
     // Below 1e-100 a point's variance (albedo^2 times its variance at albedo 1) nears underflow: no fit could weigh it.
     if (doc.has("albedos")) s.albedos = read_bounded(doc, "albedos", 1e-100, 1.0, false, false, "[1e-100, 1]");
-    read_models(doc, s, models);
+    read_models(doc, s, registry.diffuse_models());
     s.floor = doc.real("floor", s.floor);
     if (!(s.floor >= 0.0 && s.floor < 1.0)) doc.fail("floor", "must be in [0, 1), got " + format_shortest(s.floor));
     s.energy_bound = doc.flag("energy_bound", s.energy_bound);
@@ -159,13 +159,13 @@ FitScene parse_fit_scene(const std::string& text, const std::string& source, con
     s.training = read_training(doc, s.training, limits.scale, pairs);  // before the NDFs: they size each NDF's work
     s.validation = read_validation(doc, s.validation, limits.scale);
     const PerNdf each = per_ndf(s, pairs);
-    s.ndfs = report::read_alpha_families(doc, registry, "the fit sweeps alpha over training.alpha",
-                                         [&](const StrictTable& n, double ndfs) { check_size(n, ndfs, each, limits); });
+    s.ndfs = scene::read_alpha_families(doc, registry, "the fit sweeps alpha over training.alpha",
+                                        [&](const StrictTable& n, double ndfs) { check_size(n, ndfs, each, limits); });
     const double ndfs = static_cast<double>(s.ndfs.size());
-    s.compensation = comprun::read_settings(doc, s.ndfs, ndfs * each.walks, registry, limits);
+    s.compensation = compensation::read_settings(doc, s.ndfs, ndfs * each.walks, registry, limits);
     s.pictures = read_pictures(doc, s.pictures, limits.scale);
     doc.done();
     return s;
 }
 
-}  // namespace smithlab::fitrun
+}  // namespace smithlab::fit

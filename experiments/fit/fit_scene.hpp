@@ -15,10 +15,10 @@
 #include "smithlab/registry.hpp"
 #include "smithlab/smith.hpp"
 
-namespace smithlab::fitrun {
+namespace smithlab::fit {
 
 // One fitted NDF: a family at fixed parameters, swept over the training set's alpha (scene/alpha_family.hpp).
-using FitFamily = report::AlphaFamily;
+using FitFamily = scene::AlphaFamily;
 
 struct FitScene {
     std::string title = "smithlab fit";
@@ -42,7 +42,7 @@ struct FitScene {
     } validation;
     // The energy-compensation tables (compensation/stage.hpp): absent (enabled = false) unless the scene has
     // [compensation].
-    comprun::Settings compensation;
+    compensation::Settings compensation;
     // The pictures (fit_pictures.hpp): absent (enabled = false) unless the scene has [pictures].
     struct Pictures {
         bool enabled = false;
@@ -66,8 +66,8 @@ struct FitScene {
 // [compensation] whose tables (each value of E counted as the walks of its time, compensation/settings.cpp) and furnace
 // walks, with the fit's, pass limits.max_walks.
 FitScene parse_fit_scene(const std::string& text, const std::string& source, const NdfRegistry& registry,
-                         const fit::DiffuseRegistry& models, const report::SizeLimits& limits = {});
+                         const scene::SizeLimits& limits = {});
 
 const std::string& default_fit_scene_text();
 
-}  // namespace smithlab::fitrun
+}  // namespace smithlab::fit

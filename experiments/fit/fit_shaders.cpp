@@ -9,7 +9,7 @@
 #include "smithlab/errors.hpp"
 #include "smithlab/fit/glsl.hpp"
 
-namespace smithlab::fitrun {
+namespace smithlab::fit {
 
 void write_shaders(const std::filesystem::path& dir, const Results& results) {
     std::vector<fit::ShaderModel> models;
@@ -34,4 +34,4 @@ void write_shaders(const std::filesystem::path& dir, const Results& results) {
                 fit::brdf_explorer_file(m, helpers));
 }
 
-}  // namespace smithlab::fitrun
+}  // namespace smithlab::fit

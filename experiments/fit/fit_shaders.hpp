@@ -7,8 +7,8 @@
 
 #include "fit/fit_results.hpp"
 
-namespace smithlab::fitrun {
+namespace smithlab::fit {
 
 void write_shaders(const std::filesystem::path& dir, const Results& results);
 
-}  // namespace smithlab::fitrun
+}  // namespace smithlab::fit

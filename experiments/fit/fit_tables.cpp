@@ -6,7 +6,7 @@
 #include "output/staged_directory.hpp"
 #include "smithlab/csv.hpp"
 
-namespace smithlab::fitrun {
+namespace smithlab::fit {
 
 namespace fs = std::filesystem;
 
@@ -73,4 +73,4 @@ void write_values(const fs::path& file, const Results& r, ValueSet set, const st
     output::finish(csv, file);
 }
 
-}  // namespace smithlab::fitrun
+}  // namespace smithlab::fit

@@ -9,7 +9,7 @@
 #include "fit/fit_results.hpp"
 #include "fit/label_columns.hpp"
 
-namespace smithlab::fitrun {
+namespace smithlab::fit {
 
 void write_constants(const std::filesystem::path& dir, const Results& results, const LabelColumns& columns);
 
@@ -20,4 +20,4 @@ enum class ValueSet { training, validation };
 void write_values(const std::filesystem::path& file, const Results& results, ValueSet set,
                   const std::vector<double>& albedos, const LabelColumns& columns);
 
-}  // namespace smithlab::fitrun
+}  // namespace smithlab::fit

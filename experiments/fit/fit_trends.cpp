@@ -10,7 +10,7 @@
 #include "output/staged_directory.hpp"
 #include "smithlab/csv.hpp"
 
-namespace smithlab::fitrun {
+namespace smithlab::fit {
 
 namespace fs = std::filesystem;
 
@@ -113,11 +113,11 @@ std::vector<ParameterSweep> parameter_sweeps(const Results& r, std::size_t min_f
         for (std::size_t n = 0; n < r.data.size(); ++n)
             if (r.data[n].family.family() == family) fits.push_back(n);
         // The one parameter in which they differ: every other one equal across the fits.
-        const report::ParamPoint& p0 = r.data[fits[0]].family.params;
+        const scene::ParamPoint& p0 = r.data[fits[0]].family.params;
         std::vector<std::size_t> varying;
         for (std::size_t i = 0; i < p0.size(); ++i)
             for (std::size_t n : fits) {
-                const report::ParamPoint& p = r.data[n].family.params;
+                const scene::ParamPoint& p = r.data[n].family.params;
                 if (p.size() != p0.size() || p[i].first != p0[i].first) {
                     varying.assign(p0.size() + 1, 0);  // not one family's sweep of one parameter
                     break;
@@ -141,4 +141,4 @@ std::string write_parameter_trends(const fs::path& dir, const Results& r) {
     return md;
 }
 
-}  // namespace smithlab::fitrun
+}  // namespace smithlab::fit

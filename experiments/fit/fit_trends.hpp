@@ -9,7 +9,7 @@
 
 #include "fit/fit_results.hpp"
 
-namespace smithlab::fitrun {
+namespace smithlab::fit {
 
 // The fits of one family that differ in exactly one parameter: its values, fit by fit, in the scene's order.
 struct ParameterSweep {
@@ -28,4 +28,4 @@ std::vector<ParameterSweep> parameter_sweeps(const Results& results, std::size_t
 // standard error gets no trend.
 std::string write_parameter_trends(const std::filesystem::path& dir, const Results& results);
 
-}  // namespace smithlab::fitrun
+}  // namespace smithlab::fit

@@ -14,7 +14,7 @@
 #include "fit/data_sets.hpp"
 #include "fit/trace_points.hpp"
 
-namespace smithlab::fitrun {
+namespace smithlab::fit {
 
 struct GroupJob {
     const AnyNdf* ndf;
@@ -50,10 +50,10 @@ public:
 
     static_assert(std::is_trivially_copyable_v<fit::SplitMoments>);
     void put(std::vector<char>& out, const Partial& p) const {
-        mpi::put(out, static_cast<std::int64_t>(p.size()));
-        for (const fit::SplitMoments& m : p) mpi::put(out, m);
+        cluster::mpi::put(out, static_cast<std::int64_t>(p.size()));
+        for (const fit::SplitMoments& m : p) cluster::mpi::put(out, m);
     }
-    Partial get(mpi::Reader& in, std::size_t j) const {
+    Partial get(cluster::mpi::Reader& in, std::size_t j) const {
         Partial p(static_cast<std::size_t>(in.get<std::int64_t>()));
         if (p.size() != 1)
             throw std::runtime_error("fit: another rank sent " + std::to_string(p.size()) + " points for one of " +
@@ -69,4 +69,4 @@ private:
     Finish finish_;
 };
 
-}  // namespace smithlab::fitrun
+}  // namespace smithlab::fit

@@ -4,7 +4,7 @@
 
 #include "output/ndf_columns.hpp"
 
-namespace smithlab::fitrun {
+namespace smithlab::fit {
 
 namespace {
 
@@ -54,4 +54,4 @@ std::vector<std::string> LabelColumns::row(std::vector<std::string> r, std::size
     return r;
 }
 
-}  // namespace smithlab::fitrun
+}  // namespace smithlab::fit

@@ -9,7 +9,7 @@
 #include "fit/fit_data.hpp"
 #include "smithlab/registry.hpp"
 
-namespace smithlab::fitrun {
+namespace smithlab::fit {
 
 struct LabelColumns {
     std::vector<std::string> names;
@@ -27,4 +27,4 @@ struct LabelColumns {
 // The columns of the run's NDFs, each made at `alpha` (any alpha of the fit: the roughness is left out).
 LabelColumns label_columns(const std::vector<NdfData>& data, const NdfRegistry& registry, double alpha);
 
-}  // namespace smithlab::fitrun
+}  // namespace smithlab::fit

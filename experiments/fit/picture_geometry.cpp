@@ -5,7 +5,7 @@
 #include <numbers>
 #include <stdexcept>
 
-namespace smithlab::fitrun {
+namespace smithlab::fit {
 
 namespace {
 constexpr double deg = std::numbers::pi / 180.0;
@@ -69,4 +69,4 @@ std::vector<Pair> slice_points(int n) {
     return out;
 }
 
-}  // namespace smithlab::fitrun
+}  // namespace smithlab::fit

@@ -7,7 +7,7 @@
 
 #include "smithlab/geometry.hpp"
 
-namespace smithlab::fitrun {
+namespace smithlab::fit {
 
 // Hammon 2017, slides "Direct only" ... "Approximate diffuse only" (shared/refs, lines 700-760 and 1715-1755): rows
 // the light at 0, 90 and 135 degrees from the viewer, each row three spheres at albedo 0.75, 0.5, 0.25.
@@ -55,4 +55,4 @@ SphereGroup sphere_group(int P);
 // theta_d = (j + 1/2) 90/n down; point k = j n + i.
 std::vector<Pair> slice_points(int n);
 
-}  // namespace smithlab::fitrun
+}  // namespace smithlab::fit

@@ -5,7 +5,7 @@
 #include "fit/picture_traces.hpp"
 #include "smithlab/csv.hpp"
 
-namespace smithlab::fitrun {
+namespace smithlab::fit {
 
 namespace {
 
@@ -105,4 +105,4 @@ std::string pictures_markdown(const FitScene::Pictures& p, const PictureReport& 
     return md.str();
 }
 
-}  // namespace smithlab::fitrun
+}  // namespace smithlab::fit

@@ -10,7 +10,7 @@
 #include "fit/fit_scene.hpp"
 #include "fit/picture_tables.hpp"
 
-namespace smithlab::fitrun {
+namespace smithlab::fit {
 
 // A check's result: the largest relative difference of Lambertian facets from Lambert's law per NDF at the smallest
 // sphere alpha.
@@ -30,4 +30,4 @@ struct PictureReport {
 
 std::string pictures_markdown(const FitScene::Pictures& pictures, const PictureReport& report);
 
-}  // namespace smithlab::fitrun
+}  // namespace smithlab::fit

@@ -10,7 +10,7 @@
 #include "output/staged_directory.hpp"
 #include "smithlab/csv.hpp"
 
-namespace smithlab::fitrun {
+namespace smithlab::fit {
 
 namespace fs = std::filesystem;
 
@@ -201,4 +201,4 @@ std::vector<std::string> write_constants_vs_parameter(const fs::path& dir, const
     return stems;
 }
 
-}  // namespace smithlab::fitrun
+}  // namespace smithlab::fit

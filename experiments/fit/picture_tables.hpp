@@ -12,7 +12,7 @@
 #include "fit/picture_geometry.hpp"
 #include "smithlab/fit/dataset.hpp"
 
-namespace smithlab::fitrun {
+namespace smithlab::fit {
 
 // The models drawn: every fitted one, and the baselines Lambert, Disney and EON at their published constants (those
 // the scene measured).
@@ -61,4 +61,4 @@ double lambert_check(const SphereGroup& g, const std::vector<fit::SplitMoments>&
 std::vector<std::string> write_constants_vs_parameter(const std::filesystem::path& dir, const Results& results,
                                                       const LabelColumns& columns);
 
-}  // namespace smithlab::fitrun
+}  // namespace smithlab::fit

@@ -10,7 +10,7 @@
 #include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
 
-namespace smithlab::fitrun {
+namespace smithlab::fit {
 
 namespace fs = std::filesystem;
 
@@ -173,4 +173,4 @@ std::vector<PictureData> trace_pictures(const PictureSpec& s, const std::vector<
     return out;
 }
 
-}  // namespace smithlab::fitrun
+}  // namespace smithlab::fit

@@ -19,7 +19,7 @@
 #include "smithlab/fit/dataset.hpp"
 #include "smithlab/registry.hpp"
 
-namespace smithlab::fitrun {
+namespace smithlab::fit {
 
 // The light single scattering misses: directional albedos (the sample estimator) of Lambertian facets at these
 // incidences, measured at these albedos.
@@ -47,4 +47,4 @@ std::vector<PictureData> trace_pictures(const PictureSpec& spec, const std::vect
                                         const NdfRegistry& registry, const std::filesystem::path& cache,
                                         unsigned threads, std::int64_t& walks_traced);
 
-}  // namespace smithlab::fitrun
+}  // namespace smithlab::fit

@@ -7,7 +7,7 @@
 #include "output/sealed_file.hpp"
 #include "smithlab/csv.hpp"
 
-namespace smithlab::fitrun {
+namespace smithlab::fit {
 
 namespace fs = std::filesystem;
 
@@ -66,4 +66,4 @@ std::string cache_directory_name(const std::string& label) {
     return d;
 }
 
-}  // namespace smithlab::fitrun
+}  // namespace smithlab::fit

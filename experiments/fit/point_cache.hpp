@@ -17,7 +17,7 @@
 #include "smithlab/any_ndf.hpp"
 #include "smithlab/fit/dataset.hpp"
 
-namespace smithlab::fitrun {
+namespace smithlab::fit {
 
 struct CacheFile {
     std::filesystem::path path;
@@ -42,4 +42,4 @@ void write_cache(const CacheFile& file, const std::vector<fit::SplitMoments>& mo
 // An NDF label as a directory name: letters, digits, '.', '=' and '-' kept, anything else '_'.
 std::string cache_directory_name(const std::string& label);
 
-}  // namespace smithlab::fitrun
+}  // namespace smithlab::fit

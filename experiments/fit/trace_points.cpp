@@ -6,7 +6,7 @@
 #include "smithlab/util/parallel.hpp"
 #include "trace/capped_walks.hpp"
 
-namespace smithlab::fitrun {
+namespace smithlab::fit {
 
 fit::SplitMoments trace_point(const AnySurface& surface, const walk::Material& m, const TracePoint& p,
                               Estimator estimator, std::uint64_t seed, std::int64_t walks) {
@@ -39,4 +39,4 @@ std::vector<fit::SplitMoments> trace_points(const AnyNdf& ndf, const walk::Mater
     return traced;
 }
 
-}  // namespace smithlab::fitrun
+}  // namespace smithlab::fit

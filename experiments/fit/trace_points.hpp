@@ -12,7 +12,7 @@
 #include "smithlab/surface.hpp"
 #include "smithlab/walk/facets.hpp"
 
-namespace smithlab::fitrun {
+namespace smithlab::fit {
 
 // A point to trace: its directions (the albedo estimator reads wi only) and its random stream.
 struct TracePoint {
@@ -32,4 +32,4 @@ std::vector<fit::SplitMoments> trace_points(const AnyNdf& ndf, const walk::Mater
                                             std::uint64_t seed, std::int64_t walks, unsigned threads,
                                             const std::function<void(std::uint64_t)>& done);
 
-}  // namespace smithlab::fitrun
+}  // namespace smithlab::fit

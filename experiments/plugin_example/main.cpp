@@ -9,7 +9,7 @@
 // `plugin_example fit` fits it beside the built-in ones and exports its GLSL.
 #include <numbers>
 #include <smithlab/cli.hpp>
-#include <smithlab/smithlab.hpp>
+#include <smithlab/gtr.hpp>
 
 #include "minnaert.hpp"
 
@@ -64,7 +64,6 @@ int main(int argc, char** argv) {
                  });
     // Walked as its own type on every built-in NDF and on myggx.
     registry.materials().add<CoatedLambert>(smithlab::builtin_ndf_types{} + smithlab::NdfTypes<MyGgx>{});
-    smithlab::fit::DiffuseRegistry models = smithlab::fit::builtin_diffuse_registry();
-    models.add(minnaert_model());
-    return smithlab::run_cli(argc, argv, registry, models);
+    registry.diffuse_models().add(minnaert_model());
+    return smithlab::run_cli(argc, argv, registry);
 }

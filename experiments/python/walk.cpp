@@ -42,11 +42,11 @@ Vec3 outgoing(double theta, double phi) {
 // The walk's options by their names (scene/walk_options.hpp), a bad one named as the keyword argument.
 walk::MicrosurfaceOptions walk_options(const std::string& downward, const std::string& hit_normal) {
     if (!find_named(downward_names, downward))
-        throw input_error("downward must be " + trace::quoted_names(downward_names) + ", got '" + downward + "'");
-    if (!find_named(trace::hit_normal_names, hit_normal))
-        throw input_error("hit_normal must be " + trace::quoted_names(trace::hit_normal_names) + ", got '" +
+        throw input_error("downward must be " + scene::quoted_names(downward_names) + ", got '" + downward + "'");
+    if (!find_named(scene::hit_normal_names, hit_normal))
+        throw input_error("hit_normal must be " + scene::quoted_names(scene::hit_normal_names) + ", got '" +
                           hit_normal + "'");
-    return trace::parse_walk_options(downward, hit_normal, "");
+    return scene::parse_walk_options(downward, hit_normal, "");
 }
 
 // walks in all (walks x pairs for brdf) at most max_walks, as the command line's --max-walks bounds a scene.
@@ -301,10 +301,10 @@ void bind_walk(py::module_& m) {
     m.def("trace", &trace_one_cell, py::arg("ndf"), py::arg("material") = "mirror", py::arg("theta_i") = 45.0,
           py::arg("phi_i") = 0.0, py::arg("walks") = 1'000'000, py::arg("seed") = 1, py::arg("threads") = 0,
           py::arg("max_order") = 0, py::arg("downward") = "smith", py::arg("hit_normal") = "visible",
-          py::arg("max_walks") = report::SizeLimits{}.max_walks, trace_doc);
+          py::arg("max_walks") = scene::SizeLimits{}.max_walks, trace_doc);
     m.def("brdf", &brdf_pairs, py::arg("ndf"), py::arg("material"), py::arg("theta_i"), py::arg("phi_i"),
           py::arg("theta_o"), py::arg("phi_o"), py::arg("walks") = 1'000'000, py::arg("seed") = 1,
-          py::arg("threads") = 0, py::arg("downward") = "smith", py::arg("max_walks") = report::SizeLimits{}.max_walks,
+          py::arg("threads") = 0, py::arg("downward") = "smith", py::arg("max_walks") = scene::SizeLimits{}.max_walks,
           brdf_doc);
 }
 

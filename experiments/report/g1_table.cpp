@@ -25,19 +25,19 @@ bool matches_any(const std::vector<std::string>& patterns, const std::string& na
     return std::any_of(patterns.begin(), patterns.end(), [&](const std::string& p) { return glob_match(p, name); });
 }
 
-void add_grid_ndfs(const std::vector<NdfEntry>& entries, const std::vector<double>& alphas, const NdfRegistry& ndfs,
-                   G1Table& table) {
-    for (const NdfEntry& e : entries) {
+void add_grid_ndfs(const std::vector<scene::NdfEntry>& entries, const std::vector<double>& alphas,
+                   const NdfRegistry& ndfs, G1Table& table) {
+    for (const scene::NdfEntry& e : entries) {
         if (e.roughness_given) {
-            for (const ParamPoint& p : e.points()) {
-                table.ndfs.push_back(make_entry_ndf(e, ndfs, p, std::nullopt));
+            for (const scene::ParamPoint& p : e.points()) {
+                table.ndfs.push_back(scene::make_entry_ndf(e, ndfs, p, std::nullopt));
                 table.alphas.push_back(table.ndfs.back().has_param("alpha") ? table.ndfs.back().param("alpha") : NAN);
             }
             continue;
         }
         for (double a : alphas)
-            for (const ParamPoint& p : e.points()) {
-                table.ndfs.push_back(make_entry_ndf(e, ndfs, p, a));
+            for (const scene::ParamPoint& p : e.points()) {
+                table.ndfs.push_back(scene::make_entry_ndf(e, ndfs, p, a));
                 table.alphas.push_back(a);
             }
     }
@@ -155,8 +155,8 @@ std::string G1Row::description() const {
            "CPU has AVX-512, four where it has AVX2; measured in G1 only";
 }
 
-G1Table g1_table(const std::vector<NdfEntry>& entries, const std::vector<double>& alphas, const NdfRegistry& ndfs,
-                 const VariantRegistry& variants, const std::vector<std::string>& include,
+G1Table g1_table(const std::vector<scene::NdfEntry>& entries, const std::vector<double>& alphas,
+                 const NdfRegistry& ndfs, const VariantRegistry& variants, const std::vector<std::string>& include,
                  const std::vector<std::string>& exclude) {
     G1Table table;
     add_grid_ndfs(entries, alphas, ndfs, table);

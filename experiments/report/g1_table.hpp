@@ -45,8 +45,8 @@ struct G1Table {
 };
 
 // The grid's NDFs and the selected variants: input_error for an unknown family or a scene that selects no variant.
-G1Table g1_table(const std::vector<NdfEntry>& entries, const std::vector<double>& alphas, const NdfRegistry& ndfs,
-                 const VariantRegistry& variants, const std::vector<std::string>& include,
+G1Table g1_table(const std::vector<scene::NdfEntry>& entries, const std::vector<double>& alphas,
+                 const NdfRegistry& ndfs, const VariantRegistry& variants, const std::vector<std::string>& include,
                  const std::vector<std::string>& exclude);
 // input_error unless every grid mu is finite and > 0 and every quadrature a row runs (its own, its reference's)
 // accepts it.

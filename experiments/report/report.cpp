@@ -96,10 +96,10 @@ int run_report(Scene& scene, const std::string& out_dir, const NdfRegistry& ndfs
     for (auto& section : scene.sections) section->check(scene.settings, ndfs, variants);
     // Under MPI every rank has checked the scene alike; the ranks compute the sections that run on all ranks (the
     // walk) together, rank 0 alone does the rest (the other ranks wait meanwhile, asleep).
-    if (mpi::size() > 1) mpi::set_talking();
+    if (cluster::mpi::size() > 1) cluster::mpi::set_talking();
     for (auto& section : scene.sections)
-        if (mpi::rank() == 0 || section->on_all_ranks()) section->compute();
-    if (mpi::rank() != 0) return 0;
+        if (cluster::mpi::rank() == 0 || section->on_all_ranks()) section->compute();
+    if (cluster::mpi::rank() != 0) return 0;
     write_report(scene, out_dir);
     return 0;
 }

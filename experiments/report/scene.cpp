@@ -13,15 +13,15 @@ namespace smithlab::report {
 
 namespace {
 
-void read_grid(StrictTable& doc, Settings& s) {
-    StrictTable grid = doc.table("grid", {"alpha", "mu"});
-    s.alphas = read_axis(grid, "alpha");
-    s.mus = read_axis(grid, "mu");
+void read_grid(scene::StrictTable& doc, Settings& s) {
+    scene::StrictTable grid = doc.table("grid", {"alpha", "mu"});
+    s.alphas = scene::read_axis(grid, "alpha");
+    s.mus = scene::read_axis(grid, "mu");
     require_positive_mus(grid, "mu", s.mus);
     grid.done();
 }
 
-void read_timing(StrictTable& doc, Settings& s) {
+void read_timing(scene::StrictTable& doc, Settings& s) {
     auto timing = doc.optional_table("timing", {"min_time"});
     if (!timing) return;
     s.min_time = timing->real("min_time", s.min_time);
@@ -29,7 +29,7 @@ void read_timing(StrictTable& doc, Settings& s) {
     timing->done();
 }
 
-void read_figures(StrictTable& doc, Settings::Figures& fig) {
+void read_figures(scene::StrictTable& doc, Settings::Figures& fig) {
     auto f = doc.optional_table(
         "figures", {"pareto", "error_maps", "dimov_heightfields", "dimov_spline_mean", "dimov_gamma4_vs_10"});
     if (!f) return;
@@ -60,8 +60,8 @@ Scene parse_scene(const std::string& text, const std::string& source, const NdfR
 
 Scene parse_scene(const std::string& text, const std::string& source, const NdfRegistry& registry, Sections sections,
                   double scale) {
-    const toml::value data = parse_toml(text, source);
-    StrictTable doc(data, source, "", known_keys(sections));
+    const toml::value data = scene::parse_toml(text, source);
+    scene::StrictTable doc(data, source, "", known_keys(sections));
     Scene s{.settings = {}, .sections = std::move(sections)};
     s.settings.scale = scale;
     s.settings.title = doc.text("title", "smithlab report");
@@ -94,7 +94,7 @@ bool glob_match(const std::string& pattern, const std::string& name) {
     return p == pattern.size();
 }
 
-void require_positive_mus(const StrictTable& t, const std::string& key, const std::vector<double>& mus) {
+void require_positive_mus(const scene::StrictTable& t, const std::string& key, const std::vector<double>& mus) {
     for (double mu : mus)
         if (!(mu > 0.0 && std::isfinite(mu)))
             t.fail(key,
@@ -105,7 +105,7 @@ void require_matches(const std::vector<std::string>& patterns, const std::vector
                      const std::string& where) {
     for (const std::string& p : patterns) {
         if (std::any_of(names.begin(), names.end(), [&](const std::string& n) { return glob_match(p, n); })) continue;
-        const std::string near = nearest_name(p, names);
+        const std::string near = scene::nearest_name(p, names);
         throw input_error(where + " pattern '" + p + "' matches no name" +
                           (near.empty() ? "" : " (did you mean '" + near + "'?)"));
     }

@@ -34,10 +34,10 @@ const std::string& default_scene_text();
 bool glob_match(const std::string& pattern, const std::string& name);
 
 // Refuses, naming key and its FILE:LINE, a mu that is not finite and > 0 (grid.mu, g2.mu: directions above).
-void require_positive_mus(const StrictTable& table, const std::string& key, const std::vector<double>& mus);
+void require_positive_mus(const scene::StrictTable& table, const std::string& key, const std::vector<double>& mus);
 
 // Refuses a pattern that matches none of `names`: input_error "WHERE: pattern 'P' matches no name (did you mean
-// 'N'?)", `where` being the key's "FILE:LINE: variants.include" (StrictTable::where).
+// 'N'?)", `where` being the key's "FILE:LINE: variants.include" (scene::StrictTable::where).
 void require_matches(const std::vector<std::string>& patterns, const std::vector<std::string>& names,
                      const std::string& where);
 

@@ -37,7 +37,7 @@ public:
     virtual std::vector<std::string> keys() const = 0;
     // Reads those keys from the scene's document, strictly (an input_error "FILE:LINE: key ..."); the settings (the
     // scene's title, [grid], [timing], [figures]) are read before any section.
-    virtual void read(StrictTable& doc, const Settings& settings, const NdfRegistry& ndfs) = 0;
+    virtual void read(scene::StrictTable& doc, const Settings& settings, const NdfRegistry& ndfs) = 0;
     // Its evaluations, estimated from the scene alone (parts named as the work's message shows them).
     virtual void add_work(Work& work, const Settings& settings, const VariantRegistry& variants) const = 0;
     // Its domains checked and its input built, before any section computes: an input_error naming the key.

@@ -79,13 +79,13 @@ std::vector<WalkCell> walk_cells(const WalkScene& w, const NdfRegistry& registry
     std::vector<walk::Material> materials;
     for (const std::string& m : w.materials) materials.push_back(registry.materials().make(m));  // checked by the scene
     std::vector<WalkCell> cells;
-    for (const NdfEntry& e : w.ndfs)
-        for (const ParamPoint& p : e.points()) {
+    for (const scene::NdfEntry& e : w.ndfs)
+        for (const scene::ParamPoint& p : e.points()) {
             const std::vector<std::optional<double>> alphas = e.roughness_given
                 ? std::vector<std::optional<double>>{std::nullopt}
                 : std::vector<std::optional<double>>(w.alphas.begin(), w.alphas.end());
             for (const std::optional<double>& a : alphas) {
-                const AnyNdf ndf = make_entry_ndf(e, registry, p, a);
+                const AnyNdf ndf = scene::make_entry_ndf(e, registry, p, a);
                 try {
                     make_surface(ndf);  // its tables may refuse it
                 } catch (const input_error& err) {
@@ -94,7 +94,7 @@ std::vector<WalkCell> walk_cells(const WalkScene& w, const NdfRegistry& registry
                 // The label's parameters: all but alpha (its own column), and but the one alpha set.
                 const NdfInfo& info = *registry.find(e.family);
                 const std::string set_by_alpha = a && info.roughness ? info.roughness->parameter : "alpha";
-                ParamPoint shown;
+                scene::ParamPoint shown;
                 for (const auto& [name, v] : ndf.parts().params)
                     if (name != "alpha" && name != set_by_alpha) shown.emplace_back(name, v);
                 const double alpha = a ? *a : ndf.has_param("alpha") ? ndf.param("alpha") : NAN;
@@ -174,7 +174,9 @@ void write_walk_markdown(const std::vector<WalkResult>& results, const WalkScene
     }
     std::ofstream md(dir / "report.md", std::ios::app);
     const std::string threads = std::to_string(util::thread_count(0)) + " threads",
-                      where = mpi::size() > 1 ? std::to_string(mpi::size()) + " MPI ranks x " + threads : threads;
+                      where = cluster::mpi::size() > 1
+        ? std::to_string(cluster::mpi::size()) + " MPI ranks x " + threads
+        : threads;
     md << format_printf(
               "\n## Multiple scattering: albedo by scattering order (path-traced)\n\nThe Smith microsurface traced "
               "by smithlab's random walk (Heitz, Hanika, d'Eon and Dachsbacher 2016, alg. 1-3: uniform heights, "

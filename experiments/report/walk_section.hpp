@@ -23,7 +23,7 @@ namespace smithlab::report {
 
 // The scene's [walk]: absent (ndfs empty) unless named.
 struct WalkScene {
-    std::vector<NdfEntry> ndfs;
+    std::vector<scene::NdfEntry> ndfs;
     std::vector<std::string> materials = {"mirror", "lambert(albedo=1)"};  // facet specs (walk/facets.hpp)
     std::vector<double> alphas;
     std::vector<double> theta_i = {45.0};  // degrees, in [0, 90)
@@ -36,8 +36,8 @@ struct WalkScene {
 struct WalkCell {
     std::uint64_t index;
     std::string family;
-    ParamPoint params;  // the NDF's parameters but alpha (and but the one alpha sets, when swept over alpha)
-    double alpha;       // NaN for an NDF without one, not swept over alpha
+    scene::ParamPoint params;  // the NDF's parameters but alpha (and but the one alpha sets, when swept over alpha)
+    double alpha;              // NaN for an NDF without one, not swept over alpha
     AnyNdf ndf;
     walk::Material material;
     double theta_i;     // degrees

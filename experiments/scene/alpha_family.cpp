@@ -2,7 +2,7 @@
 
 #include "smithlab/spec.hpp"
 
-namespace smithlab::report {
+namespace smithlab::scene {
 
 std::string family_label(const AlphaFamily& f) {
     return f.params.empty() && f.entry.texts.empty() ? f.family() : format_spec({f.family(), f.params, f.entry.texts});
@@ -33,4 +33,4 @@ std::vector<AlphaFamily> read_alpha_families(StrictTable& doc, const NdfRegistry
     return out;
 }
 
-}  // namespace smithlab::report
+}  // namespace smithlab::scene

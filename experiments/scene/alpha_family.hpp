@@ -12,7 +12,7 @@
 #include "smithlab/any_ndf.hpp"
 #include "smithlab/registry.hpp"
 
-namespace smithlab::report {
+namespace smithlab::scene {
 
 struct AlphaFamily {
     NdfEntry entry;     // the [[ndf]] it comes from
@@ -33,4 +33,4 @@ AnyNdf make_ndf(const NdfRegistry& registry, const AlphaFamily& family, double a
 std::vector<AlphaFamily> read_alpha_families(StrictTable& doc, const NdfRegistry& registry, const std::string& sweep,
                                              const std::function<void(const StrictTable&, double)>& check = {});
 
-}  // namespace smithlab::report
+}  // namespace smithlab::scene

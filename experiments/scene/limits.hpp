@@ -6,7 +6,7 @@
 #include <cmath>
 #include <cstddef>
 
-namespace smithlab::report {
+namespace smithlab::scene {
 
 // A scene file's size: the default scenes are 2-6 KB and an axis of any length is written {log = [lo, hi], n = N},
 // so 1 MiB is far beyond any scene written by hand, and it refuses /dev/zero, an endless pipe or a mistaken large
@@ -41,4 +41,4 @@ inline long long scaled_count(long long n, double scale, long long least) {
     return s < static_cast<double>(least) ? least : static_cast<long long>(s);
 }
 
-}  // namespace smithlab::report
+}  // namespace smithlab::scene

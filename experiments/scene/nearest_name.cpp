@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-namespace smithlab::report {
+namespace smithlab::scene {
 
 std::size_t edit_distance(std::string_view a, std::string_view b) {
     // d[i][j]: distance between the first i characters of a and the first j of b.
@@ -33,4 +33,4 @@ std::string nearest_name(std::string_view name, const std::vector<std::string>& 
     return best_distance <= allowed ? best : std::string();
 }
 
-}  // namespace smithlab::report
+}  // namespace smithlab::scene

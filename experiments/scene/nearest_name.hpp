@@ -7,7 +7,7 @@
 #include <string_view>
 #include <vector>
 
-namespace smithlab::report {
+namespace smithlab::scene {
 
 // Edit distance with adjacent transpositions (optimal string alignment): insertions, deletions, substitutions and
 // swaps of two neighbours count 1 each ("titel" -> "title" is 1).
@@ -17,4 +17,4 @@ std::size_t edit_distance(std::string_view a, std::string_view b);
 // at most a third of the longer name, and at least 1 allowed).
 std::string nearest_name(std::string_view name, const std::vector<std::string>& known);
 
-}  // namespace smithlab::report
+}  // namespace smithlab::scene

@@ -5,7 +5,7 @@
 #include "smithlab/errors.hpp"
 #include "smithlab/spec.hpp"
 
-namespace smithlab::report {
+namespace smithlab::scene {
 
 namespace {
 bool registry_declares(const NdfRegistry& registry, const std::string& key) {
@@ -92,4 +92,4 @@ AnyNdf make_entry_ndf(const NdfEntry& e, const NdfRegistry& registry, const Para
     }
 }
 
-}  // namespace smithlab::report
+}  // namespace smithlab::scene

@@ -17,7 +17,7 @@
 #include "scene/strict_table.hpp"
 #include "smithlab/registry.hpp"
 
-namespace smithlab::report {
+namespace smithlab::scene {
 
 using ParamPoint = std::vector<std::pair<std::string, double>>;
 
@@ -51,4 +51,4 @@ NdfEntry read_ndf_entry(StrictTable& t, const NdfRegistry& registry);
 AnyNdf make_entry_ndf(const NdfEntry& entry, const NdfRegistry& registry, const ParamPoint& point,
                       std::optional<double> alpha);
 
-}  // namespace smithlab::report
+}  // namespace smithlab::scene

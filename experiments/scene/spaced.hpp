@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace smithlab::report {
+namespace smithlab::scene {
 
 // The most points one axis may hold: a scene's size is bounded by the work limit (work_estimate.hpp), but an axis
 // is made before the work is estimated, so it has its own bound (80 MB of doubles, made in ~0.1 s).
@@ -19,4 +19,4 @@ enum class Spacing { lin, log, sqrt, cbrt };
 // heavy-tailed NDF's albedo changes like ln alpha); the first is lo and the last hi exactly.
 std::vector<double> spaced(double lo, double hi, std::int64_t n, Spacing spacing);
 
-}  // namespace smithlab::report
+}  // namespace smithlab::scene

@@ -14,7 +14,7 @@
 #include "smithlab/csv.hpp"
 #include "smithlab/errors.hpp"
 
-namespace smithlab::report {
+namespace smithlab::scene {
 
 namespace {
 
@@ -375,4 +375,4 @@ std::vector<double> read_axis(StrictTable& t, const std::string& key) {
     return spaced(range[0], range[1], n, kind);
 }
 
-}  // namespace smithlab::report
+}  // namespace smithlab::scene

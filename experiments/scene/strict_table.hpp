@@ -17,7 +17,7 @@
 #include <toml.hpp>
 #include <vector>
 
-namespace smithlab::report {
+namespace smithlab::scene {
 
 class StrictTable {
 public:
@@ -88,4 +88,4 @@ toml::value parse_toml(const std::string& text, const std::string& source);
 // is refused.
 std::vector<double> read_axis(StrictTable& t, const std::string& key);
 
-}  // namespace smithlab::report
+}  // namespace smithlab::scene

@@ -2,7 +2,7 @@
 
 #include "smithlab/csv.hpp"
 
-namespace smithlab::report {
+namespace smithlab::scene {
 
 std::vector<double> read_bounded(StrictTable& t, const std::string& key, double lo, double hi, bool open_lo,
                                  bool open_hi, const std::string& range) {
@@ -13,4 +13,4 @@ std::vector<double> read_bounded(StrictTable& t, const std::string& key, double 
     return v;
 }
 
-}  // namespace smithlab::report
+}  // namespace smithlab::scene

@@ -8,7 +8,7 @@
 
 #include "scene/strict_table.hpp"
 
-namespace smithlab::report {
+namespace smithlab::scene {
 
 // Refuses a list that names one thing twice (equal as values: 1.5 and 1.50, or one conductor spelled two ways).
 template <class T, class Describe>
@@ -23,4 +23,4 @@ void refuse_repeats(const StrictTable& t, const std::string& key, const std::vec
 std::vector<double> read_bounded(StrictTable& t, const std::string& key, double lo, double hi, bool open_lo,
                                  bool open_hi, const std::string& range);
 
-}  // namespace smithlab::report
+}  // namespace smithlab::scene

@@ -11,7 +11,7 @@
 #include "smithlab/smith.hpp"
 #include "smithlab/walk/microsurface.hpp"
 
-namespace smithlab::trace {
+namespace smithlab::scene {
 
 // The hit normals by name (walk::HitNormal, microsurface.hpp). The downward Lambda's are smith.hpp's downward_names.
 inline constexpr std::array<Named<walk::HitNormal>, 2> hit_normal_names = {{
@@ -46,4 +46,4 @@ inline walk::MicrosurfaceOptions parse_walk_options(const std::string& downward,
     return o;
 }
 
-}  // namespace smithlab::trace
+}  // namespace smithlab::scene

@@ -6,22 +6,22 @@ namespace smithlab::trace {
 
 void CellJobs::put(std::vector<char>& out, const Partial& p) const {
     for (const walk::Moments& m : p.albedo.bins) {
-        mpi::put(out, m.sum);
-        mpi::put(out, m.sum2);
+        cluster::mpi::put(out, m.sum);
+        cluster::mpi::put(out, m.sum2);
     }
-    mpi::put(out, p.albedo.walks);
-    mpi::put(out, p.albedo.events);
-    mpi::put(out, p.albedo.capped);
-    mpi::put(out, static_cast<std::int64_t>(p.brdf ? p.brdf->cells.size() : 0));
+    cluster::mpi::put(out, p.albedo.walks);
+    cluster::mpi::put(out, p.albedo.events);
+    cluster::mpi::put(out, p.albedo.capped);
+    cluster::mpi::put(out, static_cast<std::int64_t>(p.brdf ? p.brdf->cells.size() : 0));
     if (!p.brdf) return;
     for (const walk::Moments& m : p.brdf->cells) {
-        mpi::put(out, m.sum);
-        mpi::put(out, m.sum2);
+        cluster::mpi::put(out, m.sum);
+        cluster::mpi::put(out, m.sum2);
     }
-    mpi::put(out, p.brdf->walks);
+    cluster::mpi::put(out, p.brdf->walks);
 }
 
-CellJobs::Partial CellJobs::get(mpi::Reader& in, std::size_t j) const {
+CellJobs::Partial CellJobs::get(cluster::mpi::Reader& in, std::size_t j) const {
     Partial p = empty(j);
     for (walk::Moments& m : p.albedo.bins) {
         m.sum = in.get<double>();

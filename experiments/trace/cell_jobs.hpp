@@ -58,7 +58,7 @@ public:
     }
 
     void put(std::vector<char>& out, const Partial& p) const;
-    Partial get(mpi::Reader& in, std::size_t j) const;
+    Partial get(cluster::mpi::Reader& in, std::size_t j) const;
 
 private:
     std::vector<CellJob> cells_;

@@ -44,7 +44,8 @@ std::map<std::string, AnyNdf> checked_ndfs(const std::vector<SceneNdf>& scene_nd
     for (const SceneNdf& n : scene_ndfs)
         if (!ndfs.count(n.spec)) {
             const AnyNdf& ndf = ndfs.emplace(n.spec, n.make(registry)).first->second;
-            if (!ndf.note().empty() && mpi::rank() == 0) std::fprintf(stderr, "trace: note: %s\n", ndf.note().c_str());
+            if (!ndf.note().empty() && cluster::mpi::rank() == 0)
+                std::fprintf(stderr, "trace: note: %s\n", ndf.note().c_str());
             make_surface(ndf, opts);
         }
     return ndfs;
@@ -123,7 +124,7 @@ std::vector<std::optional<CellRows>> reuse_cells(const fs::path& out, const std:
 
 // The progress line: "trace: 3 of 48 cells done on 2 ranks, 12% of the walks".
 std::string progress_text(std::int64_t traced, std::int64_t to_trace, std::uint64_t merged, std::uint64_t all) {
-    const std::string ranks = mpi::size() > 1 ? " on " + std::to_string(mpi::size()) + " ranks" : "";
+    const std::string ranks = cluster::mpi::size() > 1 ? " on " + std::to_string(cluster::mpi::size()) + " ranks" : "";
     return format_printf("trace: %lld of %lld cells done%s, %.0f%% of the walks", static_cast<long long>(traced),
                          static_cast<long long>(to_trace), ranks.c_str(),
                          100.0 * static_cast<double>(merged) / static_cast<double>(all));
@@ -205,7 +206,7 @@ RunSummary run_scene(const TraceScene& s, const std::string& source, const NdfRe
                      unsigned threads) {
     const auto t0 = std::chrono::steady_clock::now();
     // Everything is checked first: every spec, every microsurface once, every cell's direction.
-    const walk::MicrosurfaceOptions opts = parse_walk_options(s.downward, s.hit_normal, source + ": walks.");
+    const walk::MicrosurfaceOptions opts = scene::parse_walk_options(s.downward, s.hit_normal, source + ": walks.");
     const CellSettings settings = cell_settings(s);
     const std::vector<Prepared> prepared =
         prepare_cells(cells(s), checked_ndfs(s.ndfs, registry, opts),
@@ -214,19 +215,19 @@ RunSummary run_scene(const TraceScene& s, const std::string& source, const NdfRe
 
     // Under MPI with more than one rank, every rank has checked the scene alike; from here rank 0 alone owns OUT and
     // the others trace what it hands out (cluster/block_jobs.hpp).
-    if (mpi::size() > 1) mpi::set_talking();
+    if (cluster::mpi::size() > 1) cluster::mpi::set_talking();
     RunSummary sum;
     sum.cells = static_cast<std::int64_t>(prepared.size());
     std::vector<std::optional<CellRows>> done(prepared.size());
     std::optional<output::StagedDirectory> stage;
-    if (mpi::rank() == 0) {
+    if (cluster::mpi::rank() == 0) {
         stage.emplace(out, "trace");  // refuses a bad OUT before any work
         done = reuse_cells(out, prepared, s.brdf, jobs);
         for (const auto& d : done) sum.reused += d.has_value();
     }
     const cluster::Traffic traffic =
         trace_cells(std::move(jobs), opts, prepared, s.walks, out, done, threads, sum.traced);
-    if (mpi::rank() != 0) return sum;
+    if (cluster::mpi::rank() != 0) return sum;
 
     answer_capped(prepared, done, s.walks, out);
     RunMeta run = write_outputs(stage->path(), prepared, std::move(done), !s.brdf.empty(), sum);
@@ -237,7 +238,7 @@ RunSummary run_scene(const TraceScene& s, const std::string& source, const NdfRe
     run.seconds = sum.seconds;
     run.threads = util::thread_count(threads);
     nlohmann::ordered_json meta = trace_meta(s, source, run);
-    if (mpi::size() > 1) meta["mpi"] = cluster::traffic_json(traffic);  // threads is then per rank
+    if (cluster::mpi::size() > 1) meta["mpi"] = cluster::traffic_json(traffic);  // threads is then per rank
     output::write_file(stage->path() / "meta.json", meta.dump(2) + "\n");
     stage->publish();
     return sum;

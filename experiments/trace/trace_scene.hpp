@@ -69,7 +69,7 @@ struct TraceCell {
 // counted as a cell) beyond limits.max_cells or walks in all beyond limits.max_walks are refused at the entry that
 // passes the bound (scene/limits.hpp).
 TraceScene parse_trace_scene(const std::string& text, const std::string& source, const NdfRegistry& registry,
-                             const report::SizeLimits& limits = {});
+                             const scene::SizeLimits& limits = {});
 
 // The embedded default, from experiments/scenes/trace_default.toml.
 const std::string& default_trace_scene_text();

@@ -11,35 +11,6 @@
 
 namespace smithlab {
 
-namespace walk {
-
-std::string MaterialInfo::spec() const {
-    std::string s = name;
-    for (std::size_t i = 0; i < parameters.size(); ++i) {
-        const MaterialParameter& p = parameters[i];
-        s += (i == 0 ? "(" : ", ") + p.key + "=" + (std::isnan(p.fallback) ? "" : format_printf("%g", p.fallback));
-    }
-    return parameters.empty() ? s : s + ")";
-}
-
-double MaterialParams::at(const std::string& key) const {
-    const auto it = values_.find(key);
-    if (it == values_.end()) throw std::out_of_range("material '" + name_ + "': no parameter '" + key + "'");
-    return it->second;
-}
-
-bool Material::dirac_at(const Vec3& wi, const Vec3& wo) const {
-    return std::visit(
-        [&](const auto& m) {
-            if constexpr (std::is_same_v<std::decay_t<decltype(m)>, RegisteredMaterial>)
-                return m.kernels->dirac_at(wi, wo);
-            else return material_dirac_at(m, wi, wo);
-        },
-        kind_);
-}
-
-}  // namespace walk
-
 namespace {
 
 // The spec's parameters by key, each checked against the material's declaration: unknown keys refused, required

@@ -9,7 +9,11 @@
 #include "smithlab/student_t.hpp"
 #include "smithlab/tabulated.hpp"
 
+#include "smithlab/fit/diffuse_models.hpp"
+
 namespace smithlab {
+
+NdfRegistry::NdfRegistry() : diffuse_models_(fit::builtin_diffuse_registry()) {}
 
 double NdfParams::at(const std::string& key) const {
     const auto it = values_.find(key);

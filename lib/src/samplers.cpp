@@ -15,8 +15,8 @@ bool any_ndf(const AnyNdf&) { return true; }
 // The capabilities (ndf.hpp): the NDF is exactly GGX / Beckmann of some alpha.
 bool is_ggx(const AnyNdf& n) { return !std::isnan(ggx_alpha(n)); }
 bool is_beckmann(const AnyNdf& n) { return !std::isnan(beckmann_alpha(n)); }
-// A mixture of GGX lobes bounds its slope density (visible_normals_mixture.hpp). Only the D cos law and the fit are
-// built here; the sampler's other tables (its Lambda), and their refusal of an NDF beyond them, come when it is
+// A mixture of GGX lobes bounds its slope density (detail/visible_normals_mixture.hpp). Only the D cos law and the fit
+// are built here; the sampler's other tables (its Lambda), and their refusal of an NDF beyond them, come when it is
 // prepared.
 bool has_mixture(const AnyNdf& n) { return fit_ggx_mixture(n, DcosLaw<AnyNdf>(n)).has_value(); }
 

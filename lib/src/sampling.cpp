@@ -50,8 +50,8 @@ NormalSample visible_sample(const VisibleNormals<N>& normals, const Vec3& wi, Rn
     give_up(who);
 }
 
-// ln N(w) and d ln N / dw for N(w) = ierfc(w) + (w - b) erfc(w), w >= b (visible_normals_closed.hpp). Below w = 6
-// directly (ierfc(w) = e^{-w^2}/sqrt(pi) - w erfc(w) cancels at most a factor 2 w^2 < 72 for w > 0, nothing below);
+// ln N(w) and d ln N / dw for N(w) = ierfc(w) + (w - b) erfc(w), w >= b (detail/visible_normals_closed.hpp). Below w =
+// 6 directly (ierfc(w) = e^{-w^2}/sqrt(pi) - w erfc(w) cancels at most a factor 2 w^2 < 72 for w > 0, nothing below);
 // above, scaled by sqrt(pi) e^{w^2}, the asymptotic series of both, positive: E = sqrt(pi) e^{w^2} N. dN/dw =
 // -(w - b) (2 / sqrt(pi)) e^{-w^2}.
 struct LogN {
@@ -93,7 +93,7 @@ double pdf_ggx_visible(double alpha, const Vec3& wi, const Vec3& m) {
 // Newton's method on ln N, concave (N is the survival function of a log-concave density), so that from either side
 // of the root its steps converge, monotonically once right of it; kept inside the bracket [lo, hi] all the same. Once
 // the residual in ln N is below 1e-9, one more step leaves ~1e-18 (quadratic convergence): it is taken and returned.
-double beckmann_visible_slope(double mu, double u) {
+double detail::beckmann_visible_slope(double mu, double u) {
     const double b = -mu, target = std::log(u) + beckmann_log_N(b, b).value;
     // Starts: for b >= 1 the law of t = w - b is ~ Gamma(2, 1 / (2b)), survival (1 + z) e^{-z} at z = 2bt, solved by
     // two fixed-point steps; else about the mode of (w - b) e^{-w^2}, right of it.

@@ -10,12 +10,12 @@
 ///                      [](const smithlab::NdfParams& p) { return Mine{p.at("alpha")}; });
 ///         return smithlab::run_cli(argc, argv, registry);
 ///     }
-/// Its `--help` names the registry's NDFs, its own among them; `--version` prints smithlab's version. Its own diffuse
-/// models come in the same way, through the second run_cli below (docs/extending.md).
+/// Its `--help` names the registry's NDFs, its own among them; `--version` prints smithlab's version. Its own facet
+/// materials and diffuse models come in the same way, added to `registry.materials()` and
+/// `registry.diffuse_models()` (docs/extending.md).
 /// Under mpirun (where the library was built with MPI), trace, fit and report run on every rank, as `smithlab` does.
 #pragma once
 
-#include "smithlab/fit/diffuse_registry.hpp"
 #include "smithlab/registry.hpp"
 
 namespace smithlab {
@@ -24,9 +24,5 @@ namespace smithlab {
 /// failed, 2 bad input, 3 an internal error). Call it once, from main, before any other thread starts: it installs
 /// the signal handlers that remove a run's temporary outputs, and initializes MPI under mpirun.
 int run_cli(int argc, char** argv, const NdfRegistry& registry);
-/// The same with the diffuse models of `models` (fit::builtin_diffuse_registry() and a program's own, added by
-/// models.add: smithlab/fit/diffuse_registry.hpp) in place of the built-in ones: fit fits and exports them, list and
-/// fit --list-models list them.
-int run_cli(int argc, char** argv, const NdfRegistry& registry, const fit::DiffuseRegistry& models);
 
 }  // namespace smithlab

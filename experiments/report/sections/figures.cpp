@@ -10,7 +10,7 @@ namespace {
 class FiguresSection : public Section {
 public:
     std::vector<std::string> keys() const override { return {}; }
-    void read(StrictTable&, const Settings&, const NdfRegistry&) override {}
+    void read(scene::StrictTable&, const Settings&, const NdfRegistry&) override {}
     void add_work(Work&, const Settings&, const VariantRegistry&) const override {}
     void check(const Settings&, const NdfRegistry&, const VariantRegistry&) override {}
     void write(const std::filesystem::path& dir, const Settings& s) override { write_figures(s.figures, dir); }

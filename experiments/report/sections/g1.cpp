@@ -19,13 +19,13 @@ class G1Section : public Section {
 public:
     std::vector<std::string> keys() const override { return {"ndf", "variants"}; }
 
-    void read(StrictTable& doc, const Settings&, const NdfRegistry& registry) override {
-        for (StrictTable& n : doc.tables("ndf", ndf_table_keys(registry))) {
-            entries_.push_back(read_ndf_entry(n, registry));
+    void read(scene::StrictTable& doc, const Settings&, const NdfRegistry& registry) override {
+        for (scene::StrictTable& n : doc.tables("ndf", scene::ndf_table_keys(registry))) {
+            entries_.push_back(scene::read_ndf_entry(n, registry));
             n.done();
         }
         if (entries_.empty()) doc.fail("ndf", "is missing: no [[ndf]] table names an NDF family");
-        StrictTable variants = doc.table("variants", {"include", "exclude"});
+        scene::StrictTable variants = doc.table("variants", {"include", "exclude"});
         include_ = variants.texts("include");
         exclude_ = variants.texts("exclude", {});
         where_include_ = variants.where("include");
@@ -39,7 +39,7 @@ public:
         double selected = 0.0, ndfs = 0.0;
         for (const LambdaVariant& v : variants.list())
             if (selects(v.name)) selected += v.name == "family" ? 2.0 : 1.0;
-        for (const NdfEntry& e : entries_) ndfs += static_cast<double>(e.count(s.alphas.size()));
+        for (const scene::NdfEntry& e : entries_) ndfs += static_cast<double>(e.count(s.alphas.size()));
         const double points = ndfs * static_cast<double>(s.mus.size());
         work.add("Lambda", selected * points);
         work.add("references", std::min(selected, 3.0) * points);
@@ -75,7 +75,7 @@ private:
     // Whether [variants] selects the variant: include matches it and exclude does not (as g1_table selects).
     bool selects(const std::string& name) const { return matches_any(include_, name) && !matches_any(exclude_, name); }
 
-    std::vector<NdfEntry> entries_;
+    std::vector<scene::NdfEntry> entries_;
     std::vector<std::string> include_, exclude_;
     std::string where_include_, where_exclude_;  // for a pattern that matches no variant
     G1Table table_;

@@ -15,7 +15,7 @@ class G2Section : public Section {
 public:
     std::vector<std::string> keys() const override { return {"g2"}; }
 
-    void read(StrictTable& doc, const Settings&, const NdfRegistry& registry) override {
+    void read(scene::StrictTable& doc, const Settings&, const NdfRegistry& registry) override {
         auto g2 = doc.optional_table("g2", {"include", "families", "mu"});
         if (!g2) return;
         include_ = g2->texts("include");
@@ -28,7 +28,7 @@ public:
             } catch (const input_error& e) {
                 g2->fail("families", e.what());
             }
-        mus_ = read_axis(*g2, "mu");
+        mus_ = scene::read_axis(*g2, "mu");
         require_positive_mus(*g2, "mu", mus_);
         g2->done();
     }

@@ -17,17 +17,17 @@ class SamplingSection : public Section {
 public:
     std::vector<std::string> keys() const override { return {"sampling"}; }
 
-    void read(StrictTable& doc, const Settings& settings, const NdfRegistry& registry) override {
+    void read(scene::StrictTable& doc, const Settings& settings, const NdfRegistry& registry) override {
         auto sm = doc.optional_table("sampling", {"families", "alpha", "theta_o", "samples", "seed"});
         if (!sm) return;
         scene_.families = sm->texts("families");
         if (scene_.families.empty()) sm->fail("families", "is an empty list");
-        scene_.alphas = read_axis(*sm, "alpha");
+        scene_.alphas = scene::read_axis(*sm, "alpha");
         scene_.theta_o = sm->real("theta_o", scene_.theta_o);
         if (!(scene_.theta_o >= 0.0 && scene_.theta_o < 90.0))
             sm->fail("theta_o", "must be in [0, 90) degrees, got " + format_shortest(scene_.theta_o));
         scene_.samples = static_cast<std::size_t>(
-            scaled_count(sm->integer("samples", 100, 100'000'000, 100'000), settings.scale, 100));
+            scene::scaled_count(sm->integer("samples", 100, 100'000'000, 100'000), settings.scale, 100));
         scene_.seed = static_cast<unsigned long long>(sm->integer("seed", 0, INT64_MAX, 1));
         sm->done();
         try {

@@ -17,7 +17,7 @@ namespace smithlab::report {
 
 namespace {
 
-void read_materials(StrictTable& w, WalkScene& walk, const MaterialRegistry& materials) {
+void read_materials(scene::StrictTable& w, WalkScene& walk, const MaterialRegistry& materials) {
     walk.materials = w.texts("materials", walk.materials);
     if (walk.materials.empty()) w.fail("materials", "is an empty list");
     for (const std::string& m : walk.materials) try {
@@ -27,11 +27,11 @@ void read_materials(StrictTable& w, WalkScene& walk, const MaterialRegistry& mat
         }
 }
 
-void read_axes(StrictTable& w, WalkScene& walk) {
-    walk.alphas = read_axis(w, "alpha");
+void read_axes(scene::StrictTable& w, WalkScene& walk) {
+    walk.alphas = scene::read_axis(w, "alpha");
     for (double a : walk.alphas)
         if (!std::isfinite(a)) w.fail("alpha", "must be finite, got " + format_shortest(a));
-    if (w.has("theta_i")) walk.theta_i = read_axis(w, "theta_i");
+    if (w.has("theta_i")) walk.theta_i = scene::read_axis(w, "theta_i");
     for (double t : walk.theta_i)
         if (!(t >= 0.0 && t < 90.0))
             w.fail("theta_i", "must be in [0, 90) degrees (light from above), got " + format_shortest(t));
@@ -41,17 +41,17 @@ class WalkSection : public Section {
 public:
     std::vector<std::string> keys() const override { return {"walk"}; }
 
-    void read(StrictTable& doc, const Settings& settings, const NdfRegistry& registry) override {
+    void read(scene::StrictTable& doc, const Settings& settings, const NdfRegistry& registry) override {
         auto w = doc.optional_table("walk", {"ndf", "materials", "alpha", "theta_i", "walks", "seed"});
         if (!w) return;
-        for (StrictTable& n : w->tables("ndf", ndf_table_keys(registry))) {
-            scene_.ndfs.push_back(read_ndf_entry(n, registry));
+        for (scene::StrictTable& n : w->tables("ndf", scene::ndf_table_keys(registry))) {
+            scene_.ndfs.push_back(scene::read_ndf_entry(n, registry));
             n.done();
         }
         if (scene_.ndfs.empty()) w->fail("ndf", "is missing: no [[walk.ndf]] table names an NDF family");
         read_materials(*w, scene_, registry.materials());
         read_axes(*w, scene_);
-        scene_.walks = scaled_count(w->integer("walks", 100, 1'000'000'000, scene_.walks), settings.scale, 100);
+        scene_.walks = scene::scaled_count(w->integer("walks", 100, 1'000'000'000, scene_.walks), settings.scale, 100);
         scene_.seed = static_cast<unsigned long long>(w->integer("seed", 0, INT64_MAX, 1));
         w->done();
     }
@@ -60,7 +60,7 @@ public:
     // like alpha); shown only when the scene traces any.
     void add_work(Work& work, const Settings&, const VariantRegistry&) const override {
         double ndfs = 0.0, alphas = 0.0;
-        for (const NdfEntry& e : scene_.ndfs) ndfs += static_cast<double>(e.count(1));
+        for (const scene::NdfEntry& e : scene_.ndfs) ndfs += static_cast<double>(e.count(1));
         for (double a : scene_.alphas) alphas += std::max(1.0, a);
         work.add("walks",
                  ndfs * alphas * static_cast<double>(scene_.materials.size() * scene_.theta_i.size()) *
@@ -76,7 +76,7 @@ public:
 
     void compute() override {
         if (cells_.empty()) return;
-        if (mpi::rank() == 0)
+        if (cluster::mpi::rank() == 0)
             std::fprintf(stderr, "report: walk section, %zu cells of %lld walks\n", cells_.size(),
                          static_cast<long long>(scene_.walks));
         const auto t0 = std::chrono::steady_clock::now();

@@ -5,7 +5,8 @@
 /// type-erased samplers (sampling.hpp) turn into input_error.
 ///
 /// The law of s = tan^2(theta_m) is the NDF's analytic survival function Dcos_sf and its inverse Dcos_r2 when it has
-/// them at run time (ndf.hpp), else a RadialTable of pi P22(s) (radial_table.hpp); the azimuth is uniform.
+/// them at run time (ndf.hpp), else a detail::RadialTable of pi P22(s) (detail/radial_table.hpp); the azimuth is
+/// uniform.
 #pragma once
 
 #include <algorithm>
@@ -14,10 +15,10 @@
 #include <memory>
 #include <numbers>
 
+#include "smithlab/detail/radial_table.hpp"
 #include "smithlab/geometry.hpp"
 #include "smithlab/ndf.hpp"
 #include "smithlab/quadrature.hpp"
-#include "smithlab/radial_table.hpp"
 #include "smithlab/rng.hpp"
 
 namespace smithlab {
@@ -30,14 +31,14 @@ inline Vec3 no_normal() { return Vec3::Constant(std::numeric_limits<double>::qui
 inline constexpr long max_tries = 10'000'000;
 
 /// The D cos law of an NDF N: normals m with density D(m) cos(theta_m) (Walter 2007 sec. 5.3), by the NDF's analytic
-/// sampler or a RadialTable (the file comment).
+/// sampler or a detail::RadialTable (the file comment).
 template <Ndf N>
 class DcosLaw {
 public:
     /// tabulate = true tabulates even when the NDF has an analytic sampler (to test the table against it).
     explicit DcosLaw(const N& ndf, bool tabulate = false) : ndf_(ndf) {
         if (tabulate || !has_Dcos_sampler(ndf_))
-            table_ = std::make_shared<const RadialTable>(
+            table_ = std::make_shared<const detail::RadialTable>(
                 [n = ndf_](double s) { return std::numbers::pi * slope_density(n, s); });
     }
 
@@ -69,7 +70,7 @@ public:
         return normal_from_slope(s, cos_sin_turn(uniform01(g)));
     }
 
-    /// Whether the law of s is tabulated (a RadialTable) rather than the NDF's own.
+    /// Whether the law of s is tabulated (a detail::RadialTable) rather than the NDF's own.
     bool tabulated() const { return table_ != nullptr; }
     double table_error() const { return table_ ? table_->error_estimate() : 0.0; }  ///< in probability
     /// The NDF.
@@ -77,7 +78,7 @@ public:
 
 private:
     N ndf_;
-    std::shared_ptr<const RadialTable> table_;  ///< shared: copies of a law are cheap
+    std::shared_ptr<const detail::RadialTable> table_;  ///< shared: copies of a law are cheap
 };
 
 /// Hammon 2017 ("Intersection normal"): a ray travelling along T = -wi hits a facet drawn from D(m) cos(theta_m)

@@ -7,11 +7,11 @@
 /// The walk asks for Lambda of a direction, which it has as tan^2(theta) = (x^2 + y^2) / z^2 without a root:
 /// at_tan2(t). For GGX (the capability ggx_alpha(), ndf.hpp) that is Heitz 2014 eq. 72 in t itself,
 ///     Lambda = (sqrt(1 + alpha^2 t) - 1) / 2 = alpha^2 t / (2 (1 + sqrt(1 + alpha^2 t)))   (no cancellation),
-/// one root and one division; every other NDF a Tan2Spline of its Lambda (tan2_spline.hpp: a cubic picked by the bits
-/// of t, within 1e-7 of the table or closed form it is built from, 1e-12 absolute where Lambda < 1e-5), and
-/// mu = 1 / sqrt(t) where that does not answer (tan(theta) outside [2^-20, 2^20]). Its step needs 1 / Lambda (upward)
-/// and 1 / (1 + Lambda) (downward, Smith's convention): for GGX, with d2 = x^2 + y^2, |z| and R = sqrt(z^2 + alpha^2
-/// d2),
+/// one root and one division; every other NDF a detail::Tan2Spline of its Lambda (detail/tan2_spline.hpp: a cubic
+/// picked by the bits of t, within 1e-7 of the table or closed form it is built from, 1e-12 absolute where Lambda <
+/// 1e-5), and mu = 1 / sqrt(t) where that does not answer (tan(theta) outside [2^-20, 2^20]). Its step needs 1 / Lambda
+/// (upward) and 1 / (1 + Lambda) (downward, Smith's convention): for GGX, with d2 = x^2 + y^2, |z| and R = sqrt(z^2 +
+/// alpha^2 d2),
 ///     1 / Lambda = 2 (z^2 + |z| R) / (alpha^2 d2),   1 / (1 + Lambda) = 2 |z| / (|z| + R),
 /// since sqrt(1 + alpha^2 t) = R / |z| and 1 + Lambda = (1 + R / |z|) / 2: one root and one division each.
 #pragma once
@@ -21,10 +21,10 @@
 #include <memory>
 #include <optional>
 
+#include "smithlab/detail/tan2_spline.hpp"
 #include "smithlab/lambda_table.hpp"
 #include "smithlab/ndf.hpp"
 #include "smithlab/smith.hpp"
-#include "smithlab/tan2_spline.hpp"
 
 namespace smithlab {
 
@@ -39,19 +39,19 @@ struct Quotient {
 };
 
 /// Lambda of an NDF N at the cost of a closed form, for the walk and the samplers: the closed form, else a LambdaTable;
-/// in tan^2, GGX's form or a Tan2Spline (the file comment).
+/// in tan^2, GGX's form or a detail::Tan2Spline (the file comment).
 template <Ndf N>
 class FastLambda {
 public:
-    /// Builds what `ndf` needs: its LambdaTable (options `table`) where it has no closed form, and the Tan2Spline
-    /// unless it is GGX.
+    /// Builds what `ndf` needs: its LambdaTable (options `table`) where it has no closed form, and the
+    /// detail::Tan2Spline unless it is GGX.
     explicit FastLambda(const N& ndf, const LambdaTableOptions& table = {}) : ndf_(ndf) {
         if (!has_closed_Lambda(ndf_)) table_.emplace(tabulate_Lambda(ndf_, table));
         const double a = ggx_alpha(ndf_);
         if (a > 0.0 && a < INFINITY) ggx_alpha2_ = a * a;
         else
-            spline_ = std::make_shared<const Tan2Spline>([this](double t) { return (*this)(1.0 / std::sqrt(t)); },
-                                                         spline_tolerance, spline_floor);
+            spline_ = std::make_shared<const detail::Tan2Spline>(
+                [this](double t) { return (*this)(1.0 / std::sqrt(t)); }, spline_tolerance, spline_floor);
     }
 
     /// Lambda(mu) for mu >= 0 (mu = 0: inf; mu = inf: 0). Downward directions are the caller's convention
@@ -108,8 +108,8 @@ public:
 private:
     N ndf_;
     std::optional<LambdaTable> table_;
-    double ggx_alpha2_ = 0.0;                   ///< > 0: GGX of this alpha^2, Lambda in closed form in tan^2
-    std::shared_ptr<const Tan2Spline> spline_;  ///< every other NDF
+    double ggx_alpha2_ = 0.0;                           ///< > 0: GGX of this alpha^2, Lambda in closed form in tan^2
+    std::shared_ptr<const detail::Tan2Spline> spline_;  ///< every other NDF
 };
 
 }  // namespace smithlab

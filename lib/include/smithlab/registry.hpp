@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "smithlab/any_ndf.hpp"
+#include "smithlab/fit/diffuse_registry.hpp"
 #include "smithlab/material_registry.hpp"
 #include "smithlab/spec.hpp"
 #include "smithlab/surface.hpp"
@@ -78,9 +79,13 @@ struct NdfInfo {
 };
 
 /// NDF families by name: each registered with its NdfInfo and a factory, made from spec strings or parameters (the file
-/// comment).
+/// comment); beside them the facet materials and the diffuse models, so that one value holds every name a front end
+/// reads.
 class NdfRegistry {
 public:
+    /// No NDF yet; the built-in facet materials and diffuse models.
+    NdfRegistry();
+
     /// What a registration keeps: the NDF made from checked parameters, as an AnyNdf named by the canonical spec.
     using Factory = std::function<AnyNdf(const NdfParams&, NdfSpec canonical_spec)>;
 
@@ -129,11 +134,18 @@ public:
     MaterialRegistry& materials() { return materials_; }
     const MaterialRegistry& materials() const { return materials_; }
     ///@}
+    /// The diffuse models `smithlab fit` fits, lists and exports (fit/diffuse_registry.hpp): the built-in ones
+    /// (fit/diffuse_models.hpp), and those added to it.
+    ///@{
+    fit::DiffuseRegistry& diffuse_models() { return diffuse_models_; }
+    const fit::DiffuseRegistry& diffuse_models() const { return diffuse_models_; }
+    ///@}
 
 private:
     void add_erased(NdfInfo info, Factory make);
     std::vector<std::pair<NdfInfo, Factory>> entries_;
     MaterialRegistry materials_;
+    fit::DiffuseRegistry diffuse_models_;
 };
 
 /// ggx, beckmann, blinn, student, abc.

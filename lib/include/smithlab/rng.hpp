@@ -72,7 +72,7 @@ requires std::uniform_random_bit_generator<G> &&(G::min() == 0) &&
 
 /// Two independent uniforms in (-1, 1) from one draw, a point of the square [-1, 1]^2: each half of the 64 bits, as
 /// a signed 32-bit integer k, gives (k + 1/2) 2^-31, on a grid of step 2^-31 symmetric about 0 (a rejection sampler
-/// of the unit disk draws one per try; visible_normals_closed.hpp).
+/// of the unit disk draws one per try; detail/visible_normals_closed.hpp).
 struct SquarePoint {
     /// The point's two coordinates, each in (-1, 1).
     /// @{

@@ -18,11 +18,11 @@
 
 #include "smithlab/any_ndf.hpp"
 #include "smithlab/dcos_law.hpp"
+#include "smithlab/detail/radial_table.hpp"
 #include "smithlab/geometry.hpp"
 #include "smithlab/lambda_table.hpp"
 #include "smithlab/ndf.hpp"
 #include "smithlab/quadrature.hpp"
-#include "smithlab/radial_table.hpp"
 #include "smithlab/rng.hpp"
 #include "smithlab/visible_normals.hpp"
 
@@ -88,7 +88,8 @@ private:
     std::shared_ptr<const VisibleNormals<AnyNdf>> normals_;
 };
 
-/// GGX visible normals in closed form (visible_normals_closed.hpp), any unit wi with A(wi) > 0 (input_error otherwise).
+/// GGX visible normals in closed form (detail/visible_normals_closed.hpp), any unit wi with A(wi) > 0 (input_error
+/// otherwise).
 NormalSample sample_ggx_visible(double alpha, const Vec3& wi, Rng& g);
 /// <wi.m>^+ D(m) / A(wi), with GGX's closed-form Lambda.
 double pdf_ggx_visible(double alpha, const Vec3& wi, const Vec3& m);

@@ -85,24 +85,24 @@ public:
     ///@{
     walk::CellPartial trace_block(const walk::Material& material, const walk::CellRequest& r,
                                   std::uint64_t b) const override {
-        return visit(
+        return walk::visit(
             material, [&](const auto& m) { return walk::trace_block(ms_, m, r, b); },
             [&](const MaterialKernels& k) { return k.trace_block(*this, r, b); });
     }
     walk::EvalTally eval_cell(const walk::Material& material, const walk::EvalRequest& r) const override {
-        return visit(
+        return walk::visit(
             material, [&](const auto& m) { return walk::eval_cell(ms_, m, r); },
             [&](const MaterialKernels& k) { return k.eval_cell(*this, r); });
     }
     fit::SplitMoments eval_point(const walk::Material& material, const Vec3& wi, const Vec3& wo, std::uint64_t seed,
                                  std::uint64_t stream, std::int64_t walks) const override {
-        return visit(
+        return walk::visit(
             material, [&](const auto& m) { return fit::trace_eval_point(ms_, m, wi, wo, seed, stream, walks); },
             [&](const MaterialKernels& k) { return k.eval_point(*this, wi, wo, seed, stream, walks); });
     }
     fit::SplitMoments albedo_point(const walk::Material& material, const Vec3& wi, std::uint64_t seed,
                                    std::uint64_t stream, std::int64_t walks) const override {
-        return visit(
+        return walk::visit(
             material, [&](const auto& m) { return fit::trace_albedo_point(ms_, m, wi, seed, stream, walks); },
             [&](const MaterialKernels& k) { return k.albedo_point(*this, wi, seed, stream, walks); });
     }
@@ -125,18 +125,6 @@ public:
     ///@}
 
 private:
-    /// A built-in material runs `builtin` on its concrete type; a registered one, `registered` on its kernels.
-    template <class Builtin, class Registered>
-    static auto visit(const walk::Material& material, Builtin builtin, Registered registered) {
-        return std::visit(
-            [&](const auto& m) {
-                if constexpr (std::is_same_v<std::decay_t<decltype(m)>, walk::RegisteredMaterial>)
-                    return registered(*m.kernels);
-                else return builtin(m);
-            },
-            material.kind());
-    }
-
     walk::Microsurface<N> ms_;
     AnyNdf self_;
     mutable std::once_flag erased_once_;

@@ -14,15 +14,15 @@
 /// density P22(x, y) (mu - x)^+ (Heitz & d'Eon 2014, eq. 5-6; its integral is |v_xy|-free: W(|mu|) + max(mu, 0)).
 /// Routes (VisibleRoute):
 ///   closed form   when the NDF is GGX or Beckmann by its capability (ndf.hpp: ggx_alpha(), beckmann_alpha()):
-///                 visible_normals_closed.hpp.
+///                 detail/visible_normals_closed.hpp.
 ///   mixture       any NDF a mixture of GGX lobes bounds (tails no heavier than r^-4): GGX visible normals of the
-///                 mixture, accepted with P22 / (K Q), exact (visible_normals_mixture.hpp). What the walk uses for
-///                 every NDF but GGX; below the horizon, where the NDF's Lambda falls under 1/8 of the mixture's
-///                 (a lighter tail than GGX's, Beckmann's, seen from steeply below), the rejection route's mu < 0.
+///                 mixture, accepted with P22 / (K Q), exact (detail/visible_normals_mixture.hpp). What the walk uses
+///                 for every NDF but GGX; below the horizon, where the NDF's Lambda falls under 1/8 of the mixture's (a
+///                 lighter tail than GGX's, Beckmann's, seen from steeply below), the rejection route's mu < 0.
 ///   rejection     any NDF, exact up to the tables it reads:
 ///     mu >= 0: in polar slopes (r, phi) the target is P22 r (mu - r cos phi)^+, drawn from P22 r (mu + r) x uniform
 ///              phi -- a mixture of the D cos law of r (weight mu) and the law P22 r^2 dr (weight 2 pi M, M its
-///              integral: a RadialTable) -- accepting with (mu - r cos phi)^+ / (mu + r). Acceptance
+///              integral: a detail::RadialTable) -- accepting with (mu - r cos phi)^+ / (mu + r). Acceptance
 ///              mu (1 + Lambda) / (mu + 2 pi M): 1 at normal incidence, 1/pi at grazing.
 ///     mu < 0:  with a = -mu and x' = -x, the target P22 (x' - a)^+ is the marginal of P22(x'^2 + y^2) 1[a < xi < x']:
 ///              draw xi from its marginal, the half-plane mass U0(xi) = P(X > xi) on xi > a, whose survival is
@@ -46,23 +46,23 @@
 #include <optional>
 
 #include "smithlab/dcos_law.hpp"
+#include "smithlab/detail/radial_table.hpp"
+#include "smithlab/detail/visible_normals_closed.hpp"
+#include "smithlab/detail/visible_normals_mixture.hpp"
 #include "smithlab/fast_lambda.hpp"
 #include "smithlab/geometry.hpp"
 #include "smithlab/ndf.hpp"
 #include "smithlab/quadrature.hpp"
-#include "smithlab/radial_table.hpp"
 #include "smithlab/rng.hpp"
 #include "smithlab/turn.hpp"
-#include "smithlab/visible_normals_closed.hpp"
-#include "smithlab/visible_normals_mixture.hpp"
 
 namespace smithlab {
 
-/// The mixture of GGX lobes that bounds the NDF's slope density (visible_normals_mixture.hpp), at the slope scale of
-/// the median of its D cos law; none where no mixture does.
+/// The mixture of GGX lobes that bounds the NDF's slope density (detail/visible_normals_mixture.hpp), at the slope
+/// scale of the median of its D cos law; none where no mixture does.
 template <Ndf N>
-std::optional<GgxMixture> fit_ggx_mixture(const N& ndf, const DcosLaw<N>& dcos) {
-    return GgxMixture::fit([ndf](double s) { return slope_density(ndf, s); }, std::sqrt(dcos.isf(0.5)));
+std::optional<detail::GgxMixture> fit_ggx_mixture(const N& ndf, const DcosLaw<N>& dcos) {
+    return detail::GgxMixture::fit([ndf](double s) { return slope_density(ndf, s); }, std::sqrt(dcos.isf(0.5)));
 }
 
 /// automatic: GGX's closed form, else the mixture where it bounds the NDF, else Beckmann's closed form, else rejection
@@ -86,7 +86,7 @@ public:
         if (std::isnan(ggx_) && !mixture_ && (route == VisibleRoute::automatic || route == VisibleRoute::closed))
             beckmann_ = beckmann_alpha(ndf);
         auto r2_law = [ndf](double s) { return 0.5 * slope_density(ndf, s) * std::sqrt(s); };  // P22 r^2 dr in s
-        if (!closed_form() && !mixture_) r_law_ = std::make_shared<const RadialTable>(r2_law);
+        if (!closed_form() && !mixture_) r_law_ = std::make_shared<const detail::RadialTable>(r2_law);
         // W(0) = E[x^+] = 2 M, the projected area of a horizontal direction.
         if (r_law_) W0_ = 2.0 * r_law_->total();
         else if (!Lambda_.tabulated()) W0_ = 1e-100 * Lambda_(1e-100);  // W(0) - 1e-100 / 2
@@ -98,14 +98,14 @@ public:
     /// closed forms inline where they are called; the rejection routes, out of line, keep them small.
     template <class G>
     Vec3 sample(const Vec3& v, G& g) const {
-        if (ggx_ > 0.0) return sample_ggx_visible_normal(ggx_, v, g);
+        if (ggx_ > 0.0) return detail::sample_ggx_visible_normal(ggx_, v, g);
         if (mixture_) {
             if (v.z() < 0.0 && v.z() * v.z() > mixture_below2_ * (v.x() * v.x() + v.y() * v.y())) [[unlikely]]
                 return sample_by_rejection(v, g);
             return mixture_->sample(
                 v, [this](double s) { return dcos_.P22(s); }, g);
         }
-        if (beckmann_ > 0.0) return sample_beckmann_visible_normal(beckmann_, v, g);
+        if (beckmann_ > 0.0) return detail::sample_beckmann_visible_normal(beckmann_, v, g);
         return sample_by_rejection(v, g);
     }
 
@@ -157,7 +157,7 @@ public:
     /// Whether the route is a closed form (GGX's or Beckmann's visible normals).
     bool closed_form() const { return ggx_ > 0.0 || beckmann_ > 0.0; }
     /// The mixture of GGX lobes the route draws through, if any.
-    const std::optional<GgxMixture>& mixture() const { return mixture_; }
+    const std::optional<detail::GgxMixture>& mixture() const { return mixture_; }
     /// The worst of its tables' estimates: the CDF tables' in probability, the Lambda table's relative.
     double table_error() const {
         return std::max({dcos_.table_error(), r_law_ ? r_law_->error_estimate() : 0.0, Lambda_.error_estimate()});
@@ -266,9 +266,9 @@ private:
 
     DcosLaw<N> dcos_;
     FastLambda<N> Lambda_;
-    std::optional<GgxMixture> mixture_;
-    double mixture_below2_ = INFINITY;          ///< below the horizon, cot^2 theta_v beyond this: the rejection route
-    std::shared_ptr<const RadialTable> r_law_;  ///< the law P22 r^2 dr in s = r^2; rejection routes only
+    std::optional<detail::GgxMixture> mixture_;
+    double mixture_below2_ = INFINITY;  ///< below the horizon, cot^2 theta_v beyond this: the rejection route
+    std::shared_ptr<const detail::RadialTable> r_law_;  ///< the law P22 r^2 dr in s = r^2; rejection routes only
     double ggx_ = std::numeric_limits<double>::quiet_NaN(), beckmann_ = std::numeric_limits<double>::quiet_NaN();
     double W0_ = std::numeric_limits<double>::quiet_NaN();
 };

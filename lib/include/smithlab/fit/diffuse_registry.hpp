@@ -2,10 +2,12 @@
 /// smithlab/fit/diffuse_registry.hpp -- diffuse models by name (fit/diffuse_model.hpp): the models `smithlab fit`
 /// fits, lists and exports as GLSL.
 ///
-/// A registry is a value, not a global: the command line builds one (builtin_diffuse_registry(),
-/// fit/diffuse_models.hpp), a program of one's own adds to it and hands it to run_cli (smithlab/cli.hpp).
+/// A registry is a value, not a global: every NdfRegistry holds one, with the built-in models
+/// (registry.diffuse_models(); builtin_diffuse_registry(), fit/diffuse_models.hpp); a program of one's own adds to it
+/// and hands the NdfRegistry to run_cli (smithlab/cli.hpp).
 /// Registering a model is one call, of a DiffuseModel that names its GLSL transcription or says it has none:
-///     models.add({.name = "mine", .parameters = {"k"}, .published = {1.0}, .source = "...", .f = mine_f,
+///     registry.diffuse_models().add({.name = "mine", .parameters = {"k"}, .published = {1.0}, .source = "...", .f =
+///     mine_f,
 ///                 .glsl = smithlab::fit::Glsl{{mine_glsl}, "smithlab_mine(L, V, N, {0}, albedo)"}});
 /// The model is then fitted (by every scene that names no `models`, and by those that name it), listed
 /// (`smithlab list`, `smithlab fit --list-models`) and exported (models.glsl and brdf/, unless it has no GLSL).

@@ -100,4 +100,17 @@ private:
     Kind kind_;
 };
 
+/// `builtin(m)` on the concrete type of a built-in material, `registered(kernels)` on a registered material's
+/// kernels: the one dispatch over Material::kind() (once per block of walks, never per bounce). Both return the same
+/// type.
+template <class Builtin, class Registered>
+auto visit(const Material& material, Builtin&& builtin, Registered&& registered) {
+    return std::visit(
+        [&](const auto& m) {
+            if constexpr (std::is_same_v<std::decay_t<decltype(m)>, RegisteredMaterial>) return registered(*m.kernels);
+            else return builtin(m);
+        },
+        material.kind());
+}
+
 }  // namespace smithlab::walk

@@ -1,10 +1,10 @@
-#include "smithlab/lambda_fixed.hpp"
+#include "smithlab/detail/fixed_rule.hpp"
 
 #include <boost/math/quadrature/gauss.hpp>
 #include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <memory>
 
-namespace smithlab::fixed_rule {
+namespace smithlab::detail::fixed_rule {
 
 namespace {
 
@@ -90,4 +90,4 @@ const Tables& tables() {
     return *t;
 }
 
-}  // namespace smithlab::fixed_rule
+}  // namespace smithlab::detail::fixed_rule

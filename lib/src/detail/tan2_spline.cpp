@@ -1,8 +1,8 @@
-#include "smithlab/tan2_spline.hpp"
+#include "smithlab/detail/tan2_spline.hpp"
 
 #include <algorithm>
 
-namespace smithlab {
+namespace smithlab::detail {
 
 namespace {
 
@@ -58,4 +58,4 @@ Tan2Spline::Tan2Spline(const std::function<double(double)>& f, double tolerance,
     answered_ = static_cast<double>(good) / static_cast<double>(coef_.size());
 }
 
-}  // namespace smithlab
+}  // namespace smithlab::detail

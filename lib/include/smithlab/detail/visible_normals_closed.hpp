@@ -1,7 +1,7 @@
 /// @file
-/// smithlab/visible_normals_closed.hpp -- visible normals in closed form, for a direction v anywhere on the sphere
-/// with A(v) > 0: the law D_v(m) = <v.m>^+ D(m) / A(v) over m.z > 0 (visible_normals.hpp) of the GGX and the Beckmann
-/// distributions. Both stretch v to the alpha = 1 configuration (slopes scale by alpha; Heitz & d'Eon 2014,
+/// smithlab/detail/visible_normals_closed.hpp -- visible normals in closed form, for a direction v anywhere on the
+/// sphere with A(v) > 0: the law D_v(m) = <v.m>^+ D(m) / A(v) over m.z > 0 (visible_normals.hpp) of the GGX and the
+/// Beckmann distributions. Both stretch v to the alpha = 1 configuration (slopes scale by alpha; Heitz & d'Eon 2014,
 /// "Importance Sampling Microfacet-Based BSDFs using the Distribution of Visible Normals", sec. 4, steps 1-5), sample
 /// there, and unstretch. An NDF reaches these through its capability ggx_alpha() / beckmann_alpha() (ndf.hpp).
 /// no_normal() (dcos_law.hpp) when v is straight down (no normal is visible) or rounding defeats 100 draws.
@@ -16,7 +16,7 @@
 #include "smithlab/rng.hpp"
 #include "smithlab/turn.hpp"
 
-namespace smithlab {
+namespace smithlab::detail {
 
 /// GGX: Dupuy & Benyoub 2023, "Sound and Fast Sampling of Visible GGX Normals with Spherical Caps", listing 3. At
 /// alpha = 1, D_v is the clamped cosine about vs restricted to m.z > 0, and m = normalize(vs + u) for u uniform on the
@@ -118,4 +118,4 @@ Vec3 sample_beckmann_visible_normal(double alpha, const Vec3& v, G& g) {
     return no_normal();
 }
 
-}  // namespace smithlab
+}  // namespace smithlab::detail

@@ -1,5 +1,5 @@
 /// @file
-/// smithlab/radial_table.hpp -- sampling a law on s = tan^2(theta_m) in (0, inf) given only its density, by a
+/// smithlab/detail/radial_table.hpp -- sampling a law on s = tan^2(theta_m) in (0, inf) given only its density, by a
 /// tabulated inverse survival function (1 - CDF). It is how an NDF without an analytic sampler is sampled (D cos:
 /// density pi P22(s)), and the second proposal of the generic visible-normal sampler (density P22(s) sqrt(s) / 2, i.e.
 /// P22 r^2 dr).
@@ -18,7 +18,7 @@
 #include <functional>
 #include <vector>
 
-namespace smithlab {
+namespace smithlab::detail {
 
 /// A law on s = tan^2(theta_m) in (0, inf), tabulated from its density: survival function and inverse (see the file
 /// comment).
@@ -42,4 +42,4 @@ private:
     double total_ = 0.0, error_ = 0.0;
 };
 
-}  // namespace smithlab
+}  // namespace smithlab::detail

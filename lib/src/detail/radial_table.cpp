@@ -1,4 +1,4 @@
-#include "smithlab/radial_table.hpp"
+#include "smithlab/detail/radial_table.hpp"
 
 #include <algorithm>
 #include <boost/math/quadrature/gauss.hpp>
@@ -8,7 +8,7 @@
 
 #include "smithlab/errors.hpp"
 
-namespace smithlab {
+namespace smithlab::detail {
 
 namespace {
 
@@ -120,4 +120,4 @@ double RadialTable::isf(double v) const {
     return std::exp(y_min + h * (static_cast<double>(k) + t));
 }
 
-}  // namespace smithlab
+}  // namespace smithlab::detail

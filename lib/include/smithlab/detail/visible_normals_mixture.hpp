@@ -1,16 +1,17 @@
 /// @file
-/// smithlab/visible_normals_mixture.hpp -- exact visible normals of any isotropic NDF whose slope density a mixture of
-/// a few GGX lobes bounds: a GGX visible normal drawn from the mixture, accepted with the ratio of the densities.
+/// smithlab/detail/visible_normals_mixture.hpp -- exact visible normals of any isotropic NDF whose slope density a
+/// mixture of a few GGX lobes bounds: a GGX visible normal drawn from the mixture, accepted with the ratio of the
+/// densities.
 ///
 /// For a unit v the law is D_v(m) = <v.m>^+ D(m) / A(v) (visible_normals.hpp). Let Q = sum_k w_k P22_k be a mixture of
 /// GGX slope densities (P22_k(s) = alpha_k^2 / (pi (alpha_k^2 + s)^2), Walter 2007 eq. 33 in slopes; sum w_k = 1) with
 /// P22(s) <= K Q(s) for every s = tan^2(theta_m). The mixture's visible normals are drawn exactly: lobe k with
 /// probability w_k A_k(v) / sum_j w_j A_j(v), then a visible normal of that lobe (Dupuy & Benyoub 2023,
-/// visible_normals_closed.hpp), since <v.m>^+ Q / A_Q(v) = sum_k (w_k A_k / A_Q) <v.m>^+ D_k / A_k. A_k(v), GGX's
-/// projected area over the whole sphere in Smith's convention, is (R_k + v.z) / 2 with R_k = sqrt(v.z^2 + alpha_k^2
-/// |v_xy|^2) (Heitz 2014 eq. 72: (1 + Lambda) cos theta; below the horizon alpha_k^2 |v_xy|^2 / (2 (R_k - v.z)), no
-/// cancellation). The target over the proposal is proportional to rho(s) = P22(s) / Q(s), a function of the normal's
-/// slope alone, not of v; accepting with rho / K gives D_v exactly (von Neumann's rejection), with probability
+/// detail/visible_normals_closed.hpp), since <v.m>^+ Q / A_Q(v) = sum_k (w_k A_k / A_Q) <v.m>^+ D_k / A_k. A_k(v),
+/// GGX's projected area over the whole sphere in Smith's convention, is (R_k + v.z) / 2 with R_k = sqrt(v.z^2 +
+/// alpha_k^2 |v_xy|^2) (Heitz 2014 eq. 72: (1 + Lambda) cos theta; below the horizon alpha_k^2 |v_xy|^2 / (2 (R_k -
+/// v.z)), no cancellation). The target over the proposal is proportional to rho(s) = P22(s) / Q(s), a function of the
+/// normal's slope alone, not of v; accepting with rho / K gives D_v exactly (von Neumann's rejection), with probability
 /// A(v) / (K A_Q(v)). Above the horizon A / A_Q stays near 1 (both are v.z at the pole and c |v_xy| at grazing); below
 /// it A / A_Q = Lambda(a) / Lambda_Q(a), a = |cot theta_v|, which falls off for an NDF with a lighter tail than the
 /// lobes' (Beckmann: e^(-a^2 / alpha^2)): the caller draws those directions by another route (visible_normals.hpp).
@@ -36,11 +37,11 @@
 #include <vector>
 
 #include "smithlab/dcos_law.hpp"
+#include "smithlab/detail/visible_normals_closed.hpp"
 #include "smithlab/geometry.hpp"
 #include "smithlab/rng.hpp"
-#include "smithlab/visible_normals_closed.hpp"
 
-namespace smithlab {
+namespace smithlab::detail {
 
 /// A mixture of up to max_lobes GGX lobes whose slope density Q bounds an NDF's, P22 <= K Q, and the exact visible
 /// normals drawn through it (the file comment).
@@ -122,4 +123,4 @@ private:
     std::array<double, bins> lo_{}, hi_{};  ///< the squeeze: lo_ <= rho <= hi_ over each bin of x
 };
 
-}  // namespace smithlab
+}  // namespace smithlab::detail

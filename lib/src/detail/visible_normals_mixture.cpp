@@ -1,10 +1,10 @@
-#include "smithlab/visible_normals_mixture.hpp"
+#include "smithlab/detail/visible_normals_mixture.hpp"
 
 #include <algorithm>
 #include <numeric>
 #include <utility>
 
-namespace smithlab {
+namespace smithlab::detail {
 
 namespace {
 
@@ -166,4 +166,4 @@ std::optional<GgxMixture> GgxMixture::fit(const std::function<double(double)>& P
     return m;
 }
 
-}  // namespace smithlab
+}  // namespace smithlab::detail

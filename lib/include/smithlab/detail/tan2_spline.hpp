@@ -1,6 +1,6 @@
 /// @file
-/// smithlab/tan2_spline.hpp -- a function of t = tan^2(theta) > 0 at the cost of a cubic, indexed by the bits of t: no
-/// log, exp or root. What the walk calls for Lambda of an NDF without GGX's closed form (fast_lambda.hpp).
+/// smithlab/detail/tan2_spline.hpp -- a function of t = tan^2(theta) > 0 at the cost of a cubic, indexed by the bits of
+/// t: no log, exp or root. What the walk calls for Lambda of an NDF without GGX's closed form (fast_lambda.hpp).
 ///
 /// A double's bits, read as an integer, are piecewise linear in its value: within a binade [2^e, 2^(e+1)) the 52
 /// mantissa bits are (t / 2^e - 1) 2^52. Their top sub_bits bits and the exponent pick one of 2^sub_bits equal pieces
@@ -27,7 +27,7 @@
 #include <limits>
 #include <vector>
 
-namespace smithlab {
+namespace smithlab::detail {
 
 /// A function of t = tan^2(theta) > 0 tabulated as cubics indexed by the bits of t (the file comment).
 class Tan2Spline {
@@ -69,4 +69,4 @@ private:
     double tolerance_ = 0.0, floor_ = 0.0, answered_ = 0.0;
 };
 
-}  // namespace smithlab
+}  // namespace smithlab::detail
