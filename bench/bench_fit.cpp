@@ -6,8 +6,10 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <smithlab/compensation/compensation.hpp>
 #include <smithlab/compensation/scattering_orders.hpp>
 #include <smithlab/fit/dataset.hpp>
@@ -74,12 +76,99 @@ void add_equal_error(const std::string& name, const N& ndf, const M& material) {
     for (const fit::Directions d : {fit::Directions{45, 60, 135}, {0, 40, 0}, {60, 60, 180}, {80, 85, 0}, {15, 85, 90}})
         for (const auto& [label, e] : {std::pair{"next_event", walk::EvalEstimator::next_event},
                                        {"expected_first", walk::EvalEstimator::expected_first},
-                                       {"reciprocal", walk::EvalEstimator::reciprocal}}) {
+                                       {"reciprocal", walk::EvalEstimator::reciprocal},
+                                       {"position_free", walk::EvalEstimator::position_free}}) {
             char where[64];
             std::snprintf(where, sizeof where, "(%g,%g,%g)/", d.theta_i, d.theta_o, d.phi);
             benchmark::RegisterBenchmark(("equal_error/" + name + where + label).c_str(), equal_error<N, M>, ndf,
                                          material, d, e);
         }
+}
+
+// The equal-error time of position_free against reciprocal (the fitter's) over a grid of fit points, the two run
+// point by point in the same iteration (interleaved: the machine's drift falls on both alike): 30 pairs where
+// neither direction is grazing -- theta_i in {25, 45, 65} x theta_o in {15, 40, 60} x phi in {0, 90, 180}, and
+// theta_i = 0 toward theta_o in {15, 40, 60} -- and equal_error's five points, on Hammon's facets at albedo 1 (the
+// fit's target: the diffuse part). Each point's s_to_1e-3 is its CPU time a walk x rel_var / 1e-6 (equal_error's);
+// the counters are the ratios reciprocal / position_free over the 30 pairs and the five points (min, median, max;
+// > 1: position_free is faster to a given error) and the median s_to_1e-3 of each over the 30.
+struct GridPoint {
+    fit::Directions d;
+    double sum[2] = {}, sum2[2] = {}, seconds[2] = {};
+    std::int64_t walks = 0;
+    double s_to_1e3(int e) const {
+        const double n = static_cast<double>(walks), mean = sum[e] / n;
+        return seconds[e] / n * ((sum2[e] / n - mean * mean) / (mean * mean)) / 1e-6;
+    }
+};
+
+std::vector<GridPoint> grid_points() {
+    std::vector<GridPoint> out;
+    for (double to : {15.0, 40.0, 60.0}) out.push_back({{0.0, to, 0.0}});
+    for (double ti : {25.0, 45.0, 65.0})
+        for (double to : {15.0, 40.0, 60.0})
+            for (double phi : {0.0, 90.0, 180.0}) out.push_back({{ti, to, phi}});
+    for (const fit::Directions d : {fit::Directions{45, 60, 135}, {0, 40, 0}, {60, 60, 180}, {80, 85, 0}, {15, 85, 90}})
+        out.push_back({d});
+    return out;
+}
+
+double median_of(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    const std::size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+template <class N>
+void equal_error_grid(benchmark::State& state, const N& ndf) {
+    const walk::Microsurface ms(ndf);
+    const walk::FresnelDiffuse material{0.04, 1.0};
+    constexpr walk::EvalEstimator estimators[2] = {walk::EvalEstimator::reciprocal, walk::EvalEstimator::position_free};
+    constexpr std::int64_t walks = 512;  // per point, estimator and iteration
+    std::vector<GridPoint> points = grid_points();
+    std::uint64_t k0 = 0;
+    for (auto _ : state) {
+        for (std::size_t p = 0; p < points.size(); ++p) {
+            GridPoint& g = points[p];
+            const Vec3 wi = g.d.wi(), wo = g.d.wo();
+            for (int e = 0; e < 2; ++e) {
+                const auto start = std::chrono::steady_clock::now();
+                for (std::int64_t k = 0; k < walks; ++k) {
+                    smithlab::WalkRng rng(1 + e, p, k0 + static_cast<std::uint64_t>(k));
+                    const walk::EvalSample s = walk::eval_walk(ms, material, wi, wo, rng, {}, estimators[e]);
+                    double y = 0.0;
+                    for (int j = 1; j < walk::diffuse_bins; ++j) y += s.by_diffuse[j];
+                    g.sum[e] += y;
+                    g.sum2[e] += y * y;
+                }
+                g.seconds[e] += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            }
+            g.walks += walks;
+        }
+        k0 += walks;
+    }
+    std::vector<double> grid, five, recip, free;
+    for (std::size_t p = 0; p < points.size(); ++p) {
+        const double r = points[p].s_to_1e3(0), f = points[p].s_to_1e3(1);
+        (p < 30 ? grid : five).push_back(r / f);
+        if (p < 30) recip.push_back(r), free.push_back(f);
+    }
+    state.counters["grid_min"] = *std::min_element(grid.begin(), grid.end());
+    state.counters["grid_median"] = median_of(grid);
+    state.counters["grid_max"] = *std::max_element(grid.begin(), grid.end());
+    state.counters["five_min"] = *std::min_element(five.begin(), five.end());
+    state.counters["five_max"] = *std::max_element(five.begin(), five.end());
+    state.counters["s_to_1e-3_reciprocal"] = median_of(recip);
+    state.counters["s_to_1e-3_position_free"] = median_of(free);
+}
+
+// GGX's D at alpha as a measured table, a row a degree to 89 (tabulated.hpp).
+smithlab::TabulatedNdf tabulated_ggx(double alpha) {
+    const smithlab::Ggx g = smithlab::ggx(alpha);
+    std::string csv = "theta_deg,D\n";
+    for (int t = 0; t <= 89; ++t)
+        csv += std::to_string(t) + "," + smithlab::format_g17(g.D(std::cos(t * std::numbers::pi / 180.0))) + "\n";
+    return smithlab::tabulated_ndf_from_csv(csv, "ggx.csv", {true});
 }
 
 // items_per_second: model evaluations per second over 64 direction pairs at alpha 0.5, published constants.
@@ -217,6 +306,20 @@ int main(int argc, char** argv) {
     add_equal_error("ggx(alpha=0.5)/lambert", smithlab::ggx(0.5), walk::Lambert{1.0});
     add_equal_error("gtr(alpha=0.5, gamma=1)/fresnel-diffuse", smithlab::gtr(0.5, 1.0), hammon);
     add_equal_error("gtr(alpha=0.5, gamma=3)/fresnel-diffuse", smithlab::gtr(0.5, 3.0), hammon);
+    for (const double a : {0.1, 0.5, 1.0}) {
+        const std::string at = "(alpha=" + smithlab::format_shortest(a) + ")";
+        const auto add = [&](const std::string& name, const auto& ndf) {
+            benchmark::RegisterBenchmark(("equal_error_grid/" + name).c_str(),
+                                         equal_error_grid<std::decay_t<decltype(ndf)>>, ndf)
+                ->Unit(benchmark::kMillisecond)
+                ->Iterations(8);
+        };
+        add("ggx" + at, smithlab::ggx(a));
+        add("gtr" + at.substr(0, at.size() - 1) + ", gamma=1)", smithlab::gtr(a, 1.0));
+        add("gtr" + at.substr(0, at.size() - 1) + ", gamma=3)", smithlab::gtr(a, 3.0));
+        add("beckmann" + at, smithlab::beckmann(a));
+        add("tabulated ggx" + at, tabulated_ggx(a));
+    }
     for (const fit::DiffuseModel& m : fit::diffuse_models())
         benchmark::RegisterBenchmark(("model/" + std::string(m.name)).c_str(), model, &m);
     for (double a : {0.1, 0.5, 1.0})

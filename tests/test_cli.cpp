@@ -404,6 +404,32 @@ TEST_CASE("brdf: the eval estimator's value, its orders and the analytic single 
     CHECK(run("brdf --ndf 'ggx(alpha=0.5)' --material 'dielectric(eta=1.5)' --wi 90,0 --wo 150,180").rc == 2);
 }
 
+TEST_CASE("brdf --estimator: every estimator agrees with the default within its errors", "[cli][walk]") {
+    // value and stderr of one run, from its first two lines.
+    const auto value = [](const std::string& estimator) {
+        const Run r =
+            run("brdf --ndf 'gtr(alpha=0.6, gamma=1.5)' --material 'lambert(albedo=0.9)' --wi 30,0 --wo 70,120 "
+                "--walks 40000 --seed 5 --estimator " +
+                estimator);
+        INFO(estimator << ": " << r.err);
+        REQUIRE(r.rc == 0);
+        std::istringstream in(r.out);
+        std::string key;
+        double v = 0.0, e = 0.0;
+        in >> key >> v >> key >> e;
+        return std::pair{v, e};
+    };
+    const auto [v0, e0] = value("next_event");
+    for (const char* e : {"expected_first", "reciprocal", "position_free"}) {
+        const auto [v, err] = value(e);
+        INFO(e << ": " << v << " +- " << err << " against next_event " << v0 << " +- " << e0);
+        CHECK(std::abs(v - v0) < 4.5 * std::hypot(err, e0));
+    }
+    const Run bad = run("brdf --ndf 'ggx(alpha=0.5)' --material mirror --wi 45,0 --wo 45,180 --estimator nope");
+    CHECK(bad.rc == 2);
+    CHECK_THAT(bad.err, Catch::Contains("--estimator") && Catch::Contains("position_free"));
+}
+
 namespace {
 
 // Each record of a CSV file (header first), through smithlab's reader.

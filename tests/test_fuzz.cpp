@@ -1217,7 +1217,7 @@ const std::vector<std::pair<std::string, std::string>> walk_scenes = {
      "theta_i = { lin = [0.0, 60.0], n = 2 }\n[[ndf]]\nfamily = \"ggx\"\n[[ndf]]\nspec = \"ggx(alpha=0.3)\"\n"},
     {"fit",
      "title = \"f\"\nmaterial = \"lambert(albedo=1)\"\nalbedos = [0.5, 1.0]\nmodels = [\"lambert\"]\nfloor = 0.02\n"
-     "energy_bound = true\nseed = 2\n"
+     "energy_bound = true\nseed = 2\nestimator = \"position_free\"\n"
      "[[ndf]]\nfamily = \"ggx\"\n"
      "[training]\nalpha = [0.3, 0.6]\ntheta = [0.0, 45.0]\nphi = [0.0]\nwalks = 100\n"
      "[validation]\npoints = 2\nwalks = 100\nalbedo_theta = [0.0]\nalbedo_walks = 100\n"

@@ -145,7 +145,7 @@ TEST_CASE("scene files are read with a size cap: /dev/zero and a large file are 
     refused_option(report_args(d, "large.toml", "never"), "large.toml", "1048576 bytes");
 }
 
-TEST_CASE("scene: a duplicated fit model and an include pattern that matches nothing are refused at read",
+TEST_CASE("scene: a duplicated fit model, an unknown estimator and an include pattern that matches nothing are refused",
           "[scene][strict]") {
     const fs::path d = scratch();
     write(d / "fit.toml",
@@ -153,6 +153,12 @@ TEST_CASE("scene: a duplicated fit model and an include pattern that matches not
           "[training]\nalpha = [0.5]\ntheta = [0.0]\nphi = [0.0]\nwalks = 100\n");
     const Run fit = refused_option("fit '" + (d / "fit.toml").string() + "' -o '" + (d / "never").string() + "'",
                                    "fit.toml:1: models", "names 'lambert' twice");
+    CHECK_FALSE(fs::exists(d / "never"));
+    write(d / "estimator.toml",
+          "estimator = \"position-free\"\n[[ndf]]\nfamily = \"ggx\"\n"
+          "[training]\nalpha = [0.5]\ntheta = [0.0]\nphi = [0.0]\nwalks = 100\n");
+    refused_option("fit '" + (d / "estimator.toml").string() + "' -o '" + (d / "never").string() + "'",
+                   "estimator.toml:1: estimator", "\"position_free\", got 'position-free'");
     CHECK_FALSE(fs::exists(d / "never"));
     const std::string report = "[grid]\nalpha = [0.5]\nmu = [1.0]\n[[ndf]]\nfamily = \"ggx\"\n[variants]\n";
     const std::string typo = check_bad_scene(d, "typo.toml", report + "include = [\"schlick-ggx\", \"schlik-ggx\"]\n",

@@ -74,7 +74,7 @@ void add_trace(CLI::App& app, TraceArgs& args, const MaterialRegistry& materials
 int run_trace(const TraceArgs& args, const NdfRegistry& registry);
 
 struct BrdfArgs {
-    std::string ndf, material, wi, wo, downward = "smith";
+    std::string ndf, material, wi, wo, downward = "smith", estimator = "next_event";
     long long walks = 1'000'000;
     int threads = 0;
     std::string seed = "1";

@@ -213,7 +213,8 @@ void add_brdf(CLI::App& app, BrdfArgs& a) {
     c->footer(
         "Example:\n"
         "  smithlab brdf --ndf 'ggx(alpha=0.5)' --material mirror --wi 45,0 --wo 60,180 --walks 1000000\n"
-        "Prints value and stderr (the eval estimator: next-event estimation toward wo at every hit), then\n"
+        "Prints value and stderr (the eval estimator, --estimator: next-event estimation toward wo at every hit), "
+        "then\n"
         "order_1 .. order_4+ as 'value stderr', and single_analytic (the single-scattering BSDF times |cos theta_o|,\n"
         "Walter 2007 eq. 20 and 21 with the height-correlated G2) for mirror, conductor and dielectric facets.\n"
         "With dielectric facets, --wo below the surface (theta > 90) is transmission.");
@@ -224,6 +225,11 @@ void add_brdf(CLI::App& app, BrdfArgs& a) {
     c->add_option("--wo", a.wo, "THETA,PHI of the viewer, degrees")->required();
     c->add_option("--walks", a.walks, "walks (> 0)")->capture_default_str()->check(strict_integer());
     add_downward_option(*c, a.downward);
+    c->add_option(
+         "--estimator", a.estimator,
+         "the eval estimator (all unbiased; walk.hpp): " + join_described(walk::eval_estimator_names, " | ", " | "))
+        ->capture_default_str()
+        ->check(CLI::IsMember(names_of(walk::eval_estimator_names)));
     add_seed_option(*c, a.seed);
     add_threads_option(*c, a.threads);
 }
@@ -239,6 +245,7 @@ int run_brdf(const BrdfArgs& a, const NdfRegistry& registry) {
     r.seed = seed;
     r.walks = a.walks;
     r.threads = static_cast<unsigned>(a.threads);
+    r.estimator = find_named(walk::eval_estimator_names, a.estimator)->value;  // checked by CLI11
     require_density(material, r, a);
     const walk::EvalTally t =
         make_surface(ndf, scene::parse_walk_options(a.downward, "visible", "--"))->eval_cell(material, r);

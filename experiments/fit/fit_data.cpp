@@ -46,7 +46,7 @@ CacheFile group_file(const DataSpec& s, const fs::path& cache, const Plan& p, st
     CacheFile f{cache / cache_directory_name(p.data.label) /
                     (std::string(set_name(g.set)) + "-" + std::to_string(g.index) + ".csv"),
                 cache_key(p.ndfs[i], s.material, set_name(g.set), g.walks, s.seed, data_stream(g.set, n, g.index, 0),
-                          g.dirs.size()),
+                          g.dirs.size(), s.estimator),
                 {"theta_i", "theta_o", "phi"},
                 {},
                 g.walks};
@@ -103,7 +103,7 @@ std::vector<NdfData> assemble(std::vector<Plan>& plans, const std::vector<Place>
 
 }  // namespace
 
-DataSpec data_spec(const FitScene& s) { return {s.material, s.ndfs, s.training, s.validation, s.seed}; }
+DataSpec data_spec(const FitScene& s) { return {s.material, s.ndfs, s.training, s.validation, s.seed, s.estimator}; }
 
 std::vector<NdfData> gather(const DataSpec& s, const NdfRegistry& registry, const fs::path& cache, unsigned threads,
                             const ProgressFn& progress, const std::function<void()>& checked,
@@ -113,14 +113,15 @@ std::vector<NdfData> gather(const DataSpec& s, const NdfRegistry& registry, cons
     if (checked) checked();
     std::vector<Place> at = places(s, cache, plans);
     std::vector<bool> traced(at.size(), false);
-    GroupJobs jobs(group_jobs(plans, at), material, s.seed, [&](std::size_t j, std::vector<fit::SplitMoments>&& total) {
-        Plan& p = plans[at[j].n];
-        write_cache(at[j].file, total);
-        p.data.traced += static_cast<std::int64_t>(total.size());
-        p.data.walks_traced += static_cast<std::int64_t>(total.size()) * p.groups[at[j].i].walks;
-        at[j].moments = std::move(total);
-        traced[j] = true;
-    });
+    GroupJobs jobs(group_jobs(plans, at), material, s.seed, s.estimator,
+                   [&](std::size_t j, std::vector<fit::SplitMoments>&& total) {
+                       Plan& p = plans[at[j].n];
+                       write_cache(at[j].file, total);
+                       p.data.traced += static_cast<std::int64_t>(total.size());
+                       p.data.walks_traced += static_cast<std::int64_t>(total.size()) * p.groups[at[j].i].walks;
+                       at[j].moments = std::move(total);
+                       traced[j] = true;
+                   });
     const cluster::Traffic t = cluster::run_jobs(jobs, threads, [&](std::uint64_t merged, std::uint64_t all) {
         if (progress) progress(static_cast<std::int64_t>(merged), static_cast<std::int64_t>(all));
     });

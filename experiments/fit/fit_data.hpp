@@ -35,6 +35,7 @@ struct DataSpec {
     FitScene::Training training;
     FitScene::Validation validation;
     std::uint64_t seed = 1;
+    walk::EvalEstimator estimator = fit::fit_estimator;
 };
 DataSpec data_spec(const FitScene& scene);
 

@@ -84,7 +84,7 @@ void write_outputs(const fs::path& dir, const FitScene& s, const Results& r, con
     const std::string compensation =
         compensation::run_compensation(dir, s.ndfs, s.compensation, registry, {"fit", s.seed, threads}).markdown;
     const std::string pictures =
-        write_pictures(dir, cache, {s.pictures, s.material, s.seed}, r, columns, registry, threads);
+        write_pictures(dir, cache, {s.pictures, s.material, s.seed, s.estimator}, r, columns, registry, threads);
     const std::string trends = write_parameter_trends(dir, r);
     write_report(dir, {s.title, s.material, s.albedos, s.floor}, r, errors, flags_markdown(flags),
                  trends + compensation + pictures);

@@ -8,6 +8,7 @@
 
 #include "scene/strict_table.hpp"
 #include "scene/value_checks.hpp"
+#include "scene/walk_options.hpp"
 #include "smithlab/csv.hpp"
 #include "smithlab/material_registry.hpp"
 #include "smithlab/spec.hpp"
@@ -142,8 +143,8 @@ FitScene parse_fit_scene(const std::string& text, const std::string& source, con
                          const scene::SizeLimits& limits) {
     const toml::value data = scene::parse_toml(text, source);
     StrictTable doc(data, source, "",
-                    {"title", "material", "albedos", "models", "floor", "energy_bound", "seed", "ndf", "training",
-                     "validation", "compensation", "pictures"});
+                    {"title", "material", "albedos", "models", "floor", "energy_bound", "seed", "estimator", "ndf",
+                     "training", "validation", "compensation", "pictures"});
     FitScene s;
     s.title = doc.text("title", s.title);
     s.material = doc.text("material", s.material);
@@ -155,6 +156,12 @@ FitScene parse_fit_scene(const std::string& text, const std::string& source, con
     if (!(s.floor >= 0.0 && s.floor < 1.0)) doc.fail("floor", "must be in [0, 1), got " + format_shortest(s.floor));
     s.energy_bound = doc.flag("energy_bound", s.energy_bound);
     s.seed = static_cast<std::uint64_t>(doc.integer("seed", 0, std::numeric_limits<std::int64_t>::max(), 1));
+    const std::string estimator = doc.text("estimator", walk::name(s.estimator));
+    const Named<walk::EvalEstimator>* e = find_named(walk::eval_estimator_names, estimator);
+    if (!e)
+        doc.fail("estimator",
+                 "must be " + scene::quoted_names(walk::eval_estimator_names) + ", got '" + estimator + "'");
+    s.estimator = e->value;
     std::size_t pairs = 0;
     s.training = read_training(doc, s.training, limits.scale, pairs);  // before the NDFs: they size each NDF's work
     s.validation = read_validation(doc, s.validation, limits.scale);

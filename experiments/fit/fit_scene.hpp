@@ -29,6 +29,8 @@ struct FitScene {
     double floor = 0.02;
     bool energy_bound = true;  // fitted models held to a directional albedo <= 1 (fit_model.hpp)
     std::uint64_t seed = 1;
+    // The eval estimator of every traced point (walk.hpp; all unbiased, the default the lowest equal-error time).
+    walk::EvalEstimator estimator = fit::fit_estimator;
     std::vector<FitFamily> ndfs;  // the [[ndf]] axes expanded: one entry per fitted NDF
     struct Training {
         std::vector<double> alpha, theta, phi;

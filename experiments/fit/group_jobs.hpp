@@ -28,8 +28,9 @@ class GroupJobs {
 public:
     using Partial = std::vector<fit::SplitMoments>;
     using Finish = std::function<void(std::size_t, Partial&&)>;
-    GroupJobs(std::vector<GroupJob> jobs, const walk::Material& material, std::uint64_t seed, Finish finish)
-        : jobs_(std::move(jobs)), material_(material), seed_(seed), finish_(std::move(finish)) {}
+    GroupJobs(std::vector<GroupJob> jobs, const walk::Material& material, std::uint64_t seed,
+              walk::EvalEstimator estimator, Finish finish)
+        : jobs_(std::move(jobs)), material_(material), seed_(seed), estimator_(estimator), finish_(std::move(finish)) {}
 
     std::size_t jobs() const { return jobs_.size(); }
     std::uint64_t blocks(std::size_t j) const { return jobs_[j].needed ? jobs_[j].group->dirs.size() : 0; }
@@ -43,7 +44,7 @@ public:
         return [surface = make_surface(*jobs_[j].ndf), this](std::size_t job, std::uint64_t k) {
             const Group& g = *jobs_[job].group;
             const TracePoint p{g.dirs[k].wi(), g.dirs[k].wo(), data_stream(g.set, jobs_[job].ndf_index, g.index, k)};
-            const Estimator e = g.set == albedo_set ? Estimator::albedo : Estimator::eval;
+            const Estimator e{g.set == albedo_set, estimator_};
             return Partial{trace_point(*surface, material_, p, e, seed_, g.walks)};
         };
     }
@@ -66,6 +67,7 @@ private:
     std::vector<GroupJob> jobs_;
     walk::Material material_;
     std::uint64_t seed_;
+    walk::EvalEstimator estimator_;
     Finish finish_;
 };
 

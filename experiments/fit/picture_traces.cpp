@@ -62,18 +62,20 @@ struct TracePlace {
 };
 
 Trace make_trace(const TracePlace& at, AnyNdf ndf, const std::string& material, const std::vector<Pair>& pairs,
-                 std::int64_t walks, std::uint64_t seed, const fs::path& cache, std::vector<fit::SplitMoments>* into) {
+                 std::int64_t walks, const PictureSpec& s, const fs::path& cache,
+                 std::vector<fit::SplitMoments>* into) {
     const std::string set = picture_set_name(at.set);
     Trace t{at.label + ", alpha " + format_shortest(at.alpha) + ": " + set,
             std::move(ndf),
             material,
-            at.set == lambert_albedo_set ? Estimator::albedo : Estimator::eval,
+            Estimator{at.set == lambert_albedo_set, s.estimator},
             walks,
             {},
             {},
             into};
     t.file = {cache / cache_directory_name(at.label) / "pictures" / (set + "-" + std::to_string(at.a) + ".csv"),
-              cache_key(t.ndf, material, set, walks, seed, picture_stream(at.set, at.n, at.a, 0), pairs.size()),
+              cache_key(t.ndf, material, set, walks, s.seed, picture_stream(at.set, at.n, at.a, 0), pairs.size(),
+                        s.estimator),
               {"wi_x", "wi_y", "wi_z", "wo_x", "wo_y", "wo_z"},
               {},
               walks};
@@ -106,17 +108,17 @@ std::vector<Trace> plan(const PictureSpec& s, const std::vector<NdfData>& data, 
         for (std::size_t a = 0; a < p.sphere_alpha.size(); ++a) {
             const double alpha = p.sphere_alpha[a];
             const AnyNdf ndf = make_ndf(registry, data[n].family, alpha);
-            traces.push_back(make_trace({n, label, a, alpha, sphere_set}, ndf, s.material, spheres.traced, p.walks,
-                                        s.seed, cache, &o.spheres[a]));
+            traces.push_back(make_trace({n, label, a, alpha, sphere_set}, ndf, s.material, spheres.traced, p.walks, s,
+                                        cache, &o.spheres[a]));
             traces.push_back(make_trace({n, label, a, alpha, lambert_sphere_set}, ndf, lambert, spheres.traced, p.walks,
-                                        s.seed, cache, &o.lambert_spheres[a]));
+                                        s, cache, &o.lambert_spheres[a]));
             traces.push_back(make_trace({n, label, a, alpha, lambert_albedo_set}, ndf, lambert, albedo_points,
-                                        missing_walks, s.seed, cache, &o.lambert_albedo[a]));
+                                        missing_walks, s, cache, &o.lambert_albedo[a]));
         }
         for (std::size_t a = 0; a < p.slice_alpha.size(); ++a) {
             const double alpha = p.slice_alpha[a];
             traces.push_back(make_trace({n, label, a, alpha, slice_set}, make_ndf(registry, data[n].family, alpha),
-                                        s.material, slices, p.walks, s.seed, cache, &o.slices[a]));
+                                        s.material, slices, p.walks, s, cache, &o.slices[a]));
         }
     }
     return traces;

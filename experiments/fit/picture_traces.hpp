@@ -32,6 +32,7 @@ struct PictureSpec {
     FitScene::Pictures pictures;
     std::string material;
     std::uint64_t seed;
+    walk::EvalEstimator estimator;
 };
 
 // One NDF family's traced pictures, per alpha of the scene's lists.

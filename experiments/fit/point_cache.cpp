@@ -12,11 +12,11 @@ namespace smithlab::fit {
 namespace fs = std::filesystem;
 
 std::string cache_key(const AnyNdf& ndf, const std::string& material, const std::string& set, std::int64_t walks,
-                      std::uint64_t seed, std::uint64_t stream, std::size_t points) {
+                      std::uint64_t seed, std::uint64_t stream, std::size_t points, walk::EvalEstimator estimator) {
     std::ostringstream k;
     k << "smithlab " << SMITHLAB_VERSION << "|ndf=" << ndf.key() << "|material=" << material << "|set=" << set
       << "|walks=" << walks << "|seed=" << seed << "|stream=" << stream << "|points=" << points
-      << "|eval=" << walk::name(fit::fit_estimator);  // the eval points' estimator
+      << "|eval=" << walk::name(estimator);  // the eval points' estimator
     return k.str();
 }
 

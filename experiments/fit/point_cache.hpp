@@ -30,7 +30,7 @@ struct CacheFile {
 // "smithlab VERSION|ndf=NDF KEY|material=...|set=SET|walks=N|seed=S|stream=FIRST STREAM|points=N|eval=ESTIMATOR"
 // (the eval points' estimator: a cache traced by another is traced again).
 std::string cache_key(const AnyNdf& ndf, const std::string& material, const std::string& set, std::int64_t walks,
-                      std::uint64_t seed, std::uint64_t stream, std::size_t points);
+                      std::uint64_t seed, std::uint64_t stream, std::size_t points, walk::EvalEstimator estimator);
 
 // The moments of the file's points, when the checksum holds and the file is this one (key, fields, walks); nullopt
 // otherwise (a present file whose checksum fails is named on stderr).

@@ -10,8 +10,8 @@ namespace smithlab::fit {
 
 fit::SplitMoments trace_point(const AnySurface& surface, const walk::Material& m, const TracePoint& p,
                               Estimator estimator, std::uint64_t seed, std::int64_t walks) {
-    return estimator == Estimator::albedo ? surface.albedo_point(m, p.wi, seed, p.stream, walks)
-                                          : surface.eval_point(m, p.wi, p.wo, seed, p.stream, walks);
+    return estimator.albedo ? surface.albedo_point(m, p.wi, seed, p.stream, walks)
+                            : surface.eval_point(m, p.wi, p.wo, seed, p.stream, walks, estimator.eval);
 }
 
 std::vector<fit::SplitMoments> trace_points(const AnyNdf& ndf, const walk::Material& material,

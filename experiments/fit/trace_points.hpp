@@ -19,7 +19,12 @@ struct TracePoint {
     Vec3 wi, wo;
     std::uint64_t stream;
 };
-enum class Estimator { eval, albedo };
+// How a point is traced: by the sample estimator (the directional albedo from wi), or by the eval estimator named
+// (f(wi, wo) |cos theta_o|; walk.hpp).
+struct Estimator {
+    bool albedo = false;
+    walk::EvalEstimator eval = fit_estimator;
+};
 
 // One point's split moments on a built microsurface, walk k from WalkRng(seed, point.stream, k).
 fit::SplitMoments trace_point(const AnySurface& surface, const walk::Material& material, const TracePoint& point,

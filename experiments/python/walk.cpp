@@ -258,9 +258,14 @@ py::dict brdf_result(const Broadcast<4>& a, const BrdfArrays& out) {
 
 py::dict brdf_pairs(const AnyNdf& ndf, const std::string& material, const py::object& theta_i, const py::object& phi_i,
                     const py::object& theta_o, const py::object& phi_o, long long walks, const py::object& seed,
-                    int threads, const std::string& downward, double max_walks) {
+                    int threads, const std::string& downward, const std::string& estimator, double max_walks) {
     EvalSetup s{ndf, materials().make(material), nullptr, {}};
     const walk::MicrosurfaceOptions options = walk_options(downward, "visible");
+    const Named<walk::EvalEstimator>* e = find_named(walk::eval_estimator_names, estimator);
+    if (!e)
+        throw input_error("estimator must be " + scene::quoted_names(walk::eval_estimator_names) + ", got '" +
+                          estimator + "'");
+    s.request.estimator = e->value;
     s.request.seed = seed_of(seed), s.request.walks = walks, s.request.threads = static_cast<unsigned>(threads);
     const Broadcast<4> a({theta_i, phi_i, theta_o, phi_o});
     require_walks_threads(walks, static_cast<double>(walks) * static_cast<double>(a.size()), max_walks, threads);
@@ -272,7 +277,8 @@ py::dict brdf_pairs(const AnyNdf& ndf, const std::string& material, const py::ob
 }
 
 const char* const brdf_doc = R"(f(wi, wo) |cos theta_o| of the Smith microsurface (1/sr) by the eval estimator
-(next-event estimation toward wo at every hit), over the four angle arguments in degrees broadcast against each other
+(next-event estimation toward wo at every hit; estimator: 'next_event', 'expected_first', 'reciprocal' or
+'position_free', as brdf's --estimator, all unbiased), over the four angle arguments in degrees broadcast against each other
 (NumPy's rules): the light at (theta_i, phi_i), theta_i in [0, 90) (a dielectric also takes (90, 180], light from
 below), the viewer at (theta_o, phi_o), theta_o in [0, 180] (above 90: transmission, for a dielectric).
 
@@ -281,7 +287,7 @@ Returns a dict: 'value' and 'stderr' (the broadcast shape; Python floats when ev
 mirror and conductor facets (and dielectric facets when every theta_i < 90), 'single_analytic': the
 single-scattering BSDF times |cos theta_o| (Walter 2007 eq. 20 and 21 with the height-correlated G2).
 Each pair is the same bits as `smithlab brdf --ndf SPEC --material M --wi T,P --wo T,P --walks N --seed S`; its
-walks run on `threads` threads (0: all cores), the pairs one after another. More walks in all (walks x pairs) than
+walks run on `threads` threads (0: all cores), the pairs one after another (and --estimator E for estimator=E). More walks in all (walks x pairs) than
 max_walks (inf: no limit) raise ValueError. Runs without the GIL; Ctrl-C raises KeyboardInterrupt within a block of
 walks.)";
 
@@ -304,8 +310,8 @@ void bind_walk(py::module_& m) {
           py::arg("max_walks") = scene::SizeLimits{}.max_walks, trace_doc);
     m.def("brdf", &brdf_pairs, py::arg("ndf"), py::arg("material"), py::arg("theta_i"), py::arg("phi_i"),
           py::arg("theta_o"), py::arg("phi_o"), py::arg("walks") = 1'000'000, py::arg("seed") = 1,
-          py::arg("threads") = 0, py::arg("downward") = "smith", py::arg("max_walks") = scene::SizeLimits{}.max_walks,
-          brdf_doc);
+          py::arg("threads") = 0, py::arg("downward") = "smith", py::arg("estimator") = "next_event",
+          py::arg("max_walks") = scene::SizeLimits{}.max_walks, brdf_doc);
 }
 
 }  // namespace smithlab::python

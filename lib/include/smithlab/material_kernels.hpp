@@ -45,9 +45,9 @@ public:
         return on_microsurface(s, [&](const auto& ms) { return walk::eval_cell(ms, m_, r); });
     }
     fit::SplitMoments eval_point(const AnySurface& s, const Vec3& wi, const Vec3& wo, std::uint64_t seed,
-                                 std::uint64_t stream, std::int64_t walks) const override {
+                                 std::uint64_t stream, std::int64_t walks, walk::EvalEstimator e) const override {
         return on_microsurface(
-            s, [&](const auto& ms) { return fit::trace_eval_point(ms, m_, wi, wo, seed, stream, walks); });
+            s, [&](const auto& ms) { return fit::trace_eval_point(ms, m_, wi, wo, seed, stream, walks, e); });
     }
     fit::SplitMoments albedo_point(const AnySurface& s, const Vec3& wi, std::uint64_t seed, std::uint64_t stream,
                                    std::int64_t walks) const override {

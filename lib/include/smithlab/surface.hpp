@@ -36,10 +36,11 @@ public:
                                           std::uint64_t b) const = 0;
     /// One direction pair by the eval estimator over r.threads (walk::eval_cell).
     virtual walk::EvalTally eval_cell(const walk::Material& material, const walk::EvalRequest& r) const = 0;
-    /// The fitter's points, one thread each (fit::trace_eval_point, fit::trace_albedo_point).
+    /// The fitter's points, one thread each (fit::trace_eval_point by `estimator`, fit::trace_albedo_point).
     ///@{
     virtual fit::SplitMoments eval_point(const walk::Material& material, const Vec3& wi, const Vec3& wo,
-                                         std::uint64_t seed, std::uint64_t stream, std::int64_t walks) const = 0;
+                                         std::uint64_t seed, std::uint64_t stream, std::int64_t walks,
+                                         walk::EvalEstimator estimator) const = 0;
     virtual fit::SplitMoments albedo_point(const walk::Material& material, const Vec3& wi, std::uint64_t seed,
                                            std::uint64_t stream, std::int64_t walks) const = 0;
     ///@}
@@ -64,7 +65,8 @@ public:
     virtual walk::CellPartial trace_block(const AnySurface& s, const walk::CellRequest& r, std::uint64_t b) const = 0;
     virtual walk::EvalTally eval_cell(const AnySurface& s, const walk::EvalRequest& r) const = 0;
     virtual fit::SplitMoments eval_point(const AnySurface& s, const Vec3& wi, const Vec3& wo, std::uint64_t seed,
-                                         std::uint64_t stream, std::int64_t walks) const = 0;
+                                         std::uint64_t stream, std::int64_t walks,
+                                         walk::EvalEstimator estimator) const = 0;
     virtual fit::SplitMoments albedo_point(const AnySurface& s, const Vec3& wi, std::uint64_t seed,
                                            std::uint64_t stream, std::int64_t walks) const = 0;
     virtual bool dirac_at(const Vec3& wi, const Vec3& wo) const = 0;
@@ -95,10 +97,10 @@ public:
             [&](const MaterialKernels& k) { return k.eval_cell(*this, r); });
     }
     fit::SplitMoments eval_point(const walk::Material& material, const Vec3& wi, const Vec3& wo, std::uint64_t seed,
-                                 std::uint64_t stream, std::int64_t walks) const override {
+                                 std::uint64_t stream, std::int64_t walks, walk::EvalEstimator e) const override {
         return walk::visit(
-            material, [&](const auto& m) { return fit::trace_eval_point(ms_, m, wi, wo, seed, stream, walks); },
-            [&](const MaterialKernels& k) { return k.eval_point(*this, wi, wo, seed, stream, walks); });
+            material, [&](const auto& m) { return fit::trace_eval_point(ms_, m, wi, wo, seed, stream, walks, e); },
+            [&](const MaterialKernels& k) { return k.eval_point(*this, wi, wo, seed, stream, walks, e); });
     }
     fit::SplitMoments albedo_point(const walk::Material& material, const Vec3& wi, std::uint64_t seed,
                                    std::uint64_t stream, std::int64_t walks) const override {

@@ -87,4 +87,20 @@ concept Reciprocal = !TwoSided<M> && requires {
     requires M::reciprocal;
 };
 
+/// What a material type may say about itself, each optional: whether any of its events is diffuse (the tallies of
+/// the diffuse component exist only then; default: none is), and where its BSDF holds a Dirac delta that the eval
+/// estimator has no finite density for (default: nowhere).
+///@{
+template <class M>
+bool material_has_diffuse(const M& m) {
+    if constexpr (requires { m.has_diffuse(); }) return m.has_diffuse();
+    else return false;
+}
+template <class M>
+bool material_dirac_at(const M& m, const Vec3& wi, const Vec3& wo) {
+    if constexpr (requires { m.dirac_at(wi, wo); }) return m.dirac_at(wi, wo);
+    else return false;
+}
+///@}
+
 }  // namespace smithlab::walk

@@ -37,22 +37,6 @@ template <class M>
 inline constexpr bool builtin_material = std::is_same_v<M, Mirror> || std::is_same_v<M, Conductor> ||
     std::is_same_v<M, Lambert> || std::is_same_v<M, FresnelDiffuse> || std::is_same_v<M, Dielectric>;
 
-/// What a material type may say about itself, each optional: whether any of its events is diffuse (the tallies of
-/// the diffuse component exist only then; default: none is), and where its BSDF holds a Dirac delta that the eval
-/// estimator has no finite density for (default: nowhere).
-///@{
-template <class M>
-bool material_has_diffuse(const M& m) {
-    if constexpr (requires { m.has_diffuse(); }) return m.has_diffuse();
-    else return false;
-}
-template <class M>
-bool material_dirac_at(const M& m, const Vec3& wi, const Vec3& wo) {
-    if constexpr (requires { m.dirac_at(wi, wo); }) return m.dirac_at(wi, wo);
-    else return false;
-}
-///@}
-
 /// A material's spec as text: "conductor(eta=0.2, k=3)", the bare name where it has no parameters ("mirror").
 inline std::string material_spec_text(const NdfSpec& spec) {
     return spec.params.empty() && spec.texts.empty() ? spec.name : format_spec(spec);

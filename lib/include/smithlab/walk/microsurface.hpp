@@ -82,8 +82,9 @@ public:
     /// (S <= C1(h)^Lambda). 1 / Lambda comes as a quotient num / den (inv_Lambda: num > 0 upward, < 0 downward), so
     /// that the escape test, -ln S num >= -ln C1(h) den, needs no division; only a ray that stays divides. Lambda = +0
     /// (num / den = inf) escapes, at S = 1 too; a horizontal ray (Lambda = inf) hits at its own height; a NaN
-    /// direction stays where it is.
-    bool next_height(const Vec3& w, double& h, double S) const {
+    /// direction stays where it is. Always inlined: the step of every walk's bounce, which GCC inlined or not by how
+    /// many walks a translation unit instantiates (fresnel-diffuse and dielectric walks took 3-8 % more instructions).
+    [[gnu::always_inline]] bool next_height(const Vec3& w, double& h, double S) const {
         const Quotient inv_L = inv_Lambda(w);
         if (inv_L.den == INFINITY) return true;  // horizontal (Lambda = inf): it hits at its own height
         const double e = -std::log(S);
@@ -120,6 +121,13 @@ public:
         if (!(wo.z() > 0.0)) return 0.0;
         const double L = Lambda(wo);
         return L == 0.0 ? 1.0 : std::exp(L * ln_C1(h));
+    }
+
+    /// The carried height of depth t = -ln C1(h) >= 0 (walk/depth_law.hpp), kept finite at the bottom of the law.
+    double height_at_depth(double t) const {
+        const double u = std::max(-t, ln_smallest);
+        if constexpr (carries_ln_C1) return u;
+        else return Heights::invC1(std::exp(u));
     }
 
     /// The carried height h as seen from the other side of the surface (two-sided materials). For u = ln C1 it is
