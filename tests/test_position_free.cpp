@@ -143,7 +143,7 @@ TEST_CASE("depth law: its closed forms agree with the depth steps simulated", "[
     }
 }
 
-TEST_CASE("depth law: a depth drawn from it has its mean; a move at one of its rates is refused",
+TEST_CASE("depth law: a depth drawn from it has its mean, and a move it cannot keep is refused",
           "[walk][position_free]") {
     walk::DepthLaw law(1.5);
     law.up(0.6);

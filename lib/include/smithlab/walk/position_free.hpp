@@ -55,6 +55,14 @@ double escape_by_law(const DepthLaw& law, const Vec3& wo_local, double L_o) {
     else return 0.0;
 }
 
+/// The law's step along w, up or down (depth_law.hpp, eqs. 2-3); false where DepthLaw::down refuses it.
+template <class Microsurface>
+bool step_law(const Microsurface& ms, DepthLaw& law, const Vec3& w) {
+    if (!(w.z() > 0.0)) return law.down(-ms.Lambda(w));
+    law.up(ms.Lambda(w));
+    return true;
+}
+
 /// eval_walk by the position-free estimator (the file comment). Smith's downward convention, visible hit normals.
 template <class Microsurface, class M, class G>
 EvalSample eval_walk_position_free(const Microsurface& ms, const M& material, const Vec3& wi, const Vec3& wo, G& g,
@@ -109,8 +117,7 @@ EvalSample eval_walk_position_free(const Microsurface& ms, const M& material, co
             above = !above;
         }
         if (!by_law) continue;
-        if (w.z() > 0.0) law.up(ms.Lambda(w));
-        else if (!law.down(-ms.Lambda(w))) leave_law();
+        if (!step_law(ms, law, w)) leave_law();
         if (!by_law) continue;
         if (const double q = weight * law.mass(); q < roulette) {
             if (!(uniform01(g) * roulette < q)) break;
