@@ -428,9 +428,9 @@ def bodies_of(src):
 # --- the check ------------------------------------------------------------------------------------------------------
 
 
-def source_files(root):
-    """The sources under root's DIRS, skipping build trees (folders with a CMakeCache.txt or CMakeFiles)."""
-    for d in DIRS:
+def source_files(root, dirs=DIRS):
+    """The sources under root's dirs, skipping build trees (folders with a CMakeCache.txt or CMakeFiles)."""
+    for d in dirs:
         for here, dirs, files in os.walk(os.path.join(root, d)):
             dirs[:] = sorted(x for x in dirs if x != "CMakeFiles" and
                              not os.path.exists(os.path.join(here, x, "CMakeCache.txt")))

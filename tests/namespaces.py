@@ -24,9 +24,8 @@ import argparse
 import os
 import sys
 
-from function_lengths import ScanError, tokenize
+from function_lengths import ScanError, source_files, tokenize
 
-SUFFIXES = (".cpp", ".hpp", ".cpp.in", ".hpp.in")
 UNCHECKED = ("experiments/plugin_example/",)  # a user's program: its own names
 
 
@@ -135,16 +134,6 @@ def umbrella_problems(root):
     return out
 
 
-def source_files(root):
-    for top in ("lib", "gtr", "experiments"):
-        for dirpath, dirnames, filenames in os.walk(os.path.join(root, top)):
-            dirnames.sort()
-            for f in sorted(filenames):
-                if f.endswith(SUFFIXES):
-                    path = os.path.join(dirpath, f)
-                    yield os.path.relpath(path, root).replace(os.sep, "/"), path
-
-
 def self_test():
     failures = []
 
@@ -189,7 +178,7 @@ def main():
         return self_test()
     try:
         files = []
-        for name, path in source_files(a.root):
+        for name, path in source_files(a.root, ("lib", "gtr", "experiments")):
             with open(path, encoding="utf-8") as fh:
                 files.append((name, fh.read()))
         if not files:

@@ -10,16 +10,14 @@
 #include <smithlab/walk/trace.hpp>
 #include <string>
 
+#include "estimates.hpp"
+
 namespace {
 
 namespace walk = smithlab::walk;
 using smithlab::Vec3;
+using smithlab_test::sigmas;
 using walk::EvalEstimator;
-
-// |a - b| in units of their combined standard error.
-double sigmas(const walk::Estimate& a, const walk::Estimate& b) {
-    return std::abs(a.value - b.value) / std::hypot(a.stderr_, b.stderr_);
-}
 
 template <class N, class M>
 void check_agreement(const std::string& name, const N& ndf, const M& material, std::int64_t walks) {

@@ -115,7 +115,9 @@ void add_scene_options(CLI::App& command, std::string& scene, bool& print_scene,
     command.add_flag("--print-scene", print_scene, "print the default scene (every key documented) and exit");
     command
         .add_option("--scale", scale,
-                    "the scene's walks and samples times F, in (0, 1000] (0.01: a quick run of the same scene)")
+                    "the scene's walks and samples times F (below 1 its tables' axes times sqrt(F)), in (0, 1000] "
+                    "(0.01: a quick "
+                    "run of the same scene)")
         ->capture_default_str()
         ->check(strict_real());
 }

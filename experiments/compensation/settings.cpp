@@ -1,6 +1,7 @@
 #include "compensation/settings.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
 #include <utility>
 #include <variant>
@@ -115,13 +116,29 @@ std::vector<std::string> read_conductors(StrictTable& t) {
     return specs;
 }
 
-// The tables' grid and G2 forms, and the dielectrics' eta.
+// Below scale 1 a table's axis of n nodes keeps n sqrt(scale) of them (its nodes times scale), at least 8 or n.
+std::int64_t scaled_axis(std::int64_t n, double scale) {
+    return scale < 1.0 ? scene::scaled_count(n, std::sqrt(scale), std::min<std::int64_t>(n, 8)) : n;
+}
+
+// The alphas a, scaled_axis of them: evenly spaced in index, the first and the last kept.
+std::vector<double> thinned(const std::vector<double>& a, double scale) {
+    const auto n = static_cast<std::int64_t>(a.size()), k = scaled_axis(n, scale);
+    if (k >= n) return a;
+    std::vector<double> out;
+    for (std::int64_t j = 0; j < k; ++j)
+        out.push_back(a[static_cast<std::size_t>((j * (n - 1) + (k - 1) / 2) / (k - 1))]);
+    return out;
+}
+
+// The tables' grid and G2 forms, and the dielectrics' eta; below scale 1 the grid thinned (scaled_axis).
 void read_tables(StrictTable& t, Settings& c, const std::vector<scene::AlphaFamily>& families,
                  const NdfRegistry& registry, double scale) {
     if (t.has("alpha")) c.alpha = table_alphas(t, "alpha");
     require_ndfs_at(t, "alpha", c.alpha, families, registry);
-    c.cosines = t.integer("cosines", 2, 4096, c.cosines);
-    c.dielectric_cosines = t.integer("dielectric_cosines", 2, 4096, c.dielectric_cosines);
+    c.alpha = thinned(c.alpha, scale);
+    c.cosines = scaled_axis(t.integer("cosines", 2, 4096, c.cosines), scale);
+    c.dielectric_cosines = scaled_axis(t.integer("dielectric_cosines", 2, 4096, c.dielectric_cosines), scale);
     c.refine = t.integer("refine", 1, 100, c.refine);
     c.refine = scene::scaled_count(c.refine, scale, std::min<std::int64_t>(c.refine, 2));
     if (t.has("g2")) c.g2 = read_g2(t);

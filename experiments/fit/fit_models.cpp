@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "smithlab/fit/fit_model.hpp"
+#include "smithlab/util/parallel.hpp"
 
 namespace smithlab::fit {
 
@@ -39,10 +40,11 @@ void FitProgress::starting(const std::string& ndf, std::size_t k, std::size_t n,
 
 NdfFits fit_and_measure(const NdfData& d, const std::vector<const fit::DiffuseModel*>& models, const FitSettings& s,
                         const FitProgress& progress) {
-    NdfFits out;
-    for (std::size_t k = 0; k < models.size(); ++k) {
+    // One block a model, each a pure function of its model: the same rows, in the models' order, for any threads.
+    auto one = [&](std::uint64_t k) {
         const fit::DiffuseModel& m = *models[k];
         progress.starting(d.label, k, models.size(), std::string(m.name));
+        NdfFits out;
         const Measured start{std::string(m.name), &m, m.published, {}};
         const ErrorRow at_start = measure(d, start, s);
         if (m.own_baseline) {
@@ -52,10 +54,16 @@ NdfFits fit_and_measure(const NdfData& d, const std::vector<const fit::DiffuseMo
         if (!m.parameters.empty()) {
             out.models.push_back(fit(d, m, s));
             out.errors.push_back(measure(d, out.models.back(), s));
-            for (Flag& f : flag_fit(out.models.back(), out.errors.back(), at_start)) out.flags.push_back(std::move(f));
+            out.flags = flag_fit(out.models.back(), out.errors.back(), at_start);
         }
-    }
-    return out;
+        return out;
+    };
+    auto append = [](NdfFits& all, NdfFits& f) {
+        all.models.insert(all.models.end(), f.models.begin(), f.models.end());
+        all.errors.insert(all.errors.end(), f.errors.begin(), f.errors.end());
+        for (Flag& flag : f.flags) all.flags.push_back(std::move(flag));
+    };
+    return util::reduce_blocks(models.size(), s.threads, NdfFits{}, one, append, [](std::uint64_t) {});
 }
 
 }  // namespace smithlab::fit

@@ -19,6 +19,7 @@ struct FitSettings {
     double floor = 0.02;                  // the weights' relative floor (smithlab/fit/fit_model.hpp)
     std::vector<double> training_alphas;  // where the largest albedo and the grid checks are measured
     bool energy_bound = true;             // the fits held to a directional albedo <= 1 at the training alphas
+    unsigned threads = 0;                 // the models are fitted on this many threads at once (0: all cores)
 };
 
 // Progress through the fits of every NDF on stderr: a line as each model starts (one fit may take tens of seconds,

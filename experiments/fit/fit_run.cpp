@@ -32,9 +32,10 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// Every model fitted to and measured on every NDF's data: r.fits, the rows of errors.csv, and the flags.
-std::vector<Flag> fit_all(const FitScene& s, Results& r, std::vector<ErrorRow>& errors) {
-    const FitSettings settings{s.albedos, s.floor, s.training.alpha, s.energy_bound};
+// Every model fitted to and measured on every NDF's data (the models on `threads` threads at once): r.fits, the rows of
+// errors.csv, and the flags.
+std::vector<Flag> fit_all(const FitScene& s, Results& r, std::vector<ErrorRow>& errors, unsigned threads) {
+    const FitSettings settings{s.albedos, s.floor, s.training.alpha, s.energy_bound, threads};
     const FitProgress progress{};
     std::vector<Flag> flags;
     for (const NdfData& d : r.data) {
@@ -139,7 +140,7 @@ FitSummary run_fit(const FitScene& s, const std::string& source, const std::stri
     FitSummary sum;
     for (const NdfData& d : r.data) sum.traced += d.traced, sum.reused += d.reused;
     sum.points = sum.traced + sum.reused;
-    const std::vector<Flag> flags = fit_all(s, r, sum.errors);
+    const std::vector<Flag> flags = fit_all(s, r, sum.errors, threads);
     print_flags(flags);
     write_outputs(stage->path(), s, r, sum.errors, flags, registry, threads, out / "cache");
     sum.seconds = seconds_since(t0);

@@ -10,12 +10,12 @@
 /// reach hit k at depth t is a sub-density p_k(t) = sum_i c_i e^{-r_i t} (Bitterli and d'Eon 2022, "A Position-Free
 /// Path Integral for Homogeneous Slabs and Multiple Scattering on Smith Microfacets", CGF 41(4), sec. 5: the collision
 /// distances integrated out of a path of directions; here in the depth of the height law, for any NDF's Lambda):
-///   from above, the first hit:  p_1(t) = a_0 e^{-a_0 t}, a_0 = 1 + Lambda(wi)                                  (1)
-///   up at rate l:    c e^{-r t} -> c l / (r + l) e^{-r t}                [int_t^inf c e^{-r s} l e^{-l (s - t)} ds]
-///   (2) down at rate a:  c e^{-r t} -> c a / (a - r) (e^{-r t} - e^{-a t})   [int_0^t c e^{-r s} a e^{-a (t - s)} ds]
-///   (3) reaching the next hit:  int p = sum_i c_i / r_i (4) escaping toward wo (up, Lambda(wo) = L) from the hit:  int
-///   p e^{-L t} dt = sum_i c_i / (r_i + L)             (5) escaping on the other side, where C1 is 1 - e^{-t}:  int p
-///   (1 - e^{-t})^L dt = sum_i c_i B(r_i, L + 1)        (6)
+///   (1) from above, the first hit:  p_1(t) = a_0 e^{-a_0 t}, a_0 = 1 + Lambda(wi);
+///   (2) up at rate l:  c e^{-r t} -> c l / (r + l) e^{-r t}, from int_t^inf c e^{-r s} l e^{-l (s-t)} ds;
+///   (3) down at rate a:  c e^{-r t} -> c a / (a - r) (e^{-r t} - e^{-a t}), from int_0^t c e^{-r s} a e^{-a (t-s)} ds;
+///   (4) reaching the next hit:  int p = sum_i c_i / r_i;
+///   (5) escaping toward wo (up, Lambda(wo) = L) from the hit:  int p e^{-L t} dt = sum_i c_i / (r_i + L);
+///   (6) escaping on the other side, where C1 is 1 - e^{-t}:  int p (1 - e^{-t})^L dt = sum_i c_i B(r_i, L + 1).
 /// (2) keeps the rates; (3) adds one, so the terms are one more than the downward steps. (3) cancels where a is near
 /// an r_i, and a sum of many terms can hold large coefficients of both signs: a move that would make the sum's
 /// magnitude sum_i |c_i| / r_i more than 1e6 times its value (which leaves its value ~1e-10 relative), or need more
