@@ -66,10 +66,11 @@ def main(argv):
                 print(f"== {where}: skipped, the build has no Python module")
                 continue
             count += 1
+            print(f"== {where}", end="", flush=True)
             start = time.monotonic()
             run = subprocess.run(["bash", "-e", "-x", "-c", with_exit_checks(script)], cwd=work, env=env,
                                  capture_output=True, text=True)
-            print(f"== {where} ({time.monotonic() - start:.1f} s)", flush=True)
+            print(f" ({time.monotonic() - start:.1f} s)", flush=True)
             if run.returncode != 0:
                 failed.append(where)
                 print(run.stdout[-4000:] + run.stderr[-4000:])

@@ -428,9 +428,9 @@ def bodies_of(src):
 # --- the check ------------------------------------------------------------------------------------------------------
 
 
-def source_files(root, dirs=DIRS):
-    """The sources under root's dirs, skipping build trees (folders with a CMakeCache.txt or CMakeFiles)."""
-    for d in dirs:
+def source_files(root, tops=DIRS):
+    """The sources under root's folders tops, skipping build trees (folders with a CMakeCache.txt or CMakeFiles)."""
+    for d in tops:
         for here, dirs, files in os.walk(os.path.join(root, d)):
             dirs[:] = sorted(x for x in dirs if x != "CMakeFiles" and
                              not os.path.exists(os.path.join(here, x, "CMakeCache.txt")))

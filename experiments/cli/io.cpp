@@ -116,8 +116,7 @@ void add_scene_options(CLI::App& command, std::string& scene, bool& print_scene,
     command
         .add_option("--scale", scale,
                     "the scene's walks and samples times F (below 1 its tables' axes times sqrt(F)), in (0, 1000] "
-                    "(0.01: a quick "
-                    "run of the same scene)")
+                    "(0.01: a quick run of the same scene)")
         ->capture_default_str()
         ->check(strict_real());
 }

@@ -1,6 +1,7 @@
 #include "fit/fit_models.hpp"
 
 #include <cstdio>
+#include <iterator>
 
 #include "smithlab/fit/fit_model.hpp"
 #include "smithlab/util/parallel.hpp"
@@ -59,9 +60,12 @@ NdfFits fit_and_measure(const NdfData& d, const std::vector<const fit::DiffuseMo
         return out;
     };
     auto append = [](NdfFits& all, NdfFits& f) {
-        all.models.insert(all.models.end(), f.models.begin(), f.models.end());
-        all.errors.insert(all.errors.end(), f.errors.begin(), f.errors.end());
-        for (Flag& flag : f.flags) all.flags.push_back(std::move(flag));
+        auto move_to_end = [](auto& to, auto& from) {
+            to.insert(to.end(), std::make_move_iterator(from.begin()), std::make_move_iterator(from.end()));
+        };
+        move_to_end(all.models, f.models);
+        move_to_end(all.errors, f.errors);
+        move_to_end(all.flags, f.flags);
     };
     return util::reduce_blocks(models.size(), s.threads, NdfFits{}, one, append, [](std::uint64_t) {});
 }
